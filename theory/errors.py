@@ -1,0 +1,75 @@
+"""One exception tree for the whole library (STYLE.md, *Adopt* 4).
+
+Every class derives from :class:`TrackcertError` and from the builtin it refines, so callers may
+catch either. The CLI turns any :class:`TrackcertError` into exit code 2 (bad input) or 3
+(inconclusive) with its message and never a traceback.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "CaseError",
+    "InconclusiveError",
+    "SolverError",
+    "TrackcertError",
+]
+
+
+class TrackcertError(Exception):
+    """Root of every error trackcert raises on purpose."""
+
+
+class CaseError(TrackcertError, ValueError):
+    """Invalid input: names the file, the field, what was expected and what was found.
+
+    Parameters
+    ----------
+    field : str
+        Dotted path of the offending field, e.g. ``tdoa.agents[3]``.
+    expected : str
+        What a valid value looks like.
+    got : object
+        What was found (shown with ``repr``-like brevity).
+    file : str, optional
+        The case file (or ``<data>`` when the input did not come from a file).
+    hint : str, optional
+        How to fix it.
+    """
+
+    def __init__(
+        self,
+        field: str,
+        expected: str,
+        got: object,
+        *,
+        file: str = "<data>",
+        hint: str = "",
+    ) -> None:
+        self.file = file
+        self.field = field
+        self.expected = expected
+        self.got = got
+        self.hint = hint
+        super().__init__(self._message())
+
+    def _message(self) -> str:
+        got = _brief(self.got)
+        text = f"{self.file}: field '{self.field}': expected {self.expected}, got {got}"
+        return f"{text}. {self.hint}" if self.hint else text
+
+    def in_file(self, file: str) -> CaseError:
+        """The same error, attributed to ``file``."""
+        return CaseError(self.field, self.expected, self.got, file=file, hint=self.hint)
+
+
+class SolverError(TrackcertError, RuntimeError):
+    """A numerical solver failed or returned an answer that did not survive re-checking."""
+
+
+class InconclusiveError(TrackcertError, ArithmeticError):
+    """A verdict lies inside its tolerance: deciding it would be a guess (CLI exit code 3)."""
+
+
+def _brief(value: object, limit: int = 120) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."

@@ -1,0 +1,71 @@
+"""Communication networks: adjacency from edges or a distance rule, consensus weights, components.
+
+Agent ids are 0-based inside the library and 1-based wherever a user sees them (DESIGN.md).
+Named weights follow DESIGN.md: ``metropolis`` is w_ij = 1/(1 + max(d_i, d_j)) on each edge with
+w_ii = 1 − Σ_j w_ij; ``uniform`` is w_ij = 1/(d_i + 1) for j ∈ N_i ∪ {i}.
+"""
+
+from __future__ import annotations
+
+import networkx as nx
+import numpy as np
+
+__all__ = [
+    "adjacency_from_edges",
+    "adjacency_from_range",
+    "components",
+    "metropolis_weights",
+    "uniform_weights",
+    "weights_support",
+]
+
+
+def adjacency_from_edges(n: int, edges: np.ndarray, *, directed: bool = False) -> np.ndarray:
+    """Boolean "hears" matrix ``A[r, s]`` = "agent r receives from agent s" from 0-based edges.
+
+    Undirected edges are symmetrised; a directed edge ``(s, r)`` means information flows from
+    sender ``s`` to receiver ``r``, so row ``r`` of a consensus matrix ``W`` has ``w_rs > 0``.
+    """
+    adjacency = np.zeros((n, n), dtype=bool)
+    for s, r in np.asarray(edges, dtype=int).reshape(-1, 2):
+        adjacency[r, s] = True
+        if not directed:
+            adjacency[s, r] = True
+    return adjacency
+
+
+def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray:
+    """Undirected adjacency of agents closer than ``comm_range`` (strict ``<``, seed 000 §4.4)."""
+    diff = positions[:, None, :] - positions[None, :, :]
+    distance = np.sqrt((diff**2).sum(axis=-1))
+    adjacency = distance < comm_range
+    np.fill_diagonal(adjacency, False)
+    return adjacency
+
+
+def metropolis_weights(adjacency: np.ndarray) -> np.ndarray:
+    """Metropolis weights of an undirected graph (rows and columns sum to 1)."""
+    degree = adjacency.sum(axis=1)
+    weights = np.where(adjacency, 1.0 / (1.0 + np.maximum(degree[:, None], degree[None, :])), 0.0)
+    np.fill_diagonal(weights, 1.0 - weights.sum(axis=1))
+    return weights
+
+
+def uniform_weights(adjacency: np.ndarray) -> np.ndarray:
+    """Uniform weights: each agent averages itself and its in-neighbours equally."""
+    closed = adjacency | np.eye(adjacency.shape[0], dtype=bool)
+    return closed / closed.sum(axis=1, keepdims=True)
+
+
+def weights_support(weights: np.ndarray) -> np.ndarray:
+    """Off-diagonal boolean support of ``W`` (``w_ij > 0``)."""
+    support = weights > 0
+    np.fill_diagonal(support, False)
+    return support
+
+
+def components(adjacency: np.ndarray) -> list[list[int]]:
+    """Weakly connected components, each a sorted list of 0-based agents, ordered by first agent."""
+    graph = nx.from_numpy_array(adjacency.astype(int), create_using=nx.DiGraph)
+    parts = [sorted(c) for c in nx.weakly_connected_components(graph)]
+    return sorted(parts, key=lambda c: c[0])
