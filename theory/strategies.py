@@ -1,0 +1,282 @@
+"""Public hypothesis strategies for systems, networks, TDOA scenes and pursuit parameters.
+
+Users import these in their own property tests (STYLE.md, *Adopt* 11)::
+
+    from hypothesis import given
+    from theory.strategies import tdoa_scenes
+
+    @given(tdoa_scenes(dim=3, family="cone"))
+    def test_cone_scenes_lose_rank(scene): ...
+
+Names are plural nouns, bounds are keyword-only, conditioning is bounded, and impossible
+arguments raise :class:`hypothesis.errors.InvalidArgument` with the offending value.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import networkx as nx
+import numpy as np
+from hypothesis import strategies as st
+from hypothesis.errors import InvalidArgument
+
+from theory.network import metropolis_weights, uniform_weights
+
+__all__ = [
+    "PursuitParameters",
+    "TdoaScene",
+    "is_connected",
+    "networks",
+    "pursuit_parameters",
+    "state_space_pairs",
+    "tdoa_scenes",
+    "weight_matrices",
+]
+
+SCENE_FAMILIES = ("general", "coplanar", "cone", "target-in-plane")
+WEIGHT_KINDS = ("metropolis", "uniform", "random", "singular")
+
+
+@dataclass(frozen=True, eq=False)
+class TdoaScene:
+    """A target and receivers. ``family`` says which geometric family it was drawn from."""
+
+    target: np.ndarray
+    agents: np.ndarray
+    family: str
+
+
+@dataclass(frozen=True)
+class PursuitParameters:
+    """Seed 003 tracking/coordination parameters (ranges of its Tables I–II)."""
+
+    dim: int
+    radius: tuple[float, ...]
+    omega_bar: float
+    epsilon: tuple[float, ...]
+    K_p: tuple[float, ...]
+    k_gamma: float
+    k_c: float
+
+
+def _check_range(name_low: str, low: int, name_high: str, high: int, floor: int) -> None:
+    if low < floor:
+        raise InvalidArgument(f"{name_low}={low} must be at least {floor}")
+    if high < low:
+        raise InvalidArgument(f"{name_high}={high} must be ≥ {name_low}={low}")
+
+
+def _seeds() -> st.SearchStrategy[np.random.Generator]:
+    return st.integers(0, 2**32 - 1).map(np.random.default_rng)
+
+
+def _orthonormal(rng: np.random.Generator, n: int) -> np.ndarray:
+    q, r = np.linalg.qr(rng.standard_normal((n, n)))
+    return q * np.sign(np.diag(r))
+
+
+@st.composite
+def state_space_pairs(
+    draw: st.DrawFn,
+    *,
+    min_states: int = 1,
+    max_states: int = 4,
+    min_outputs: int = 1,
+    max_outputs: int = 2,
+    spectral_radius: tuple[float, float] = (0.2, 1.5),
+    max_condition: float = 10.0,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs ``(A, C)`` with real eigenvalues of ``A`` in ``±spectral_radius`` and ``cond(V) ≤
+    max_condition`` for its eigenvector matrix ``V`` (so eigenvalue tests are well posed).
+
+    Parameters
+    ----------
+    min_states, max_states : int
+        Bounds on ``n``.
+    min_outputs, max_outputs : int
+        Bounds on the rows of ``C`` (0 allowed).
+    spectral_radius : (float, float)
+        Eigenvalue magnitudes are drawn from this interval.
+    max_condition : float
+        Bound on the condition number of the eigenvector matrix (≥ 1).
+    """
+    _check_range("min_states", min_states, "max_states", max_states, 1)
+    _check_range("min_outputs", min_outputs, "max_outputs", max_outputs, 0)
+    low, high = spectral_radius
+    if not 0 <= low <= high:
+        raise InvalidArgument(f"spectral_radius={spectral_radius} must satisfy 0 ≤ low ≤ high")
+    if max_condition < 1:
+        raise InvalidArgument(f"max_condition={max_condition} must be ≥ 1")
+    n = draw(st.integers(min_states, max_states))
+    m = draw(st.integers(min_outputs, max_outputs))
+    rng = draw(_seeds())
+    magnitudes = rng.uniform(low, high, n) * rng.choice([-1.0, 1.0], n)
+    singular = np.exp(rng.uniform(0, np.log(max_condition), n))
+    V = _orthonormal(rng, n) @ np.diag(singular / singular.max()) @ _orthonormal(rng, n)
+    A = V @ np.diag(magnitudes) @ np.linalg.inv(V)
+    C = rng.standard_normal((m, n))
+    return A, C
+
+
+@st.composite
+def networks(
+    draw: st.DrawFn,
+    *,
+    min_agents: int = 2,
+    max_agents: int = 8,
+    connected: bool | None = True,
+    directed: bool = False,
+) -> np.ndarray:
+    """Boolean "hears" matrices ``H[r, s]`` (no self-loops).
+
+    ``connected=True`` gives (strongly, when directed) connected graphs, ``False`` gives graphs
+    with at least two (weak) components, ``None`` either.
+    """
+    _check_range("min_agents", min_agents, "max_agents", max_agents, 1)
+    if connected is False and max_agents < 2:
+        raise InvalidArgument("a disconnected network needs max_agents ≥ 2")
+    low = 2 if connected is False else min_agents
+    n = draw(st.integers(max(low, min_agents), max_agents))
+    rng = draw(_seeds())
+    density = draw(st.floats(0.1, 0.9))
+    hears = rng.random((n, n)) < density
+    if not directed:
+        hears = np.triu(hears, 1)
+        hears = hears | hears.T
+    np.fill_diagonal(hears, False)
+    order = rng.permutation(n)
+    if connected:
+        ring = np.roll(order, 1)
+        hears[order, ring] = True
+        if not directed:
+            hears[ring, order] = True
+    elif connected is False:
+        cut = int(rng.integers(1, n))
+        left, right = order[:cut], order[cut:]
+        hears[np.ix_(left, right)] = False
+        hears[np.ix_(right, left)] = False
+    np.fill_diagonal(hears, False)
+    return hears
+
+
+@st.composite
+def weight_matrices(
+    draw: st.DrawFn,
+    *,
+    min_agents: int = 2,
+    max_agents: int = 6,
+    kind: str = "metropolis",
+    directed: bool = False,
+    connected: bool | None = True,
+) -> np.ndarray:
+    """Row-stochastic ``W`` with positive diagonal on a drawn network.
+
+    ``kind`` is ``metropolis`` (symmetric, doubly stochastic; undirected only), ``uniform``,
+    ``random`` (positive random weights on the support), or ``singular`` (uniform weights on a
+    complete graph with an even count of agents — singular on purpose: W = J/N has rank 1).
+    """
+    if kind not in WEIGHT_KINDS:
+        raise InvalidArgument(f"kind={kind!r}; expected one of {WEIGHT_KINDS}")
+    if kind == "metropolis" and directed:
+        raise InvalidArgument("Metropolis weights need an undirected network (directed=False)")
+    if kind == "singular":
+        _check_range("min_agents", min_agents, "max_agents", max_agents, 2)
+        n = draw(st.integers(min_agents, max_agents))
+        return uniform_weights(~np.eye(n, dtype=bool))
+    hears = draw(
+        networks(
+            min_agents=min_agents, max_agents=max_agents, connected=connected, directed=directed
+        )
+    )
+    if kind == "metropolis":
+        return metropolis_weights(hears)
+    if kind == "uniform":
+        return uniform_weights(hears)
+    rng = draw(_seeds())
+    raw = np.where(hears | np.eye(len(hears), dtype=bool), rng.uniform(0.2, 1.0, hears.shape), 0.0)
+    return raw / raw.sum(axis=1, keepdims=True)
+
+
+@st.composite
+def tdoa_scenes(
+    draw: st.DrawFn,
+    *,
+    dim: int = 3,
+    min_agents: int = 4,
+    max_agents: int = 8,
+    family: str = "general",
+    scale: float = 20.0,
+    min_separation: float = 0.5,
+) -> TdoaScene:
+    """TDOA scenes in general position or on a degenerate family.
+
+    Families: ``general`` (random points, receivers at least ``min_separation·scale`` from the
+    target and from each other), ``coplanar`` (3D: receivers in a plane, target off it),
+    ``cone`` (3D: receivers on a circular cone with apex at the target — the stacked TDOA
+    Jacobian loses rank there), ``target-in-plane`` (3D: receivers and target in one plane).
+    The degenerate families are exact up to floating-point rounding of the coordinates.
+    """
+    if dim not in (2, 3):
+        raise InvalidArgument(f"dim={dim}; expected 2 or 3")
+    if family not in SCENE_FAMILIES:
+        raise InvalidArgument(f"family={family!r}; expected one of {SCENE_FAMILIES}")
+    if family != "general" and dim != 3:
+        raise InvalidArgument(f"family={family!r} is a 3D family; use dim=3")
+    _check_range("min_agents", min_agents, "max_agents", max_agents, 2)
+    if not scale > 0 or not 0 < min_separation < 1:
+        raise InvalidArgument(
+            f"scale={scale} must be > 0 and min_separation={min_separation} in (0, 1)"
+        )
+    n = draw(st.integers(min_agents, max_agents))
+    rng = draw(_seeds())
+    target = rng.uniform(-scale, scale, dim)
+    frame = _orthonormal(rng, dim)
+    radii = rng.uniform(min_separation, 1.0, n) * scale
+    angles = np.sort(rng.uniform(0, 2 * np.pi, n))
+    if family == "general":
+        directions = rng.standard_normal((n, dim))
+        offsets = directions / np.linalg.norm(directions, axis=1, keepdims=True) * radii[:, None]
+    elif family == "cone":
+        half_angle = rng.uniform(0.2, 1.3)
+        local = np.column_stack(
+            [
+                np.full(n, np.cos(half_angle)),
+                np.sin(half_angle) * np.cos(angles),
+                np.sin(half_angle) * np.sin(angles),
+            ]
+        )
+        offsets = (local @ frame.T) * radii[:, None]
+    else:
+        height = 0.0 if family == "target-in-plane" else rng.uniform(0.2, 1.0) * scale
+        local = np.column_stack(
+            [np.full(n, -height), radii * np.cos(angles), radii * np.sin(angles)]
+        )
+        offsets = local @ frame.T
+    return TdoaScene(target, target + offsets, family)
+
+
+@st.composite
+def pursuit_parameters(draw: st.DrawFn, *, dim: int = 2) -> PursuitParameters:
+    """Parameters in the ranges of seed 003 Tables I (2D) and II (3D), widened by about 2×."""
+    if dim not in (2, 3):
+        raise InvalidArgument(f"dim={dim}; expected 2 or 3")
+    positive = st.floats(0.05, 1.0)
+    radius = tuple(draw(st.floats(10.0, 100.0)) for _ in range(dim))
+    epsilon_head = draw(st.floats(-2.0, -0.1))
+    epsilon = (epsilon_head, *(draw(st.floats(-2.0, 0.0)) for _ in range(dim - 2)), 0.0)
+    return PursuitParameters(
+        dim=dim,
+        radius=radius,
+        omega_bar=draw(st.floats(0.01, 0.2)),
+        epsilon=epsilon,
+        K_p=tuple(draw(positive) for _ in range(dim)),
+        k_gamma=draw(st.floats(50.0, 1000.0)),
+        k_c=draw(st.floats(0.05, 1.0)),
+    )
+
+
+def is_connected(hears: np.ndarray, *, strongly: bool = False) -> bool:
+    """Whether the "hears" graph is (strongly) connected — used to test :func:`networks`."""
+    graph = nx.from_numpy_array(hears.T.astype(int), create_using=nx.DiGraph)
+    return nx.is_strongly_connected(graph) if strongly else nx.is_weakly_connected(graph)
