@@ -13,7 +13,10 @@ import typer
 
 __all__ = ["COMMAND_MODULES", "app", "main"]
 
-COMMAND_MODULES: tuple[str, ...] = ("theory.cli.cases",)
+COMMAND_MODULES: tuple[str, ...] = (
+    "theory.cli.cases",
+    "theory.cli.falsify",
+)
 
 app = typer.Typer(
     name="trackcert",

@@ -1,0 +1,51 @@
+"""``trackcert falsify``: wrong paper wordings are refuted within the default budget, corrected
+wordings survive it, and counterexamples come back as ready-to-run case files."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+import yaml
+from typer.testing import CliRunner
+
+from theory.case_file import parse_case
+from theory.cli import app
+from theory.falsifiable_tdoa import component_rank
+from theory.falsify import DEFAULT_EXAMPLES, all_properties, falsify
+from theory.strategies import TdoaScene
+
+runner = CliRunner()
+PROPERTIES = all_properties()
+
+
+@pytest.mark.parametrize("prop", PROPERTIES, ids=[p.id for p in PROPERTIES])
+def test_default_budget_separates_wrong_from_corrected(prop) -> None:
+    result = falsify(prop, examples=DEFAULT_EXAMPLES, seed=0)
+    assert result.found == (not prop.expected_to_hold), result.case
+
+
+@pytest.mark.parametrize("prop", [p for p in PROPERTIES if not p.expected_to_hold], ids=str)
+def test_counterexample_is_a_valid_deterministic_case(prop) -> None:
+    first = falsify(prop, examples=DEFAULT_EXAMPLES, seed=3)
+    again = falsify(prop, examples=DEFAULT_EXAMPLES, seed=3)
+    assert first.case == again.case
+    case = parse_case(yaml.safe_load(yaml.safe_dump(first.case)))
+    scene = TdoaScene(case.spec.target[0], case.spec.agents[0], "reloaded")
+    assert not prop.holds(scene)
+    rank, conclusive = component_rank(scene)
+    assert conclusive
+    assert case.expect["observable"] == [rank == case.spec.dim] * case.spec.n_agents
+
+
+def test_cli_exit_codes_and_json() -> None:
+    found = runner.invoke(app, ["falsify", "seed000.thm4.2.3/paper", "--json"])
+    assert found.exit_code == 1
+    record = json.loads(found.stdout)["results"][0]
+    assert record["found"] and record["case"]["kind"] == "tdoa"
+    clean = runner.invoke(app, ["falsify", "seed000.thm4.2.3/corrected", "--examples", "30"])
+    assert clean.exit_code == 0 and "no counterexample in 30 examples" in clean.stdout
+    listed = runner.invoke(app, ["falsify", "--list", "--json"])
+    assert {p["id"] for p in json.loads(listed.stdout)["properties"]} == {p.id for p in PROPERTIES}
+    bad = runner.invoke(app, ["falsify", "no.such.claim"])
+    assert bad.exit_code == 2 and "Traceback" not in bad.output

@@ -1,0 +1,106 @@
+"""``trackcert falsify CLAIM``: search for a counterexample to a claim, in each of its wordings."""
+
+from __future__ import annotations
+
+import typer
+import yaml
+from rich.table import Table
+
+from theory.cli.common import (
+    EXIT_FAILS,
+    EXIT_HOLDS,
+    console,
+    print_json,
+    reports_errors,
+)
+from theory.errors import CaseError
+from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, all_properties, falsify, properties_for
+
+__all__ = ["register"]
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``falsify`` command to ``app``."""
+
+    @app.command("falsify")
+    @reports_errors
+    def falsify_command(
+        claim: str = typer.Argument(None, help="A claim id, or one wording 'CLAIM/paper'."),
+        examples: int = typer.Option(DEFAULT_EXAMPLES, "--examples", min=1, help="Search budget."),
+        seed: int = typer.Option(0, "--seed", help="Seed of the search."),
+        as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+        list_only: bool = typer.Option(False, "--list", help="List the claims it can run."),
+    ) -> None:
+        """Run hypothesis against a claim; print the shrunk counterexample as a case file."""
+        if list_only:
+            _list(as_json)
+            return
+        if claim is None:
+            raise CaseError(
+                "CLAIM",
+                "a claim id (see 'trackcert falsify --list')",
+                "nothing",
+                file="<command line>",
+            )
+        try:
+            props = properties_for(claim)
+        except KeyError as error:
+            raise CaseError(
+                "CLAIM", "a claim id listed by 'trackcert falsify --list'", claim
+            ) from error
+        results = [falsify(p, examples=examples, seed=seed) for p in props]
+        if as_json:
+            print_json({"results": [_record(r) for r in results]})
+        else:
+            for result in results:
+                _show(result)
+        raise typer.Exit(EXIT_FAILS if any(r.found for r in results) else EXIT_HOLDS)
+
+
+def _record(result: FalsifyResult) -> dict:
+    prop = result.property
+    return {
+        "property": prop.id,
+        "claim": prop.claim,
+        "wording": prop.wording,
+        "statement": prop.statement,
+        "expected_to_hold": prop.expected_to_hold,
+        "examples": result.examples,
+        "seed": result.seed,
+        "found": result.found,
+        "case": result.case,
+    }
+
+
+def _show(result: FalsifyResult) -> None:
+    prop = result.property
+    console.print(f"[bold]{prop.id}[/bold] ({prop.wording} wording): {prop.statement}")
+    if not result.found:
+        console.print(f"  no counterexample in {result.examples} examples (seed {result.seed})\n")
+        return
+    console.print(f"  counterexample (shrunk; seed {result.seed}), as a case file:")
+    console.print(
+        yaml.safe_dump(result.case, sort_keys=False, default_flow_style=None),
+        markup=False,
+        highlight=False,
+    )
+
+
+def _list(as_json: bool) -> None:
+    props = all_properties()
+    if as_json:
+        print_json(
+            {
+                "properties": [
+                    {"id": p.id, "claim": p.claim, "wording": p.wording, "statement": p.statement}
+                    for p in props
+                ]
+            }
+        )
+        return
+    table = Table(title="falsifiable claims")
+    for column in ("property", "wording", "statement"):
+        table.add_column(column)
+    for prop in props:
+        table.add_row(prop.id, prop.wording, prop.statement)
+    console.print(table)
