@@ -49,3 +49,16 @@ def test_cli_exit_codes_and_json() -> None:
     assert {p["id"] for p in json.loads(listed.stdout)["properties"]} == {p.id for p in PROPERTIES}
     bad = runner.invoke(app, ["falsify", "no.such.claim"])
     assert bad.exit_code == 2 and "Traceback" not in bad.output
+
+
+def test_documented_cone_example_finds_the_counterexample() -> None:
+    """The example of docs/property-based.md fails as the document says it does."""
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).parent.parent / "docs" / "property-based.md").read_text()
+    code = re.findall(r"```python\n(.*?)```", text, re.S)[0]
+    namespace: dict = {}
+    exec(code, namespace)
+    with pytest.raises(AssertionError):
+        namespace["test_non_coplanar_agents_localize"]()
