@@ -109,34 +109,47 @@ class PursuitIss:
     controller : str
     K : ndarray
         Decay matrix of eq. (66).
-    lambda_min, norm_K : float
-        λ_min(K) and ‖K‖ = λ_max(K).
+    lambda_min, norm_K, norm_K_p : float
+        λ_min(K), ‖K‖ = λ_max(K) and ‖K_p‖.
+    mu_r : Fraction
+        max over trackers of the exact bound μ_r ≥ sup_γ ‖r′(γ)‖² (:func:`path_mu`).
     mu : float
-        μ = max(1, μ_r) over all trackers (exact rational in ``mu_exact_value``).
+        μ = max(1, μ_r) of eq. (71).
     mu_is_supremum : bool
-        Whether μ is the supremum of eq. (71) (otherwise a valid upper bound).
+        Whether μ_r is the supremum (otherwise a valid upper bound).
     cross_gain : float
-        c = √μ + ‖K‖ of eq. (72).
+        The paper's c = √μ + ‖K‖ of eqs. (72)/(78).
+    paper_gain : float
+        c/λ_min(K): the (θ → 1) gain of eq. (78) — valid.
+    sharp_cross_gain : float
+        c♯ = √(‖K_p‖² + 1 + μ_r) (Type II) or √(‖K_p‖² + 1) (Type I): the cross terms of (70)
+        are e_pᵀ[K_p, I](Rᵀq̃, Rᵀṽ) − e_γq̃ᵀr′ ≤ c♯‖e‖‖x̃‖ (k_γ does not enter them).
     decay_rate : float
-        λ: ‖e(t)‖ ≤ e^{−λt}‖e(0)‖ + gain · sup‖x̃‖ (V_e decays at 2λ).
+        λ = λ_min(K): ‖e(t)‖ ≤ e^{−λt}‖e(0)‖ + gain · sup‖x̃‖ (V_e decays at 2λ).
     gain : float
-        c/λ, the linear ISS gain from ‖x̃‖ to ‖e‖ (limit θ → 1 of eq. (78)'s c/(θλ)).
+        c♯/λ, the linear ISS gain from ‖x̃‖ to ‖e‖ used by :func:`iss_bound`.
     printed_region_sound : bool
-        Whether the region printed in eq. (72), ‖e‖ ≥ c‖x̃‖/θ, follows from the printed argument
-        (it does iff λ_min(K) ≥ 1; eq. (78) has the correct c/(θλ_min)).
+        Whether the printed argument for the region of eq. (72), ‖e‖ ≥ c‖x̃‖/θ, works (iff
+        λ_min(K) ≥ 1; eq. (78) has the correct c/(θλ_min)).
+    printed_region_holds : bool
+        Whether the statement (72) nevertheless holds for this case (sufficient: c♯ ≤ λ_min·c).
     """
 
     controller: str
     K: np.ndarray
     lambda_min: float
     norm_K: float
+    norm_K_p: float
+    mu_r: Fraction
     mu: float
-    mu_exact_value: Fraction
     mu_is_supremum: bool
     cross_gain: float
+    paper_gain: float
+    sharp_cross_gain: float
     decay_rate: float
     gain: float
     printed_region_sound: bool
+    printed_region_holds: bool
 
 
 def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
@@ -149,14 +162,18 @@ def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
     K = gain_matrix(spec)
     eigenvalues = np.linalg.eigvalsh(K)
     lam, norm_k = float(eigenvalues[0]), float(eigenvalues[-1])
+    norm_kp = float(np.linalg.eigvalsh(spec.K_p)[-1])
     bounds = [path_mu(p) for p in spec.trackers]
-    mu_exact = max([Fraction(1)] + [b for b, _ in bounds])
-    is_sup = all(exact or b <= 1 for b, exact in bounds) or mu_exact == 1
-    mu = float(mu_exact)
+    mu_r = max(b for b, _ in bounds)
+    mu = float(max(Fraction(1), mu_r))
+    is_sup = any(exact and b == mu_r for b, exact in bounds)
     c = math.sqrt(mu) + norm_k
+    sharp_sq = norm_kp**2 + 1.0 + (float(mu_r) if spec.controller == "II" else 0.0)
+    sharp = math.sqrt(sharp_sq)
     return PursuitIss(
-        spec.controller, K, lam, norm_k, mu, mu_exact, is_sup, c, lam, c / lam, lam >= 1.0
-    )
+        spec.controller, K, lam, norm_k, norm_kp, mu_r, mu, is_sup, c, c / lam, sharp, lam,
+        sharp / lam, lam >= 1.0, sharp <= lam * c,
+    )  # fmt: skip
 
 
 # ---------------------------------------------------------------------------------------------
@@ -578,6 +595,14 @@ def _rational_below(x: float, *, digits: int = 9) -> Fraction:
     return Fraction(math.floor(x * 10**k), 10**k) - Fraction(1, 10**k)
 
 
+def _sqrt_above(value: Fraction) -> Fraction:
+    """A short decimal rational s ≥ √value (checked exactly)."""
+    s = _rational_above(math.sqrt(float(value)))
+    while s * s < value:
+        s += Fraction(1, 10 ** _grid(float(s), 9))
+    return s
+
+
 def is_psd_exact(matrix: list[list[Fraction]]) -> bool:
     """Exact positive-semidefiniteness of a symmetric rational matrix (LDLᵀ with zero pivots).
 
@@ -646,6 +671,7 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
         "n_trackers": spec.n_trackers,
         "epsilon": [exact_fraction(x) for x in spec.epsilon],
         "K": [[exact_fraction(x) for x in row] for row in pursuit.K],
+        "K_p": [[exact_fraction(x) for x in row] for row in spec.K_p],
         "P_e": [
             [Fraction(1, 2) if i == j else Fraction(0) for j in range(len(pursuit.K))]
             for i in range(len(pursuit.K))
@@ -660,17 +686,17 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
             for p in spec.trackers
         ],
     }
-    s = _rational_above(math.sqrt(float(pursuit.mu_exact_value)))
+    kp_bar = _rational_above(pursuit.norm_K_p)
+    needed = kp_bar * kp_bar + 1 + (pursuit.mu_r if spec.controller == "II" else 0)
     witness: dict[str, Any] = {
         "lambda": _rational_below(pursuit.lambda_min),
-        "k_bar": _rational_above(pursuit.norm_K),
-        "mu": pursuit.mu_exact_value,
-        "s": s,
+        "kp_bar": kp_bar,
+        "mu_r": pursuit.mu_r,
+        "s": _sqrt_above(needed),
     }
-    witness["c"] = witness["s"] + witness["k_bar"]
-    witness["g_e"] = witness["c"] / witness["lambda"]
+    witness["g_e"] = witness["s"] / witness["lambda"]
     witness["gain"] = witness["g_e"]
-    numeric: dict[str, Any] = {"K": pursuit.K, "lambda_min": pursuit.lambda_min, "mu": pursuit.mu}
+    numeric: dict[str, Any] = {"K": pursuit.K, "lambda_min": pursuit.lambda_min}
     if spec.n_trackers > 1:
         _coordination_certificate(spec, data, witness, numeric)
     failed = [name for name, ok in verify_certificate(data, witness) if not ok]
@@ -738,25 +764,22 @@ def verify_certificate(data: dict[str, Any], witness: dict[str, Any]) -> list[tu
     list of (str, bool)
         Each inequality's label and whether it holds.
     """
-    K, eps = data["K"], data["epsilon"]
-    n_k = len(K)
-    lam, k_bar, s = witness["lambda"], witness["k_bar"], witness["s"]
+    K, K_p, eps = data["K"], data["K_p"], data["epsilon"]
+    lam, kp_bar, s = witness["lambda"], witness["kp_bar"], witness["s"]
     mu_paths = [
         max(p["r_x"], p["r_y"]) ** 2 + ((p["r_z"] / p["c"]) ** 2 if "r_z" in p else 0)
         for p in data["paths"]
     ]
-    mu = max([Fraction(1), *mu_paths])
+    mu_r = max(mu_paths)
+    needed = kp_bar * kp_bar + 1 + (mu_r if data["controller"] == "II" else 0)
+    n_p = len(K_p)
+    kp_gap = [[(kp_bar if i == j else 0) - K_p[i][j] for j in range(n_p)] for i in range(n_p)]
     results = [
         ("E1", eps[0] != 0),
         ("E2", lam > 0 and is_psd_exact(_shifted(K, lam))),
-        (
-            "E3",
-            is_psd_exact(
-                [[(k_bar if i == j else 0) - K[i][j] for j in range(n_k)] for i in range(n_k)]
-            ),
-        ),
-        ("E4", witness["mu"] == mu and s >= 1 and s * s >= mu),
-        ("E5", witness["c"] == s + k_bar and witness["g_e"] == witness["c"] / lam),
+        ("E3", is_psd_exact(kp_gap)),
+        ("E4", witness["mu_r"] == mu_r and s >= 0 and s * s >= needed),
+        ("E5", witness["g_e"] == s / lam),
     ]
     if data["n_trackers"] == 1:
         return [*results, ("C6", witness["gain"] == witness["g_e"])]
@@ -789,10 +812,11 @@ def _verify_coordination(data: dict[str, Any], witness: dict[str, Any]) -> list[
 
 CERTIFICATE_INEQUALITIES = (
     "E1  epsilon_1 != 0 (then det(Delta Delta^T) = eps1^2*|eps|^2 > 0 in 3D, eps1^2 in 2D)",
-    "E2  K symmetric and K - lambda*I is positive definite, lambda > 0",
-    "E3  k_bar*I - K is positive semidefinite",
-    "E4  mu = max(1, max_i mu_i), mu_i = max(r_x,r_y)^2 [+ (r_z/c)^2 in 3D]; s >= 1, s^2 >= mu",
-    "E5  c = s + k_bar and g_e = c / lambda",
+    "E2  K = diag(K_p, k_gamma) (K_p for Type I) symmetric; K - lambda*I PSD; lambda > 0",
+    "E3  kp_bar*I - K_p is positive semidefinite (kp_bar >= ||K_p||)",
+    "E4  mu_r = max_i [max(r_x,r_y)^2 (+ (r_z/c)^2 in 3D)]; s >= 0 and "
+    "s^2 >= kp_bar^2 + 1 + mu_r (Type II) or kp_bar^2 + 1 (Type I)",
+    "E5  g_e = s / lambda  (then ||e(t)|| <= exp(-lambda t)||e(0)|| + g_e sup||x~||)",
     "C1  L = D_in - A from the edges; r^T L = 0, sum(r) = 1, r_i > 0",
     "C2  M = R L + L^T R symmetric, M_ij <= 0 (i != j), row sums 0  (hence M >= 0)",
     "C3  B^T (M - 2 a R) B positive semidefinite for B = [e_i - (r_i/r_N) e_N]_{i<N}, a > 0",

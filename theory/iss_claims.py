@@ -243,11 +243,14 @@ def check_theorem1(case: Any) -> list[ClaimResult]:
         "norm_K": pursuit.norm_K,
         "mu": pursuit.mu,
         "mu_is_supremum": pursuit.mu_is_supremum,
-        "c": pursuit.cross_gain,
+        "c_paper": pursuit.cross_gain,
+        "c_sharp": pursuit.sharp_cross_gain,
         "decay_rate": pursuit.decay_rate,
         "iss_gain": pursuit.gain,
+        "iss_gain_paper_constants": pursuit.paper_gain,
         "beta": "‖e(0)‖·exp(−λ_min(K)·t)",
-        "printed_region_sound_for_case": pursuit.printed_region_sound,
+        "printed_region_argument_sound": pursuit.printed_region_sound,
+        "printed_region_statement_holds_for_case": pursuit.printed_region_holds,
         "corrected_region": "‖e‖ ≥ (√μ + ‖K‖)‖x̃‖/(θ λ_min(K))",
     }
     status = "verified" if pursuit.printed_region_sound else "corrected"
@@ -283,6 +286,7 @@ def check_lemma4(case: Any) -> list[ClaimResult]:
         "lyapunov": "V_e = ½ Σ‖e^[i]‖² ((76) with ½ on both terms)",
         "decay_rate": pursuit.decay_rate,
         "iss_gain": pursuit.gain,
+        "iss_gain_paper_constants": pursuit.paper_gain,
         "region": "‖e‖ ≥ (√μ + ‖K‖)‖x̃‖/(θ λ_min(K)) (as printed in (78))",
     }
     return [

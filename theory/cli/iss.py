@@ -72,7 +72,8 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
     identity = lyapunov_derivative_check(spec.dim, spec.controller, True)
     statuses = {c.status for c in conditions}
     holds = "fails" not in statuses and "inconclusive" not in statuses
-    gains: dict[str, Any] = {"pursuit": pursuit.gain, "coordination": coordination.gain}
+    gains: dict[str, Any] = {"pursuit": pursuit.gain, "pursuit_paper": pursuit.paper_gain}
+    gains["coordination"] = coordination.gain
     gains["cascade"] = iss_bound(spec).gain if "fails" not in statuses else None
     r = [float(x) for x in coordination.r] if coordination.r else None
     return {
@@ -106,8 +107,10 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
             "norm_K": pursuit.norm_K,
             "mu": pursuit.mu,
             "mu_is_supremum": pursuit.mu_is_supremum,
-            "c": pursuit.cross_gain,
-            "printed_region_eq72_sound": pursuit.printed_region_sound,
+            "c_paper": pursuit.cross_gain,
+            "c_sharp": pursuit.sharp_cross_gain,
+            "printed_region_eq72_argument_sound": pursuit.printed_region_sound,
+            "printed_region_eq72_holds": pursuit.printed_region_holds,
             "a_L": coordination.a_L,
             "r": r,
             "kappa": coordination.kappa,
