@@ -132,7 +132,9 @@ class PursuitIss:
         Whether the printed argument for the region of eq. (72), ‖e‖ ≥ c‖x̃‖/θ, works (iff
         λ_min(K) ≥ 1; eq. (78) has the correct c/(θλ_min)).
     printed_region_holds : bool
-        Whether the statement (72) nevertheless holds for this case (sufficient: c♯ ≤ λ_min·c).
+        Whether the statement (72) is shown to hold for this case by the sufficient test
+        c♯ ≤ λ_min·c (``False`` means not shown this way; see
+        :func:`theory.iss_counterexamples.eq72_case_search` for the exact criterion).
     """
 
     controller: str

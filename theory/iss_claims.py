@@ -22,6 +22,7 @@ from theory.iss import (
     pursuit_iss,
 )
 from theory.iss_counterexamples import (
+    eq72_case_search,
     eq71_strict_inequality,
     eq72_printed_region,
     eq74_missing_connectivity,
@@ -250,7 +251,8 @@ def check_theorem1(case: Any) -> list[ClaimResult]:
         "iss_gain_paper_constants": pursuit.paper_gain,
         "beta": "‖e(0)‖·exp(−λ_min(K)·t)",
         "printed_region_argument_sound": pursuit.printed_region_sound,
-        "printed_region_statement_holds_for_case": pursuit.printed_region_holds,
+        "printed_region_statement_holds_by_sharp_bound": pursuit.printed_region_holds,
+        "printed_region_counterexample_search": eq72_case_search(spec),
         "corrected_region": "‖e‖ ≥ (√μ + ‖K‖)‖x̃‖/(θ λ_min(K))",
     }
     status = "verified" if pursuit.printed_region_sound else "corrected"

@@ -24,6 +24,7 @@ from theory.pursuit_model import closed_loop_rates, path_numeric, rotation_numer
 
 __all__ = [
     "eq71_strict_inequality",
+    "eq72_case_search",
     "eq72_printed_region",
     "eq74_missing_connectivity",
     "eq75_missing_norm",
@@ -223,4 +224,53 @@ def xi_not_orthogonal_to_ones() -> dict[str, Any]:
         "xi": [str(x) for x in xi],
         "r_dot_xi": str(sum(ri * x for ri, x in zip(r, xi, strict=True))),
         "ones_dot_xi": str(sum(xi)),
+    }
+
+
+def eq72_case_search(spec, *, starts: int = 64, seed: int = 0) -> dict[str, Any]:
+    """Search the case's parameters for a violation of the region printed in (72).
+
+    The printed statement holds for every θ ∈ (0, 1) iff c·eᵀKe ≥ σ(e) for every unit e, where
+    σ(e) = sup over R, γ of the cross-term gain, σ(e)² = (‖K_p e_p‖ + |e_γ|√μ_r)² + ‖e_p‖² (the
+    sup is attained with Rᵀr′ anti-parallel to K_p e_p; μ_r is the path bound of
+    :func:`theory.iss.path_mu`). A multi-start local search (``starts`` starts from a seeded
+    generator) minimises c·eᵀKe − σ(e); a negative minimum is a counterexample (with θ close
+    to 1), a non-negative one is only "none found".
+
+    Returns
+    -------
+    dict
+        ``{"minimum", "minimizer", "violation_found", "starts", "seed"}``.
+    """
+    from scipy.optimize import minimize
+
+    from theory.iss import gain_matrix, pursuit_iss
+
+    pursuit = pursuit_iss(spec)
+    K = gain_matrix(spec)
+    dim = spec.dim
+    root_mu = math.sqrt(float(pursuit.mu_r)) if spec.controller == "II" else 0.0
+
+    def objective(x: np.ndarray) -> float:
+        e = x / np.linalg.norm(x)
+        e_p, e_gamma = e[:dim], (e[dim] if spec.controller == "II" else 0.0)
+        sigma = math.hypot(
+            float(np.linalg.norm(spec.K_p @ e_p)) + abs(e_gamma) * root_mu,
+            float(np.linalg.norm(e_p)),
+        )
+        return pursuit.cross_gain * float(e @ K @ e) - sigma
+
+    rng = np.random.default_rng(seed)
+    best = None
+    for _ in range(starts):
+        result = minimize(objective, rng.standard_normal(K.shape[0]), method="Nelder-Mead")
+        if best is None or result.fun < best.fun:
+            best = result
+    minimizer = best.x / np.linalg.norm(best.x)
+    return {
+        "minimum": float(best.fun),
+        "minimizer": minimizer.tolist(),
+        "violation_found": bool(best.fun < -1e-9 * pursuit.cross_gain * pursuit.norm_K),
+        "starts": starts,
+        "seed": seed,
     }

@@ -110,7 +110,7 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
             "c_paper": pursuit.cross_gain,
             "c_sharp": pursuit.sharp_cross_gain,
             "printed_region_eq72_argument_sound": pursuit.printed_region_sound,
-            "printed_region_eq72_holds": pursuit.printed_region_holds,
+            "printed_region_eq72_holds_by_sharp_bound": pursuit.printed_region_holds,
             "a_L": coordination.a_L,
             "r": r,
             "kappa": coordination.kappa,
