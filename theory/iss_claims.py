@@ -22,8 +22,8 @@ from theory.iss import (
     pursuit_iss,
 )
 from theory.iss_counterexamples import (
-    eq72_case_search,
     eq71_strict_inequality,
+    eq72_case_search,
     eq72_printed_region,
     eq74_missing_connectivity,
     eq75_missing_norm,
