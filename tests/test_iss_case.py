@@ -155,3 +155,28 @@ def test_table_text_output() -> None:
     result = runner.invoke(app, ["iss", "pursuit-table2-n3"])
     assert result.exit_code == 0
     assert "seed003.thm2" in result.stdout and "holds" in result.stdout
+
+
+def test_spanning_tree_graph_is_corrected_not_refuted() -> None:
+    """Lemma 3 needs less than strong connectivity: a rooted tree 1 → 2 → 3 still coordinates."""
+    from theory.claims import get_claim
+
+    data = copy.deepcopy(_data("pursuit-table1-n3"))
+    data["pursuit"]["edges"] = [[1, 2], [2, 3]]
+    del data["pursuit"]["dekf"]
+    case = parse_case(data)
+    (result,) = get_claim("seed003.lem3").run(case)
+    assert result.status == "corrected"
+    assert result.evidence["zero_eigenvalue_simple"] and not result.evidence["strongly_connected"]
+    assert result.evidence["spectral_rate"] > 0
+    no_tree = load_case("pursuit-not-strongly-connected")
+    (result,) = get_claim("seed003.lem3").run(no_tree)
+    assert result.status == "refuted"
+
+
+def test_table_measurement_weights_contradict_the_text() -> None:
+    """Erratum: the text sets V = 1/σ; Table I has σ = 0.5, V = 10; Table II prints V = σ = 1."""
+    for name, expected_v in (("pursuit-table1-n1", 10.0), ("pursuit-table2-n1", 1.0)):
+        dekf = load_case(name).spec.dekf
+        assert dekf.sigma == 0.5 and dekf.V == expected_v
+        assert dekf.V not in (1 / dekf.sigma, 1 / dekf.sigma**2, dekf.sigma)
