@@ -66,7 +66,13 @@ DEFAULT_MARGIN_TOL = 1e-9
 
 
 def exact_fraction(value: float) -> Fraction:
-    """The rational a case number denotes: its shortest decimal representation (0.2 → 1/5)."""
+    """The rational a case number denotes: its shortest decimal representation (0.2 → 1/5).
+
+    Parameters
+    ----------
+    value : float
+        A number read from a case file.
+    """
     return Fraction(repr(float(value)))
 
 
@@ -75,7 +81,13 @@ def exact_fraction(value: float) -> Fraction:
 
 
 def gain_matrix(spec: PursuitSpec) -> np.ndarray:
-    """K = diag(K_p, k_γ) for Type II (eq. (66), ``k_z`` read as k_γ), K = K_p for Type I."""
+    """K = diag(K_p, k_γ) for Type II (eq. (66), ``k_z`` read as k_γ), K = K_p for Type I.
+
+    Parameters
+    ----------
+    spec : PursuitSpec
+        The case.
+    """
     if spec.controller == "I":
         return spec.K_p.copy()
     return scipy.linalg.block_diag(spec.K_p, [[spec.k_gamma]])
@@ -87,6 +99,11 @@ def path_mu(path: TrackerPath) -> tuple[Fraction, bool]:
     ‖r′‖² = r_x² sin²(γ+γ₀) + r_y² cos²(γ+γ₀) [+ (r_z/c)² cos²(γ/c + γ₀)]. The bound
     max(r_x², r_y²) [+ (r_z/c)²] is the supremum in 2D, and in 3D when r_x = r_y (then the
     vertical term reaches its maximum at some γ); otherwise it is an upper bound.
+
+    Parameters
+    ----------
+    path : TrackerPath
+        One tracker's path constants.
 
     References
     ----------
@@ -157,6 +174,11 @@ class PursuitIss:
 def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
     """The corrected constants of (72)/(78) for ``spec``.
 
+    Parameters
+    ----------
+    spec : PursuitSpec
+        The case.
+
     References
     ----------
     seed 003, eqs. (65)–(72), (76)–(78).
@@ -184,6 +206,11 @@ def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
 
 def left_eigenvector(laplacian: np.ndarray) -> tuple[Fraction, ...] | None:
     """The exact r with rᵀL = 0, rᵀ1 = 1, or ``None`` if the zero eigenvalue is not simple.
+
+    Parameters
+    ----------
+    laplacian : ndarray of int
+        L = D_in − A.
 
     References
     ----------
@@ -215,6 +242,13 @@ def generalized_algebraic_connectivity(laplacian: np.ndarray, r: np.ndarray) -> 
 
     a(L) = min over x ⊥ r, x ≠ 0 of xᵀ(RL + LᵀR)x / (2xᵀRx) = λ_min(BᵀMB, 2BᵀRB) for any basis
     B of r⊥ (here the rational basis of :func:`_orthogonal_basis`), M = RL + LᵀR.
+
+    Parameters
+    ----------
+    laplacian : ndarray
+        L = D_in − A of a digraph whose left eigenvector is positive.
+    r : ndarray
+        That left eigenvector (rᵀL = 0, rᵀ1 = 1, r > 0).
 
     References
     ----------
@@ -283,6 +317,11 @@ class CoordinationIss:
 
 def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
     """The corrected constants of Lemma 3 for ``spec``'s digraph and k_c.
+
+    Parameters
+    ----------
+    spec : PursuitSpec
+        The case.
 
     References
     ----------
@@ -610,6 +649,11 @@ def is_psd_exact(matrix: list[list[Fraction]]) -> bool:
 
     A symmetric matrix is PSD iff symmetric Gaussian elimination meets only pivots ≥ 0 and every
     zero pivot has a zero row below it.
+
+    Parameters
+    ----------
+    matrix : list of lists of Fraction
+        A square matrix (non-symmetric input returns ``False``).
     """
     a = [list(row) for row in matrix]
     n = len(a)
@@ -648,6 +692,11 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
     κ above √(r_max/r_min)). Every inequality of :data:`CERTIFICATE_INEQUALITIES` is re-verified
     exactly by :func:`verify_certificate` before the data is returned; ``numeric`` repeats the
     matrices as numpy arrays for convenience.
+
+    Parameters
+    ----------
+    spec : PursuitSpec
+        The case.
 
     Returns
     -------
@@ -760,6 +809,13 @@ def verify_certificate(data: dict[str, Any], witness: dict[str, Any]) -> list[tu
 
     This is trackcert's own check, used before a certificate is emitted; the independent checker
     (``proofs_check``) re-implements the same list without importing this module.
+
+    Parameters
+    ----------
+    data : dict
+        The ``data`` part of :func:`iss_certificate_data` (exact rationals).
+    witness : dict
+        The ``witness`` part.
 
     Returns
     -------

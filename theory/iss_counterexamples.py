@@ -94,6 +94,11 @@ def eq72_printed_region(theta: float = 0.5) -> dict[str, Any]:
     ‖x̃‖ = 0.99·θ‖e‖/c, aligned with the cross term (ṽ ∥ Re_p, q̃ ∥ Re_p, ‖ṽ‖ : ‖q̃‖ = 1 : 0.1). V̇ is
     evaluated from the kinematics (:func:`theory.pursuit_model.closed_loop_rates`); the corrected
     region ‖e‖ ≥ c‖x̃‖/(θλ_min) of (78) excludes this state.
+
+    Parameters
+    ----------
+    theta : float
+        θ ∈ (0, 1) of eq. (72).
     """
     k = 0.1
     K_p = k * np.eye(2)
@@ -236,6 +241,15 @@ def eq72_case_search(spec, *, starts: int = 64, seed: int = 0) -> dict[str, Any]
     :func:`theory.iss.path_mu`). A multi-start local search (``starts`` starts from a seeded
     generator) minimises c·eᵀKe − σ(e); a negative minimum is a counterexample (with θ close
     to 1), a non-negative one is only "none found".
+
+    Parameters
+    ----------
+    spec : PursuitSpec
+        The case.
+    starts : int
+        Number of local searches.
+    seed : int
+        Seed of the ``numpy.random.Generator`` drawing the starting points.
 
     Returns
     -------

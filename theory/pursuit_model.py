@@ -73,6 +73,11 @@ def skew_printed(omega: sp.Matrix) -> sp.Matrix:
 
     It is skew-symmetric but equals [ω']ₓ with ω' = [q, p, r]: roll and pitch rates are swapped.
 
+    Parameters
+    ----------
+    omega : sympy.Matrix
+        [p, q, r] (3D) or [r] (2D, where it equals :func:`skew`).
+
     References
     ----------
     seed 003, eq. (4).
@@ -85,6 +90,11 @@ def skew_printed(omega: sp.Matrix) -> sp.Matrix:
 
 def delta_matrix(epsilon: sp.Matrix) -> sp.Matrix:
     """Δ exactly as printed in seed 003 eq. (22) (3 × 4 in 3D, 2 × 2 in 2D).
+
+    Parameters
+    ----------
+    epsilon : sympy.Matrix
+        ε of eq. (19), 2 or 3 entries.
 
     References
     ----------
@@ -127,7 +137,10 @@ def delta_from_skew(skew_fn, epsilon: sp.Matrix) -> sp.Matrix:
 def euler_rotation(angles: sp.Matrix) -> sp.Matrix:
     """R(η): yaw rotation in 2D, Z-Y-X (yaw-pitch-roll) Euler rotation in 3D (seed 003 eq. (2)).
 
-    ``angles`` is [ψ] (2D) or [φ, θ, ψ] (3D).
+    Parameters
+    ----------
+    angles : sympy.Matrix
+        [ψ] (2D) or [φ, θ, ψ] (3D).
     """
     if len(angles) == 1:
         psi = angles[0]
@@ -142,7 +155,15 @@ def euler_rotation(angles: sp.Matrix) -> sp.Matrix:
 
 
 def euler_rates(angles: sp.Matrix, omega: sp.Matrix) -> sp.Matrix:
-    """η̇ = T(η) ω for Z-Y-X Euler angles and body rates ω = [p, q, r] (ψ̇ = r in 2D)."""
+    """η̇ = T(η) ω for Z-Y-X Euler angles and body rates ω = [p, q, r] (ψ̇ = r in 2D).
+
+    Parameters
+    ----------
+    angles : sympy.Matrix
+        [φ, θ, ψ] (3D) or [ψ] (2D).
+    omega : sympy.Matrix
+        Body rates [p, q, r] (3D) or [r] (2D).
+    """
     if len(angles) == 1:
         return sp.Matrix([omega[0]])
     phi, theta, _ = angles
@@ -162,6 +183,11 @@ def cayley_rotation(params: sp.Matrix) -> sp.Matrix:
     Its entries are rational in ``params`` and RRᵀ = I holds as a rational identity, so identities
     that use orthogonality can be checked by exact cancellation. Covers every rotation except the
     half-turns (a set of measure zero, so polynomial identities extend by continuity).
+
+    Parameters
+    ----------
+    params : sympy.Matrix
+        One parameter (2D) or three (3D).
     """
     dim = 2 if len(params) == 1 else 3
     a = skew(params)
@@ -170,7 +196,15 @@ def cayley_rotation(params: sp.Matrix) -> sp.Matrix:
 
 
 def path(gamma: sp.Symbol, r_x, r_y, gamma0, r_z=None, c=None) -> sp.Matrix:
-    """r(γ) of seed 003 eq. (15) (3D, when ``r_z`` and ``c`` are given) or eq. (16) (2D)."""
+    """r(γ) of seed 003 eq. (15) (3D, when ``r_z`` and ``c`` are given) or eq. (16) (2D).
+
+    Parameters
+    ----------
+    gamma : sympy.Symbol
+        Path parameter γ.
+    r_x, r_y, gamma0, r_z, c : sympy expressions or numbers
+        Path constants of eq. (15); ``r_z`` and ``c`` only in 3D.
+    """
     planar = [r_x * sp.cos(gamma + gamma0), r_y * sp.sin(gamma + gamma0)]
     if r_z is None:
         return sp.Matrix(planar)
@@ -182,7 +216,13 @@ def path(gamma: sp.Symbol, r_x, r_y, gamma0, r_z=None, c=None) -> sp.Matrix:
 
 
 def skew_numeric(omega: np.ndarray) -> np.ndarray:
-    """Numeric S(ω) = [ω]ₓ (3D) or [[0, −r], [r, 0]] (2D)."""
+    """Numeric S(ω) = [ω]ₓ (3D) or [[0, −r], [r, 0]] (2D).
+
+    Parameters
+    ----------
+    omega : array_like
+        [p, q, r] or [r].
+    """
     omega = np.asarray(omega, dtype=float)
     if omega.size == 1:
         r = float(omega.reshape(-1)[0])
@@ -192,7 +232,13 @@ def skew_numeric(omega: np.ndarray) -> np.ndarray:
 
 
 def delta_numeric(epsilon: np.ndarray) -> np.ndarray:
-    """Numeric Δ of eq. (22)."""
+    """Numeric Δ of eq. (22).
+
+    Parameters
+    ----------
+    epsilon : array_like
+        ε, 2 or 3 entries.
+    """
     e = np.asarray(epsilon, dtype=float)
     if e.size == 2:
         return np.array([[1.0, e[1]], [0.0, -e[0]]])
@@ -200,7 +246,13 @@ def delta_numeric(epsilon: np.ndarray) -> np.ndarray:
 
 
 def rotation_numeric(params: np.ndarray) -> np.ndarray:
-    """Numeric rotation: angle ψ in 2D (one entry) or a rotation vector (axis·angle) in 3D."""
+    """Numeric rotation matrix (Rodrigues' formula in 3D).
+
+    Parameters
+    ----------
+    params : array_like
+        The angle ψ (one entry, 2D) or a rotation vector axis·angle (three entries, 3D).
+    """
     params = np.asarray(params, dtype=float).reshape(-1)
     if params.size == 1:
         c, s = np.cos(params[0]), np.sin(params[0])
@@ -215,7 +267,15 @@ def rotation_numeric(params: np.ndarray) -> np.ndarray:
 def path_numeric(
     gamma: float, r_x: float, r_y: float, gamma0: float, r_z=None, c=None
 ) -> np.ndarray:
-    """r(γ), eqs. (15)/(16)."""
+    """r(γ), eqs. (15)/(16).
+
+    Parameters
+    ----------
+    gamma : float
+        Path parameter.
+    r_x, r_y, gamma0, r_z, c : float
+        Path constants (``r_z``, ``c`` only in 3D).
+    """
     planar = [r_x * np.cos(gamma + gamma0), r_y * np.sin(gamma + gamma0)]
     if r_z is None:
         return np.array(planar)
@@ -225,7 +285,15 @@ def path_numeric(
 def path_derivative_numeric(
     gamma: float, r_x: float, r_y: float, gamma0: float, r_z=None, c=None
 ) -> np.ndarray:
-    """r′(γ) = ∂r/∂γ of eqs. (15)/(16)."""
+    """r′(γ) = ∂r/∂γ of eqs. (15)/(16).
+
+    Parameters
+    ----------
+    gamma : float
+        Path parameter.
+    r_x, r_y, gamma0, r_z, c : float
+        Path constants (``r_z``, ``c`` only in 3D).
+    """
     planar = [-r_x * np.sin(gamma + gamma0), r_y * np.cos(gamma + gamma0)]
     if r_z is None:
         return np.array(planar)
