@@ -110,6 +110,7 @@ def test_iss_holds_on_table_cases(name: str) -> None:
     assert record["controller"] == "II"
     assert all(c["status"] in ("holds", "not-applicable") for c in record["conditions"])
     assert record["decay_rate"]["pursuit"] == pytest.approx(0.2)
+    assert record["expectations"] and all(e["met"] for e in record["expectations"])
 
 
 @pytest.mark.parametrize(
@@ -127,6 +128,7 @@ def test_iss_fails_with_exit_1(name: str, condition: str) -> None:
     assert statuses[condition] == "fails"
     expected = load_case(name).expect
     assert record["holds"] is expected["iss"]
+    assert all(e["met"] for e in record["expectations"])
 
 
 def test_iss_inconclusive_margin_exits_3(tmp_path: Path) -> None:

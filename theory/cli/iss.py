@@ -117,9 +117,24 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
             "b": coordination.b,
         },
         "conditions": [c.to_json(tol) for c in conditions],
+        "expectations": _expectations(case.expect, holds, conditions),
         "claims": [r.to_json(get_claim(r.claim).source) for r in run_case_claims(case)],
         "tolerances": {"margin_tol": tol},
     }
+
+
+def _expectations(expect: dict[str, Any], holds: bool, conditions: list) -> list[dict[str, Any]]:
+    """Compare the case's ``expect`` block with what was found."""
+    found = {c.name: c.status == "holds" for c in conditions}
+    actual = {
+        "iss": holds,
+        "delta_full_rank": found.get("delta_full_rank"),
+        "strongly_connected": found.get("graph_strongly_connected", True),
+    }
+    return [
+        {"key": key, "expected": value, "actual": actual[key], "met": actual[key] == value}
+        for key, value in expect.items()
+    ]
 
 
 def _exit_code(record: dict[str, Any]) -> int:
