@@ -429,3 +429,17 @@ def test_eq72_case_search_finds_the_counterexample_family() -> None:
     for name in ("pursuit-table1-n1", "pursuit-table2-n1"):
         search = eq72_case_search(load_case(name).spec)
         assert not search["violation_found"] and search["minimum"] > 0
+
+
+@given(data=st.data())
+def test_lemma2_equality_along_the_kinematics(data) -> None:
+    """Lemma 2 numerically: with q̃ = ṽ = 0, V̇ = −eᵀKe at every state (not just ≤)."""
+    case = data.draw(pursuit_cases())
+    spec = case.spec
+    state = data.draw(tracker_states(spec))
+    zero = np.zeros(spec.dim)
+    rates, _ = _rates(spec, {**state, "q_err": zero, "v_err": zero})
+    e = np.append(rates.e_p, rates.e_gamma) if spec.controller == "II" else rates.e_p
+    K = pursuit_iss(spec).K
+    expected = -float(e @ K @ e)
+    assert math.isclose(rates.v_dot, expected, rel_tol=1e-8, abs_tol=1e-8 * (1 + e @ e))
