@@ -5,10 +5,11 @@ Two subsystems, connected in cascade (seed 003 Fig. V.3):
 * the pursuit error e = col(e^[1], …, e^[N]), e^[i] = [e_p^[i], e_γ^[i]], driven by the estimation
   error x̃ (Theorem 1, Lemma 4). With V_e = ½‖e‖² (eq. (76) with the ½ on both terms),
 
-      V̇_e ≤ −λ_min(K)‖e‖² + (√μ + ‖K‖)‖e‖‖x̃‖,   μ = max(1, sup_γ ‖r′(γ)‖²),   (72)/(78)
+      V̇_e ≤ −λ_min(K)‖e‖² + c‖e‖‖x̃‖,   c = √μ + ‖K‖, μ = max(1, sup_γ ‖r′(γ)‖²),   (72)/(78)
 
-  so ‖e(t)‖ ≤ e^{−λt}‖e(0)‖ + (c/λ) sup_{[0,t]}‖x̃‖ with λ = λ_min(K), c = √μ + ‖K‖ (comparison
-  lemma on W = ‖e‖: Ẇ ≤ −λW + c‖x̃‖);
+  and also with the sharper c♯ = √(‖K_p‖² + 1 + μ_r) (Type II; k_γ does not enter the cross
+  terms), so ‖e(t)‖ ≤ e^{−λt}‖e(0)‖ + (c♯/λ) sup_{[0,t]}‖x̃‖ with λ = λ_min(K) (comparison
+  lemma on W = ‖e‖: Ẇ ≤ −λW + c♯‖x̃‖);
 * the coordination error ξ = (I − 1rᵀ)γ (eq. (56)), driven by e_γ (Lemma 3). With
   V_c = ½ξᵀRξ and ξ ⊥ r (not ⊥ 1),
 
@@ -300,19 +301,19 @@ class CoordinationIss:
     k_c: float | None
     strongly_connected: bool
     zero_eigenvalue_simple: bool
-    r: tuple[Fraction, ...] | None
-    r_positive: bool
-    rl_psd: bool
-    a_L: float | None
-    spectral_rate: float | None
-    decay_rate: float | None
-    printed_decay_coefficient: float | None
-    r_min: float | None
-    r_max: float | None
-    b: float | None
-    kappa: float | None
-    gain: float | None
-    printed_input_gain: float | None
+    r: tuple[Fraction, ...] | None = None
+    r_positive: bool = False
+    rl_psd: bool = False
+    a_L: float | None = None
+    spectral_rate: float | None = None
+    decay_rate: float | None = None
+    printed_decay_coefficient: float | None = None
+    r_min: float | None = None
+    r_max: float | None = None
+    b: float | None = None
+    kappa: float | None = None
+    gain: float | None = None
+    printed_input_gain: float | None = None
 
 
 def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
@@ -333,26 +334,25 @@ def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
     strongly = n == 1 or nx.is_strongly_connected(graph)
     r_exact = left_eigenvector(L)
     if r_exact is None:
-        return CoordinationIss(
-            n, L, spec.k_c, strongly, False, None, False, False, None, None, None, None,
-            None, None, None, None, None, None,
-        )  # fmt: skip
-    r = np.array([float(x) for x in r_exact])
-    positive = all(x > 0 for x in r_exact)
-    rl_psd = _rl_is_laplacian(L, r_exact)
+        return CoordinationIss(n, L, spec.k_c, strongly, zero_eigenvalue_simple=False)
+    graph_facts = {
+        "r": r_exact,
+        "r_positive": all(x > 0 for x in r_exact),
+        "rl_psd": _rl_is_laplacian(L, r_exact),
+    }
     if n == 1:
         return CoordinationIss(
-            n, L, spec.k_c, True, True, r_exact, True, True, None, None, None, None,
-            1.0, 1.0, 0.0, 1.0, 0.0, 0.0,
+            n, L, spec.k_c, True, True, **graph_facts, r_min=1.0, r_max=1.0, b=0.0, kappa=1.0,
+            gain=0.0, printed_input_gain=0.0,
         )  # fmt: skip
     eigenvalues = np.linalg.eigvals(L.astype(float))
     nonzero = np.delete(eigenvalues, np.argmin(np.abs(eigenvalues)))
     spectral = spec.k_c * float(np.min(nonzero.real))
-    if not positive:
+    if not graph_facts["r_positive"]:
         return CoordinationIss(
-            n, L, spec.k_c, strongly, True, r_exact, False, rl_psd, None, spectral, None, None,
-            None, None, None, None, None, None,
-        )  # fmt: skip
+            n, L, spec.k_c, strongly, True, **graph_facts, spectral_rate=spectral
+        )
+    r = np.array([float(x) for x in r_exact])
     a = generalized_algebraic_connectivity(L.astype(float), r)
     R = np.diag(r)
     W = np.eye(n) - np.outer(np.ones(n), r)
@@ -360,10 +360,17 @@ def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
     r_min, r_max = float(r.min()), float(r.max())
     alpha = spec.k_c * a
     return CoordinationIss(
-        n, L, spec.k_c, strongly, True, r_exact, True, rl_psd, a, spectral, alpha,
-        spec.k_c * r_min, r_min, r_max, b, math.sqrt(r_max / r_min),
-        b / (math.sqrt(r_min) * alpha) if alpha > 0 else math.inf,
-        float(np.linalg.norm(R @ W, 2)) / (spec.k_c * r_min),
+        n, L, spec.k_c, strongly, True, **graph_facts,
+        a_L=a,
+        spectral_rate=spectral,
+        decay_rate=alpha,
+        printed_decay_coefficient=spec.k_c * r_min,
+        r_min=r_min,
+        r_max=r_max,
+        b=b,
+        kappa=math.sqrt(r_max / r_min),
+        gain=b / (math.sqrt(r_min) * alpha) if alpha > 0 else math.inf,
+        printed_input_gain=float(np.linalg.norm(R @ W, 2)) / (spec.k_c * r_min),
     )  # fmt: skip
 
 
