@@ -16,6 +16,7 @@ __all__ = ["COMMAND_MODULES", "app", "main"]
 COMMAND_MODULES: tuple[str, ...] = (
     "theory.cli.cases",
     "theory.cli.falsify",
+    "theory.cli.iss",
 )
 
 app = typer.Typer(
