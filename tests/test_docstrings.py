@@ -1,5 +1,5 @@
-"""Every public callable has a docstring; a numpydoc ``Parameters`` section lists exactly the
-signature's parameters (STYLE.md, *Adopt* 3)."""
+"""Every public callable has a docstring that mentions each of its parameters; a numpydoc
+``Parameters`` section lists exactly the signature's parameters (STYLE.md, *Adopt* 3)."""
 
 from __future__ import annotations
 
@@ -50,6 +50,12 @@ def test_public_callable_is_documented(name: str, obj) -> None:
     doc = inspect.getdoc(obj)
     assert doc, f"{name} has no docstring"
     target = obj.__init__ if inspect.isclass(obj) else obj
+    if not inspect.isclass(obj):
+        for parameter in inspect.signature(obj).parameters:
+            if parameter not in SKIP_PARAMS:
+                assert re.search(rf"\b{re.escape(parameter)}\b", doc), (
+                    f"{name}: parameter {parameter!r} is not mentioned in the docstring"
+                )
     documented = documented_parameters("\n" + doc)
     if documented is None:
         return

@@ -84,7 +84,11 @@ def register_kind(
     expect_keys: tuple[str, ...],
     tolerance_keys: tuple[str, ...] = (),
 ) -> None:
-    """Register the parser of ``kind`` (called by the kind's module at import time)."""
+    """Register the parser of ``kind`` (called by the kind's module at import time).
+
+    ``parse`` validates the kind's block and returns its spec; ``expect_keys`` and
+    ``tolerance_keys`` are the keys the case's ``expect`` and ``tolerances`` blocks may use.
+    """
     _KINDS[kind] = KindSpec(parse, tuple(expect_keys), tuple(tolerance_keys))
 
 
@@ -147,7 +151,7 @@ def bundled_cases() -> dict[str, Path]:
 
 
 def resolve_case_path(name_or_path: str | Path) -> Path:
-    """A path as given if it exists, otherwise the bundled case of that name."""
+    """``name_or_path`` as a path if that file exists, otherwise the bundled case of that name."""
     path = Path(name_or_path)
     if path.is_file():
         return path

@@ -126,7 +126,10 @@ class Claim:
 def register(
     claim_id: str, *, source: str, statement: str, kinds: tuple[str, ...] = ()
 ) -> Callable[[Callable[[Any], list[ClaimResult]]], Callable[[Any], list[ClaimResult]]]:
-    """Decorator registering ``run`` as the check for ``claim_id`` (ids must be unique)."""
+    """Decorator registering ``run`` as the check for ``claim_id`` (ids must be unique).
+
+    ``source``, ``statement`` and ``kinds`` are stored on the :class:`Claim`.
+    """
 
     def decorate(run: Callable[[Any], list[ClaimResult]]) -> Callable[[Any], list[ClaimResult]]:
         if claim_id in _REGISTRY:

@@ -26,7 +26,8 @@ MIRROR_TOL = 1e-9
 
 
 def component_rank(scene: TdoaScene) -> tuple[int, bool]:
-    """Rank of the stacked position Jacobian of all agents, and whether it is conclusive."""
+    """Rank of the stacked position Jacobian of all agents of ``scene``, and whether the
+    decision is conclusive (every singular value clears the threshold by 10³)."""
     n, dim = scene.agents.shape
     jacobian = tdoa_jacobian(scene.target, scene.agents, 0, range(1, n))[:, :dim]
     result = numeric_rank(jacobian, rank_tol=RANK_TOL)
@@ -46,7 +47,7 @@ def _concyclic_directions(scene: TdoaScene) -> bool:
 
 
 def mirror_target(scene: TdoaScene) -> np.ndarray:
-    """The target reflected through the plane that best fits the agents (least squares)."""
+    """``scene``'s target reflected through the plane that best fits its agents (least squares)."""
     centre = scene.agents.mean(axis=0)
     normal = np.linalg.svd(scene.agents - centre)[2][-1]
     return scene.target - 2 * np.dot(scene.target - centre, normal) * normal

@@ -21,7 +21,9 @@ __all__ = [
 
 
 def adjacency_from_edges(n: int, edges: np.ndarray, *, directed: bool = False) -> np.ndarray:
-    """Boolean "hears" matrix ``A[r, s]`` = "agent r receives from agent s" from 0-based edges.
+    """Boolean "hears" matrix ``A[r, s]`` of ``n`` agents from 0-based ``edges``.
+
+    ``A[r, s]`` means "agent r receives from agent s".
 
     Undirected edges are symmetrised; a directed edge ``(s, r)`` means information flows from
     sender ``s`` to receiver ``r``, so row ``r`` of a consensus matrix ``W`` has ``w_rs > 0``.
@@ -35,7 +37,10 @@ def adjacency_from_edges(n: int, edges: np.ndarray, *, directed: bool = False) -
 
 
 def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray:
-    """Undirected adjacency of agents closer than ``comm_range`` (strict ``<``, seed 000 §4.4)."""
+    """Undirected adjacency of agents at ``positions`` closer than ``comm_range``.
+
+    The rule is strict (``<``), as in seed 000 §4.4.
+    """
     diff = positions[:, None, :] - positions[None, :, :]
     distance = np.sqrt((diff**2).sum(axis=-1))
     adjacency = distance < comm_range
@@ -44,7 +49,7 @@ def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray
 
 
 def metropolis_weights(adjacency: np.ndarray) -> np.ndarray:
-    """Metropolis weights of an undirected graph (rows and columns sum to 1)."""
+    """Metropolis weights of the undirected graph ``adjacency`` (rows and columns sum to 1)."""
     degree = adjacency.sum(axis=1)
     weights = np.where(adjacency, 1.0 / (1.0 + np.maximum(degree[:, None], degree[None, :])), 0.0)
     np.fill_diagonal(weights, 1.0 - weights.sum(axis=1))
@@ -52,20 +57,20 @@ def metropolis_weights(adjacency: np.ndarray) -> np.ndarray:
 
 
 def uniform_weights(adjacency: np.ndarray) -> np.ndarray:
-    """Uniform weights: each agent averages itself and its in-neighbours equally."""
+    """Uniform weights on ``adjacency``: each agent averages itself and its in-neighbours."""
     closed = adjacency | np.eye(adjacency.shape[0], dtype=bool)
     return closed / closed.sum(axis=1, keepdims=True)
 
 
 def weights_support(weights: np.ndarray) -> np.ndarray:
-    """Off-diagonal boolean support of ``W`` (``w_ij > 0``)."""
+    """Off-diagonal boolean support of ``weights`` (``w_ij > 0``)."""
     support = weights > 0
     np.fill_diagonal(support, False)
     return support
 
 
 def components(adjacency: np.ndarray) -> list[list[int]]:
-    """Weakly connected components, each a sorted list of 0-based agents, ordered by first agent."""
+    """Weakly connected components of ``adjacency``: sorted lists of 0-based agents."""
     graph = nx.from_numpy_array(adjacency.astype(int), create_using=nx.DiGraph)
     parts = [sorted(c) for c in nx.weakly_connected_components(graph)]
     return sorted(parts, key=lambda c: c[0])

@@ -94,8 +94,9 @@ def unobservable_eigenvalues(
 ) -> list[complex]:
     """Eigenvalues λ of ``A`` failing the PBH test ``rank [A − λI; C] = n``.
 
-    Repeated eigenvalues are listed once per lost rank (geometric defect), so the list's length
-    is ``n − rank O`` when ``A`` is diagonalisable.
+    Ranks use the relative tolerance ``rank_tol``. Repeated eigenvalues are listed once per
+    lost rank (geometric defect), so the list's length is ``n − rank O`` when ``A`` is
+    diagonalisable.
     """
     n = A.shape[0]
     distinct = _distinct(np.linalg.eigvals(A), scale=max(1.0, float(np.abs(A).max(initial=0.0))))

@@ -128,7 +128,7 @@ def networks(
     connected: bool | None = True,
     directed: bool = False,
 ) -> np.ndarray:
-    """Boolean "hears" matrices ``H[r, s]`` (no self-loops).
+    """Boolean "hears" matrices ``H[r, s]`` (no self-loops) of ``min_agents`` to ``max_agents``.
 
     ``connected=True`` gives (strongly, when directed) connected graphs, ``False`` gives graphs
     with at least two (weak) components, ``None`` either.
@@ -172,6 +172,9 @@ def weight_matrices(
 ) -> np.ndarray:
     """Row-stochastic ``W`` with positive diagonal on a drawn network.
 
+    The network has ``min_agents`` to ``max_agents`` agents and is drawn by :func:`networks`
+    with ``directed`` and ``connected``.
+
     ``kind`` is ``metropolis`` (symmetric, doubly stochastic; undirected only), ``uniform``,
     ``random`` (positive random weights on the support), or ``singular`` (uniform weights on a
     complete graph with an even count of agents — singular on purpose: W = J/N has rank 1).
@@ -209,10 +212,11 @@ def tdoa_scenes(
     scale: float = 20.0,
     min_separation: float = 0.5,
 ) -> TdoaScene:
-    """TDOA scenes in general position or on a degenerate family.
+    """TDOA scenes in ``dim`` dimensions with ``min_agents`` to ``max_agents`` receivers.
 
-    Families: ``general`` (random points, receivers at least ``min_separation·scale`` from the
-    target and from each other), ``coplanar`` (3D: receivers in a plane, target off it),
+    ``family`` is one of ``general`` (random points, receivers at least
+    ``min_separation·scale`` from the target and from each other), ``coplanar`` (3D:
+    receivers in a plane, target off it),
     ``cone`` (3D: receivers on a circular cone with apex at the target — the stacked TDOA
     Jacobian loses rank there), ``target-in-plane`` (3D: receivers and target in one plane).
     The degenerate families are exact up to floating-point rounding of the coordinates.
@@ -258,7 +262,8 @@ def tdoa_scenes(
 
 @st.composite
 def pursuit_parameters(draw: st.DrawFn, *, dim: int = 2) -> PursuitParameters:
-    """Parameters in the ranges of seed 003 Tables I (2D) and II (3D), widened by about 2×."""
+    """Parameters in ``dim`` dimensions in the ranges of seed 003 Tables I (2D) and II (3D),
+    widened by about 2×."""
     if dim not in (2, 3):
         raise InvalidArgument(f"dim={dim}; expected 2 or 3")
     positive = st.floats(0.05, 1.0)

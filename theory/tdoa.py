@@ -24,7 +24,10 @@ __all__ = [
 
 
 def cv_continuous(dim: int = 3) -> tuple[np.ndarray, np.ndarray]:
-    """Continuous-time constant-velocity model ``(F, G)`` of seed 000 eq. (4.1)."""
+    """Continuous-time constant-velocity model ``(F, G)`` in ``dim`` dimensions.
+
+    Seed 000 eq. (4.1).
+    """
     eye, zero = np.eye(dim), np.zeros((dim, dim))
     F = np.block([[zero, eye], [zero, zero]])
     G = np.vstack([zero, eye])
@@ -32,7 +35,7 @@ def cv_continuous(dim: int = 3) -> tuple[np.ndarray, np.ndarray]:
 
 
 def cv_discrete(T: float, dim: int = 3) -> tuple[np.ndarray, np.ndarray]:
-    """Discrete-time model ``(A, B)`` with sampling period ``T`` (seed 000 eqs. (4.5)–(4.6)).
+    """Discrete-time model ``(A, B)``, period ``T``, ``dim`` dimensions (seed 000 eqs. (4.5)–(4.6)).
 
     ``A = exp(F T)`` exactly (F is nilpotent) and ``B = [T²/2 I; T I]``.
     """
@@ -43,13 +46,13 @@ def cv_discrete(T: float, dim: int = 3) -> tuple[np.ndarray, np.ndarray]:
 
 
 def cv_discrete_symbolic(T: sp.Expr, dim: int = 3) -> sp.Matrix:
-    """The matrix ``A`` of eq. (4.6) with a symbolic sampling period ``T``."""
+    """The matrix ``A`` of eq. (4.6) with a symbolic sampling period ``T`` in ``dim`` dimensions."""
     eye, zero = sp.eye(dim), sp.zeros(dim, dim)
     return sp.Matrix(sp.BlockMatrix([[eye, T * eye], [zero, eye]]))
 
 
 def unit_directions(target: np.ndarray, positions: np.ndarray) -> np.ndarray:
-    """Rows ``(p − p_i)/‖p − p_i‖``: unit vectors from each agent towards the target."""
+    """Rows ``(p − p_i)/‖p − p_i‖``: unit vectors from ``positions`` towards ``target``."""
     diff = np.asarray(target, dtype=float)[None, :] - np.asarray(positions, dtype=float)
     return diff / np.linalg.norm(diff, axis=1, keepdims=True)
 
@@ -57,7 +60,8 @@ def unit_directions(target: np.ndarray, positions: np.ndarray) -> np.ndarray:
 def tdoa_measurement(
     target: np.ndarray, positions: np.ndarray, agent: int, neighbours: Sequence[int]
 ) -> np.ndarray:
-    """``h_i(p)`` of eqs. (4.3)–(4.4): range to agent ``i`` minus range to each neighbour."""
+    """``h_i(p)`` of eqs. (4.3)–(4.4) at ``target``: range to ``agent`` minus range to each of
+    ``neighbours`` (indices into ``positions``)."""
     ranges = np.linalg.norm(
         np.asarray(target, float)[None, :] - np.asarray(positions, float), axis=1
     )
@@ -67,7 +71,11 @@ def tdoa_measurement(
 def tdoa_jacobian(
     target: np.ndarray, positions: np.ndarray, agent: int, neighbours: Sequence[int]
 ) -> np.ndarray:
-    """``H_i`` of eqs. (4.7)–(4.10), shape ``(|N_i|, 2·dim)``; the velocity block is zero."""
+    """``H_i`` of eqs. (4.7)–(4.10) at ``target``, shape ``(|N_i|, 2·dim)``.
+
+    Rows belong to ``agent`` and each of its ``neighbours`` (indices into ``positions``); the
+    velocity block is zero.
+    """
     units = unit_directions(target, positions)
     position_block = units[agent][None, :] - units[list(neighbours)]
     return np.hstack([position_block, np.zeros_like(position_block)])

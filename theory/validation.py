@@ -36,7 +36,7 @@ def require(block: Mapping, key: str, prefix: str) -> object:
 
 
 def check_keys(block: object, allowed: Sequence[str], prefix: str) -> Mapping:
-    """Ensure ``block`` is a mapping whose keys are all in ``allowed``."""
+    """Ensure ``block`` is a mapping whose keys are all in ``allowed`` (``prefix`` names it)."""
     if not isinstance(block, Mapping):
         raise CaseError(prefix or "<top level>", "a mapping of fields", block)
     unknown = sorted(str(k) for k in block if k not in allowed)
@@ -51,14 +51,14 @@ def check_keys(block: object, allowed: Sequence[str], prefix: str) -> Mapping:
 
 
 def one_of(value: object, choices: Sequence[str], field: str) -> str:
-    """Return ``value`` if it is one of ``choices``."""
+    """Return ``value`` if it is one of ``choices`` (errors name ``field``)."""
     if not isinstance(value, str) or value not in choices:
         raise CaseError(field, f"one of {list(choices)}", value)
     return value
 
 
 def positive_number(value: object, field: str, *, allow_zero: bool = False) -> float:
-    """A finite real number > 0 (or ≥ 0 with ``allow_zero``)."""
+    """``value`` (named ``field``) as a finite real number > 0 (or ≥ 0 with ``allow_zero``)."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise CaseError(field, "a number", value)
     number = float(value)
@@ -69,7 +69,7 @@ def positive_number(value: object, field: str, *, allow_zero: bool = False) -> f
 
 
 def positive_int(value: object, field: str, *, minimum: int = 1) -> int:
-    """An integer ≥ ``minimum``."""
+    """``value`` (named ``field``) as an integer ≥ ``minimum``."""
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
         raise CaseError(field, f"an integer ≥ {minimum}", value)
     return value
@@ -83,7 +83,11 @@ def finite_matrix(
     cols: int | None = None,
     allow_empty_rows: bool = False,
 ) -> np.ndarray:
-    """A 2-D array of finite reals with optional fixed shape."""
+    """``value`` (named ``field``) as a 2-D array of finite reals.
+
+    ``rows`` and ``cols`` fix the shape when given; ``allow_empty_rows`` accepts ``[]`` as a
+    ``0 × cols`` matrix.
+    """
     array = _numeric_array(value, field, "a matrix (list of equal-length rows of numbers)")
     if array.ndim == 1 and array.size == 0 and allow_empty_rows and cols is not None:
         array = array.reshape(0, cols)
@@ -100,7 +104,10 @@ def finite_matrix(
 
 
 def finite_array(value: object, field: str, expected: str, *, ndims: tuple[int, ...]) -> np.ndarray:
-    """A rectangular array of finite reals whose number of axes is in ``ndims``."""
+    """``value`` as a rectangular array of finite reals with a number of axes in ``ndims``.
+
+    Errors name ``field`` and say ``expected``.
+    """
     array = _numeric_array(value, field, expected)
     if array.ndim not in ndims or array.size == 0:
         raise CaseError(field, expected, value)
@@ -108,7 +115,7 @@ def finite_array(value: object, field: str, expected: str, *, ndims: tuple[int, 
 
 
 def finite_vector(value: object, field: str, *, length: int | None = None) -> np.ndarray:
-    """A 1-D array of finite reals, optionally of a fixed length."""
+    """``value`` (named ``field``) as a 1-D array of finite reals, of ``length`` if given."""
     array = _numeric_array(value, field, "a list of numbers")
     if array.ndim != 1:
         raise CaseError(field, "a list of numbers", value)
@@ -168,7 +175,10 @@ def row_stochastic(
 
 
 def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12) -> np.ndarray:
-    """Check a symmetric positive-definite matrix (scale-aware: λ_min > rel_tol·‖M‖)."""
+    """Check that ``matrix`` (named ``field``) is symmetric positive definite.
+
+    Scale-aware: λ_min must exceed ``rel_tol · max|m_ij|``.
+    """
     n = matrix.shape[0]
     if matrix.shape != (n, n):
         raise CaseError(field, "a square matrix", f"shape {matrix.shape}")

@@ -35,7 +35,7 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 
 def reports_errors(command: F) -> F:
-    """Turn trackcert errors into a one-line message on stderr and the DESIGN.md exit code."""
+    """Wrap ``command`` so trackcert errors become a stderr line and the DESIGN.md exit code."""
 
     @functools.wraps(command)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
@@ -57,7 +57,7 @@ def _fail(message: str, code: int) -> None:
 
 
 def to_jsonable(value: Any) -> Any:
-    """Plain JSON types from numpy scalars/arrays, tuples, complex numbers and dataclass dicts."""
+    """``value`` with numpy scalars/arrays, tuples and complex numbers made plain JSON types."""
     if isinstance(value, dict):
         return {str(k): to_jsonable(v) for k, v in value.items()}
     if isinstance(value, list | tuple):
