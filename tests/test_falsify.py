@@ -11,6 +11,7 @@ from typer.testing import CliRunner
 
 from theory.case_file import parse_case
 from theory.cli import app
+from theory.falsifiable_iss import coordination_terms
 from theory.falsifiable_tdoa import component_rank
 from theory.falsify import DEFAULT_EXAMPLES, all_properties, falsify
 from theory.strategies import TdoaScene
@@ -25,17 +26,38 @@ def test_default_budget_separates_wrong_from_corrected(prop) -> None:
     assert result.found == (not prop.expected_to_hold), result.case
 
 
-@pytest.mark.parametrize("prop", [p for p in PROPERTIES if not p.expected_to_hold], ids=str)
+WRONG = [p for p in PROPERTIES if not p.expected_to_hold]
+
+
+@pytest.mark.parametrize("prop", WRONG, ids=[p.id for p in WRONG])
 def test_counterexample_is_a_valid_deterministic_case(prop) -> None:
     first = falsify(prop, examples=DEFAULT_EXAMPLES, seed=3)
     again = falsify(prop, examples=DEFAULT_EXAMPLES, seed=3)
-    assert first.case == again.case
+    assert first.found and first.case == again.case
     case = parse_case(yaml.safe_load(yaml.safe_dump(first.case)))
+    assert case.kind == first.case["kind"]
+
+
+@pytest.mark.parametrize("prop", [p for p in WRONG if p.claim.startswith("seed000")], ids=str)
+def test_tdoa_counterexample_reloads_to_the_same_verdict(prop) -> None:
+    result = falsify(prop, examples=DEFAULT_EXAMPLES, seed=3)
+    case = parse_case(yaml.safe_load(yaml.safe_dump(result.case)))
     scene = TdoaScene(case.spec.target[0], case.spec.agents[0], "reloaded")
     assert not prop.holds(scene)
     rank, conclusive = component_rank(scene)
     assert conclusive
     assert case.expect["observable"] == [rank == case.spec.dim] * case.spec.n_agents
+
+
+def test_coordination_counterexample_reloads() -> None:
+    prop = next(p for p in WRONG if p.id == "seed003.eq74/paper")
+    result = falsify(prop, examples=DEFAULT_EXAMPLES, seed=0)
+    case = parse_case(result.case)
+    spec = case.spec
+    example = result.counterexample
+    assert len(spec.trackers) == example.laplacian.shape[0]
+    terms = coordination_terms(example)
+    assert terms["v_dot"] > terms["paper"] and terms["v_dot"] <= terms["corrected"] + 1e-9
 
 
 def test_cli_exit_codes_and_json() -> None:

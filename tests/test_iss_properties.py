@@ -41,6 +41,7 @@ from theory.pursuit_model import (
     path_numeric,
     rotation_numeric,
 )
+from theory.strategies import digraph_laplacians
 
 REL_TOL = 1e-9
 """Relative tolerance on inequalities evaluated in floating point (scale: the terms' magnitudes)."""
@@ -188,22 +189,7 @@ def test_pursuit_error_independent_of_coordination(data) -> None:
     assert math.isclose(first.de_gamma, second.de_gamma, rel_tol=1e-9, abs_tol=1e-9)
 
 
-@st.composite
-def strongly_connected_laplacians(draw, *, min_n: int = 2, max_n: int = 7):
-    """L = D_in − A of a random strongly connected digraph (a random Hamiltonian cycle + edges)."""
-    n = draw(st.integers(min_n, max_n))
-    order = draw(st.permutations(range(n)))
-    adjacency = np.zeros((n, n), dtype=int)
-    for k in range(n):
-        adjacency[order[k], order[(k + 1) % n]] = 1
-    extra = draw(st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)), max_size=2 * n))
-    for i, j in extra:
-        if i != j:
-            adjacency[i, j] = 1
-    return np.diag(adjacency.sum(axis=1)) - adjacency
-
-
-@given(L=strongly_connected_laplacians())
+@given(L=digraph_laplacians())
 def test_lemma1_exact_on_random_digraphs(L) -> None:
     """Lemma 1: r > 0, rᵀL = 0, rᵀ1 = 1, and RL + LᵀR ⪰ 0 (exact rationals)."""
     r = left_eigenvector(L)
@@ -214,7 +200,7 @@ def test_lemma1_exact_on_random_digraphs(L) -> None:
     assert is_psd_exact(M)
 
 
-@given(L=strongly_connected_laplacians())
+@given(L=digraph_laplacians())
 def test_connectivity_bounds_the_spectrum(L) -> None:
     """0 < a(L) ≤ Re λ for every non-zero eigenvalue of L (Definition 1 gives a decay rate)."""
     r = np.array([float(x) for x in left_eigenvector(L)])
@@ -243,7 +229,7 @@ def test_undirected_connectivity_is_fiedler(n, data) -> None:
     assert math.isclose(a, fiedler, rel_tol=1e-9, abs_tol=1e-9)
 
 
-@given(L=strongly_connected_laplacians(), data=st.data())
+@given(L=digraph_laplacians(), data=st.data())
 def test_corrected_eq74_no_violation(L, data) -> None:
     """V̇_c ≤ −k_c a(L) ξᵀRξ + ‖ξ‖_R b ‖e_γ‖ with V̇_c from γ̇ = ω̄1 − k_cLγ + e_γ."""
     n = L.shape[0]

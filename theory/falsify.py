@@ -34,7 +34,7 @@ __all__ = [
 ]
 
 DEFAULT_EXAMPLES = 200
-PROPERTY_MODULES: tuple[str, ...] = ("theory.falsifiable_tdoa",)
+PROPERTY_MODULES: tuple[str, ...] = ("theory.falsifiable_tdoa", "theory.falsifiable_iss")
 
 _PROPERTIES: dict[str, Property] = {}
 

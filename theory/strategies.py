@@ -26,6 +26,7 @@ from theory.network import metropolis_weights, uniform_weights
 __all__ = [
     "PursuitParameters",
     "TdoaScene",
+    "digraph_laplacians",
     "is_connected",
     "networks",
     "pursuit_parameters",
@@ -158,6 +159,36 @@ def networks(
         hears[np.ix_(right, left)] = False
     np.fill_diagonal(hears, False)
     return hears
+
+
+@st.composite
+def digraph_laplacians(
+    draw: st.DrawFn,
+    *,
+    min_agents: int = 2,
+    max_agents: int = 7,
+    max_extra_edges: int | None = None,
+) -> np.ndarray:
+    """Integer Laplacians ``L = D_in − A`` of strongly connected digraphs (seed 003 §II-B).
+
+    A random Hamiltonian cycle (so the digraph is strongly connected) plus up to
+    ``max_extra_edges`` (default ``2n``) random edges, on ``min_agents`` to ``max_agents``
+    nodes; ``a_ij = 1`` means i receives from j.
+    """
+    _check_range("min_agents", min_agents, "max_agents", max_agents, 2)
+    if max_extra_edges is not None and max_extra_edges < 0:
+        raise InvalidArgument(f"max_extra_edges={max_extra_edges} must be ≥ 0")
+    n = draw(st.integers(min_agents, max_agents))
+    order = draw(st.permutations(range(n)))
+    adjacency = np.zeros((n, n), dtype=int)
+    for k in range(n):
+        adjacency[order[k], order[(k + 1) % n]] = 1
+    pairs = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1))
+    extra = draw(st.lists(pairs, max_size=2 * n if max_extra_edges is None else max_extra_edges))
+    for i, j in extra:
+        if i != j:
+            adjacency[i, j] = 1
+    return np.diag(adjacency.sum(axis=1)) - adjacency
 
 
 @st.composite
