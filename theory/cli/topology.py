@@ -1,0 +1,178 @@
+"""``trackcert topology CASE``: distributed TDOA observability of every agent (DESIGN.md).
+
+Exit codes: 0 every agent can localize the target at every step (the networked pair is
+detectable), 1 some agent cannot, 2 bad input, 3 inconclusive (a deciding singular value lies
+within ``inconclusive_factor`` of its threshold, or a linear-algebra routine failed).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import typer
+from rich.table import Table
+
+from theory.case_file import Case, load_case
+from theory.cli.common import (
+    EXIT_FAILS,
+    EXIT_HOLDS,
+    EXIT_INCONCLUSIVE,
+    console,
+    print_json,
+    reports_errors,
+)
+from theory.errors import CaseError, SolverError
+from theory.time_varying import (
+    TrajectoryResult,
+    analyze_trajectory,
+    check_trajectory_expectations,
+)
+from theory.topology import TopologyResult, check_expectations
+
+__all__ = ["register", "run_topology"]
+
+
+def run_topology(case: Case, **tolerances: float) -> TrajectoryResult:
+    """Analyze a ``kind: tdoa`` case at every step with the case's tolerances (overridable).
+
+    Raises
+    ------
+    CaseError
+        If the case is not ``kind: tdoa``.
+    SolverError
+        If a linear-algebra routine fails (reported as inconclusive).
+    """
+    if case.kind != "tdoa":
+        raise CaseError("kind", "tdoa (trackcert topology checks TDOA cases)", case.kind)
+    chosen = {k: v for k, v in case.tolerances.items() if k in ("rank_tol", "inconclusive_factor")}
+    chosen.update({k: v for k, v in tolerances.items() if v is not None})
+    try:
+        return analyze_trajectory(case.spec, **chosen)
+    except np.linalg.LinAlgError as error:
+        raise SolverError(f"linear algebra failed: {error}") from None
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``topology`` command to ``app``."""
+
+    @app.command("topology")
+    @reports_errors
+    def topology(
+        case: str = typer.Argument(..., help="Case file path or bundled case name."),
+        as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+        rank_tol: float = typer.Option(None, "--rank-tol", min=0, help="Relative rank tolerance."),
+        inconclusive_factor: float = typer.Option(
+            None, "--inconclusive-factor", min=1, help="Margin below which a verdict is unsure."
+        ),
+    ) -> None:
+        """Distributed TDOA observability of every agent (seed 000 §4.2.2, Cor. 4.2.4)."""
+        loaded = load_case(case)
+        result = run_topology(loaded, rank_tol=rank_tol, inconclusive_factor=inconclusive_factor)
+        first = result.steps[0]
+        mismatches = check_expectations(first, loaded.expect) + check_trajectory_expectations(
+            result, loaded.expect
+        )
+        code = _exit_code(result)
+        if as_json:
+            print_json(_json(loaded, result, mismatches, code))
+        else:
+            _print_human(loaded, result, mismatches, code)
+        raise typer.Exit(code)
+
+
+def _exit_code(result: TrajectoryResult) -> int:
+    if not result.conclusive:
+        return EXIT_INCONCLUSIVE
+    return EXIT_HOLDS if result.first_failure_step is None else EXIT_FAILS
+
+
+def _verdict(result: TrajectoryResult, code: int) -> str:
+    if code == EXIT_INCONCLUSIVE:
+        reasons = [r for s in result.steps for r in s.inconclusive]
+        return "INCONCLUSIVE: " + reasons[0]
+    if code == EXIT_HOLDS:
+        steps = f" at all {len(result.steps)} steps" if len(result.steps) > 1 else ""
+        return f"HOLDS: every agent can localize the target{steps} (networked pair detectable)"
+    step = result.steps[result.first_failure_step - 1]
+    failing = [a.id for a in step.agents if not a.observable]
+    where = f" (first at step {step.step})" if len(result.steps) > 1 else ""
+    return f"FAILS: agents {failing} cannot localize the target{where}"
+
+
+def _json(case: Case, result: TrajectoryResult, mismatches: list[str], code: int) -> dict[str, Any]:
+    data: dict[str, Any] = {"case": case.name, "source": case.source}
+    data.update(result.steps[0].to_json())
+    if len(result.steps) > 1:
+        data["time_varying"] = result.to_json()
+    data["expectations"] = {"met": not mismatches, "mismatches": mismatches}
+    data["verdict"] = _verdict(result, code)
+    data["exit_code"] = code
+    return data
+
+
+def _print_human(case: Case, result: TrajectoryResult, mismatches: list[str], code: int) -> None:
+    first = result.steps[0]
+    console.print(_agent_table(case, first))
+    net = first.network
+    rank = "not computed" if net.rank is None else f"{net.rank}/{net.n_states}"
+    console.print(
+        f"network (W⊗A, D_H): rank {rank}, observable {net.observable}, detectable "
+        f"{net.detectable}; unobservable eigenvalues {_eigs(net.unobservable_eigenvalues)}",
+        markup=False,
+    )
+    console.print(f"information flow: {first.information_flow}", markup=False)
+    for agent in first.agents:
+        if agent.reason:
+            console.print(f"agent {agent.id}: {agent.reason}", markup=False)
+    if len(result.steps) > 1:
+        console.print(
+            f"time-varying: {len(result.steps)} steps; first failure step "
+            f"{result.first_failure_step}; steps unobservable per agent "
+            f"{list(result.unobservable_steps)}",
+            markup=False,
+        )
+    console.print(f"tolerances: {first.tolerances}", markup=False)
+    if case.expect:
+        met = "met" if not mismatches else "NOT met: " + "; ".join(mismatches)
+        console.print(f"expectations: {met}", markup=False)
+    console.print(_verdict(result, code), markup=False, style="bold")
+
+
+def _agent_table(case: Case, step: TopologyResult) -> Table:
+    title = f"{case.name}: TDOA observability per agent" + (
+        f" (step {step.step})" if case.spec.steps > 1 else ""
+    )
+    table = Table(title=title)
+    for column in (
+        "agent",
+        "comp.",
+        f"rank O_i (/{2 * step.dim})",
+        "σ_min",
+        "observable",
+        "heuristic",
+        "mirror",
+        "unique fix",
+    ):
+        table.add_column(column)
+    for a in step.agents:
+        unique = {True: "yes", False: "NO", None: "?"}[a.uniqueness.unique]
+        table.add_row(
+            str(a.id),
+            str(a.component),
+            str(a.rank),
+            f"{a.sigma_min:.3g}",
+            "yes" if a.observable else "NO",
+            "yes" if a.heuristic_4_noncoplanar else "no",
+            "yes" if a.mirror_ambiguous else "no",
+            unique,
+        )
+    return table
+
+
+def _eigs(values: tuple[complex, ...] | None) -> str:
+    if values is None:
+        return "not computed"
+    if not values:
+        return "none"
+    return "[" + ", ".join(f"{v.real:.4g}" for v in values) + "]"
