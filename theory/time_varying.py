@@ -30,8 +30,8 @@ class TrajectoryResult:
     steps : tuple of TopologyResult
         One per time step (``step`` is 1-based inside each).
     first_failure_step : int or None
-        First 1-based step at which the networked pair is not detectable (some agent cannot
-        localize), or ``None``.
+        First 1-based step at which some agent cannot localize (undirected: the networked pair
+        is not detectable), or ``None``.
     unobservable_steps : tuple of int
         For each agent, the number of steps at which its ``O_i`` is rank deficient.
     heuristic_failure_steps : tuple of int
@@ -78,7 +78,7 @@ def analyze_trajectory(spec: TdoaSpec, **tolerances: float) -> TrajectoryResult:
     seed 000 Cor. 4.2.4 and §4.4 (the distance rule with range 21).
     """
     steps = tuple(analyze_topology(spec, k, **tolerances) for k in range(spec.steps))
-    failing = [s.step for s in steps if not s.network.detectable]
+    failing = [s.step for s in steps if not s.every_agent_localizes]
     counts = [sum(not step.agents[i].observable for step in steps) for i in range(spec.n_agents)]
     heuristic = [s.step for s in steps if not all(a.heuristic_4_noncoplanar for a in s.agents)]
     return TrajectoryResult(steps, failing[0] if failing else None, tuple(counts), tuple(heuristic))
@@ -102,6 +102,7 @@ def _step_json(step: TopologyResult) -> dict[str, Any]:
         "step": step.step,
         "network_rank": step.network.rank,
         "network_detectable": step.network.detectable,
+        "every_agent_localizes": step.every_agent_localizes,
         "unobservable_agents": [a.id for a in step.agents if not a.observable],
         "heuristic_fails": [a.id for a in step.agents if not a.heuristic_4_noncoplanar],
         "components": len({a.component for a in step.agents}),

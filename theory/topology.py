@@ -86,6 +86,10 @@ class AgentVerdict:
         through their affine hull (``mirror_point``) has the same TDOAs.
     uniqueness : Uniqueness
         Global uniqueness of the TDOA fix of the receivers ``R(i)`` and their neighbours.
+    localizes : bool
+        Whether the distributed filter of agent ``i`` can converge: every closed class upstream
+        of ``i`` (agents that hear only among themselves and whose information reaches ``i``)
+        has a stacked Jacobian of rank ``d``. Undirected: the same as ``observable``.
     """
 
     id: int
@@ -100,6 +104,7 @@ class AgentVerdict:
     mirror_ambiguous: bool
     mirror_point: tuple[float, ...] | None
     uniqueness: Uniqueness
+    localizes: bool
 
 
 @dataclass(frozen=True)
@@ -138,8 +143,8 @@ class TopologyResult:
 
     @property
     def every_agent_localizes(self) -> bool:
-        """The estimator's requirement: the networked pair is detectable."""
-        return self.network.detectable
+        """Every agent's distributed filter can converge (undirected: the pair is detectable)."""
+        return all(agent.localizes for agent in self.agents)
 
     def to_json(self) -> dict[str, Any]:
         """The DESIGN.md ``trackcert topology --json`` record (plus evidence fields)."""
@@ -226,8 +231,15 @@ def analyze_topology(
                 f"agents {_ids(members)}: stacked Jacobian singular value within a factor "
                 f"{group.rank_result.margin:.3g} of rank_tol·σ_max"
             )
+    if symmetric:
+        pairs = zip(reach_groups, groups, strict=True)
+        leaders = {i: [g.rank_result] for (members, _), g in pairs for i in members}
+    else:
+        leaders = _upstream_leaders(hears, rows, tol["rank_tol"], inconclusive_factor, doubts)
+    for (members, _), group in zip(reach_groups, groups, strict=True):
         for i in members:
-            agents[i] = group.for_agent(i, k + 1)
+            ok = all(result.rank == spec.dim for result in leaders[i])
+            agents[i] = group.for_agent(i, int(component_of[i]) + 1, ok)
     if symmetric:
         detectable = (
             all(g.rank_result.rank == spec.dim for g in groups),
@@ -292,7 +304,7 @@ class _Group:
     reason: str
     dim: int
 
-    def for_agent(self, agent: int, component: int) -> AgentVerdict:
+    def for_agent(self, agent: int, component: int, localizes: bool) -> AgentVerdict:
         rank = 2 * self.rank_result.rank
         mirror = None if self.mirror is None else tuple(float(v) for v in self.mirror)
         return AgentVerdict(
@@ -308,6 +320,7 @@ class _Group:
             self.mirror is not None,
             mirror,
             self.uniqueness,
+            localizes,
         )
 
 
@@ -493,6 +506,44 @@ def _network_verdict(
     )
 
 
+def _upstream_leaders(
+    hears: np.ndarray,
+    rows: _Rows,
+    rank_tol: float,
+    inconclusive_factor: float,
+    doubts: list[str],
+) -> dict[int, list[RankResult]]:
+    """For each agent, the stacked-Jacobian ranks of the closed classes upstream of it.
+
+    A closed class hears only its own members, so its error dynamics are autonomous and it can
+    localize iff its own stacked Jacobian has rank ``d``; every other agent's error is driven by
+    the closed classes upstream of it through ``W_TT ⊗ A``, which is stable (``ρ(W_TT) < 1``).
+    """
+    flow = nx.DiGraph()
+    flow.add_nodes_from(range(hears.shape[0]))
+    flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(hears), strict=True))
+    condensed = nx.condensation(flow)
+    ranks = {}
+    for node in condensed:
+        if condensed.in_degree(node) == 0:
+            members = sorted(condensed.nodes[node]["members"])
+            stacked = rows.vectors[np.isin(rows.agent, members)]
+            dim = rows.vectors.shape[1]
+            ranks[node] = numeric_rank(stacked, rank_tol=rank_tol) if stacked.size else _empty(dim)
+            if ranks[node].margin < inconclusive_factor:
+                doubts.append(
+                    f"closed class {_ids(members)}: rank decided with margin "
+                    f"{ranks[node].margin:.3g}"
+                )
+    mapping = condensed.graph["mapping"]
+    upstream: dict[int, list[RankResult]] = {}
+    for agent in range(hears.shape[0]):
+        node = mapping[agent]
+        above = nx.ancestors(condensed, node) | {node}
+        upstream[agent] = [ranks[c] for c in sorted(above) if c in ranks]
+    return upstream
+
+
 def _rows_by_part(rows: _Rows, component_of: np.ndarray, count: int) -> list[np.ndarray]:
     """Row indices of each component, in one sort (linear-time grouping)."""
     labels = component_of[rows.agent]
@@ -590,6 +641,7 @@ def _agent_json(agent: AgentVerdict) -> dict[str, Any]:
         "component": agent.component,
         "rank": agent.rank,
         "observable": agent.observable,
+        "localizes": agent.localizes,
         "heuristic_4_noncoplanar": agent.heuristic_4_noncoplanar,
         "sigma_min": agent.sigma_min,
         "mirror_ambiguous": agent.mirror_ambiguous,

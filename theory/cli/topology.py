@@ -93,9 +93,9 @@ def _verdict(result: TrajectoryResult, code: int) -> str:
         return "INCONCLUSIVE: " + reasons[0]
     if code == EXIT_HOLDS:
         steps = f" at all {len(result.steps)} steps" if len(result.steps) > 1 else ""
-        return f"HOLDS: every agent can localize the target{steps} (networked pair detectable)"
+        return f"HOLDS: every agent can localize the target{steps}"
     step = result.steps[result.first_failure_step - 1]
-    failing = [a.id for a in step.agents if not a.observable]
+    failing = [a.id for a in step.agents if not a.localizes]
     where = f" (first at step {step.step})" if len(result.steps) > 1 else ""
     return f"FAILS: agents {failing} cannot localize the target{where}"
 
