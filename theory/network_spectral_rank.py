@@ -10,7 +10,8 @@ of the output is ``G_j · row_j(W^l (Z_p + l T Z_v))``. When ``W`` is diagonalis
   ``κ_μ = dim{c ∈ R^{m×d} : G_j (V_μ c)_j = 0 ∀ j}``;
 * unobservable subspace dimension ``2 Σ_{μ≠0} κ_μ + κ_0 + d·m_0`` (velocities in ``ker W`` are
   never seen: ``l·0^l = 0``), hence ``rank O = 2dN − that``;
-* PBH defects: ``μ`` repeated ``κ_μ`` times, and ``0`` repeated ``κ_0 + d·m_0`` times.
+* eigenvalues of ``W ⊗ A`` on the unobservable subspace (algebraic multiplicity, as in
+  :mod:`theory.networked_observability`): ``μ`` ``2κ_μ`` times, ``0`` ``κ_0 + d·m_0`` times.
 
 The proof is in ``docs/topology.md``. Only ``W`` similar to a symmetric matrix through a diagonal
 scaling is handled here (Metropolis weights, uniform weights on an undirected graph, symmetric
@@ -52,7 +53,8 @@ class SpectralRank:
     n_states : int
         ``2·d·N``.
     unobservable_eigenvalues : tuple of float
-        Eigenvalues of ``W ⊗ A`` failing the PBH test, once per lost rank.
+        Eigenvalues of ``W ⊗ A`` restricted to the unobservable subspace, with algebraic
+        multiplicity (their number is ``n_states − rank``).
     margin : float
         Smallest factor by which a decision (eigenvalue clustering, zero test, defect rank)
         clears its tolerance.
@@ -128,7 +130,7 @@ def spectral_network_rank(
         else:
             margin = min(margin, abs(value) / cluster_tol)
             lost += 2 * kappa
-            eigenvalues += [value] * kappa
+            eigenvalues += [value] * (2 * kappa)
     return SpectralRank(
         2 * dim * n - lost, 2 * dim * n, tuple(eigenvalues), min(margin, defect_margin)
     )
