@@ -36,6 +36,7 @@ from theory.network_spectral_rank import (
     spectral_network_rank,
     symmetrizing_scale,
 )
+from theory.networked_observability import analyze_network
 from theory.observability import RANK_TOL, RankResult, numeric_rank
 from theory.tdoa import cv_discrete, unit_directions
 from theory.tdoa_case import TdoaSpec
@@ -622,8 +623,6 @@ def _dense_rank(
     part: list[int],
     rank_tol: float,
 ) -> tuple[int, list[complex], str, float]:
-    from theory.networked_observability import analyze_network
-
     A, _ = cv_discrete(spec.T, spec.dim)
     blocks = []
     for j in part:

@@ -97,7 +97,13 @@ def _verdict(result: TrajectoryResult, code: int) -> str:
     step = result.steps[result.first_failure_step - 1]
     failing = [a.id for a in step.agents if not a.localizes]
     where = f" (first at step {step.step})" if len(result.steps) > 1 else ""
-    return f"FAILS: agents {failing} cannot localize the target{where}"
+    why = (
+        "; the networked pair is detectable, but a closed class upstream of them (agents that "
+        "hear only each other) cannot localize on its own"
+        if step.network.detectable
+        else ""
+    )
+    return f"FAILS: agents {failing} cannot localize the target{where}{why}"
 
 
 def _json(case: Case, result: TrajectoryResult, mismatches: list[str], code: int) -> dict[str, Any]:
@@ -143,29 +149,26 @@ def _agent_table(case: Case, step: TopologyResult) -> Table:
     title = f"{case.name}: TDOA observability per agent" + (
         f" (step {step.step})" if case.spec.steps > 1 else ""
     )
-    table = Table(title=title)
-    for column in (
-        "agent",
-        "comp.",
-        f"rank O_i (/{2 * step.dim})",
-        "σ_min",
-        "observable",
-        "heuristic",
-        "mirror",
-        "unique fix",
-    ):
-        table.add_column(column)
+    heuristic = "≥ 4 non-coplanar" if step.dim == 3 else "≥ 3 non-collinear"
+    caption = (
+        f"rank = rank O_i (full: {2 * step.dim}); obs = O_i full rank; loc = the agent's "
+        f"distributed filter can converge; heur = paper's {heuristic} connected agents"
+    )
+    table = Table(title=title, caption=caption)
+    for column in ("id", "comp", "rank", "σ_min", "obs", "loc", "heur", "mirror", "unique"):
+        table.add_column(column, no_wrap=True)
+    yes = {True: "yes", False: "NO", None: "?"}
     for a in step.agents:
-        unique = {True: "yes", False: "NO", None: "?"}[a.uniqueness.unique]
         table.add_row(
             str(a.id),
             str(a.component),
             str(a.rank),
             f"{a.sigma_min:.3g}",
-            "yes" if a.observable else "NO",
-            "yes" if a.heuristic_4_noncoplanar else "no",
+            yes[a.observable],
+            yes[a.localizes],
+            yes[a.heuristic_4_noncoplanar],
             "yes" if a.mirror_ambiguous else "no",
-            unique,
+            yes[a.uniqueness.unique],
         )
     return table
 
