@@ -39,6 +39,10 @@ __all__ = [
 CLUSTER_TOL = 1e-8
 """Eigenvalues of W closer than this (W has norm ≤ 1 in the symmetrized basis) are one cluster."""
 
+GRAM_SAFE_RATIO = 1e-5
+"""σ_min/σ_max above this is read from the d×d Gram matrix (its eigenvalues then carry ≥ 5 correct
+digits); below it the defect matrix itself goes through an SVD."""
+
 _CHUNK_BYTES = 32_000_000
 
 
@@ -166,6 +170,13 @@ def eigenspace_defects(
         chunk = max(1, _CHUNK_BYTES // (8 * rows * m * dim))
         for start in range(0, len(members), chunk):
             batch = members[start : start + chunk]
+            if m == 1:
+                batch, decided = _gram_screen(
+                    bases, batch, row_agents, row_vectors, rank_tol, defects
+                )
+                margin = min([margin, *decided])
+                if not batch:
+                    continue
             stack = np.stack([bases[k][row_agents] for k in batch])
             matrices = (stack[:, :, :, None] * row_vectors[None, :, None, :]).reshape(
                 len(batch), len(row_agents), m * dim
@@ -176,6 +187,34 @@ def eigenspace_defects(
                 defects[k] = kappa
                 margin = min(margin, item_margin)
     return defects, float(margin)
+
+
+def _gram_screen(
+    bases: list[np.ndarray],
+    batch: list[int],
+    row_agents: np.ndarray,
+    row_vectors: np.ndarray,
+    rank_tol: float,
+    defects: list[int],
+) -> tuple[list[int], list[float]]:
+    """Decide one-dimensional eigenspaces from ``Σ_rows v_j² g gᵀ`` when clearly full rank.
+
+    Returns the eigenspaces left for the SVD and the margins of those decided here (their
+    defect is 0, already the default in ``defects``).
+    """
+    if not len(row_agents):
+        return batch, []
+    weights = np.stack([bases[k][row_agents, 0] ** 2 for k in batch])
+    outer = (row_vectors[:, :, None] * row_vectors[:, None, :]).reshape(len(row_agents), -1)
+    dim = row_vectors.shape[1]
+    eigenvalues = np.linalg.eigvalsh((weights @ outer).reshape(len(batch), dim, dim))
+    top = eigenvalues[:, -1]
+    ratio = np.sqrt(np.clip(eigenvalues[:, 0], 0, None) / np.where(top > 0, top, 1.0))
+    safe = (top > 0) & (ratio >= GRAM_SAFE_RATIO)
+    for k in np.asarray(batch)[safe]:
+        defects[k] = 0
+    left = [k for k, ok in zip(batch, safe, strict=True) if not ok]
+    return left, (ratio[safe] / rank_tol).tolist()
 
 
 def _defect(sv: np.ndarray | None, columns: int, rank_tol: float) -> tuple[int, float]:

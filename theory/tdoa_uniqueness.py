@@ -101,7 +101,7 @@ def tdoa_solutions(
     L = 2.0 * np.hstack([q[1:], delta[:, None]])
     b = (q[1:] ** 2).sum(axis=1) - delta**2
     rank = numeric_rank(L, rank_tol=rank_tol).rank
-    _, _, vt = np.linalg.svd(L)
+    _, _, vt = np.linalg.svd(L, full_matrices=L.shape[0] < L.shape[1])
     u0 = np.linalg.lstsq(L, b, rcond=None)[0]
     free = vt[rank:]
     if free.shape[0] == 0:

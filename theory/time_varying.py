@@ -58,16 +58,16 @@ class TrajectoryResult:
         }
 
 
-def analyze_trajectory(spec: TdoaSpec, **tolerances: float) -> TrajectoryResult:
+def analyze_trajectory(spec: TdoaSpec, **options: Any) -> TrajectoryResult:
     """Run the topology check at every time step of ``spec``.
 
     Parameters
     ----------
     spec : TdoaSpec
         A scene with ``spec.steps ≥ 1`` time steps.
-    **tolerances : float
-        Named tolerances passed to :func:`theory.topology.analyze_topology`
-        (``rank_tol``, ``inconclusive_factor``, ``uniqueness_tol``, ``cluster_tol``).
+    **options
+        Keyword arguments of :func:`theory.topology.analyze_topology` (``rank_tol``,
+        ``inconclusive_factor``, ``uniqueness_tol``, ``cluster_tol``, ``network_rank``).
 
     Returns
     -------
@@ -77,7 +77,7 @@ def analyze_trajectory(spec: TdoaSpec, **tolerances: float) -> TrajectoryResult:
     ----------
     seed 000 Cor. 4.2.4 and §4.4 (the distance rule with range 21).
     """
-    steps = tuple(analyze_topology(spec, k, **tolerances) for k in range(spec.steps))
+    steps = tuple(analyze_topology(spec, k, **options) for k in range(spec.steps))
     failing = [s.step for s in steps if not s.every_agent_localizes]
     counts = [sum(not step.agents[i].observable for step in steps) for i in range(spec.n_agents)]
     heuristic = [s.step for s in steps if not all(a.heuristic_4_noncoplanar for a in s.agents)]

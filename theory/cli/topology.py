@@ -33,8 +33,11 @@ from theory.topology import TopologyResult, check_expectations
 __all__ = ["register", "run_topology"]
 
 
-def run_topology(case: Case, **tolerances: float) -> TrajectoryResult:
+def run_topology(case: Case, *, network_rank: bool = True, **tolerances: float) -> TrajectoryResult:
     """Analyze a ``kind: tdoa`` case at every step with the case's tolerances (overridable).
+
+    ``network_rank=False`` skips the rank of the whole networked matrix (cubic in the largest
+    component); per-agent verdicts and detectability are always computed.
 
     Raises
     ------
@@ -48,7 +51,7 @@ def run_topology(case: Case, **tolerances: float) -> TrajectoryResult:
     chosen = {k: v for k, v in case.tolerances.items() if k in ("rank_tol", "inconclusive_factor")}
     chosen.update({k: v for k, v in tolerances.items() if v is not None})
     try:
-        return analyze_trajectory(case.spec, **chosen)
+        return analyze_trajectory(case.spec, network_rank=network_rank, **chosen)
     except np.linalg.LinAlgError as error:
         raise SolverError(f"linear algebra failed: {error}") from None
 
@@ -65,10 +68,18 @@ def register(app: typer.Typer) -> None:
         inconclusive_factor: float = typer.Option(
             None, "--inconclusive-factor", min=1, help="Margin below which a verdict is unsure."
         ),
+        network_rank: bool = typer.Option(
+            True, "--network-rank/--no-network-rank", help="Rank the whole networked pair."
+        ),
     ) -> None:
         """Distributed TDOA observability of every agent (seed 000 §4.2.2, Cor. 4.2.4)."""
         loaded = load_case(case)
-        result = run_topology(loaded, rank_tol=rank_tol, inconclusive_factor=inconclusive_factor)
+        result = run_topology(
+            loaded,
+            network_rank=network_rank,
+            rank_tol=rank_tol,
+            inconclusive_factor=inconclusive_factor,
+        )
         first = result.steps[0]
         mismatches = check_expectations(first, loaded.expect) + check_trajectory_expectations(
             result, loaded.expect
