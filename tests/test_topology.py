@@ -189,3 +189,17 @@ def test_tolerances_are_echoed(tol) -> None:
     result = analyze_topology(load_case("fig43-case-d").spec, rank_tol=tol)
     assert result.tolerances["rank_tol"] == tol
     assert result.to_json()["tolerances"]["rank_tol"] == tol
+
+
+def test_topologies_a_and_b_have_identical_verdicts() -> None:
+    """Seed 002 §4.3.3: same nodes and target, different hub; the exact verdicts coincide."""
+    a = analyze_topology(load_case("seed002-topology-a").spec)
+    b = analyze_topology(load_case("seed002-topology-b").spec)
+
+    def summary(result):
+        return [
+            (x.rank, x.localizes, x.mirror_ambiguous, x.uniqueness.unique) for x in result.agents
+        ]
+
+    assert summary(a) == summary(b)
+    assert a.network.detectable == b.network.detectable

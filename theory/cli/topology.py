@@ -104,7 +104,13 @@ def _verdict(result: TrajectoryResult, code: int) -> str:
         return "INCONCLUSIVE: " + reasons[0]
     if code == EXIT_HOLDS:
         steps = f" at all {len(result.steps)} steps" if len(result.steps) > 1 else ""
-        return f"HOLDS: every agent can localize the target{steps}"
+        ambiguous = [a.id for a in result.steps[0].agents if a.uniqueness.unique is False]
+        caveat = (
+            f" (locally; for agents {ambiguous} another position has the same TDOAs)"
+            if ambiguous
+            else ""
+        )
+        return f"HOLDS: every agent can localize the target{steps}{caveat}"
     step = result.steps[result.first_failure_step - 1]
     failing = [a.id for a in step.agents if not a.localizes]
     where = f" (first at step {step.step})" if len(result.steps) > 1 else ""
@@ -139,9 +145,12 @@ def _print_human(case: Case, result: TrajectoryResult, mismatches: list[str], co
         markup=False,
     )
     console.print(f"information flow: {first.information_flow}", markup=False)
+    reasons: dict[str, list[int]] = {}
     for agent in first.agents:
         if agent.reason:
-            console.print(f"agent {agent.id}: {agent.reason}", markup=False)
+            reasons.setdefault(agent.reason, []).append(agent.id)
+    for reason, ids in reasons.items():
+        console.print(f"heuristic ≠ exact for agents {ids}: {reason}", markup=False)
     if len(result.steps) > 1:
         console.print(
             f"time-varying: {len(result.steps)} steps; first failure step "
