@@ -75,6 +75,17 @@ def symmetrizing_scale(W: np.ndarray, *, tol: float = 1e-12) -> np.ndarray | Non
 
     Tries ``s = 1`` (symmetric ``W``, e.g. Metropolis) and ``s_i = w_ii^{-1/2}`` (uniform weights
     ``W = D^{-1}(A + I)`` on an undirected graph).
+
+    Parameters
+    ----------
+    W : ndarray, shape (N, N)
+        Consensus matrix with positive diagonal.
+    tol : float
+        Relative tolerance on the asymmetry of the scaled matrix.
+
+    Returns
+    -------
+    ndarray or None
     """
     for scale in (np.ones(W.shape[0]), 1.0 / np.sqrt(np.diag(W))):
         S = scale[:, None] * W / scale[None, :]
@@ -151,6 +162,17 @@ def eigenspace_defects(
 
     The defect matrix of ``V`` has one row per TDOA row ``(j, g)``: ``kron(V[j, :], g)`` acting
     on ``vec(c)``. Bases of equal size are stacked and decomposed together.
+
+    Parameters
+    ----------
+    bases : list of ndarray
+        Eigenspace bases, each ``N × m``.
+    row_agents : ndarray of int, shape (R,)
+        The agent each TDOA row belongs to.
+    row_vectors : ndarray, shape (R, d)
+        The rows' position blocks.
+    rank_tol : float
+        Relative rank tolerance.
 
     Returns
     -------

@@ -85,7 +85,20 @@ def analyze_trajectory(spec: TdoaSpec, **options: Any) -> TrajectoryResult:
 
 
 def check_trajectory_expectations(result: TrajectoryResult, expect: dict[str, Any]) -> list[str]:
-    """Mismatches with the ``first_failure_step`` / ``unobservable_steps`` keys of ``expect``."""
+    """Mismatches with the ``first_failure_step`` / ``unobservable_steps`` keys of ``expect``.
+
+    Parameters
+    ----------
+    result : TrajectoryResult
+        The verdicts along the trajectory.
+    expect : dict
+        The case's ``expect`` block (other keys are ignored here).
+
+    Returns
+    -------
+    list of str
+        One line per mismatch.
+    """
     actual = {
         "first_failure_step": result.first_failure_step,
         "unobservable_steps": list(result.unobservable_steps),

@@ -282,8 +282,19 @@ def analyze_topology(
 def check_expectations(result: TopologyResult, expect: dict[str, Any]) -> list[str]:
     """Mismatches between ``result`` and a case's ``expect`` block (per-agent keys and network).
 
-    Time-series keys (``first_failure_step``, ``unobservable_steps``) are checked by
-    :func:`theory.time_varying.check_trajectory_expectations`.
+    Parameters
+    ----------
+    result : TopologyResult
+        The verdicts (of the case's first step).
+    expect : dict
+        The case's ``expect`` block. Time-series keys (``first_failure_step``,
+        ``unobservable_steps``) are checked by
+        :func:`theory.time_varying.check_trajectory_expectations`.
+
+    Returns
+    -------
+    list of str
+        One line per mismatch (empty when every expectation is met).
     """
     got = result.to_json()
     actual: dict[str, Any] = {

@@ -50,7 +50,17 @@ def _inconclusive(claim: str, case: Case, result: TopologyResult) -> ClaimResult
     kinds=("tdoa",),
 )
 def check_heuristic(case: Case) -> list[ClaimResult]:
-    """Paper's heuristic vs the exact per-agent verdict at the first step of ``case``."""
+    """Paper's heuristic vs the exact per-agent verdict at the first step of ``case``.
+
+    Parameters
+    ----------
+    case : Case
+        A ``kind: tdoa`` case.
+
+    Returns
+    -------
+    list of ClaimResult
+    """
     result = _trajectory(case).steps[0]
     if not result.conclusive:
         return [_inconclusive("seed000.thm4.2.3.heuristic", case, result)]
@@ -99,7 +109,17 @@ def check_heuristic(case: Case) -> list[ClaimResult]:
     kinds=("tdoa",),
 )
 def check_network_observability(case: Case) -> list[ClaimResult]:
-    """Paper's condition vs the rank and detectability of the networked pair."""
+    """Paper's condition vs the rank and detectability of the networked pair.
+
+    Parameters
+    ----------
+    case : Case
+        A ``kind: tdoa`` case.
+
+    Returns
+    -------
+    list of ClaimResult
+    """
     result = _trajectory(case).steps[0]
     if not result.conclusive:
         return [_inconclusive("seed000.thm4.2.3.network", case, result)]
@@ -154,7 +174,17 @@ def check_network_observability(case: Case) -> list[ClaimResult]:
 )
 def check_cor_4_2_4(case: Case) -> list[ClaimResult]:
     """At every step where the hypothesis holds, does every agent localize (and is the pair
-    observable, as the paper words it)? Static cases are skipped (no result)."""
+    observable, as the paper words it)?
+
+    Parameters
+    ----------
+    case : Case
+        A ``kind: tdoa`` case; static cases (one step) give no result.
+
+    Returns
+    -------
+    list of ClaimResult
+    """
     if case.spec.steps < 2:
         return []
     trajectory = _trajectory(case)

@@ -36,8 +36,19 @@ __all__ = ["register", "run_topology"]
 def run_topology(case: Case, *, network_rank: bool = True, **tolerances: float) -> TrajectoryResult:
     """Analyze a ``kind: tdoa`` case at every step with the case's tolerances (overridable).
 
-    ``network_rank=False`` skips the rank of the whole networked matrix (cubic in the largest
-    component); per-agent verdicts and detectability are always computed.
+    Parameters
+    ----------
+    case : Case
+        A loaded case.
+    network_rank : bool
+        ``False`` skips the rank of the whole networked matrix (cubic in the largest component);
+        per-agent verdicts and detectability are always computed.
+    **tolerances : float
+        ``rank_tol`` / ``inconclusive_factor`` overriding the case's (``None`` = keep).
+
+    Returns
+    -------
+    TrajectoryResult
 
     Raises
     ------
@@ -57,7 +68,13 @@ def run_topology(case: Case, *, network_rank: bool = True, **tolerances: float) 
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``topology`` command to ``app``."""
+    """Add the ``topology`` command to ``app``.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The ``trackcert`` application.
+    """
 
     @app.command("topology")
     @reports_errors
