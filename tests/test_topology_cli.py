@@ -100,6 +100,15 @@ def test_bad_input_exits_2_with_a_message_and_no_traceback(tmp_path, change, fie
     assert result.stdout == ""
 
 
+@pytest.mark.parametrize(
+    "option", [["--rank-tol", "0"], ["--rank-tol", "2"], ["--inconclusive-factor", "0.5"]]
+)
+def test_bad_tolerance_options_exit_2(option) -> None:
+    result = invoke("fig43-case-d", *option)
+    assert result.exit_code == 2
+    assert option[0] in result.stderr and "Traceback" not in result.stderr
+
+
 def test_missing_case_and_malformed_yaml_exit_2(tmp_path) -> None:
     assert invoke("no-such-case").exit_code == 2
     bad = tmp_path / "bad.yaml"

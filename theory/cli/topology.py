@@ -61,6 +61,10 @@ def run_topology(case: Case, *, network_rank: bool = True, **tolerances: float) 
         raise CaseError("kind", "tdoa (trackcert topology checks TDOA cases)", case.kind)
     chosen = {k: v for k, v in case.tolerances.items() if k in ("rank_tol", "inconclusive_factor")}
     chosen.update({k: v for k, v in tolerances.items() if v is not None})
+    if not 0 < chosen.get("rank_tol", 0.5) < 1:
+        raise CaseError("--rank-tol", "a relative tolerance in (0, 1)", chosen["rank_tol"])
+    if chosen.get("inconclusive_factor", 1.0) < 1:
+        raise CaseError("--inconclusive-factor", "a factor ≥ 1", chosen["inconclusive_factor"])
     try:
         return analyze_trajectory(case.spec, network_rank=network_rank, **chosen)
     except np.linalg.LinAlgError as error:
@@ -81,9 +85,9 @@ def register(app: typer.Typer) -> None:
     def topology(
         case: str = typer.Argument(..., help="Case file path or bundled case name."),
         as_json: bool = typer.Option(False, "--json", help="Print JSON."),
-        rank_tol: float = typer.Option(None, "--rank-tol", min=0, help="Relative rank tolerance."),
+        rank_tol: float = typer.Option(None, "--rank-tol", help="Relative rank tolerance."),
         inconclusive_factor: float = typer.Option(
-            None, "--inconclusive-factor", min=1, help="Margin below which a verdict is unsure."
+            None, "--inconclusive-factor", help="Margin below which a verdict is unsure."
         ),
         network_rank: bool = typer.Option(
             True, "--network-rank/--no-network-rank", help="Rank the whole networked pair."
