@@ -22,7 +22,7 @@ from theory.topology import TopologyResult
 
 __all__ = ["check_cor_4_2_4", "check_heuristic", "check_network_observability"]
 
-_SOURCE = "seed 000 §4.2.2, Thm 4.2.3; seed 001"
+_SOURCE = "seed 000 §4.2.2, Thm 4.2.3; seed 001 Theorem 1"
 
 
 def _trajectory(case: Case) -> TrajectoryResult:
@@ -167,7 +167,7 @@ def check_network_observability(case: Case) -> list[ClaimResult]:
 
 @register(
     "seed000.cor4.2.4",
-    source="seed 000 Cor. 4.2.4",
+    source="seed 000 Cor. 4.2.4; seed 001 Corollary 1",
     statement="for a time-varying undirected network, if every agent remains part of a "
     "network of at least 4 connected non-coplanar agents, the networked system is observable",
     kinds=("tdoa",),
