@@ -17,19 +17,28 @@ mean degree of about 8, it times
 
 It prints every time and the ratios naive/checker and naive/verdicts. No assertion: the numbers
 are the result. Each timing is the best of ``--repeat`` runs.
+
+BLAS runs single-threaded (``OPENBLAS_NUM_THREADS=1`` etc., unless already set) for both methods:
+on a shared machine multi-threaded BLAS spends most of its time waiting (a 100 × 100 ``eigh``
+took 0.2 s threaded vs 2 ms single-threaded on the development machine).
 """
 
 from __future__ import annotations
 
-import argparse
-import time
+import os
 
-import numpy as np
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
 
-from theory.network import adjacency_from_range, metropolis_weights
-from theory.tdoa import cv_discrete, unit_directions
-from theory.tdoa_case import TdoaSpec
-from theory.topology import analyze_topology
+import argparse  # noqa: E402  (BLAS threads must be fixed before numpy loads)
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from theory.network import adjacency_from_range, metropolis_weights  # noqa: E402
+from theory.tdoa import cv_discrete, unit_directions  # noqa: E402
+from theory.tdoa_case import TdoaSpec  # noqa: E402
+from theory.topology import analyze_topology  # noqa: E402
 
 MEAN_DEGREE = 8.0
 SIDE = 100.0
@@ -87,7 +96,11 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
     rng = np.random.default_rng(args.seed)
-    print(f"seed {args.seed}; mean degree ≈ {MEAN_DEGREE}; best of {args.repeat} runs\n")
+    threads = os.environ["OPENBLAS_NUM_THREADS"]
+    print(
+        f"seed {args.seed}; mean degree ≈ {MEAN_DEGREE}; best of {args.repeat} runs; "
+        f"OPENBLAS_NUM_THREADS={threads}\n"
+    )
 
     naive_sizes = [n for n in (5, 10, 15, 20, 30, 40, 50, 60) if n <= args.naive_max]
     naive_times = {}
