@@ -173,6 +173,7 @@ def _print_human(case: Case, result: TrajectoryResult, mismatches: list[str], co
     for reason, ids in reasons.items():
         console.print(f"heuristic ≠ exact for agents {ids}: {reason}", markup=False)
     if len(result.steps) > 1:
+        console.print(_steps_table(result))
         console.print(
             f"time-varying: {len(result.steps)} steps; first failure step "
             f"{result.first_failure_step}; steps unobservable per agent "
@@ -214,9 +215,33 @@ def _agent_table(case: Case, step: TopologyResult) -> Table:
     return table
 
 
+def _steps_table(result: TrajectoryResult) -> Table:
+    table = Table(title="verdict at every step (Cor. 4.2.4)")
+    for column in ("step", "comp", "rank O", "cannot localize", "heuristic fails"):
+        table.add_column(column, no_wrap=column in ("step", "comp", "rank O"))
+    for step in result.steps:
+        rank = "-" if step.network.rank is None else f"{step.network.rank}/{step.network.n_states}"
+        table.add_row(
+            str(step.step),
+            str(len({a.component for a in step.agents})),
+            rank,
+            _agents([a.id for a in step.agents if not a.localizes], len(step.agents)),
+            _agents([a.id for a in step.agents if not a.heuristic_4_noncoplanar], len(step.agents)),
+        )
+    return table
+
+
+def _agents(ids: list[int], total: int) -> str:
+    return "-" if not ids else "all" if len(ids) == total else ", ".join(map(str, ids))
+
+
 def _eigs(values: tuple[complex, ...] | None) -> str:
     if values is None:
         return "not computed"
     if not values:
         return "none"
-    return "[" + ", ".join(f"{v.real:.4g}" for v in values) + "]"
+    return "[" + ", ".join(_complex(v) for v in values) + "]"
+
+
+def _complex(value: complex) -> str:
+    return f"{value.real:.4g}" if value.imag == 0 else f"{value.real:.4g}{value.imag:+.4g}j"
