@@ -115,7 +115,7 @@ def test_every_reported_second_solution_reproduces_the_tdoas(scene) -> None:
 
 @given(scenes(min_agents=3, max_agents=4, dims=(2,)), st.integers(0, 2**32 - 1))
 def test_multistart_search_finds_no_solution_the_algebra_missed_2d(scene, seed) -> None:
-    """Cross-check: Gauss-Newton from 40 seeded starts lands only on known solutions."""
+    """Cross-check: least squares from 24 seeded starts lands only on known solutions."""
     agents, target = scene
     result = tdoa_solutions(agents, target)
     assume(result.unique is not None and result.free_dims <= 1)
@@ -124,7 +124,7 @@ def test_multistart_search_finds_no_solution_the_algebra_missed_2d(scene, seed) 
     known = [target, *map(np.array, result.solutions)]
     measured = tdoa_measurement(target, agents, 0, range(1, len(agents)))
     rng = np.random.default_rng(seed)
-    for start in rng.uniform(-60, 60, size=(40, 2)):
+    for start in rng.uniform(-60, 60, size=(24, 2)):
         fit = scipy.optimize.least_squares(
             lambda p: tdoa_measurement(p, agents, 0, range(1, len(agents))) - measured,
             start,

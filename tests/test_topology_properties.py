@@ -36,16 +36,15 @@ def rotation(draw, dim: int) -> np.ndarray:
     return q * np.sign(np.diag(r))
 
 
-@given(scenes_maybe_flat(), st.data())
-def test_relabelling_permutes_the_verdicts(scene, data) -> None:
+@given(scenes_maybe_flat(), st.data(), st.booleans())
+def test_relabelling_permutes_the_verdicts(scene, data, directed) -> None:
     agents, target = scene
-    edges = data.draw(edge_lists(len(agents)))
+    edges = data.draw(edge_lists(len(agents), directed=directed))
     perm = np.array(data.draw(st.permutations(range(len(agents)))))
-    before = analyze_topology(spec_of(agents, target, edges))
+    before = analyze_topology(spec_of(agents, target, edges, directed=directed))
     relabel = {old + 1: new + 1 for new, old in enumerate(perm)}
-    after = analyze_topology(
-        spec_of(agents[perm], target, [[relabel[i], relabel[j]] for i, j in edges])
-    )
+    relabelled = [[relabel[i], relabel[j]] for i, j in edges]
+    after = analyze_topology(spec_of(agents[perm], target, relabelled, directed=directed))
     assume(before.conclusive and after.conclusive)
     assert verdicts(after) == [verdicts(before)[old] for old in perm]
     assert after.network.rank == before.network.rank
