@@ -11,7 +11,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from tests.topology_strategies import edge_lists, scenes, spec_of
-from theory.case_file import load_case
+from theory.case_file import bundled_cases, load_case
 from theory.network import adjacency_from_range
 from theory.networked_observability import agent_observability_blocks, analyze_network
 from theory.observability import numeric_rank
@@ -203,3 +203,22 @@ def test_topologies_a_and_b_have_identical_verdicts() -> None:
 
     assert summary(a) == summary(b)
     assert a.network.detectable == b.network.detectable
+
+
+STATIC_UNDIRECTED = [
+    name
+    for name, path in bundled_cases().items()
+    if (case := load_case(path)).kind == "tdoa" and case.spec.steps == 1 and not case.spec.directed
+]
+
+
+@pytest.mark.parametrize("name", STATIC_UNDIRECTED)
+def test_spectral_rank_matches_the_dense_pair_on_every_bundled_case(name) -> None:
+    """Bundled networks include repeated eigenvalues (rings, stars) and singular W."""
+    spec = load_case(name).spec
+    result = analyze_topology(spec)
+    A, _ = cv_discrete(spec.T, spec.dim)
+    dense = analyze_network(A, spec.weights[0], dense_blocks(spec))
+    assert dense.conclusive and result.conclusive
+    assert result.network.rank == dense.network_rank
+    assert result.network.detectable == dense.detectable
