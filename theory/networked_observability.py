@@ -26,16 +26,22 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from fractions import Fraction
+from math import lcm
 
 import numpy as np
 
+from theory.generic_rank import exact_rank
 from theory.observability import RANK_TOL, numeric_rank
 
 __all__ = [
     "UNIT_CIRCLE_TOL",
+    "NetworkGenericRank",
     "NetworkObservability",
     "agent_observability_blocks",
     "analyze_network",
+    "exact_weights",
+    "network_generic_rank",
     "network_observability_matrix",
     "networked_pair",
     "unobservable_subspace",
@@ -379,3 +385,225 @@ def _snap(values: np.ndarray, candidates: np.ndarray, *, rel: float = 1e-4) -> l
         close = abs(nearest - value) <= rel * max(1.0, abs(value))
         out.append(complex(nearest if close else value))
     return sorted(out, key=lambda z: (abs(z), z.real, z.imag))
+
+
+@dataclass(frozen=True)
+class NetworkGenericRank:
+    """Exact ranks of the networked ``O`` and its block columns at one random point.
+
+    Attributes
+    ----------
+    network_rank : int
+        Exact rank of ``O`` (eq. 4.36) at the point; a lower bound on the generic rank.
+    agent_ranks : list of int
+        Exact ``rank O_i``.
+    rank_sum : int
+        ``Σ rank O_i``.
+    rank_sum_claim_holds : bool
+        ``rank_sum == network_rank``.
+    n_states : int
+        ``n·N``.
+    parametrization : str
+        ``"geometry"`` (unit vectors ``u_i`` on the sphere, rational by inverse stereographic
+        projection; rows ``u_r − u_s``) or ``"edges"`` (App. B's shared ``λ`` per undirected edge,
+        ``+λ`` for the lower-numbered agent, ``−λ`` for the other).
+    T : Fraction or None
+        The sampling period used (``None``: drawn at random as a free parameter).
+    field : str
+        ``"rationals"`` or ``"prime"``.
+    seed : int
+        Seed of the ``numpy.random.Generator``.
+    sample_size : int
+        Free parameters are uniform on ``[0, sample_size)`` (``T`` on ``[1, sample_size)``).
+    degree_bound : int
+        Degree of any minor of ``O`` in the free parameters, at most ``c · nN`` with ``c`` the
+        entry degree (geometry 4, edges 1; +1 with random ``T``).
+    error_bound : float
+        ``degree_bound / sample_size``: probability that a rank found here is below the generic
+        rank (a wrong "rank-deficient" verdict). Ranks found full are certain.
+    """
+
+    network_rank: int
+    agent_ranks: list[int]
+    rank_sum: int
+    rank_sum_claim_holds: bool
+    n_states: int
+    parametrization: str
+    T: Fraction | None
+    field: str
+    seed: int
+    sample_size: int
+    degree_bound: int
+    error_bound: float
+
+
+def exact_weights(adjacency: np.ndarray, rule: str) -> list[list[Fraction]]:
+    """Metropolis or uniform weights (DESIGN.md) in exact rational arithmetic.
+
+    Parameters
+    ----------
+    adjacency : ndarray of bool, shape (N, N)
+        ``adjacency[r, s]``: ``r`` hears ``s`` (symmetric for ``metropolis``).
+    rule : {"metropolis", "uniform"}
+        The weight rule.
+
+    Returns
+    -------
+    list of list of Fraction
+    """
+    n = adjacency.shape[0]
+    degree = adjacency.sum(axis=1)
+    W = [[Fraction(0)] * n for _ in range(n)]
+    for r in range(n):
+        for s in np.flatnonzero(adjacency[r]):
+            if rule == "metropolis":
+                W[r][s] = Fraction(1, 1 + int(max(degree[r], degree[s])))
+            elif rule == "uniform":
+                W[r][s] = Fraction(1, 1 + int(degree[r]))
+            else:
+                raise ValueError(f"rule must be 'metropolis' or 'uniform'; got {rule!r}")
+        W[r][r] = 1 - sum(W[r])
+    return W
+
+
+def network_generic_rank(
+    adjacency: np.ndarray,
+    W: Sequence[Sequence[Fraction | int]],
+    *,
+    dim: int = 3,
+    parametrization: str = "geometry",
+    T: Fraction | None = None,
+    seed: int = 0,
+    field: str = "rationals",
+    sample_bits: int = 40,
+) -> NetworkGenericRank:
+    """Generic ranks of ``O`` and the ``O_i`` for a fixed ``W``, exactly at a random point.
+
+    The Jacobians are drawn at random from the chosen parametrization (``W`` and, if given,
+    ``T`` stay fixed); the matrix of eq. (4.36) is built over the integers (each block row scaled
+    by a common denominator, which leaves ranks unchanged) and its rank computed exactly with
+    python-flint. Schwartz–Zippel bounds the chance that the rank found is below the generic one.
+
+    Parameters
+    ----------
+    adjacency : ndarray of bool, shape (N, N)
+        ``adjacency[r, s]``: agent ``r`` measures the TDOA against ``s``.
+    W : sequence of sequences of Fraction
+        The actual consensus weights, exactly (see :func:`exact_weights`).
+    dim : int
+        2 or 3.
+    parametrization : {"geometry", "edges"}
+        See :class:`NetworkGenericRank`.
+    T : Fraction, optional
+        Fixed sampling period; random when omitted.
+    seed : int
+        Seed of ``numpy.random.default_rng``.
+    field : {"rationals", "prime"}
+        Exact rank over ℚ or modulo :data:`theory.generic_rank.MERSENNE_PRIME`.
+    sample_bits : int
+        Sample set ``[0, 2**sample_bits)``.
+
+    Returns
+    -------
+    NetworkGenericRank
+
+    Raises
+    ------
+    ValueError
+        For an unknown parametrization or shapes that do not match.
+
+    References
+    ----------
+    seed 000, eqs. (4.36)–(4.37), App. B.1; Schwartz (1980), Zippel (1979).
+    """
+    n_agents = adjacency.shape[0]
+    if len(W) != n_agents:
+        raise ValueError(f"W has {len(W)} rows for {n_agents} agents")
+    rng = np.random.default_rng(seed)
+    sample = 2**sample_bits
+    rows = _random_rows(adjacency, dim, parametrization, rng, sample)
+    period = Fraction(T) if T is not None else Fraction(1 + int(rng.integers(0, sample - 1)))
+    O = _integer_network_matrix(rows, [[Fraction(x) for x in r] for r in W], dim, period)
+    n = 2 * dim
+    network_rank = exact_rank(O, field=field)
+    agent_ranks = [
+        exact_rank([row[i * n : (i + 1) * n] for row in O], field=field) for i in range(n_agents)
+    ]
+    entry_degree = (4 if parametrization == "geometry" else 1) + (1 if T is None else 0)
+    degree = entry_degree * n * n_agents
+    return NetworkGenericRank(
+        network_rank=network_rank,
+        agent_ranks=agent_ranks,
+        rank_sum=sum(agent_ranks),
+        rank_sum_claim_holds=sum(agent_ranks) == network_rank,
+        n_states=n * n_agents,
+        parametrization=parametrization,
+        T=Fraction(T) if T is not None else None,
+        field=field,
+        seed=seed,
+        sample_size=sample,
+        degree_bound=degree,
+        error_bound=degree / sample,
+    )
+
+
+def _random_rows(
+    adjacency: np.ndarray, dim: int, parametrization: str, rng: np.random.Generator, sample: int
+) -> list[list[list[int]]]:
+    """Integer TDOA rows per agent (each row scaled by a positive constant)."""
+    n_agents = adjacency.shape[0]
+
+    def draw() -> int:
+        return int(rng.integers(0, sample))
+
+    if parametrization == "geometry":
+        points = []
+        for _ in range(n_agents):
+            params = [draw() for _ in range(dim - 1)]
+            square = sum(t * t for t in params)
+            points.append(([2 * t for t in params] + [square - 1], square + 1))
+        return [
+            [
+                [
+                    points[s][1] * a - points[r][1] * b
+                    for a, b in zip(points[r][0], points[s][0], strict=True)
+                ]
+                for s in np.flatnonzero(adjacency[r])
+            ]
+            for r in range(n_agents)
+        ]
+    if parametrization == "edges":
+        lam: dict[tuple[int, int], list[int]] = {}
+        rows = []
+        for r in range(n_agents):
+            agent_rows = []
+            for s in np.flatnonzero(adjacency[r]):
+                key = (min(r, int(s)), max(r, int(s)))
+                vector = lam.setdefault(key, [draw() for _ in range(dim)])
+                agent_rows.append(vector if r < s else [-x for x in vector])
+            rows.append(agent_rows)
+        return rows
+    raise ValueError(f"parametrization must be 'geometry' or 'edges'; got {parametrization!r}")
+
+
+def _integer_network_matrix(
+    rows: list[list[list[int]]], W: list[list[Fraction]], dim: int, T: Fraction
+) -> list[list[int]]:
+    """Eq. (4.36) with integer entries: block row ``l`` scaled by the lcm of its denominators."""
+    N, n = len(W), 2 * dim
+    out: list[list[int]] = []
+    power = [[Fraction(int(i == j)) for j in range(N)] for i in range(N)]
+    for step in range(n * N):
+        shift = step * T
+        block = []
+        for m, agent_rows in enumerate(rows):
+            for row in agent_rows:
+                line = []
+                for i in range(N):
+                    w = power[m][i]
+                    line += [w * x for x in row] + [w * shift * x for x in row]
+                block.append(line)
+        scale = lcm(*(x.denominator for line in block for x in line)) if block else 1
+        out += [[int(x * scale) for x in line] for line in block]
+        power = [[sum(power[i][k] * W[k][j] for k in range(N)) for j in range(N)] for i in range(N)]
+    return out
