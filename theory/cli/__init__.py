@@ -16,7 +16,9 @@ __all__ = ["COMMAND_MODULES", "app", "main"]
 COMMAND_MODULES: tuple[str, ...] = (
     "theory.cli.cases",
     "theory.cli.falsify",
+    "theory.cli.generic",
     "theory.cli.iss",
+    "theory.cli.topology",
 )
 
 app = typer.Typer(
