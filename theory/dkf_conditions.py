@@ -253,7 +253,7 @@ def source_components(
     out = []
     for node in condensed.nodes:
         if condensed.in_degree(node) == 0:
-            members = sorted(condensed.nodes[node]["members"])
+            members = sorted(int(m) for m in condensed.nodes[node]["members"])
             C_S = np.vstack(
                 [np.asarray(C[i], dtype=float).reshape(-1, A.shape[0]) for i in members]
             )
