@@ -311,27 +311,41 @@ def _claim_lemma_522(case: Case) -> list[ClaimResult]:
     map_error = float(np.linalg.norm(M @ vec_tuple(V) - vec_tuple(L_map(spec.W, Gamma, V))))
     scale = float(np.linalg.norm(M) * np.linalg.norm(V)) + 1.0
     rL, rJ = analysis.radius_L, analysis.radius_J
-    lyapunov = None
-    if rL is not None and abs(rL - 1) > 1e-6:
-        X = unvec_tuple(
-            np.linalg.solve(np.eye(M.shape[0]) - M, vec_tuple(np.stack([np.eye(spec.n)] * len(V)))),
-            spec.n_agents,
-            spec.n,
-        )
-        lyapunov = bool(min(np.linalg.eigvalsh((X + X.transpose(0, 2, 1)) / 2).ravel()) > 0)
+    lyapunov = _lyapunov_side(M, rL, spec.n_agents, spec.n)
     ok = map_error <= 1e-10 * scale and abs(rL - rJ) <= 1e-8 * max(1.0, rL)
-    if lyapunov is not None:
-        ok = ok and lyapunov == (rL < 1)
+    ok = ok and lyapunov is not False
     evidence = {
         "gains_source": analysis.gains_source,
         "map_vs_kronecker_error": map_error / scale,
         "spectral_radius_L": rL,
         "spectral_radius_J": rJ,
-        "lyapunov_solution_positive": lyapunov,
+        "lyapunov_characterization": lyapunov,
         "vec_convention": "column-stacking vec; tuple = [vec V_1; ...; vec V_N]",
         "seed": 0,
     }
     return [_result("seed000.lem5.2.2", case, "numeric", ok, evidence)]
+
+
+def _lyapunov_side(M: np.ndarray, radius: float, N: int, n: int, gap: float = 1e-6) -> bool | None:
+    """Lemma 5.2.2's "iff", on the side the radius is on (None within ``gap`` of 1).
+
+    ``r < 1``: the solution of ``X − L(X) = (I, …, I)`` must be positive definite. ``r > 1``: the
+    Perron eigenvector ``Y ⪰ 0`` of the adjoint (``L*(Y) = r Y``) must exist, which rules out any
+    ``P > 0`` with ``P − L(P) > 0`` since ``⟨P − L(P), Y⟩ = (1 − r)⟨P, Y⟩ < 0``.
+    """
+    if abs(radius - 1) <= gap:
+        return None
+    if radius < 1:
+        rhs = vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
+        X = unvec_tuple(np.linalg.solve(np.eye(M.shape[0]) - M, rhs), N, n)
+        return bool(np.linalg.eigvalsh((X + X.transpose(0, 2, 1)) / 2).min() > 0)
+    values, vectors = np.linalg.eig(M.T)
+    top = int(np.argmax(values.real))
+    Y = unvec_tuple(np.real(vectors[:, top]), N, n)
+    Y = (Y + Y.transpose(0, 2, 1)) / 2
+    Y = Y if np.trace(Y.sum(axis=0)) >= 0 else -Y
+    low = float(np.linalg.eigvalsh(Y).min())
+    return bool(abs(values[top] - radius) <= 1e-8 * radius and low >= -1e-8 * np.abs(Y).max())
 
 
 @register(
