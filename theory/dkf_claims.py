@@ -202,7 +202,15 @@ def analyze_dkf(
 
 
 def printed_match(value: float | None, printed: float) -> bool:
-    """Whether ``value`` rounds to ``printed`` at the digits the paper printed."""
+    """Whether ``value`` rounds to ``printed`` at the digits the paper printed.
+
+    Parameters
+    ----------
+    value : float or None
+        Computed value.
+    printed : float
+        The paper's number, as printed (its decimals set the tolerance).
+    """
     if value is None:
         return False
     text = repr(float(printed))

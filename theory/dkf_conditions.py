@@ -271,6 +271,13 @@ def o_matrix(A: np.ndarray, C: Sequence[np.ndarray], W: np.ndarray, agent: int) 
     ``w_ii > 0`` the reachable sets grow with k and settle by ``k = N − 1``, so by Cayley–Hamilton
     ``k < min(n² N, N + n − 1)`` spans the same space as the paper's ``k < n² N``.
 
+    Parameters
+    ----------
+    A, C, W : ndarray
+        System, measurement matrices, weights (``w_ii > 0``).
+    agent : int
+        0-based agent ``i``.
+
     Returns
     -------
     ndarray, shape (rows, n)
@@ -303,6 +310,13 @@ def w_detectability(
     value_tol: float = VALUE_TOL,
 ) -> list[bool | None]:
     """Detectability of ``(A, O_i)`` for each agent (Lemma 5.2.7; necessary by Lemma 5.2.6).
+
+    Parameters
+    ----------
+    A, C, W : ndarray
+        System, measurement matrices, weights.
+    rank_tol, value_tol : float
+        PBH rank tolerance; tolerance of ``|λ|`` around 1.
 
     Returns
     -------

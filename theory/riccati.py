@@ -54,7 +54,15 @@ def _ricc(A, Q, Ci, Ri, Pi):
 def riccati_gains(
     A: np.ndarray, C: Sequence[np.ndarray], R: Sequence[np.ndarray], Pi: np.ndarray
 ) -> tuple[np.ndarray, ...]:
-    """``L_i = A Π_i C_i' (R_i + C_i Π_i C_i')⁻¹`` (seed 000 eq. (5.8)); ``n × 0`` if no sensor."""
+    """``L_i = A Π_i C_i' (R_i + C_i Π_i C_i')⁻¹`` (seed 000 eq. (5.8)); ``n × 0`` if no sensor.
+
+    Parameters
+    ----------
+    A, C, R : ndarray
+        System, measurement matrices, measurement noise covariances.
+    Pi : ndarray, shape (N, n, n)
+        Intermediate covariances ``Π_i``.
+    """
     return tuple(
         A @ Pi[i] @ Ci.T @ np.linalg.inv(R[i] + Ci @ Pi[i] @ Ci.T)
         if Ci.shape[0]

@@ -431,6 +431,17 @@ def alternative_residual(
 ) -> dict[str, np.ndarray]:
     """``F*(Λ, Ψ)``: the adjoint of the LMI map at the multipliers (zero for a certificate).
 
+    Parameters
+    ----------
+    A, C, W : ndarray
+        The system and network.
+    Lam : ndarray, shape (N, n, n)
+        Multipliers ``Λ_j`` of the blocks ``F1_j``.
+    Psi : ndarray, shape (N, 2n, 2n)
+        Multipliers ``Ψ_i`` of the blocks ``F2_i``.
+    rho : float
+        Radius.
+
     Returns
     -------
     dict

@@ -23,6 +23,15 @@ __all__ = ["SelfWeightSearch", "max_self_weight", "self_weight_family"]
 def self_weight_family(W: np.ndarray, agents: Sequence[int], w: float) -> np.ndarray:
     """``W(w)``: self-weight ``w`` for each 0-based agent in ``agents``, other weights rescaled.
 
+    Parameters
+    ----------
+    W : ndarray, shape (N, N)
+        Base weights.
+    agents : sequence of int
+        0-based agents whose self-weight is set.
+    w : float
+        The common self-weight, in ``[0, 1]``.
+
     Raises
     ------
     ValueError
