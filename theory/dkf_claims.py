@@ -233,7 +233,7 @@ def _result(claim: str, case: Case, method: str, ok: bool | None, evidence: dict
     kinds=("dkf",),
 )
 def _claim_s_detectable(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case)
+    analysis = analyze_dkf(case, search_self_weight=False)
     verdict = analysis.decision.verdict
     expected = case.expect.get("s_detectable", True)
     ok = None if verdict is None else verdict == expected
@@ -253,7 +253,7 @@ def _claim_s_detectable(case: Case) -> list[ClaimResult]:
 
 
 def _necessity(case: Case, claim: str, holds: bool | None, what: str) -> list[ClaimResult]:
-    analysis = analyze_dkf(case)
+    analysis = analyze_dkf(case, search_self_weight=False)
     verdict = analysis.decision.verdict
     if verdict is True:
         ok = holds
@@ -277,7 +277,7 @@ def _necessity(case: Case, claim: str, holds: bool | None, what: str) -> list[Cl
     kinds=("dkf",),
 )
 def _claim_thm(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case)
+    analysis = analyze_dkf(case, search_self_weight=False)
     return _necessity(
         case, "seed000.thm5.2.10", analysis.conditions.paper_conditions, "Thm 5.2.10's conditions"
     )
@@ -291,7 +291,7 @@ def _claim_thm(case: Case) -> list[ClaimResult]:
     kinds=("dkf",),
 )
 def _claim_blindset(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case)
+    analysis = analyze_dkf(case, search_self_weight=False)
     return _necessity(
         case,
         "seed000.thm5.2.10.blindset",
@@ -308,7 +308,7 @@ def _claim_blindset(case: Case) -> list[ClaimResult]:
     kinds=("dkf",),
 )
 def _claim_lemma_522(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case)
+    analysis = analyze_dkf(case, search_self_weight=False)
     spec = case.spec
     if analysis.gains is None:
         return [_result("seed000.lem5.2.2", case, "numeric", None, {"gains_source": "none"})]
@@ -363,7 +363,7 @@ def _lyapunov_side(M: np.ndarray, radius: float, N: int, n: int, gap: float = 1e
     kinds=("dkf",),
 )
 def _claim_lemma_523(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case)
+    analysis = analyze_dkf(case, search_self_weight=False)
     spec = case.spec
     if analysis.gains is None:
         return [_result("seed000.lem5.2.3", case, "simulation", None, {"gains_source": "none"})]
@@ -400,7 +400,7 @@ def _claim_lemma_523(case: Case) -> list[ClaimResult]:
     kinds=("dkf",),
 )
 def _claim_riccati(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case)
+    analysis = analyze_dkf(case, search_self_weight=False)
     run, verdict = analysis.riccati, analysis.decision.verdict
     stabilizing = run.status == "converged" and run.stabilizing
     ok = True if not stabilizing else verdict

@@ -39,6 +39,7 @@ solver reports optimality, ``ε_cert ≤ cert_tol`` and no witness survives; any
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -226,7 +227,9 @@ def decide_s_detectability(
     tolerances = {"lmi_margin": lmi_margin, "cert_tol": cert_tol}
     problem, parts = _build_lmi(A, C, W, rho)
     try:
-        problem.solve(solver=solver)
+        with warnings.catch_warnings():  # inaccuracy is reported through the status table
+            warnings.simplefilter("ignore", UserWarning)
+            problem.solve(solver=solver)
         status = SOLVER_STATUS_TABLE.get(problem.status, "solver_error")
     except (cp.error.SolverError, ArithmeticError, ValueError) as error:
         return SDetectability(
