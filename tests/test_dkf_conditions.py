@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 from dkf_strategies import dkf_problems
-from hypothesis import given
+from hypothesis import assume, given
+from hypothesis import strategies as st
 
 from theory.case_file import load_case
 from theory.dkf_conditions import (
@@ -14,6 +15,7 @@ from theory.dkf_conditions import (
     unobservable_partition,
     w_detectability,
 )
+from theory.exact_self_weight import schur_stable
 from theory.observability import unobservable_eigenvalues
 from theory.s_detectability import decide_s_detectability
 
@@ -34,9 +36,29 @@ def test_example_2_radius_and_bound_to_printed_digits():
     assert third.unobservable_dim == 2
 
 
-def test_boundary_weight_is_inconclusive_not_guessed():
+def test_boundary_weight_numeric_inconclusive_exact_decides():
+    """W_c: w_ii r² = 0.25 · 4 = 1 exactly: floats cannot tell, exact arithmetic can (violated)."""
     s = load_case("ch5-example-1-wc").spec
-    assert [b.ok for b in self_weight_bounds(s.A, s.C, s.W)][:2] == [None, None]
+    bounds = self_weight_bounds(s.A, s.C, s.W)[:2]
+    assert [b.numeric_ok for b in bounds] == [None, None]
+    assert [b.exact_ok for b in bounds] == [False, False]
+    assert [b.ok for b in bounds] == [False, False]
+
+
+@given(dkf_problems(max_n=4, max_agents=4, integer_data=True))
+def test_exact_self_weight_agrees_with_numeric_when_conclusive(problem):
+    for bound in self_weight_bounds(problem.A, problem.C, problem.W):
+        if bound.numeric_ok is not None:
+            assert bound.exact_ok == bound.numeric_ok
+
+
+@given(st.lists(st.fractions(-3, 3, max_denominator=7), min_size=1, max_size=6), st.fractions(1, 3))
+def test_schur_cohn_matches_numpy_roots(lower, lead):
+    coefficients = [*lower, lead]
+    roots = np.roots([float(c) for c in reversed(coefficients)])
+    largest = max(abs(roots)) if roots.size else 0.0
+    assume(abs(largest - 1) > 1e-6)
+    assert schur_stable(coefficients) == bool(largest < 1)
 
 
 @given(dkf_problems(max_n=4, max_agents=3, integer_data=True))

@@ -25,6 +25,7 @@ import networkx as nx
 import numpy as np
 
 from theory.consensus_operators import spectral_radius
+from theory.exact_self_weight import self_weight_ok_exact
 from theory.observability import RANK_TOL, numeric_rank, observability_matrix
 
 __all__ = [
@@ -136,8 +137,11 @@ class SelfWeightBound:
         ``w_ii``.
     margin : float
         ``1 − w_ii r_σ(A_iᵘ)²``.
-    ok : bool or None
+    numeric_ok : bool or None
         ``margin > value_tol`` → True; ``< −value_tol`` → False; else None.
+    exact_ok : bool or None
+        The same inequality decided in exact rational arithmetic on the data as written
+        (:mod:`theory.exact_self_weight`); None when not computed.
     """
 
     agent: int
@@ -146,7 +150,13 @@ class SelfWeightBound:
     bound: float
     weight: float
     margin: float
-    ok: bool | None
+    numeric_ok: bool | None
+    exact_ok: bool | None = None
+
+    @property
+    def ok(self) -> bool | None:
+        """The exact verdict when computed, else the numeric one."""
+        return self.exact_ok if self.exact_ok is not None else self.numeric_ok
 
 
 def self_weight_bounds(
@@ -156,6 +166,7 @@ def self_weight_bounds(
     *,
     rank_tol: float = RANK_TOL,
     value_tol: float = VALUE_TOL,
+    exact: bool = True,
 ) -> list[SelfWeightBound]:
     """The self-weight bound of Thm 5.2.10 item 2 for every agent.
 
@@ -166,7 +177,9 @@ def self_weight_bounds(
     rank_tol : float
         Rank tolerance of the Kalman decomposition.
     value_tol : float
-        Tolerance on ``1 − w_ii r²`` below which the verdict is inconclusive.
+        Tolerance on ``1 − w_ii r²`` below which the numeric verdict is inconclusive.
+    exact : bool
+        Also decide each bound in exact rational arithmetic (the data read as written decimals).
 
     Returns
     -------
@@ -182,6 +195,7 @@ def self_weight_bounds(
         radius = spectral_radius(split.A_u)
         bound = 1.0 / radius**2 if radius > 0 else float("inf")
         margin = 1.0 - W[i, i] * radius**2
+        exact_ok = self_weight_ok_exact(A, Ci, float(W[i, i])) if exact else None
         out.append(
             SelfWeightBound(
                 i + 1,
@@ -191,6 +205,7 @@ def self_weight_bounds(
                 float(W[i, i]),
                 margin,
                 _sign(margin, value_tol),
+                exact_ok,
             )
         )
     return out
@@ -474,6 +489,8 @@ class NecessaryConditions:
                     "r_unobservable": b.radius,
                     "bound": b.bound,
                     "margin": b.margin,
+                    "numeric_ok": b.numeric_ok,
+                    "exact_ok": b.exact_ok,
                     "ok": b.ok,
                 }
                 for b in self.self_weights
