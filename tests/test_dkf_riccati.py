@@ -5,11 +5,23 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from dkf_strategies import dkf_problems
-from hypothesis import given
+from hypothesis import assume, given
 
 from theory.case_file import load_case
-from theory.consensus_operators import E_map
-from theory.riccati import check_covariance_bound, coupled_riccati, riccati_gains
+from theory.consensus_operators import (
+    E_map,
+    J_matrix,
+    closed_loop,
+    spectral_radius,
+    unvec_tuple,
+    vec_tuple,
+)
+from theory.riccati import (
+    check_averaged_bound,
+    check_covariance_bound,
+    coupled_riccati,
+    riccati_gains,
+)
 from theory.s_detectability import decide_s_detectability
 
 ORDERS = ["consensus-then-filter", "filter-then-consensus"]
@@ -74,3 +86,20 @@ def test_stabilizing_riccati_limit_implies_s_detectable(problem):
     )
     if result.status == "converged" and result.stabilizing and result.radius < 1 - 1e-6:
         assert decide_s_detectability(problem.A, problem.C, problem.W).verdict is not False
+
+
+@given(dkf_problems(max_n=3, max_agents=4, a_bound=1.0, gain_bound=0.5))
+def test_lemma_a_2_1_bounds(problem):
+    """Seed 000 Lemma A.2.1: with X > f_1(M, X), f_k → 0 geometrically and P_k stays bounded."""
+    W, n, N = problem.W, problem.A.shape[0], problem.W.shape[0]
+    M = closed_loop(problem.A, problem.C, problem.L)
+    T = J_matrix(W, M)
+    assume(spectral_radius(T) < 0.95)
+    X = unvec_tuple(
+        np.linalg.solve(np.eye(T.shape[0]) - T, vec_tuple(np.stack([np.eye(n)] * N))), N, n
+    )
+    X = (X + X.transpose(0, 2, 1)) / 2
+    check = check_averaged_bound(
+        W, M, X, np.stack([np.eye(n)] * N), np.stack([0.5 * np.eye(n)] * N)
+    )
+    assert check.r < 1 and check.decay_ok and check.bound_ok

@@ -27,7 +27,13 @@ from theory.consensus_operators import (
 )
 from theory.dkf_conditions import VALUE_TOL, NecessaryConditions, necessary_conditions
 from theory.observability import RANK_TOL
-from theory.riccati import RiccatiRun, check_covariance_bound, coupled_riccati, riccati_gains
+from theory.riccati import (
+    RiccatiRun,
+    check_averaged_bound,
+    check_covariance_bound,
+    coupled_riccati,
+    riccati_gains,
+)
 from theory.s_detectability import CERT_TOL, LMI_MARGIN, SDetectability, decide_s_detectability
 from theory.self_weight import SelfWeightSearch, max_self_weight
 
@@ -387,6 +393,57 @@ def _claim_lemma_523(case: Case) -> list[ClaimResult]:
             check.holds,
             evidence,
             margin=check.exact_gap,
+            tolerance={"psd_tol": check.psd_tol},
+        )
+    ]
+
+
+@register(
+    "seed000.lemA.2.1",
+    source="seed 000 Lemma A.2.1, eqs. (A.53)–(A.54)",
+    statement="if X^i > f_1^i(M, X) for some X > 0, then f_n(M, P) → 0 and "
+    "P_{k+1} = f_1(M, P_k) + U stays below (α + μ/(1 − r)) X",
+    kinds=("dkf",),
+)
+def _claim_lemma_a21(case: Case) -> list[ClaimResult]:
+    analysis = analyze_dkf(case, search_self_weight=False)
+    spec = case.spec
+    M = closed_loop(spec.A, spec.C, analysis.gains)
+    if not (analysis.radius_J is not None and analysis.radius_J < 1 - 1e-9):
+        message = "hypothesis not met with these gains (r_σ(J) ≥ 1): nothing to check"
+        evidence = {"gains_source": analysis.gains_source, "spectral_radius_J": analysis.radius_J}
+        return [_result("seed000.lemA.2.1", case, "numeric", None, evidence, message=message)]
+    n, N = spec.n, spec.n_agents
+    dim = N * n * n
+    X = unvec_tuple(
+        np.linalg.solve(
+            np.eye(dim) - J_matrix(spec.W, M), vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
+        ),
+        N,
+        n,
+    )
+    X = (X + X.transpose(0, 2, 1)) / 2
+    U = np.stack([spec.Q + Li @ Ri @ Li.T for Li, Ri in zip(analysis.gains, spec.R, strict=True)])
+    check = check_averaged_bound(spec.W, M, X, np.broadcast_to(10 * np.eye(n), (N, n, n)), U)
+    evidence = {
+        "gains_source": analysis.gains_source,
+        "r": check.r,
+        "alpha": check.alpha,
+        "mu": check.mu,
+        "decay_ok": check.decay_ok,
+        "bound_ok": check.bound_ok,
+        "worst_ratio": check.worst_ratio,
+        "steps": check.steps,
+    }
+    ok = check.r < 1 and check.decay_ok and check.bound_ok
+    return [
+        _result(
+            "seed000.lemA.2.1",
+            case,
+            "numeric",
+            ok,
+            evidence,
+            margin=1 - check.worst_ratio,
             tolerance={"psd_tol": check.psd_tol},
         )
     ]

@@ -27,6 +27,7 @@ import scipy.linalg as sla
 from theory.consensus_operators import (
     B_matrix,
     E_map,
+    J_map,
     L_map,
     closed_loop,
     covariance_operator_matrix,
@@ -34,8 +35,10 @@ from theory.consensus_operators import (
 )
 
 __all__ = [
+    "AveragedBoundCheck",
     "CovarianceBoundCheck",
     "RiccatiRun",
+    "check_averaged_bound",
     "check_covariance_bound",
     "coupled_riccati",
     "riccati_gains",
@@ -281,3 +284,95 @@ def _noise_samples(rng, samples, Q, C, R, gains):
         else:
             parts.append(omega)
     return np.hstack(parts)
+
+
+@dataclass(frozen=True)
+class AveragedBoundCheck:
+    """Seed 000 Lemma A.2.1 on one instance.
+
+    Attributes
+    ----------
+    r : float
+        ``max_i λ_max(X_i^{-1/2} f_1^i(M, X) X_i^{-1/2})`` (the hypothesis is ``r < 1``).
+    alpha, mu : float
+        Least constants with ``P_0 ≤ α X`` and ``U ≤ μ X``.
+    decay_ok : bool
+        ``f_k(M, P_0) ≤ α r^k X`` for every k checked (part 1, hence ``f_k → 0``).
+    bound_ok : bool
+        ``P_k ≤ (α + μ/(1 − r)) X`` for every k checked (part 2).
+    worst_ratio : float
+        ``max_k max_i λ_max(X_i^{-1/2} P_k^i X_i^{-1/2}) / (α + μ/(1 − r))`` (≤ 1 expected).
+    steps : int
+    psd_tol : float
+    """
+
+    r: float
+    alpha: float
+    mu: float
+    decay_ok: bool
+    bound_ok: bool
+    worst_ratio: float
+    steps: int
+    psd_tol: float
+
+
+def _ratio(P: np.ndarray, X: np.ndarray) -> float:
+    """``max_i λ_max(X_i^{-1/2} P_i X_i^{-1/2})``."""
+    out = -np.inf
+    for Pi, Xi in zip(P, X, strict=True):
+        w, V = np.linalg.eigh(Xi)
+        root = (V / np.sqrt(w)) @ V.T
+        out = max(out, float(np.linalg.eigvalsh(root @ Pi @ root)[-1]))
+    return out
+
+
+def check_averaged_bound(
+    W: np.ndarray,
+    M: np.ndarray,
+    X: np.ndarray,
+    P0: np.ndarray,
+    U: np.ndarray,
+    *,
+    steps: int = 200,
+    psd_tol: float = 1e-9,
+) -> AveragedBoundCheck:
+    """Check both statements of seed 000 Lemma A.2.1 along ``steps`` iterations.
+
+    ``f_1^i(M, P) = Σ_j w_ij M^j P^j M^j'`` is the operator J of App. C.3 with ``Γ_j = M^j``.
+
+    Parameters
+    ----------
+    W : ndarray, shape (N, N)
+        Consensus weights.
+    M : ndarray, shape (N, n, n)
+        The matrices ``M^j``.
+    X : ndarray, shape (N, n, n)
+        Positive definite tuple with ``X^i > f_1^i(M, X)`` (the lemma's hypothesis).
+    P0, U : ndarray, shape (N, n, n)
+        Positive semi-definite initial tuple and forcing term.
+    steps : int
+        Iterations checked.
+    psd_tol : float
+        Relative slack allowed in each matrix inequality.
+
+    Returns
+    -------
+    AveragedBoundCheck
+
+    References
+    ----------
+    seed 000 Lemma A.2.1, eqs. (A.53)–(A.54); Corollary A.2.2.
+    """
+    r = _ratio(J_map(W, M, X), X)
+    alpha, mu = _ratio(P0, X), _ratio(U, X)
+    limit = alpha + mu / (1 - r) if r < 1 else np.inf
+    decay_ok, worst = True, -np.inf
+    F, P = P0.copy(), P0.copy()
+    for k in range(1, steps + 1):
+        F = J_map(W, M, F)
+        P = J_map(W, M, P) + U
+        decay_ok &= _ratio(F, X) <= alpha * r**k * (1 + psd_tol) + psd_tol
+        worst = max(worst, _ratio(P, X) / limit)
+    return AveragedBoundCheck(
+        r, alpha, mu, bool(decay_ok), bool(worst <= 1 + psd_tol), worst, steps, psd_tol
+    )
