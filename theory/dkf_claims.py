@@ -472,7 +472,9 @@ def _claim_riccati(case: Case) -> list[ClaimResult]:
     return [_result("seed000.fn5", case, "numeric", ok, evidence, tolerance=dict(run.tolerances))]
 
 
+@functools.lru_cache(maxsize=16)
 def _bundled(name: str) -> Case:
+    """A bundled case, loaded once (so :func:`analyze_dkf`'s cache applies)."""
     return load_case(name)
 
 
