@@ -89,3 +89,21 @@ def test_unreachable_tolerances_give_inconclusive_exit_3(tmp_path):
     result = run(str(case), "--json", "--no-self-weight")
     assert result.exit_code == 3, result.output
     assert json.loads(result.stdout)["s_detectable"] is None
+
+
+@pytest.mark.parametrize(
+    "case",
+    [
+        "ch5-example-1-wg",
+        "ch5-example-1-wc",
+        "ch5-example-1-wb",
+        "ch5-example-2-wg",
+        "ch5-example-2-wb",
+        "ch5-counterexample",
+        "ch5-blind-cycle",
+    ],
+)
+def test_bundled_case_expectations_met(case):
+    data = json.loads(run(case, "--json", "--no-self-weight").stdout)
+    assert data["expectations"], "each bundled ch5 case states what it expects"
+    assert all(e["met"] for e in data["expectations"]), data["expectations"]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 from dkf_strategies import dkf_problems
-from hypothesis import assume, given
+from hypothesis import assume, event, given
 from hypothesis import strategies as st
 
 from theory.case_file import load_case
@@ -94,8 +94,9 @@ def test_blind_set_condition_implies_the_papers(problem):
 def test_lmi_feasible_implies_every_necessary_condition(problem):
     A, C, W = problem.A, problem.C, problem.W
     result = decide_s_detectability(A, C, W)
+    cond = necessary_conditions(A, C, W)
+    event(f"lmi={result.verdict} paper={cond.paper_conditions} blind={cond.blind_set_condition}")
     if result.verdict is True:
-        cond = necessary_conditions(A, C, W)
         assert cond.paper_conditions is not False
         assert cond.blind_set_condition is not False
         assert False not in w_detectability(A, C, W)

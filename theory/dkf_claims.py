@@ -125,7 +125,33 @@ class DkfAnalysis:
                 "tolerances": self.riccati.tolerances,
             },
             "tolerances": dict(self.tolerances),
+            "expectations": self.expectations(),
         }
+
+    def expectations(self) -> list[dict[str, Any]]:
+        """Each ``expect:`` entry of the case with what was found and whether it is met.
+
+        Spectral radii are compared at the digits written in the case (:func:`printed_match`);
+        the other keys are booleans compared exactly (an inconclusive result meets nothing).
+        """
+        found = {
+            "s_detectable": self.decision.verdict,
+            "spectral_radius_B": self.radius_B,
+            "spectral_radius_L": self.radius_L,
+            "self_weight_ok": _all_ok([b.ok for b in self.conditions.self_weights]),
+            "paper_conditions_ok": self.conditions.paper_conditions,
+            "blind_set_condition_ok": self.conditions.blind_set_condition,
+            "riccati_converges": self.riccati.status == "converged",
+        }
+        out = []
+        for key, expected in self.case.expect.items():
+            got = found[key]
+            if key.startswith("spectral_radius"):
+                met = printed_match(got, float(expected))
+            else:
+                met = got is not None and got == expected
+            out.append({"key": key, "expected": expected, "got": got, "met": met})
+        return out
 
 
 def _all_ok(values: list[bool | None]) -> bool | None:
