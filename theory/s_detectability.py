@@ -133,7 +133,8 @@ class SDetectability:
     X : ndarray or None
         Primal Lyapunov tuple for the filter's operator: ``X − T(X) = I``.
     radius_L, radius_J, radius_B : float or None
-        ``r_σ`` of L, J and B with the witness gains (eigenvalues, cross-check).
+        ``r_σ`` of L, J and B with the candidate gains ``Y_i⁻¹ G_i`` of the solver's solution
+        (the witness's gains when ``verdict`` is True; otherwise informative only).
     multipliers : dict or None
         ``{"Lambda": (N, n, n), "Psi": (N, 2n, 2n)}`` projected onto the PSD cone.
     tolerances : dict
@@ -173,9 +174,9 @@ class SDetectability:
             "witness_margin": self.witness_margin,
             "radius_bound": self.radius_bound,
             "cert_epsilon": self.cert_epsilon,
-            "spectral_radius_L": self.radius_L,
-            "spectral_radius_J": self.radius_J,
-            "spectral_radius_B": self.radius_B,
+            "candidate_radius_L": self.radius_L,
+            "candidate_radius_J": self.radius_J,
+            "candidate_radius_B": self.radius_B,
             "tolerances": dict(self.tolerances),
         }
 
@@ -240,13 +241,17 @@ def decide_s_detectability(
         reason = f"solver status {status}: the normalised LMI is always feasible and bounded"
         return SDetectability(None, reason, order=order, **common)
     Y = np.stack([np.asarray(v.value, dtype=float) for v in parts["Y"]])
-    gains = tuple(
-        np.linalg.solve(Y[i], np.asarray(g.value, dtype=float).reshape(A.shape[0], -1))
-        if g is not None
-        else np.zeros((A.shape[0], 0))
-        for i, g in enumerate(parts["G"])
-    )
-    m = witness_margin(A, C, W, gains, Y, rho=rho)
+    try:
+        gains = tuple(
+            np.linalg.solve(Y[i], np.asarray(g.value, dtype=float).reshape(A.shape[0], -1))
+            if g is not None
+            else np.zeros((A.shape[0], 0))
+            for i, g in enumerate(parts["G"])
+        )
+        m = witness_margin(A, C, W, gains, Y, rho=rho)
+    except np.linalg.LinAlgError:  # a singular Y_i: no witness (the solution is near x = 0)
+        gains = tuple(np.zeros((A.shape[0], Ci.shape[0])) for Ci in C)
+        m = float("-inf")
     eps = _certificate_epsilon(A, C, W, rho, parts)
     radii = _radii(A, C, W, gains)
     base = dict(
