@@ -103,3 +103,23 @@ def test_lemma_a_2_1_bounds(problem):
         W, M, X, np.stack([np.eye(n)] * N), np.stack([0.5 * np.eye(n)] * N)
     )
     assert check.r < 1 and check.decay_ok and check.bound_ok
+
+
+@given(dkf_problems(max_n=3, max_agents=3, gain_bound=1.5))
+def test_lemma_5_2_3_noise_free_bound(problem):
+    """First statement of Lemma 5.2.3: Ξ(k) ≤ P(k) with P(k+1) = L(P(k)) (no noise)."""
+    n = problem.A.shape[0]
+    zero_R = [np.zeros((Ci.shape[0], Ci.shape[0])) for Ci in problem.C]
+    check = check_covariance_bound(
+        problem.A,
+        problem.C,
+        problem.W,
+        np.zeros((n, n)),
+        zero_R,
+        problem.L,
+        np.eye(n),
+        steps=12,
+        samples=500,
+        seed=problem.seed % 2**32,
+    )
+    assert check.holds, check

@@ -265,7 +265,8 @@ def check_covariance_bound(
             gap = min(gap, float(np.linalg.eigvalsh(P[i] - Sigma)[0]) / scale)
             hat = sample_cov[block, block]
             mc_error = max(
-                mc_error, float(np.linalg.norm(hat - Sigma, 2) / np.linalg.norm(Sigma, 2))
+                mc_error,
+                float(np.linalg.norm(hat - Sigma, 2) / max(np.linalg.norm(Sigma, 2), 1e-300)),
             )
             mc_violation = max(mc_violation, float(np.linalg.eigvalsh(hat - P[i])[-1]) / scale)
     return CovarianceBoundCheck(
