@@ -33,7 +33,11 @@ __all__ = [
 
 HEADER_FIELDS = ("name", "source", "kind", "description", "expect", "tolerances")
 
-KIND_MODULES: tuple[str, ...] = ("theory.tdoa_case", "theory.pursuit_case")
+KIND_MODULES: tuple[str, ...] = (
+    "theory.dkf_case",
+    "theory.pursuit_case",
+    "theory.tdoa_case",
+)
 """Modules that register case kinds (imported on first use)."""
 
 
