@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-from dkf_strategies import dkf_problems
 from hypothesis import assume, event, given
 from hypothesis import strategies as st
 
@@ -18,6 +17,7 @@ from theory.dkf_conditions import (
 from theory.exact_self_weight import schur_stable
 from theory.observability import unobservable_eigenvalues
 from theory.s_detectability import decide_s_detectability
+from theory.strategies import dkf_problems
 
 
 def test_example_1_radii_and_bounds_to_printed_digits():
@@ -45,7 +45,7 @@ def test_boundary_weight_numeric_inconclusive_exact_decides():
     assert [b.ok for b in bounds] == [False, False]
 
 
-@given(dkf_problems(max_n=4, max_agents=4, integer_data=True))
+@given(dkf_problems(max_states=4, max_agents=4, integer_data=True))
 def test_exact_self_weight_agrees_with_numeric_when_conclusive(problem):
     for bound in self_weight_bounds(problem.A, problem.C, problem.W):
         if bound.numeric_ok is not None:
@@ -61,7 +61,7 @@ def test_schur_cohn_matches_numpy_roots(lower, lead):
     assert schur_stable(coefficients) == bool(largest < 1)
 
 
-@given(dkf_problems(max_n=4, max_agents=3, integer_data=True))
+@given(dkf_problems(max_states=4, max_agents=3, integer_data=True))
 def test_kalman_decomposition_matches_pbh_and_python_control(problem):
     for Ci in problem.C:
         split = unobservable_partition(problem.A, Ci)
@@ -73,7 +73,7 @@ def test_kalman_decomposition_matches_pbh_and_python_control(problem):
             assert np.allclose(ours, pbh, atol=1e-6)
 
 
-@given(dkf_problems(max_n=3, max_agents=4, integer_data=True))
+@given(dkf_problems(max_states=3, max_agents=4, integer_data=True))
 def test_w_detectability_equals_detectable_sources(problem):
     """With w_ii > 0, every (A, O_i) is detectable iff every source component is (docs Lemma 4)."""
     A, C, W = problem.A, problem.C, problem.W
@@ -83,14 +83,14 @@ def test_w_detectability_equals_detectable_sources(problem):
         assert all(sources) == all(w_det)
 
 
-@given(dkf_problems(max_n=3, max_agents=4))
+@given(dkf_problems(max_states=3, max_agents=4))
 def test_blind_set_condition_implies_the_papers(problem):
     cond = necessary_conditions(problem.A, problem.C, problem.W)
     if cond.blind_set_condition is True:
         assert cond.paper_conditions is not False
 
 
-@given(dkf_problems(max_n=3, max_agents=4, a_bound=1.3))
+@given(dkf_problems(max_states=3, max_agents=4, a_bound=1.3))
 def test_lmi_feasible_implies_every_necessary_condition(problem):
     A, C, W = problem.A, problem.C, problem.W
     result = decide_s_detectability(A, C, W)

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from dkf_strategies import dkf_problems, weight_matrices
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
@@ -23,6 +22,7 @@ from theory.s_detectability import (
     decide_s_detectability,
     s_detectability_witness,
 )
+from theory.strategies import dkf_problems, weight_matrices
 
 
 def spec(name):
@@ -84,7 +84,7 @@ def lmi_blocks(A, C, W, Y, G, Z):
     return F1, F2
 
 
-@given(dkf_problems(max_n=3, max_agents=4))
+@given(dkf_problems(max_states=3, max_agents=4))
 def test_alternative_residual_is_the_adjoint(problem):
     rng = np.random.default_rng(problem.seed)
     A, C, W = problem.A, problem.C, problem.W
@@ -106,7 +106,7 @@ def test_alternative_residual_is_the_adjoint(problem):
 
 
 @given(
-    weight_matrices(max_agents=5),
+    weight_matrices(kind="random", directed=True, connected=None, min_agents=1, max_agents=5),
     st.floats(1.05, 3.0),
     st.integers(0, 2**31 - 1),
 )
@@ -143,7 +143,7 @@ def test_scs_agrees_with_clarabel(name):
     assert scs.verdict in (clarabel.verdict, None)
 
 
-@given(dkf_problems(max_n=2, max_agents=3, a_bound=1.2))
+@given(dkf_problems(max_states=2, max_agents=3, a_bound=1.2))
 def test_radius_target_rho_is_monotone(problem):
     """Gains with r(L) < ρ exist for ρ above the optimum and not below (quasi-convexity)."""
     A, C, W = problem.A, problem.C, problem.W

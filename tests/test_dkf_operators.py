@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-from dkf_strategies import dkf_problems
 from hypothesis import given
 
 from theory.consensus_operators import (
@@ -21,6 +20,7 @@ from theory.consensus_operators import (
     unvec_tuple,
     vec_tuple,
 )
+from theory.strategies import dkf_problems
 
 
 def test_vec_stacks_columns_then_agents():
@@ -69,7 +69,7 @@ def test_adjoint_for_the_trace_inner_product(problem):
     assert abs(lhs - rhs) <= 1e-10 * (1 + abs(lhs))
 
 
-@given(dkf_problems(max_n=3, max_agents=5))
+@given(dkf_problems(max_states=3, max_agents=5))
 def test_radius_L_equals_radius_J_and_B_equals_B2(problem):
     Gamma = closed_loop(problem.A, problem.C, problem.L)
     rL = spectral_radius(L_matrix(problem.W, Gamma))
@@ -80,7 +80,7 @@ def test_radius_L_equals_radius_J_and_B_equals_B2(problem):
     assert abs(rB - rB2) <= 1e-8 * max(1.0, rB)
 
 
-@given(dkf_problems(max_n=3, max_agents=4))
+@given(dkf_problems(max_states=3, max_agents=4))
 def test_s_detectable_gains_make_B_stable(problem):
     """Seed 000 after Def. 5.2.4: r(L) < 1 implies r(B) < 1; more precisely r(B)² ≤ r(L)."""
     Gamma = closed_loop(problem.A, problem.C, problem.L)

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from dkf_strategies import dkf_problems
 from hypothesis import assume, given
 
 from theory.case_file import load_case
@@ -23,6 +22,7 @@ from theory.riccati import (
     riccati_gains,
 )
 from theory.s_detectability import decide_s_detectability
+from theory.strategies import dkf_problems
 
 ORDERS = ["consensus-then-filter", "filter-then-consensus"]
 
@@ -56,7 +56,7 @@ def test_example_2_good_weights_converge(order):
     assert run("ch5-example-2-wg", order)[1].stabilizing
 
 
-@given(dkf_problems(max_n=3, max_agents=3, gain_bound=1.5))
+@given(dkf_problems(max_states=3, max_agents=3, gain_bound=1.5))
 def test_lemma_5_2_3_covariance_bound(problem):
     n = problem.A.shape[0]
     Q = np.eye(n) * 0.5
@@ -77,7 +77,7 @@ def test_lemma_5_2_3_covariance_bound(problem):
     assert check.mc_violation <= 12 / np.sqrt(check.samples)
 
 
-@given(dkf_problems(max_n=2, max_agents=3, a_bound=1.4))
+@given(dkf_problems(max_states=2, max_agents=3, a_bound=1.4))
 def test_stabilizing_riccati_limit_implies_s_detectable(problem):
     n = problem.A.shape[0]
     R = [np.eye(Ci.shape[0]) for Ci in problem.C]
@@ -88,7 +88,7 @@ def test_stabilizing_riccati_limit_implies_s_detectable(problem):
         assert decide_s_detectability(problem.A, problem.C, problem.W).verdict is not False
 
 
-@given(dkf_problems(max_n=3, max_agents=4, a_bound=1.0, gain_bound=0.5))
+@given(dkf_problems(max_states=3, max_agents=4, a_bound=1.0, gain_bound=0.5))
 def test_lemma_a_2_1_bounds(problem):
     """Seed 000 Lemma A.2.1: with X > f_1(M, X), f_k → 0 geometrically and P_k stays bounded."""
     W, n, N = problem.W, problem.A.shape[0], problem.W.shape[0]
@@ -105,7 +105,7 @@ def test_lemma_a_2_1_bounds(problem):
     assert check.r < 1 and check.decay_ok and check.bound_ok
 
 
-@given(dkf_problems(max_n=3, max_agents=3, gain_bound=1.5))
+@given(dkf_problems(max_states=3, max_agents=3, gain_bound=1.5))
 def test_lemma_5_2_3_noise_free_bound(problem):
     """First statement of Lemma 5.2.3: Ξ(k) ≤ P(k) with P(k+1) = L(P(k)) (no noise)."""
     n = problem.A.shape[0]

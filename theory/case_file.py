@@ -150,8 +150,8 @@ def bundled_case_dir() -> Path:
 def bundled_cases() -> dict[str, Path]:
     """Bundled cases by name (file stem), sorted."""
     folder = bundled_case_dir()
-    paths = sorted(folder.glob("*.yaml")) if folder.is_dir() else []
-    return {p.stem: p for p in paths}
+    paths = folder.glob("*.yaml") if folder.is_dir() else []
+    return dict(sorted((p.stem, p) for p in paths))
 
 
 def resolve_case_path(name_or_path: str | Path) -> Path:

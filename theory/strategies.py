@@ -24,9 +24,11 @@ from hypothesis.errors import InvalidArgument
 from theory.network import metropolis_weights, uniform_weights
 
 __all__ = [
+    "DkfProblem",
     "PursuitParameters",
     "TdoaScene",
     "digraph_laplacians",
+    "dkf_problems",
     "is_connected",
     "networks",
     "pursuit_parameters",
@@ -46,6 +48,18 @@ class TdoaScene:
     target: np.ndarray
     agents: np.ndarray
     family: str
+
+
+@dataclass(frozen=True, eq=False)
+class DkfProblem:
+    """A consensus-filter problem (seed 000 ch. 5): system, per-agent measurements, weights,
+    gains, and the seed that built them."""
+
+    seed: int
+    A: np.ndarray
+    C: tuple[np.ndarray, ...]
+    W: np.ndarray
+    L: tuple[np.ndarray, ...]
 
 
 @dataclass(frozen=True)
@@ -230,6 +244,58 @@ def weight_matrices(
     rng = draw(_seeds())
     raw = np.where(hears | np.eye(len(hears), dtype=bool), rng.uniform(0.2, 1.0, hears.shape), 0.0)
     return raw / raw.sum(axis=1, keepdims=True)
+
+
+def _directed_weights(rng: np.random.Generator, n: int, min_weight: float) -> np.ndarray:
+    support = rng.random((n, n)) < rng.uniform(0.2, 1.0)
+    np.fill_diagonal(support, True)
+    raw = np.where(support, rng.uniform(min_weight, 1.0, (n, n)), 0.0)
+    return raw / raw.sum(axis=1, keepdims=True)
+
+
+def dkf_problems(
+    *,
+    min_states: int = 1,
+    max_states: int = 3,
+    min_agents: int = 1,
+    max_agents: int = 4,
+    max_rows: int = 2,
+    a_bound: float = 1.5,
+    gain_bound: float = 1.0,
+    integer_data: bool = False,
+) -> st.SearchStrategy[DkfProblem]:
+    """Consensus-filter problems built from one drawn seed (a failing example is its seed).
+
+    ``n`` in ``[min_states, max_states]``, ``N`` in ``[min_agents, max_agents]``; entries of
+    ``A`` bounded by ``a_bound``; each ``C_i`` has 0 to ``max_rows`` rows; ``W`` is
+    row-stochastic with a random directed support and weights ≥ 0.1 before normalisation;
+    gains bounded by ``gain_bound``. With ``integer_data`` the entries of ``A`` are multiples of
+    ``a_bound/2`` and those of ``C_i`` are in {−1, 0, 1} (exact arithmetic stays small).
+    """
+    _check_range("min_states", min_states, "max_states", max_states, 1)
+    _check_range("min_agents", min_agents, "max_agents", max_agents, 1)
+    if max_rows < 0 or not a_bound > 0 or not gain_bound >= 0:
+        raise InvalidArgument(
+            "need max_rows ≥ 0, a_bound > 0, gain_bound ≥ 0; "
+            f"got {max_rows}, {a_bound}, {gain_bound}"
+        )
+
+    def build(seed: int) -> DkfProblem:
+        rng = np.random.default_rng(seed)
+        n = int(rng.integers(min_states, max_states + 1))
+        N = int(rng.integers(min_agents, max_agents + 1))
+        rows = [int(rng.integers(0, max_rows + 1)) for _ in range(N)]
+        if integer_data:
+            A = rng.integers(-2, 3, (n, n)).astype(float) / 2 * a_bound
+            C = tuple(rng.integers(-1, 2, (p, n)).astype(float) for p in rows)
+        else:
+            A = rng.uniform(-a_bound, a_bound, (n, n))
+            C = tuple(rng.uniform(-1, 1, (p, n)) for p in rows)
+        W = _directed_weights(rng, N, 0.1)
+        L = tuple(rng.uniform(-gain_bound, gain_bound, (n, p)) for p in rows)
+        return DkfProblem(seed, A, C, W, L)
+
+    return st.integers(0, 2**32 - 1).map(build)
 
 
 @st.composite
