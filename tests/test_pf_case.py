@@ -88,9 +88,13 @@ def test_summary_and_verdicts_follow_their_definitions():
     assert [r["measurements"] for r in rows] == [2, 1, 1]
     tail = mc.errors[:, 50:].mean(1)
     assert rows[0]["tail_error_median"] == pytest.approx(np.median(tail[:, 0]))
-    verdicts = convergence_verdicts(mc, spec, converge_tol=1e9, diverge_tol=2e9)
+    verdicts = convergence_verdicts(
+        mc.tail_errors, spec.network.filters, converge_tol=1e9, diverge_tol=2e9
+    )
     assert set(verdicts.values()) == {"converges"}
-    verdicts = convergence_verdicts(mc, spec, converge_tol=0.0, diverge_tol=1e-12)
+    verdicts = convergence_verdicts(
+        mc.tail_errors, spec.network.filters, converge_tol=0.0, diverge_tol=1e-12
+    )
     assert set(verdicts.values()) == {"does not converge"}
 
 

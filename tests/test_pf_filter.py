@@ -22,6 +22,7 @@ from theory.particle_filter import (
     normalise_log_weights,
     propagate,
     run_filter,
+    simulate_measurements,
 )
 from theory.pf_motion import DcrwMotion, GaussianMotion, UniformMotion
 
@@ -251,6 +252,7 @@ def _errors(network: PfNetwork, share: int, runs: int) -> np.ndarray:
     for r in range(runs):
         rng = np.random.default_rng([7, r])
         path = sample_dcrw_path(truth, 40, rng, start=np.zeros(2))
+        y = simulate_measurements(path, network, 1.0, rng)
         run = run_filter(
             path,
             network,
@@ -258,7 +260,7 @@ def _errors(network: PfNetwork, share: int, runs: int) -> np.ndarray:
             DcrwMotion(truth),
             rng,
             bounds=np.array([[-40, 40], [-40, 40]]),
-            noise_sigma=1.0,
+            measurements=y,
         )
         tails.append(run.errors[20:].mean(0))
     return np.asarray(tails)

@@ -53,6 +53,7 @@ __all__ = [
     "pf_update",
     "propagate",
     "run_filter",
+    "simulate_measurements",
 ]
 
 EXCHANGE_WEIGHTS = ("sender", "local")
@@ -182,6 +183,13 @@ def measure(
     return np.where(mask, own[:, None] - ranges[None, :] + noise, 0.0)
 
 
+def simulate_measurements(
+    path: np.ndarray, network: PfNetwork, noise_sigma: float, rng: np.random.Generator
+) -> np.ndarray:
+    """:func:`measure` at every point of ``path``: an ``(K + 1, F, N)`` array."""
+    return np.asarray([measure(p, network, noise_sigma, rng) for p in path])
+
+
 def log_likelihood(
     positions: np.ndarray, y: np.ndarray, network: PfNetwork, sigma: float
 ) -> np.ndarray:
@@ -233,7 +241,14 @@ def consensus_exchange(
     return state
 
 
-def _exchange_round(state, network, config, rng, neighbours, y) -> PfState:
+def _exchange_round(
+    state: PfState,
+    network: PfNetwork,
+    config: PfConfig,
+    rng: np.random.Generator,
+    neighbours: np.ndarray,
+    y: np.ndarray | None,
+) -> PfState:
     m = config.share
     n_filters, width = neighbours.shape
     top = np.argpartition(-state.weights, m - 1, axis=1)[:, :m]
@@ -348,7 +363,7 @@ def run_filter(
     rng: np.random.Generator,
     *,
     bounds: np.ndarray,
-    noise_sigma: float,
+    measurements: np.ndarray,
     snapshot_steps: tuple[int, ...] = (),
 ) -> PfRun:
     """Run the distributed PF along a target path ``p(0), …, p(K)``.
@@ -363,11 +378,11 @@ def run_filter(
         A model of :mod:`theory.pf_motion` or :class:`theory.model_learning.OnlineLearner`;
         after each estimate the filter continues with ``motion.observe(chi)``.
     rng : numpy.random.Generator
-        Draws the measurement noise and the filter's randomness.
+        The filter's randomness (initial particles, exchange, resampling, propagation).
     bounds : ndarray, shape (2, 2)
         Workspace for the uniform initial particles.
-    noise_sigma : float
-        True TDOA noise standard deviation used to simulate ``y``.
+    measurements : ndarray, shape (K + 1, F, N)
+        TDOA measurements ``y_i(k)`` (:func:`simulate_measurements`).
     snapshot_steps : tuple of int
         Steps at which to keep the weighted particle sets ``(F, P, 3)`` (x, y, w̄) for figures.
 
@@ -377,8 +392,7 @@ def run_filter(
     """
     state = initial_state(len(network.filters), config.particles, bounds, rng)
     estimates, snapshots = [], {}
-    for k, target in enumerate(path):
-        y = measure(target, network, noise_sigma, rng)
+    for k, y in enumerate(measurements):
         weighted, chi = pf_update(state, y, network, config, rng)
         motion = motion.observe(chi)
         state = propagate(multinomial_resample(weighted, rng), motion, rng)
