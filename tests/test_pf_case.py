@@ -117,6 +117,7 @@ def test_cli_pf_json_and_files(tmp_path):
     assert {c["id"] for c in report["claims"]} == {
         "seed002.sec3.convergence",
         "seed002.sec3.consensus",
+        "seed002.sec3.measurements",
     }
     assert report["runs"] == 3 and report["seed"] == 1
     for agent in report["agents"]:

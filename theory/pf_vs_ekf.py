@@ -176,7 +176,7 @@ def check_measurements(case: Any) -> list[ClaimResult]:
                 "points": 25,
                 "seed": 0,
                 "cross_check": "compare with `trackcert topology` on the tdoa case of "
-                "the same network (cases/pf-*-tdoa.yaml)",
+                "the same network (cases/pf-tdoa-*.yaml)",
             },
             margin=margin,
             tolerance={"rank_tol": RANK_TOL, "inconclusive_factor": 1e3},
