@@ -2,7 +2,8 @@
 
 Seed 002 §4.3.2 reports 2.73e-1 s per PF iteration and 2.68e-4 s per EKF iteration (MATLAB,
 P = 1000, three nodes, complete graph, top 5 % shared). The target here is < 5 ms per PF
-iteration (all nodes, vectorised numpy). Run from the repository root: ``python -m benchmarks.bench_pf``.
+iteration (all nodes, vectorised numpy). Run from the repository root:
+``python -m benchmarks.bench_pf``.
 """
 
 from __future__ import annotations

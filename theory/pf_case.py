@@ -23,7 +23,8 @@ Block fields (defaults are seed 002 §3.3.1's where it gives them, ours otherwis
       learning: {min_samples: 10, gamma_max: 0.95, burn_in: 5}
 
 ``expect`` keys: ``converges`` (map of filtering node id → true/false), ``consensus_helps``
-(a node id whose error the consensus step must lower), ``learned_beats_gaussian`` (a node id).
+(a node id whose error the consensus step must lower), ``learned_beats_gaussian`` and
+``learned_pdfs_centre`` (node ids for the claims of §3.3.2).
 """
 
 from __future__ import annotations
@@ -70,7 +71,7 @@ FIELDS = (
     "uniform_max_step",
     "learning",
 )
-EXPECT_KEYS = ("converges", "consensus_helps", "learned_beats_gaussian")
+EXPECT_KEYS = ("converges", "consensus_helps", "learned_beats_gaussian", "learned_pdfs_centre")
 TOLERANCE_KEYS = ("converge_tol", "diverge_tol", "improvement_tol")
 MODELS = ("dcrw", "gaussian", "learned")
 LEARNING_FIELDS = ("min_samples", "gamma_max", "burn_in")

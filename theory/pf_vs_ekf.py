@@ -28,7 +28,12 @@ from theory.network import components
 from theory.observability import RANK_TOL, numeric_rank, observability_matrix
 from theory.particle_filter import run_filter, simulate_measurements
 from theory.pf_case import PfSpec
-from theory.pf_experiments import DEFAULT_TOLERANCES, build_motion, convergence_verdicts
+from theory.pf_experiments import (
+    DEFAULT_TOLERANCES,
+    build_motion,
+    convergence_margin,
+    convergence_verdicts,
+)
 from theory.tdoa import cv_discrete
 from theory.tdoa_ekf import EkfConfig, run_ekf
 
@@ -246,6 +251,13 @@ def check_pf_vs_ekf(case: Any) -> list[ClaimResult]:
                 "seed": comparison.seed,
                 "ekf": vars(EkfConfig(sigma=spec.config.sigma)),
             },
+            margin=convergence_margin(
+                comparison.tail(comparison.pf_errors),
+                spec.network.filters,
+                {node + 1: "converges" for node in spec.network.filters},
+                converge_tol=tol["converge_tol"],
+                diverge_tol=tol["diverge_tol"],
+            ),
             tolerance={k: tol[k] for k in ("converge_tol", "diverge_tol")},
             message=f"PF {verdicts['pf']}; EKF on the same data {verdicts['ekf']}; runs with "
             f"tail error ≥ diverge_tol per node: PF "
