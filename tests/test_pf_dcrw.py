@@ -108,6 +108,12 @@ def test_fit_is_a_likelihood_maximum():
 def test_degenerate_fits_are_clamped():
     mu, gamma = fit_wrapped_cauchy(np.array([0.3, 0.3, 0.3]), gamma_max=0.95)
     assert gamma == 0.95 and mu == pytest.approx(0.3)
+    # Kent & Tyler: an angle carrying half the sample puts the supremum at γ = 1 ...
+    mu, gamma = fit_wrapped_cauchy(np.array([np.pi / 2, -np.pi / 2] * 4), gamma_max=0.95)
+    assert gamma == 0.95 and abs(mu) == pytest.approx(np.pi / 2)
+    # ... and below half the maximum is interior.
+    mu, gamma = fit_wrapped_cauchy(np.array([0.3, 0.3, 1.0, -1.0, 2.0]), gamma_max=0.999)
+    assert 0 < gamma < 0.999
     kappa, lam = fit_weibull(np.array([2.0, 2.0, 2.0]), kappa_bounds=(0.5, 10.0))
     assert kappa == 10.0 and lam == pytest.approx(2.0)
 

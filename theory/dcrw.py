@@ -150,13 +150,17 @@ def sample_dcrw_path(
     )
 
 
-def fit_wrapped_cauchy(phi: np.ndarray, *, gamma_max: float = 1 - 1e-9) -> tuple[float, float]:
+def fit_wrapped_cauchy(
+    phi: np.ndarray, *, gamma_max: float = 1 - 1e-9, tie_tol: float = 1e-9
+) -> tuple[float, float]:
     """Maximum-likelihood ``(μ, γ)`` of eq. (3.1) from turning angles.
 
     The log-likelihood ``n log(1 − |ψ|²) − Σ log|e^{iφ_j} − ψ|²`` (``ψ = γ e^{iμ}``) is maximised
     over the open unit disk with BFGS (analytic gradient) in the coordinates
-    ``ψ = v / √(1 + |v|²)``, started from the circular moments. With fewer than two distinct angles the supremum is at ``γ = 1`` (the
-    likelihood is unbounded): the result is then clamped to ``gamma_max``.
+    ``ψ = v / √(1 + |v|²)`` (so ``1 − |ψ|² = 1/(1 + |v|²)`` exactly), started from the circular
+    moments. The maximum is interior exactly when no angle carries half or more of the sample
+    (Kent & Tyler 1988); otherwise the supremum is at ``γ = 1`` at the repeated angle, and the
+    result is that angle with ``γ = gamma_max``.
 
     Parameters
     ----------
@@ -164,6 +168,8 @@ def fit_wrapped_cauchy(phi: np.ndarray, *, gamma_max: float = 1 - 1e-9) -> tuple
         Turning angles (rad).
     gamma_max : float
         Upper clamp on ``γ`` (the fit of a straight path tends to 1).
+    tie_tol : float
+        Angles closer than this (rad) count as one repeated angle.
 
     Returns
     -------
@@ -181,33 +187,42 @@ def fit_wrapped_cauchy(phi: np.ndarray, *, gamma_max: float = 1 - 1e-9) -> tuple
     z = np.exp(1j * np.asarray(phi, dtype=float))
     if z.size == 0:
         raise ValueError("fit_wrapped_cauchy needs at least one angle")
+    mode, count = _largest_tie(np.angle(z), tie_tol)
+    if 2 * count >= z.size:
+        return mode, float(gamma_max)
     moment = z.mean()
     start = moment * min(abs(moment), 0.99) / max(abs(moment), 1e-12)
-
-    def to_psi(v: np.ndarray) -> complex:
-        w = complex(v[0], v[1])
-        return w / np.sqrt(1 + abs(w) ** 2)
-
-    def negloglik(v: np.ndarray) -> tuple[float, np.ndarray]:
-        psi = to_psi(v)
-        gap = z - psi
-        dist2 = gap.real**2 + gap.imag**2
-        value = z.size * np.log1p(-(abs(psi) ** 2)) - np.sum(np.log(dist2))
-        grad_psi = -2 * z.size * psi / (1 - abs(psi) ** 2) + 2 * np.sum(gap / dist2)
-        norm2 = v @ v
-        jacobian = (np.eye(2) * (1 + norm2) - np.outer(v, v)) / (1 + norm2) ** 1.5
-        return -value, -(jacobian @ np.array([grad_psi.real, grad_psi.imag]))
-
-    scale = np.sqrt(1 - abs(start) ** 2)
-    v0 = np.array([start.real, start.imag]) / scale
-    if np.ptp(np.angle(z * np.conj(z[0]))) < 1e-12:
-        psi = z[0] * gamma_max
-    else:
-        result = optimize.minimize(negloglik, v0, method="BFGS", jac=True)
-        if not np.isfinite(result.fun):
-            raise SolverError(f"wrapped-Cauchy ML fit failed: {result.message}")
-        psi = to_psi(result.x)
+    v0 = np.array([start.real, start.imag]) / np.sqrt(1 - abs(start) ** 2)
+    result = optimize.minimize(_wrapped_cauchy_objective, v0, args=(z,), method="BFGS", jac=True)
+    if not np.isfinite(result.fun):
+        raise SolverError(f"wrapped-Cauchy ML fit failed: {result.message}")
+    psi = complex(*result.x) / np.sqrt(1 + result.x @ result.x)
     return float(np.angle(psi)), float(min(abs(psi), gamma_max))
+
+
+def _largest_tie(angles: np.ndarray, tol: float) -> tuple[float, int]:
+    """The most repeated angle (chains of gaps ≤ ``tol``, across ±π too) and its multiplicity."""
+    order = np.sort(angles)
+    starts = np.flatnonzero(np.diff(order) > tol) + 1
+    bounds = np.concatenate([[0], starts, [order.size]])
+    sizes = np.diff(bounds)
+    if sizes.size > 1 and order[0] + 2 * np.pi - order[-1] <= tol:
+        sizes[0] += sizes[-1]
+        sizes = sizes[:-1]
+    best = int(np.argmax(sizes))
+    return float(order[bounds[best]]), int(sizes[best])
+
+
+def _wrapped_cauchy_objective(v: np.ndarray, z: np.ndarray) -> tuple[float, np.ndarray]:
+    """Negative log-likelihood of eq. (3.1) and its gradient in the coordinates ``v``."""
+    norm2 = float(v @ v)
+    psi = complex(*v) / np.sqrt(1 + norm2)
+    gap = z - psi
+    dist2 = np.maximum(gap.real**2 + gap.imag**2, np.finfo(float).tiny)
+    value = -z.size * np.log1p(norm2) - np.sum(np.log(dist2))
+    grad_psi = -2 * z.size * psi * (1 + norm2) + 2 * np.sum(gap / dist2)
+    jacobian = (np.eye(2) * (1 + norm2) - np.outer(v, v)) / (1 + norm2) ** 1.5
+    return -value, -(jacobian @ np.array([grad_psi.real, grad_psi.imag]))
 
 
 def fit_weibull(
