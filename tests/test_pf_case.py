@@ -145,3 +145,15 @@ def test_cli_pf_refuses_other_kinds_and_bad_files(tmp_path):
     result = runner.invoke(app, ["pf", str(bad), "-o", str(tmp_path / "out")])
     assert result.exit_code == 2 and "pf.share" in result.stderr
     assert "Traceback" not in result.stderr and not (tmp_path / "out").exists()
+
+
+def test_summary_table_has_a_row_per_variant_and_node():
+    from theory.pf_experiments import VARIANTS, summary_table
+
+    table = summary_table(runs=1, seed=3).splitlines()
+    expected = sum(
+        len(variants) * len(load_case(name).spec.network.filters)
+        for name, variants in VARIANTS.items()
+    )
+    assert len(table) == 2 + expected
+    assert all(line.count("|") == 10 for line in table)

@@ -277,3 +277,18 @@ def test_two_measurements_localize_and_exchange_helps_a_one_measurement_node():
     assert isolated[0] < 3.0, isolated  # two TDOA measurements: metres of error at σ = 1 m
     assert isolated[1] > 3 * isolated[0], isolated  # one measurement: a hyperbola, not a point
     assert joined[1] < 3.0, joined  # exchanging with node 1 localizes node 4
+
+
+@given(seeds)
+def test_eq_3_13_as_printed_shrinks_the_estimate(seed: int):
+    # χ = W^T C with the top-20 % weights not renormalised (seed 002 eq. (3.13) as printed)
+    # equals (Σ W) · χ_ours: it is pulled towards the origin whenever Σ W < 1 (docs/errata.md).
+    rng = np.random.default_rng(seed)
+    state = _random_state(rng, 2, 50)
+    state = PfState(state.positions + 100.0, state.headings, state.weights)
+    top = np.argsort(-state.weights, axis=1)[:, :10]
+    w = np.take_along_axis(state.weights, top, axis=1)
+    literal = np.einsum("fq,fqd->fd", w, np.take_along_axis(state.positions, top[..., None], 1))
+    np.testing.assert_allclose(literal, w.sum(1, keepdims=True) * estimate(state, 0.2))
+    assert np.all(w.sum(1) < 1)
+    assert np.all(np.linalg.norm(literal, axis=1) < np.linalg.norm(estimate(state, 0.2), axis=1))

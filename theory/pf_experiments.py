@@ -37,6 +37,7 @@ __all__ = [
     "convergence_verdicts",
     "monte_carlo",
     "node_summary",
+    "summary_table",
 ]
 
 DEFAULT_TOLERANCES = {"converge_tol": 5.0, "diverge_tol": 10.0, "improvement_tol": 3.0}
@@ -496,3 +497,54 @@ def check_learned_pdfs(case: Any) -> list[ClaimResult]:
             f"{dict(zip(PARAM_NAMES, np.round(z, 1).tolist(), strict=True))}",
         )
     ]
+
+
+VARIANTS = {
+    "pf-topology-a": ((None, None),),
+    "pf-topology-b": ((None, None), (None, 0)),
+    "pf-path3": ((None, None),),
+    "pf-learning": (("dcrw", None), ("learned", None), ("gaussian", None)),
+    "pf-long-step-learning": (("dcrw", None), ("learned", None), ("gaussian", None)),
+}
+"""Item 4's variants per bundled case: (model override, m override)."""
+
+
+def summary_table(runs: int | None = None, seed: int | None = None) -> str:
+    """Markdown table of per-node errors for every bundled PF case and variant (seed 002 §3.3).
+
+    Parameters
+    ----------
+    runs, seed : int, optional
+        Override the cases' Monte Carlo runs and base seed.
+
+    Returns
+    -------
+    str
+    """
+    from theory.case_file import load_case
+
+    lines = [
+        "| case | model | m | node | TDOA | mean E (m) | final E (m) | tail E mean ± sd (m) "
+        "| tail E 10/50/90 % (m) |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for name, variants in VARIANTS.items():
+        spec = load_case(name).spec
+        for model, share in variants:
+            mc = monte_carlo(spec, runs=runs, seed=seed, model=model, share=share)
+            for row in node_summary(mc, spec):
+                lines.append(
+                    f"| {name} | {mc.model} | {mc.share} | {row['id']} | {row['measurements']} "
+                    f"| {row['mean_localization_error']:.2f} "
+                    f"| {row['final_localization_error']:.2f} "
+                    f"| {row['tail_error_mean']:.2f} ± {row['tail_error_std']:.2f} "
+                    f"| {row['tail_error_q10']:.2f} / {row['tail_error_median']:.2f} / "
+                    f"{row['tail_error_q90']:.2f} |"
+                )
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    import sys
+
+    print(summary_table(*(int(a) for a in sys.argv[1:3])))
