@@ -74,6 +74,9 @@ def _small(name: str, runs: int = 4):
 def test_monte_carlo_is_reproducible_and_pairs_paths_across_variants():
     (one, spec), (two, _) = _small("pf-topology-b"), _small("pf-topology-b")
     np.testing.assert_array_equal(one.errors, two.errors)
+    first = monte_carlo(spec, runs=1, seed=5, snapshot_steps=(0, 3))
+    np.testing.assert_array_equal(first.errors[0], one.errors[0])  # figures show run 0
+    assert sorted(first.snapshots) == [0, 3] and first.snapshots[3].shape == (3, 100, 3)
     off = monte_carlo(spec, runs=4, seed=5, share=0)
     np.testing.assert_array_equal(one.paths, off.paths)
     assert not np.array_equal(one.errors, off.errors)

@@ -37,6 +37,7 @@ __all__ = [
     "convergence_verdicts",
     "monte_carlo",
     "node_summary",
+    "shared_monte_carlo",
     "summary_table",
 ]
 
@@ -246,12 +247,18 @@ def compare_variants(
     return {"mean_difference": float(diff.mean()), "standard_error": se, "z": z, "verdict": verdict}
 
 
-@lru_cache(maxsize=16)
-def _shared_monte_carlo(
-    spec: PfSpec, model: str | None = None, share: int | None = None
+def shared_monte_carlo(
+    spec: PfSpec, *, model: str | None = None, share: int | None = None
 ) -> MonteCarlo:
-    """:func:`monte_carlo` memoised per spec object, so that claims run on one loaded case
-    (the report, ``trackcert pf``) share their runs instead of repeating them."""
+    """:func:`monte_carlo` memoised per ``spec`` object, model and ``m``, so that the claims run
+    on one loaded case (the report, ``trackcert pf``) share their runs instead of repeating them.
+    """
+    model = spec.model if model is None else model
+    return _memoised(spec, model, spec.config.share if share is None else share)
+
+
+@lru_cache(maxsize=16)
+def _memoised(spec: PfSpec, model: str, share: int) -> MonteCarlo:
     return monte_carlo(spec, model=model, share=share)
 
 
@@ -278,7 +285,7 @@ def check_convergence(case: Any) -> list[ClaimResult]:
     if not expected:
         return []
     tol = _tolerances(case)
-    mc = _shared_monte_carlo(case.spec)
+    mc = shared_monte_carlo(case.spec)
     found = convergence_verdicts(
         mc.tail_errors,
         case.spec.network.filters,
@@ -329,8 +336,8 @@ def check_consensus(case: Any) -> list[ClaimResult]:
     if node is None:
         return []
     tol = _tolerances(case)
-    with_consensus = _shared_monte_carlo(case.spec)
-    without = _shared_monte_carlo(case.spec, share=0)
+    with_consensus = shared_monte_carlo(case.spec)
+    without = shared_monte_carlo(case.spec, share=0)
     column = _column(case.spec, int(node))
     result = compare_variants(
         with_consensus, without, column, improvement_tol=tol["improvement_tol"]
@@ -373,7 +380,7 @@ def check_learning(case: Any) -> list[ClaimResult]:
     if node is None:
         return []
     tol = _tolerances(case)
-    runs = {m: _shared_monte_carlo(case.spec, model=m) for m in ("dcrw", "learned", "gaussian")}
+    runs = {m: shared_monte_carlo(case.spec, model=m) for m in ("dcrw", "learned", "gaussian")}
     column = _column(case.spec, int(node))
     versus_gaussian = compare_variants(
         runs["learned"],
@@ -458,7 +465,7 @@ def check_learned_pdfs(case: Any) -> list[ClaimResult]:
     if node is None:
         return []
     tol = _tolerances(case)
-    fits = _shared_monte_carlo(case.spec, model="learned").learned[:, _column(case.spec, int(node))]
+    fits = shared_monte_carlo(case.spec, model="learned").learned[:, _column(case.spec, int(node))]
     fits = fits[~np.isnan(fits[:, 0])]
     t = case.spec.target
     truth = np.array([t.mu, t.gamma, t.kappa, t.lam])

@@ -25,7 +25,7 @@ from theory.cli.common import (
     to_jsonable,
 )
 from theory.errors import CaseError
-from theory.pf_experiments import monte_carlo, node_summary
+from theory.pf_experiments import monte_carlo, node_summary, shared_monte_carlo
 
 __all__ = ["register"]
 
@@ -55,7 +55,7 @@ def register(app: typer.Typer) -> None:
             case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
         )
         case = replace(case, spec=spec)
-        mc = monte_carlo(spec, snapshot_steps=SNAPSHOT_STEPS)
+        mc = shared_monte_carlo(spec)
         claims = [
             (claim.source, result)
             for claim in all_claims()
@@ -66,7 +66,8 @@ def register(app: typer.Typer) -> None:
         if folder is not None:
             from theory.pf_figures import write_figures
 
-            figures = write_figures(mc, spec, folder, case.name)
+            first = monte_carlo(spec, runs=1, snapshot_steps=SNAPSHOT_STEPS)  # = run 0 of mc
+            figures = write_figures(replace(mc, snapshots=first.snapshots), spec, folder, case.name)
         report = {
             "case": case.name,
             "runs": spec.runs,
