@@ -63,13 +63,22 @@ class DcrwParams:
 
 
 def wrap_angle(angle: np.ndarray | float) -> np.ndarray:
-    """Wrap angles to ``(−π, π]`` (the support of eq. (3.1))."""
+    """Wrap ``angle`` (rad, any shape) to ``(−π, π]``, the support of eq. (3.1)."""
     wrapped = np.mod(np.asarray(angle, dtype=float) + np.pi, 2 * np.pi) - np.pi
     return np.where(wrapped == -np.pi, np.pi, wrapped)
 
 
 def wrapped_cauchy_logpdf(phi: np.ndarray, mu: float, gamma: float) -> np.ndarray:
     """Log of eq. (3.1): ``(1 − γ²) / (2π (1 + γ² − 2γ cos(φ − μ)))``.
+
+    Parameters
+    ----------
+    phi : ndarray
+        Turning angles (rad).
+    mu : float
+        Mean turning angle.
+    gamma : float
+        Clustering parameter, ``0 ≤ γ < 1``.
 
     References
     ----------
@@ -80,7 +89,16 @@ def wrapped_cauchy_logpdf(phi: np.ndarray, mu: float, gamma: float) -> np.ndarra
 
 
 def weibull_logpdf(delta: np.ndarray, kappa: float, lam: float) -> np.ndarray:
-    """Log of eq. (3.2): ``(κ/λ)(δ/λ)^{κ−1} exp(−(δ/λ)^κ)`` for ``δ > 0``.
+    """Log of eq. (3.2): ``(κ/λ)(δ/λ)^{κ−1} exp(−(δ/λ)^κ)``.
+
+    Parameters
+    ----------
+    delta : ndarray
+        Step lengths, ``δ > 0``.
+    kappa : float
+        Shape ``κ > 0``.
+    lam : float
+        Scale ``λ > 0``.
 
     References
     ----------
@@ -93,10 +111,19 @@ def weibull_logpdf(delta: np.ndarray, kappa: float, lam: float) -> np.ndarray:
 def sample_wrapped_cauchy(
     rng: np.random.Generator, mu: np.ndarray | float, gamma: np.ndarray | float, size: tuple
 ) -> np.ndarray:
-    """Draw turning angles from eq. (3.1) (``mu``, ``gamma`` broadcast against ``size``).
+    """Draw turning angles from eq. (3.1).
 
-    Uses that a wrapped Cauchy is ``μ + a·tan(π(U − ½))`` wrapped, with ``γ = e^{−a}``; ``γ = 0``
-    is the uniform distribution on ``(−π, π]``.
+    A wrapped Cauchy is ``μ + a·tan(π(U − ½))`` wrapped to ``(−π, π]``, with ``γ = e^{−a}``;
+    ``γ = 0`` is the uniform distribution.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Source of randomness.
+    mu, gamma : float or ndarray
+        Parameters, broadcast against ``size`` (e.g. one row per node).
+    size : tuple of int
+        Output shape.
     """
     gamma = np.asarray(gamma, dtype=float)
     u = rng.random(size)
@@ -109,7 +136,17 @@ def sample_wrapped_cauchy(
 def sample_weibull(
     rng: np.random.Generator, kappa: np.ndarray | float, lam: np.ndarray | float, size: tuple
 ) -> np.ndarray:
-    """Draw step lengths from eq. (3.2) by inversion, ``λ(−ln U)^{1/κ}``."""
+    """Draw step lengths from eq. (3.2) by inversion, ``λ(−ln U)^{1/κ}``.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Source of randomness.
+    kappa, lam : float or ndarray
+        Shape and scale, broadcast against ``size``.
+    size : tuple of int
+        Output shape.
+    """
     return np.asarray(lam) * (-np.log1p(-rng.random(size))) ** (1.0 / np.asarray(kappa))
 
 
@@ -271,7 +308,21 @@ def fit_weibull(
 
 
 def fit_dcrw(turns: np.ndarray, steps: np.ndarray, *, gamma_max: float = 1 - 1e-9) -> DcrwParams:
-    """ML fit of all four DCRW parameters (eqs. (3.1)–(3.2)) from turning angles and steps."""
+    """ML fit of all four DCRW parameters (eqs. (3.1)–(3.2)).
+
+    Parameters
+    ----------
+    turns : ndarray
+        Turning angles (rad), for :func:`fit_wrapped_cauchy`.
+    steps : ndarray
+        Step lengths ``> 0``, for :func:`fit_weibull`.
+    gamma_max : float
+        Upper clamp on ``γ``.
+
+    Returns
+    -------
+    DcrwParams
+    """
     mu, gamma = fit_wrapped_cauchy(turns, gamma_max=gamma_max)
     kappa, lam = fit_weibull(steps)
     return DcrwParams(mu, gamma, kappa, lam)

@@ -33,7 +33,15 @@ EULER_GAMMA = 0.5772156649015329
 
 
 def standard_errors(params: DcrwParams, n: int) -> dict[str, float]:
-    """Asymptotic ML standard errors of ``(μ, γ, κ, λ)`` from ``n`` samples (module docstring)."""
+    """Asymptotic ML standard errors of ``(μ, γ, κ, λ)`` (module docstring).
+
+    Parameters
+    ----------
+    params : DcrwParams
+        The true parameters.
+    n : int
+        Sample size.
+    """
     wc = (1 - params.gamma**2) / np.sqrt(2 * n)
     mu = wc / params.gamma if params.gamma > 0 else float("inf")
     kappa = np.sqrt(6 / np.pi**2) * params.kappa / np.sqrt(n)

@@ -148,7 +148,19 @@ class PfState:
 
 @dataclass(frozen=True, eq=False)
 class PfRun:
-    """One filter run: estimates ``(K+1, F, 2)``, errors ``(K+1, F)``, particle snapshots."""
+    """One filter run.
+
+    Attributes
+    ----------
+    estimates : ndarray, shape (K+1, F, 2)
+        ``χ_i(k)`` of every filtering node.
+    errors : ndarray, shape (K+1, F)
+        ``E_i(k)`` (eq. 3.20).
+    snapshots : dict
+        Step → weighted particles ``(F, P, 3)`` (x, y, w̄) after consensus.
+    motion : object
+        The motion model at the end of the run (the learner holds its fits).
+    """
 
     estimates: np.ndarray
     errors: np.ndarray
@@ -159,9 +171,18 @@ class PfRun:
 def initial_state(
     n_filters: int, particles: int, bounds: np.ndarray, rng: np.random.Generator
 ) -> PfState:
-    """Particles uniform on the workspace ``bounds = [[xmin, xmax], [ymin, ymax]]`` (§3.2.1 init).
+    """Particles uniform on the workspace (§3.2.1, *Initialization*).
 
-    Headings are uniform on ``(−π, π]``; weights ``1/P``.
+    Parameters
+    ----------
+    n_filters : int
+        Number of filtering nodes ``F``.
+    particles : int
+        ``P`` per node.
+    bounds : ndarray, shape (2, 2)
+        ``[[xmin, xmax], [ymin, ymax]]``.
+    rng : numpy.random.Generator
+        Source of randomness. Headings are uniform on ``(−π, π]``, weights ``1/P``.
     """
     low, high = np.asarray(bounds, float)[:, 0], np.asarray(bounds, float)[:, 1]
     positions = low + (high - low) * rng.random((n_filters, particles, 2))
@@ -174,7 +195,21 @@ def measure(
 ) -> np.ndarray:
     """TDOA measurements ``y_i = h_i(p) + w_i`` of every filtering node (eqs. (3.6)–(3.8)).
 
-    Returns an ``(F, N)`` array; entries outside :attr:`PfNetwork.measurement_mask` are 0.
+    Parameters
+    ----------
+    target : ndarray, shape (2,)
+        True position ``p(k)``.
+    network : PfNetwork
+        Nodes and links.
+    noise_sigma : float
+        Standard deviation of ``w_i`` (m).
+    rng : numpy.random.Generator
+        Source of the noise.
+
+    Returns
+    -------
+    ndarray, shape (F, N)
+        Entries outside :attr:`PfNetwork.measurement_mask` are 0.
     """
     ranges = np.linalg.norm(np.asarray(target, float)[None] - network.nodes, axis=1)
     own = ranges[list(network.filters)]
@@ -186,14 +221,33 @@ def measure(
 def simulate_measurements(
     path: np.ndarray, network: PfNetwork, noise_sigma: float, rng: np.random.Generator
 ) -> np.ndarray:
-    """:func:`measure` at every point of ``path``: an ``(K + 1, F, N)`` array."""
+    """:func:`measure` at every point of ``path``: an ``(K + 1, F, N)`` array.
+
+    Parameters
+    ----------
+    path : ndarray, shape (K + 1, 2)
+        True positions.
+    network, noise_sigma, rng :
+        As for :func:`measure`.
+    """
     return np.asarray([measure(p, network, noise_sigma, rng) for p in path])
 
 
 def log_likelihood(
     positions: np.ndarray, y: np.ndarray, network: PfNetwork, sigma: float
 ) -> np.ndarray:
-    """``−‖y_i − d_i^n‖² / (2σ²)`` for particles ``positions (F, Q, 2)`` (eqs. (3.9)–(3.11)).
+    """``−‖y_i − d_i^n‖² / (2σ²)`` of each particle (eqs. (3.9)–(3.11)), up to a constant.
+
+    Parameters
+    ----------
+    positions : ndarray, shape (F, Q, 2)
+        ``Q`` candidate positions per filtering node.
+    y : ndarray, shape (F, N)
+        Measurements (:func:`measure`).
+    network : PfNetwork
+        Nodes and links.
+    sigma : float
+        Noise standard deviation assumed by the filter.
 
     Returns
     -------
@@ -208,7 +262,7 @@ def log_likelihood(
 
 
 def normalise_log_weights(log_weights: np.ndarray) -> np.ndarray:
-    """Eq. (3.12) from log weights, row by row (max subtracted first; never 0/0)."""
+    """Eq. (3.12) from ``log_weights`` ``(F, P)``, row by row (max subtracted first; never 0/0)."""
     w = np.exp(log_weights - log_weights.max(axis=1, keepdims=True))
     return w / w.sum(axis=1, keepdims=True)
 
@@ -223,10 +277,27 @@ def consensus_exchange(
 ) -> PfState:
     """The consensus step of seed 002 §3.2.1 step 3 (see the module docstring for the choices).
 
+    Parameters
+    ----------
+    state : PfState
+        Weighted particles after the measurement update.
+    network : PfNetwork
+        Nodes and links (exchange only between filtering neighbours).
+    config : PfConfig
+        ``share`` (m), ``exchange_weights``, ``exchange_rounds``, ``received_heading``.
+    rng : numpy.random.Generator
+        For uniform headings of received particles.
+    y : ndarray or None
+        Measurements, needed by ``exchange_weights="local"``.
+
+    Returns
+    -------
+    PfState
+
     Raises
     ------
     ValueError
-        If a node would have to replace more than ``P − 1`` particles (the thesis asks ``m < P/N``).
+        If a node would replace ``P`` or more particles (the thesis asks ``m < P/N``).
     """
     neighbours = network.filter_neighbours
     m, P = config.share, config.particles
@@ -287,6 +358,13 @@ def estimate(state: PfState, fraction: float = 0.2) -> np.ndarray:
     ``χ_i = W_i^T C_i`` with the unrenormalised weights, which shrinks the estimate towards the
     origin; see ``docs/errata.md``).
 
+    Parameters
+    ----------
+    state : PfState
+        Weighted particles.
+    fraction : float
+        Share of the highest-weighted particles used (0.2 in the thesis).
+
     Returns
     -------
     ndarray, shape (F, 2)
@@ -301,8 +379,20 @@ def estimate(state: PfState, fraction: float = 0.2) -> np.ndarray:
 def multinomial_resample(state: PfState, rng: np.random.Generator) -> PfState:
     """Draw ``P`` particles with replacement with probabilities ``w̄`` (§3.2.1 step 5), per node.
 
-    All nodes are searched at once: row ``f``'s cumulative weights are shifted by ``f`` so that
-    one ``searchsorted`` on the flattened, increasing array serves every node.
+    All nodes are searched at once: row ``f``'s cumulative weights are shifted by ``f`` so that one
+    ``searchsorted`` on the flattened, increasing array serves every node.
+
+    Parameters
+    ----------
+    state : PfState
+        Weighted particles.
+    rng : numpy.random.Generator
+        Source of randomness.
+
+    Returns
+    -------
+    PfState
+        Equal weights ``1/P``; headings travel with their particles.
     """
     n_filters, P = state.weights.shape
     cumulative = np.cumsum(state.weights, axis=1)
@@ -319,7 +409,17 @@ def multinomial_resample(state: PfState, rng: np.random.Generator) -> PfState:
 
 
 def propagate(state: PfState, motion: Any, rng: np.random.Generator) -> PfState:
-    """Time update eqs. (3.14)–(3.16): turn, then step along the new heading."""
+    """Time update eqs. (3.14)–(3.16): turn, then step along the new heading.
+
+    Parameters
+    ----------
+    state : PfState
+        Particles to move.
+    motion : object
+        A model with ``sample(rng, shape) -> (turns, steps)`` (:mod:`theory.pf_motion`).
+    rng : numpy.random.Generator
+        Source of randomness.
+    """
     turn, step = motion.sample(rng, state.weights.shape)
     headings = state.headings + turn
     move = step[..., None] * np.stack([np.cos(headings), np.sin(headings)], axis=-1)
@@ -336,6 +436,19 @@ def pf_step(
 ) -> tuple[PfState, np.ndarray, PfState]:
     """One iteration (steps 1–6 of seed 002 §3.2.1).
 
+    Parameters
+    ----------
+    state : PfState
+        Particles for time ``k``.
+    y : ndarray, shape (F, N)
+        Measurements at ``k``.
+    network, config :
+        Nodes and filter parameters.
+    motion : object
+        Propagation model.
+    rng : numpy.random.Generator
+        Source of randomness.
+
     Returns
     -------
     (next_state, estimates, weighted) :
@@ -349,7 +462,17 @@ def pf_step(
 def pf_update(
     state: PfState, y: np.ndarray, network: PfNetwork, config: PfConfig, rng: np.random.Generator
 ) -> tuple[PfState, np.ndarray]:
-    """Steps 1–4 of seed 002 §3.2.1: weights, consensus exchange, estimate ``χ_i(k)``."""
+    """Steps 1–4 of seed 002 §3.2.1: weights, consensus exchange, estimate ``χ_i(k)``.
+
+    Parameters
+    ----------
+    state, y, network, config, rng :
+        As for :func:`pf_step`.
+
+    Returns
+    -------
+    (weighted, estimates) : PfState and ndarray of shape (F, 2)
+    """
     weights = normalise_log_weights(log_likelihood(state.positions, y, network, config.sigma))
     weighted = consensus_exchange(replace(state, weights=weights), network, config, rng, y=y)
     return weighted, estimate(weighted, config.estimate_fraction)

@@ -79,7 +79,29 @@ LEARNING_FIELDS = ("min_samples", "gamma_max", "burn_in")
 
 @dataclass(frozen=True, eq=False)
 class PfSpec:
-    """A validated PF scenario (see the module docstring for the fields)."""
+    """A validated PF scenario (see the module docstring for the fields).
+
+    Attributes
+    ----------
+    network : PfNetwork
+        Nodes, links and filtering nodes.
+    config : PfConfig
+        The filter's parameters.
+    workspace : ndarray, shape (2, 2)
+        Box of the initial particles and of the target's start.
+    steps, runs, seed : int
+        Target moves, Monte Carlo runs, base seed.
+    noise_sigma : float
+        True TDOA noise standard deviation (m).
+    target : DcrwParams
+        The true DCRW.
+    model : str
+        Propagation model: ``dcrw``, ``gaussian`` or ``learned``.
+    uniform_max_step : float
+        Step range of the learner's uniform prior.
+    learning : dict
+        Overrides of :class:`~theory.model_learning.OnlineLearner`'s guards.
+    """
 
     network: PfNetwork
     config: PfConfig

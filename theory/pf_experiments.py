@@ -47,11 +47,25 @@ DEFAULT_TOLERANCES = {"converge_tol": 5.0, "diverge_tol": 10.0, "improvement_tol
 
 @dataclass(frozen=True, eq=False)
 class MonteCarlo:
-    """Results of ``R`` runs: ``errors (R, K+1, F)``, ``estimates (R, K+1, F, 2)``, ``paths``.
+    """Results of ``R`` runs.
 
-    ``learned`` holds the final fitted ``(μ, γ, κ, λ)`` per run and node ``(R, F, 4)`` (NaN where a
-    node never fitted) for the learned model, else ``None``; ``snapshots`` are run 0's particle
-    sets at the requested steps.
+    Attributes
+    ----------
+    errors : ndarray, shape (R, K+1, F)
+        ``E_i(k)`` per run.
+    estimates : ndarray, shape (R, K+1, F, 2)
+    paths : ndarray, shape (R, K+1, 2)
+    learned : ndarray or None
+        Final fitted ``(μ, γ, κ, λ)`` per run and node ``(R, F, 4)`` (NaN where a node never
+        fitted) for the learned model, else ``None``.
+    snapshots : dict
+        Run 0's particle sets at the requested steps.
+    seed : int
+        Base seed.
+    model : str
+        Propagation model used.
+    share : int
+        ``m`` used.
     """
 
     errors: np.ndarray
@@ -156,6 +170,13 @@ def node_summary(mc: MonteCarlo, spec: PfSpec) -> list[dict[str, Any]]:
     ``mean_localization_error`` averages ``E_i(k)`` over all steps and runs;
     ``final_localization_error`` averages ``E_i(K)`` over runs; ``tail_error_*`` summarise the
     per-run tail errors (mean, standard deviation, 10/50/90 % quantiles).
+
+    Parameters
+    ----------
+    mc : MonteCarlo
+        The runs.
+    spec : PfSpec
+        Their scenario.
     """
     tail = mc.tail_errors
     rows = []
@@ -182,8 +203,14 @@ def convergence_verdicts(
 ) -> dict[int, str]:
     """``{node id: "converges" | "does not converge" | "inconclusive"}`` (module docstring).
 
-    ``tail_errors`` is ``(R, F)`` (e.g. :attr:`MonteCarlo.tail_errors`); ``filters`` the 0-based
-    filtering nodes.
+    Parameters
+    ----------
+    tail_errors : ndarray, shape (R, F)
+        E.g. :attr:`MonteCarlo.tail_errors`.
+    filters : tuple of int
+        The 0-based filtering nodes.
+    converge_tol, diverge_tol : float
+        Median tail error (m) at or below which a node converges / at or above which it does not.
     """
     median = np.median(tail_errors, axis=0)
     verdicts = {}
@@ -206,7 +233,15 @@ def convergence_margin(
     diverge_tol: float,
 ) -> float:
     """Smallest distance (m) of a node's median tail error from the threshold its expected
-    verdict needs (``converge_tol − median`` or ``median − diverge_tol``); < 0 when one fails."""
+    verdict needs (``converge_tol − median`` or ``median − diverge_tol``); < 0 when one fails.
+
+    Parameters
+    ----------
+    tail_errors, filters, converge_tol, diverge_tol :
+        As for :func:`convergence_verdicts`.
+    wanted : dict
+        Node id → ``"converges"`` or ``"does not converge"``.
+    """
     median = np.median(tail_errors, axis=0)
     gaps = [
         converge_tol - median[filters.index(node - 1)]

@@ -21,7 +21,17 @@ __all__ = ["plot_errors", "plot_learned_pdfs", "plot_particles", "write_figures"
 
 
 def plot_errors(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
-    """Mean norm error ``E_i(k)`` (eq. 3.20) per node with the 10–90 % band over runs."""
+    """Mean norm error ``E_i(k)`` (eq. 3.20) per node with the 10–90 % band over runs.
+
+    Parameters
+    ----------
+    mc : MonteCarlo
+        The runs.
+    spec : PfSpec
+        Their scenario.
+    path : Path
+        PNG file to write.
+    """
     fig, ax = plt.subplots(figsize=(6, 3.5))
     steps = np.arange(mc.errors.shape[1])
     for f, node in enumerate(spec.network.filters):
@@ -39,7 +49,13 @@ def plot_errors(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
 
 
 def plot_particles(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
-    """Run 0's weighted particle clouds at the snapshot steps, with nodes, links and target."""
+    """Run 0's weighted particle clouds at the snapshot steps, with nodes, links and target.
+
+    Parameters
+    ----------
+    mc, spec, path :
+        As for :func:`plot_errors` (``mc.snapshots`` must be filled).
+    """
     steps = sorted(mc.snapshots)
     fig, axes = plt.subplots(
         1, max(1, len(steps)), figsize=(4 * max(1, len(steps)), 4), squeeze=False
@@ -65,7 +81,13 @@ def plot_particles(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
 
 
 def plot_learned_pdfs(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
-    """Learned turning-angle and step-length PDFs (every run, per node) against the true ones."""
+    """Learned turning-angle and step-length PDFs (every run, per node) against the true ones.
+
+    Parameters
+    ----------
+    mc, spec, path :
+        As for :func:`plot_errors` (``mc.learned`` must be filled).
+    """
     fig, (left, right) = plt.subplots(1, 2, figsize=(9, 3.5))
     phi = np.linspace(-np.pi, np.pi, 361)
     delta = np.linspace(1e-3, 4 * spec.target.lam, 300)
@@ -98,7 +120,19 @@ def plot_learned_pdfs(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
 
 
 def write_figures(mc: MonteCarlo, spec: PfSpec, folder: Path, stem: str) -> list[str]:
-    """Every figure that applies to ``mc``, as PNG files in ``folder``; returns their paths."""
+    """Every figure that applies to ``mc``, as PNG files in ``folder``; returns their paths.
+
+    Parameters
+    ----------
+    mc : MonteCarlo
+        The runs.
+    spec : PfSpec
+        Their scenario.
+    folder : Path
+        Created if missing.
+    stem : str
+        File-name prefix (the case name).
+    """
     folder.mkdir(parents=True, exist_ok=True)
     paths = [plot_errors(mc, spec, folder / f"{stem}-errors.png")]
     if mc.snapshots:

@@ -26,7 +26,7 @@ __all__ = ["DcrwMotion", "GaussianMotion", "UniformMotion"]
 
 @dataclass(frozen=True)
 class DcrwMotion:
-    """Propagate with a known DCRW (seed 002 eqs. (3.1)–(3.2), (3.14)–(3.16))."""
+    """Propagate with a known DCRW ``params`` (seed 002 eqs. (3.1)–(3.2), (3.14)–(3.16))."""
 
     params: DcrwParams
 
@@ -45,7 +45,15 @@ class DcrwMotion:
 
 @dataclass(frozen=True)
 class GaussianMotion:
-    """Truncated-normal turning angle and step length (seed 002 §3.3.2, the Gaussian baseline)."""
+    """Truncated-normal turning angle and step (seed 002 §3.3.2, the Gaussian baseline).
+
+    Attributes
+    ----------
+    turn_sigma : float
+        Standard deviation of the turning angle (π/4), truncated to ``(−π, π]``.
+    step_mean, step_sigma : float
+        Mean (2) and standard deviation (1) of the step, truncated to ``δ ≥ 0``.
+    """
 
     turn_sigma: float = np.pi / 4
     step_mean: float = 2.0

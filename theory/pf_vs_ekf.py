@@ -42,7 +42,15 @@ __all__ = ["Comparison", "compare_on_same_data", "measurement_ranks"]
 
 @dataclass(frozen=True, eq=False)
 class Comparison:
-    """PF and EKF norm errors ``(R, K+1, F)`` on the same paths and measurements."""
+    """PF and EKF norm errors on the same paths and measurements.
+
+    Attributes
+    ----------
+    pf_errors, ekf_errors : ndarray, shape (R, K+1, F)
+        ``E_i(k)`` of each filter.
+    seed : int
+        Base seed.
+    """
 
     pf_errors: np.ndarray
     ekf_errors: np.ndarray
@@ -60,7 +68,21 @@ def compare_on_same_data(
     seed: int | None = None,
     ekf: EkfConfig | None = None,
 ) -> Comparison:
-    """Run the PF (the case's model) and the averaged EKF on identical data (module docstring)."""
+    """Run the PF (the case's model) and the averaged EKF on identical data (module docstring).
+
+    Parameters
+    ----------
+    spec : PfSpec
+        The scenario.
+    runs, seed : int, optional
+        Override the case's runs and base seed.
+    ekf : EkfConfig, optional
+        EKF parameters (default: ``EkfConfig`` with the filter's ``σ``).
+
+    Returns
+    -------
+    Comparison
+    """
     runs = spec.runs if runs is None else runs
     seed = spec.seed if seed is None else seed
     ekf = EkfConfig(sigma=spec.config.sigma) if ekf is None else ekf
@@ -97,8 +119,22 @@ def measurement_ranks(
 ) -> list[dict[str, Any]]:
     """Per node: TDOA count, Jacobian rank, local and component observability (module docstring).
 
-    Returns one record per node with the minimum and maximum over ``points`` seeded target
-    positions in the workspace of each rank, and the smallest decision margin seen.
+    Parameters
+    ----------
+    spec : PfSpec
+        Nodes, links and workspace.
+    points : int
+        Number of target positions drawn uniformly in the workspace.
+    seed : int
+        Seed of those positions.
+    rank_tol : float
+        Relative rank tolerance (:func:`theory.observability.numeric_rank`).
+
+    Returns
+    -------
+    list of dict
+        One record per node with the minimum and maximum of each rank over the positions and the
+        smallest decision margin seen.
     """
     rng = np.random.default_rng(seed)
     low, high = spec.workspace[:, 0], spec.workspace[:, 1]

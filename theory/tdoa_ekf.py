@@ -45,7 +45,7 @@ class EkfConfig:
 
 
 def consensus_weights(network: PfNetwork) -> np.ndarray:
-    """Metropolis weights (DESIGN.md) on the graph of the filtering nodes."""
+    """Metropolis weights (DESIGN.md) on the graph of the filtering nodes of ``network``."""
     index = list(network.filters)
     return metropolis_weights(network.hears[np.ix_(index, index)])
 
@@ -114,7 +114,18 @@ def run_ekf(
     config: EkfConfig,
     initial: np.ndarray,
 ) -> np.ndarray:
-    """Run the averaged EKF on measurements ``(K+1, F, N)`` from initial positions ``(F, 2)``.
+    """Run the averaged EKF on ``measurements`` from ``initial`` positions.
+
+    Parameters
+    ----------
+    measurements : ndarray, shape (K+1, F, N)
+        TDOA measurements (:func:`theory.particle_filter.simulate_measurements`).
+    network : PfNetwork
+        Nodes and links; the filtering nodes run the EKF.
+    config : EkfConfig
+        Model and noise parameters.
+    initial : ndarray, shape (F, 2)
+        Initial position estimates (velocity 0).
 
     Returns
     -------
