@@ -292,3 +292,34 @@ def test_eq_3_13_as_printed_shrinks_the_estimate(seed: int):
     np.testing.assert_allclose(literal, w.sum(1, keepdims=True) * estimate(state, 0.2))
     assert np.all(w.sum(1) < 1)
     assert np.all(np.linalg.norm(literal, axis=1) < np.linalg.norm(estimate(state, 0.2), axis=1))
+
+
+@given(
+    st.integers(3, 6).flatmap(
+        lambda n: st.tuples(
+            st.just(n),
+            st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)), max_size=10),
+            st.integers(0, 2**32 - 1),
+        )
+    )
+)
+def test_exchange_on_random_graphs_keeps_sets_whole(data):
+    n, raw_edges, seed = data
+    rng = np.random.default_rng(seed)
+    hears = _hears(n, [(i, j) for i, j in raw_edges if i != j])
+    network = PfNetwork(rng.uniform(-30, 30, (n, 2)), hears, tuple(range(n)))
+    state = _random_state(rng, n, 40)
+    after = consensus_exchange(state, network, PfConfig(particles=40, share=3), rng, y=None)
+    assert after.positions.shape == state.positions.shape
+    np.testing.assert_allclose(after.weights.sum(1), 1.0)
+    for f in range(n):
+        tops = [
+            state.positions[j, np.argsort(-state.weights[j])[:3]] for j in np.flatnonzero(hears[f])
+        ]
+        own = state.positions[f]
+        for c, h in zip(after.positions[f], after.headings[f], strict=True):
+            mine = np.all(own == c, axis=1)
+            if mine.any():
+                assert state.headings[f, np.argmax(mine)] == h  # kept with its own heading
+            else:
+                assert any(np.any(np.all(t == c, axis=1)) for t in tops)
