@@ -273,7 +273,7 @@ def consensus_exchange(
     config: PfConfig,
     rng: np.random.Generator,
     *,
-    y: np.ndarray,
+    y: np.ndarray | None,
 ) -> PfState:
     """The consensus step of seed 002 §3.2.1 step 3 (see the module docstring for the choices).
 
