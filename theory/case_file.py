@@ -35,6 +35,7 @@ HEADER_FIELDS = ("name", "source", "kind", "description", "expect", "tolerances"
 
 KIND_MODULES: tuple[str, ...] = (
     "theory.dkf_case",
+    "theory.pf_case",
     "theory.pursuit_case",
     "theory.tdoa_case",
 )

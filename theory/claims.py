@@ -35,8 +35,11 @@ inconclusive: a margin lies inside tolerance or a solver failed (the evidence sa
 METHODS = ("symbolic", "exact-random", "numeric", "lmi", "simulation", "exact")
 
 CLAIM_MODULES: tuple[str, ...] = (
+    "theory.dcrw_claims",
     "theory.dkf_claims",
     "theory.iss_claims",
+    "theory.pf_experiments",
+    "theory.pf_vs_ekf",
     "theory.topology_claims",
 )
 """Modules that register claims; each feature appends its module here."""

@@ -19,6 +19,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "theory.cli.falsify",
     "theory.cli.generic",
     "theory.cli.iss",
+    "theory.cli.pf",
     "theory.cli.topology",
 )
 

@@ -1,0 +1,87 @@
+"""Time per iteration of the distributed TDOA PF (P = 1000) next to the averaged EKF's.
+
+Seed 002 §4.3.2 reports 2.73e-1 s per PF iteration and 2.68e-4 s per EKF iteration (MATLAB,
+P = 1000, three nodes, complete graph, top 5 % shared). The target here is < 5 ms per PF
+iteration (all nodes, vectorised numpy). Run from the repository root:
+``python -m benchmarks.bench_pf``.
+"""
+
+from __future__ import annotations
+
+import timeit
+
+import numpy as np
+
+from theory.dcrw import DcrwParams
+from theory.particle_filter import PfConfig, PfNetwork, initial_state, measure, pf_step
+from theory.pf_motion import DcrwMotion
+from theory.tdoa import cv_discrete
+from theory.tdoa_ekf import EkfConfig, consensus_weights, ekf_step
+
+TARGET_S = 5e-3
+THESIS_PF_S, THESIS_EKF_S = 2.73e-1, 2.68e-4
+
+
+def _network(n: int) -> PfNetwork:
+    angles = np.pi / 2 + 2 * np.pi * np.arange(n) / n
+    nodes = 40.0 * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    hears = ~np.eye(n, dtype=bool)
+    return PfNetwork(nodes, hears, tuple(range(n)))
+
+
+def _best_of(function, repeat: int = 7, number: int = 50) -> float:
+    return min(timeit.repeat(function, repeat=repeat, number=number)) / number
+
+
+def time_pf(network: PfNetwork, y: np.ndarray) -> float:
+    """Seconds for one :func:`pf_step` of every node (P = 1000, m = 50, the thesis's 5 %)."""
+    rng = np.random.default_rng(0)
+    n = len(network.filters)
+    config = PfConfig(particles=1000, share=50, sigma=1.0)
+    state = initial_state(n, 1000, np.array([[-50, 50], [-50, 50]]), rng)
+    motion = DcrwMotion(DcrwParams(0.0, 0.7, 2.0, 3.0))
+    return _best_of(lambda: pf_step(state, y, network, config, motion, rng))
+
+
+def time_ekf(network: PfNetwork, y: np.ndarray) -> float:
+    """Seconds for one averaged-EKF iteration of every node (correct, average, predict)."""
+    n = len(network.filters)
+    A, B = cv_discrete(1.0, dim=2)
+    config = EkfConfig()
+    Q = B @ B.T * config.accel_sigma**2
+    W = consensus_weights(network)
+    x = np.hstack([np.random.default_rng(1).uniform(-10, 10, (n, 2)), np.zeros((n, 2))])
+    P = np.broadcast_to(np.eye(4) * 100.0, (n, 4, 4)).copy()
+
+    def iteration() -> None:
+        x_bar, P_bar = ekf_step(x, P, y, network, config, W)
+        _ = x_bar @ A.T, A @ P_bar @ A.T + Q
+
+    return _best_of(iteration)
+
+
+def main() -> None:
+    """Print PF and EKF seconds per iteration for 3, 4 and 5 nodes (complete graphs)."""
+    header = ("nodes", "PF s/iter", "EKF s/iter", "PF/EKF", "PF/target", "thesis/PF")
+    print(" ".join(f"{h:>11}" for h in header))
+    for n in (3, 4, 5):
+        network = _network(n)
+        y = measure(np.array([3.0, -4.0]), network, 1.0, np.random.default_rng(2))
+        pf, ekf = time_pf(network, y), time_ekf(network, y)
+        row = (
+            f"{n}",
+            f"{pf:.3e}",
+            f"{ekf:.3e}",
+            f"{pf / ekf:.1f}",
+            f"{pf / TARGET_S:.2f}",
+            f"{THESIS_PF_S / pf:.0f}",
+        )
+        print(" ".join(f"{v:>11}" for v in row))
+    print(
+        f"target: PF < {TARGET_S:g} s per iteration (PF/target < 1); thesis (MATLAB, 3 nodes): "
+        f"PF {THESIS_PF_S:g} s, EKF {THESIS_EKF_S:g} s, ratio {THESIS_PF_S / THESIS_EKF_S:.0f}"
+    )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,122 @@
+"""``trackcert pf CASE``: Monte Carlo runs of the distributed TDOA particle filter (seed 002 §3.3).
+
+Prints the per-node error summary and the verdicts of every registered claim for ``kind: pf``
+cases; with ``-o DIR`` writes ``DIR/pf.json`` and the figures. Exit code 0 when every claim the
+case expects is verified, 1 when one is refuted, 3 when one is inconclusive.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import replace
+from pathlib import Path
+
+import typer
+from rich.table import Table
+
+from theory.case_file import load_case
+from theory.claims import all_claims
+from theory.cli.common import (
+    EXIT_FAILS,
+    EXIT_INCONCLUSIVE,
+    console,
+    print_json,
+    reports_errors,
+    to_jsonable,
+)
+from theory.errors import CaseError
+from theory.pf_experiments import monte_carlo, node_summary, shared_monte_carlo
+
+__all__ = ["register"]
+
+SNAPSHOT_STEPS = (0, 5, 20)
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``pf`` command to ``app``."""
+
+    @app.command("pf")
+    @reports_errors
+    def pf(
+        case_name: str = typer.Argument(..., metavar="CASE", help="Case file or bundled name."),
+        runs: int = typer.Option(None, "--runs", min=1, help="Monte Carlo runs (case default)."),
+        seed: int = typer.Option(None, "--seed", min=0, help="Base seed (case default)."),
+        out: str = typer.Option(None, "-o", "--out", help="Folder for pf.json and figures."),
+        as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+    ) -> None:
+        """Run the distributed TDOA particle filter of seed 002 on a ``kind: pf`` case."""
+        case = load_case(case_name)
+        folder = None if out is None else Path(out)
+        if case.kind != "pf":
+            raise CaseError(
+                "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
+            )
+        spec = replace(
+            case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
+        )
+        case = replace(case, spec=spec)
+        mc = shared_monte_carlo(spec)
+        claims = [
+            (claim.source, result)
+            for claim in all_claims()
+            if "pf" in claim.kinds
+            for result in claim.run(case)
+        ]
+        figures = []
+        if folder is not None:
+            from theory.pf_figures import write_figures
+
+            first = monte_carlo(spec, runs=1, snapshot_steps=SNAPSHOT_STEPS)  # = run 0 of mc
+            figures = write_figures(replace(mc, snapshots=first.snapshots), spec, folder, case.name)
+        report = {
+            "case": case.name,
+            "runs": spec.runs,
+            "seed": spec.seed,
+            "model": spec.model,
+            "share": spec.config.share,
+            "config": to_jsonable(vars(spec.config)),
+            "agents": node_summary(mc, spec),
+            "claims": [result.to_json(source) for source, result in claims],
+            "figures": figures,
+        }
+        if folder is not None:
+            (folder / "pf.json").write_text(json.dumps(to_jsonable(report), indent=2) + "\n")
+        if as_json:
+            print_json(report)
+        else:
+            _print(report)
+        statuses = {result.status for _, result in claims}
+        if "refuted" in statuses:
+            raise typer.Exit(EXIT_FAILS)
+        if "inconclusive" in statuses:
+            raise typer.Exit(EXIT_INCONCLUSIVE)
+
+
+def _print(report: dict) -> None:
+    table = Table(
+        title=f"{report['case']}: {report['runs']} runs, seed {report['seed']}, "
+        f"model {report['model']}, m = {report['share']}"
+    )
+    for column in (
+        "node",
+        "TDOA meas.",
+        "mean E (m)",
+        "final E (m)",
+        "tail E mean ± sd",
+        "tail E 10/50/90 %",
+    ):
+        table.add_column(column)
+    for a in report["agents"]:
+        table.add_row(
+            str(a["id"]),
+            str(a["measurements"]),
+            f"{a['mean_localization_error']:.2f}",
+            f"{a['final_localization_error']:.2f}",
+            f"{a['tail_error_mean']:.2f} ± {a['tail_error_std']:.2f}",
+            f"{a['tail_error_q10']:.2f} / {a['tail_error_median']:.2f} / {a['tail_error_q90']:.2f}",
+        )
+    console.print(table)
+    for claim in report["claims"]:
+        console.print(f"{claim['id']}: {claim['status']} — {claim['message']}", markup=False)
+    for figure in report["figures"]:
+        console.print(f"figure: {figure}", markup=False)
