@@ -11,8 +11,9 @@ from typer.testing import CliRunner
 
 from theory.case_file import parse_case
 from theory.cli import app
+from theory.falsifiable_dkf import jointly_detectable, strongly_connected
 from theory.falsifiable_iss import coordination_terms
-from theory.falsifiable_tdoa import component_rank
+from theory.falsifiable_tdoa import component_rank, scene_case
 from theory.falsify import DEFAULT_EXAMPLES, all_properties, falsify
 from theory.strategies import TdoaScene
 
@@ -38,7 +39,7 @@ def test_counterexample_is_a_valid_deterministic_case(prop) -> None:
     assert case.kind == first.case["kind"]
 
 
-@pytest.mark.parametrize("prop", [p for p in WRONG if p.claim.startswith("seed000")], ids=str)
+@pytest.mark.parametrize("prop", [p for p in WRONG if p.to_case is scene_case], ids=lambda p: p.id)
 def test_tdoa_counterexample_reloads_to_the_same_verdict(prop) -> None:
     result = falsify(prop, examples=DEFAULT_EXAMPLES, seed=3)
     case = parse_case(yaml.safe_load(yaml.safe_dump(result.case)))
@@ -84,3 +85,13 @@ def test_documented_cone_example_finds_the_counterexample() -> None:
     exec(code, namespace)
     with pytest.raises(AssertionError):
         namespace["test_non_coplanar_agents_localize"]()
+
+
+def test_detectability_counterexample_is_a_connected_blind_agent() -> None:
+    prop = next(p for p in WRONG if p.id == "seed000.sec5.2.detectability/paper")
+    result = falsify(prop, examples=DEFAULT_EXAMPLES, seed=1)
+    problem = result.counterexample
+    assert strongly_connected(problem) and jointly_detectable(problem)
+    case = parse_case(result.case)
+    assert case.kind == "dkf"
+    assert any(c.shape[0] == 0 for c in problem.C), "a blind agent is what breaks S-detectability"

@@ -34,7 +34,11 @@ __all__ = [
 ]
 
 DEFAULT_EXAMPLES = 200
-PROPERTY_MODULES: tuple[str, ...] = ("theory.falsifiable_tdoa", "theory.falsifiable_iss")
+PROPERTY_MODULES: tuple[str, ...] = (
+    "theory.falsifiable_dkf",
+    "theory.falsifiable_iss",
+    "theory.falsifiable_tdoa",
+)
 
 _PROPERTIES: dict[str, Property] = {}
 
