@@ -35,7 +35,7 @@ __all__ = [
 FORMAT = "trackcert-certificate/1"
 MAX_FILE_BYTES = 4_000_000
 """Larger files are refused unread."""
-MAX_NUMBER_CHARS = 400
+MAX_NUMBER_CHARS = 2000
 """Longest accepted rational string (sign, numerator, '/', denominator)."""
 MAX_INT_DIGITS = 9
 """Longest accepted JSON integer (indices and counts only)."""
