@@ -104,23 +104,53 @@ def definite(name: str, matrix: Matrix) -> Check:
 
 
 def _decrease(
-    image: str, operator: str, W: Matrix, gammas: list[Matrix], P: list[Matrix], bound: Fraction
+    name: str,
+    operator: str,
+    W: Matrix,
+    gammas: list[Matrix],
+    P: list[Matrix],
+    bound: Fraction,
+    stated: list[Matrix],
 ) -> list[Check]:
-    """``bound · P_i − T_i(P) ≻ 0`` for every agent ``i``; ``image`` names ``T_i(P)``."""
+    """``R_i = bound · P_i − T_i(P)`` recomputed: equal to the stated ``R_i`` and ``≻ 0``.
+
+    ``name`` is formatted with the 1-based agent ``i``. The positivity test runs on the
+    recomputed matrix, so a wrong stated ``R_i`` fails the equality and cannot hide the truth.
+    """
     n, agents = len(P[0]), len(W)
-    _refuse_costly(agents * (agents * n * n + 4 * n**3), _bits([W, *gammas, *P]))
+    _refuse_costly(agents * (agents * n * n + 4 * n**3), _bits([W, *gammas, *P, *stated]))
     images = apply_operator(operator, W, gammas, P)
     factor = "" if bound == 1 else f"{bound}·"
-    return [
-        definite(f"{factor}{image.format(i=i + 1)}", sub(scale(bound, P_i), T_i))
-        for i, (P_i, T_i) in enumerate(zip(P, images, strict=True))
-    ]
+    checks = []
+    for i, (P_i, T_i, R_i) in enumerate(zip(P, images, stated, strict=True)):
+        label = factor + name.format(i=i + 1)
+        actual = sub(scale(bound, P_i), T_i)
+        checks.append(_equal(f"stated {label} = recomputed", R_i, actual))
+        checks.append(definite(f"{label} ≻ 0", actual))
+    return checks
 
 
-def _lyapunov(operator: str, W: Matrix, gammas: list[Matrix], P: list[Matrix], bound: Fraction):
+def _equal(name: str, stated: Matrix, actual: Matrix) -> Check:
+    for r, (row_s, row_a) in enumerate(zip(stated, actual, strict=True)):
+        for c, (x, y) in enumerate(zip(row_s, row_a, strict=True)):
+            if x != y:
+                return Check(
+                    name,
+                    False,
+                    f"entry ({r + 1},{c + 1}): stated {show(x)}, "
+                    f"recomputed {show(y)}, off by {show(x - y)}",
+                )
+    return Check(name, True, "equal entry by entry")
+
+
+def _lyapunov(operator: str, W: Matrix, gammas: list[Matrix], witness: dict, bound: Fraction):
     """``P_i ≻ 0`` and ``bound · P_i − T_i(P) ≻ 0`` (Lemma 5.2.2's witness)."""
+    agents, n = len(W), len(gammas[0])
+    P = p.matrix_list(witness["P"], "witness.P", agents, n, n)
+    R = p.matrix_list(witness["decrease"], "witness.decrease", agents, n, n)
     checks = [definite(f"P_{i + 1} ≻ 0", P_i) for i, P_i in enumerate(P)]
-    return checks + _decrease("P_{i} − " + operator + "_{i}(P) ≻ 0", operator, W, gammas, P, bound)
+    name = "P_{i} − " + operator + "_{i}(P)"
+    return checks + _decrease(name, operator, W, gammas, P, bound, R)
 
 
 def _bound(claim: dict[str, Any], key: str) -> Fraction:
@@ -134,22 +164,21 @@ def mjls_stability(cert: dict[str, Any]) -> list[Check]:
     """``r_σ(L) < ρ`` for given ``Γ_i`` and ``W`` (seed 000 Lemma 5.2.2)."""
     claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
     data = p.fields(cert["data"], "data", ("W", "Gamma"))
-    witness = p.fields(cert["witness"], "witness", ("operator", "P"))
+    witness = p.fields(cert["witness"], "witness", ("operator", "P", "decrease"))
     operator = p.text(witness["operator"], "witness.operator", OPERATORS)
     W, checks = _weights(data["W"])
     gammas = p.matrix_list(data["Gamma"], "data.Gamma", len(W))
     n = len(gammas[0])
     gammas = p.matrix_list(data["Gamma"], "data.Gamma", len(W), n, n)
-    P = p.matrix_list(witness["P"], "witness.P", len(W), n, n)
     bound = _bound(claim, "spectral_radius_below")
-    return checks + _lyapunov(operator, W, gammas, P, bound)
+    return checks + _lyapunov(operator, W, gammas, witness, bound)
 
 
 def s_detectability(cert: dict[str, Any]) -> list[Check]:
     """``(A, C, W)`` is S-detectable: ``r_σ(L) < ρ`` with ``Γ_i = A − L_i C_i`` (Def. 5.2.4)."""
     claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
     data = p.fields(cert["data"], "data", ("A", "C", "W"))
-    witness = p.fields(cert["witness"], "witness", ("operator", "gains", "P"))
+    witness = p.fields(cert["witness"], "witness", ("operator", "gains", "P", "decrease"))
     operator = p.text(witness["operator"], "witness.operator", OPERATORS)
     A = p.matrix(data["A"], "data.A")
     n = len(A)
@@ -160,11 +189,10 @@ def s_detectability(cert: dict[str, Any]) -> list[Check]:
         p.matrix(g, f"witness.gains[{i + 1}]", n, len(C[i]))
         for i, g in enumerate(_items(witness["gains"], "witness.gains", len(W)))
     ]
-    P = p.matrix_list(witness["P"], "witness.P", len(W), n, n)
     _refuse_costly(len(W) * n**3, _bits([A, *C, *gains]))
     gammas = [sub(A, matmul(L_i, C_i)) for L_i, C_i in zip(gains, C, strict=True)]
     bound = _bound(claim, "spectral_radius_below")
-    return checks + _lyapunov(operator, W, gammas, P, bound)
+    return checks + _lyapunov(operator, W, gammas, witness, bound)
 
 
 def covariance_bound(cert: dict[str, Any]) -> list[Check]:
@@ -174,7 +202,7 @@ def covariance_bound(cert: dict[str, Any]) -> list[Check]:
     """
     claim = p.fields(cert["claim"], "claim", ("rate",), ("statement",))
     data = p.fields(cert["data"], "data", ("W", "modes"), ("A",))
-    witness = p.fields(cert["witness"], "witness", ("X",))
+    witness = p.fields(cert["witness"], "witness", ("X", "decrease"))
     W, checks = _weights(data["W"])
     X = p.matrix_list(witness["X"], "witness.X", len(W))
     n = len(X[0])
@@ -184,11 +212,15 @@ def covariance_bound(cert: dict[str, Any]) -> list[Check]:
         _mode(raw, f"data.modes[{k + 1}]", A, len(W), n)
         for k, raw in enumerate(_items(data["modes"], "data.modes", None))
     ]
+    stated = [
+        p.matrix_list(item, f"witness.decrease[{k + 1}]", len(W), n, n)
+        for k, item in enumerate(_items(witness["decrease"], "witness.decrease", len(modes)))
+    ]
     rate = _bound(claim, "rate")
     checks += [definite(f"X_{i + 1} ≻ 0", X_i) for i, X_i in enumerate(X)]
     for k, M in enumerate(modes):
         label = f"mode {k + 1}: " if len(modes) > 1 else ""
-        checks += _decrease(label + "X_{i} − f₁^{i}(M, X) ≻ 0", "J", W, M, X, rate)
+        checks += _decrease(label + "X_{i} − f₁^{i}(M, X)", "J", W, M, X, rate, stated[k])
     return checks
 
 
@@ -211,7 +243,7 @@ def _items(value: Any, where: str, count: int | None) -> list[Any]:
     if not isinstance(value, list) or not value or len(value) > p.MAX_ITEMS:
         raise p.MalformedError(f"{where}: expected a non-empty list of at most {p.MAX_ITEMS} items")
     if count is not None and len(value) != count:
-        raise p.MalformedError(f"{where}: expected {count} items (one per agent), got {len(value)}")
+        raise p.MalformedError(f"{where}: expected {count} items, got {len(value)}")
     return value
 
 

@@ -15,13 +15,15 @@ Kinds built here: ``mjls-stability`` (seed 000 Lemma 5.2.2), ``s-detectability``
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from fractions import Fraction
 from typing import Any
 
 import numpy as np
 
 import proofs_check
+from proofs_check.linalg import Matrix, identity, matmul, scale, sub
+from proofs_check.operators import apply_operator
 from theory.rationalize import (
     PRECISIONS,
     RationalizationError,
@@ -119,7 +121,7 @@ def _certificate(kind: str, claim: dict, data: dict, witness: dict, case: str | 
 
 
 def _rounded(
-    build: Any,
+    build: Callable[[dict[str, list[Matrix]]], dict],
     matrices: dict[str, list[np.ndarray]],
     *,
     margin: float,
@@ -135,10 +137,7 @@ def _rounded(
         )
 
     def attempt(bits: int) -> dict | None:
-        rounded = {
-            name: [fraction_strings(dyadic_matrix(m, bits)) for m in mats]
-            for name, mats in matrices.items()
-        }
+        rounded = {name: [dyadic_matrix(m, bits) for m in mats] for name, mats in matrices.items()}
         cert = build(rounded)
         return cert if proofs_check.check_certificate(cert).valid else None
 
@@ -146,18 +145,26 @@ def _rounded(
     cert["produced_by"] = {
         "tool": "trackcert",
         "significant_bits": bits,
-        "float_margin": margin,
-        "lmi_margin": lmi_margin,
+        "float_margin": f"{margin:.6g}",
+        "lmi_margin": f"{lmi_margin:g}",
     }
     return cert
 
 
-def _exact(mats: Sequence[Any]) -> list:
-    return [fraction_strings(exact_matrix(m)) for m in mats]
+def _decrease(
+    operator: str, W: Matrix, gammas: list[Matrix], P: list[Matrix], bound: Fraction
+) -> list:
+    """Exact ``bound · P_i − T_i(P)`` as strings (the checker recomputes and compares)."""
+    images = apply_operator(operator, W, gammas, P)
+    return [fraction_strings(sub(scale(bound, p), t)) for p, t in zip(P, images, strict=True)]
 
 
-def _claim(statement: str, key: str, bound: float | Fraction) -> dict:
-    return {"statement": statement, key: str(Fraction(bound).limit_denominator(10**6))}
+def _strings(mats: Sequence[Matrix]) -> list:
+    return [fraction_strings(m) for m in mats]
+
+
+def _bound(value: float | Fraction) -> Fraction:
+    return Fraction(value).limit_denominator(10**6)
 
 
 def mjls_stability_certificate(
@@ -206,14 +213,19 @@ def mjls_stability_certificate(
     ----------
     seed 000, Lemma 5.2.2 and eq. (5.13).
     """
-    claim = _claim(
-        "r_σ(L) < ρ for the given Γ_i and W", "spectral_radius_below", spectral_radius_below
-    )
-    data = {"W": fraction_strings(exact_matrix(W)), "Gamma": _exact(gammas)}
-    margin = float_margin(operator, W, gammas, P, float(spectral_radius_below))
+    bound = _bound(spectral_radius_below)
+    claim = {"statement": "r_σ(L) < ρ for the given Γ_i and W", "spectral_radius_below": str(bound)}
+    W_q, gammas_q = exact_matrix(W), [exact_matrix(g) for g in gammas]
+    data = {"W": fraction_strings(W_q), "Gamma": _strings(gammas_q)}
+    margin = float_margin(operator, W, gammas, P, float(bound))
 
-    def build(rounded: dict) -> dict:
-        witness = {"operator": operator, "P": rounded["P"]}
+    def build(rounded: dict[str, list[Matrix]]) -> dict:
+        P_q = rounded["P"]
+        witness = {
+            "operator": operator,
+            "P": _strings(P_q),
+            "decrease": _decrease(operator, W_q, gammas_q, P_q, bound),
+        }
         return _certificate("mjls-stability", claim, data, witness, case)
 
     return _rounded(
@@ -249,17 +261,25 @@ def s_detectability_certificate(
     Parameters
     ----------
     A : (n, n) array
+        System matrix, eq. (5.1).
     Cs : sequence of (p_i, n) arrays
+        Measurement matrices, eq. (5.2).
     W : (N, N) array
+        Consensus weights.
     order : {"consensus-filter", "filter-consensus"}
+        Order of the steps: eq. (5.3)–(5.4) or Appendix C.3.
     gains : sequence of (n, p_i) arrays
         Float gains ``L_i``.
     Ps : sequence of (n, n) arrays
         Float Lyapunov matrices.
     adjoint : bool
         Whether ``Ps`` solve the adjoint (dual) inequality.
-    lmi_margin, precisions, case
+    lmi_margin : float
         As in :func:`mjls_stability_certificate`.
+    precisions : sequence of int
+        As in :func:`mjls_stability_certificate`.
+    case : str, optional
+        Case name recorded in the certificate.
 
     Returns
     -------
@@ -279,22 +299,27 @@ def s_detectability_certificate(
     if order not in ORDERS:
         raise ValueError(f"order must be one of {sorted(ORDERS)}, got {order!r}")
     operator = ORDERS[order] + ("-adjoint" if adjoint else "")
-    A_f = np.asarray(A, float)
-    claim = _claim(
-        "(A, C, W) is S-detectable: r_σ(L) < 1 with Γ_i = A − L_i C_i", "spectral_radius_below", 1
-    )
-    data = {
-        "A": fraction_strings(exact_matrix(A)),
-        "C": _exact(Cs),
-        "W": fraction_strings(exact_matrix(W)),
+    claim = {
+        "statement": "(A, C, W) is S-detectable: r_σ(L) < 1 with Γ_i = A − L_i C_i",
+        "spectral_radius_below": "1",
     }
+    A_q, C_q, W_q = exact_matrix(A), [exact_matrix(c) for c in Cs], exact_matrix(W)
+    data = {"A": fraction_strings(A_q), "C": _strings(C_q), "W": fraction_strings(W_q)}
+    A_f = np.asarray(A, float)
     gammas = [
         A_f - np.asarray(g, float) @ np.asarray(c, float) for g, c in zip(gains, Cs, strict=True)
     ]
     margin = float_margin(operator, W, gammas, Ps)
 
-    def build(rounded: dict) -> dict:
-        witness = {"operator": operator, "gains": rounded["gains"], "P": rounded["P"]}
+    def build(rounded: dict[str, list[Matrix]]) -> dict:
+        gains_q, P_q = rounded["gains"], rounded["P"]
+        gammas_q = [sub(A_q, matmul(g, c)) for g, c in zip(gains_q, C_q, strict=True)]
+        witness = {
+            "operator": operator,
+            "gains": _strings(gains_q),
+            "P": _strings(P_q),
+            "decrease": _decrease(operator, W_q, gammas_q, P_q, Fraction(1)),
+        }
         return _certificate("s-detectability", claim, data, witness, case)
 
     matrices = {
@@ -326,14 +351,19 @@ def covariance_bound_certificate(
     Parameters
     ----------
     W : (N, N) array
+        Consensus weights.
     modes : sequence of sequences of (n, n) arrays
         Each mode is ``(M¹ … M^N)``; one common ``X`` must work for all of them.
     X : sequence of (n, n) arrays
         Float witness.
     rate : float or Fraction
         ``r ∈ (0, 1]`` with ``f₁ⁱ(M, X) ≺ r Xⁱ``.
-    lmi_margin, precisions, case
+    lmi_margin : float
         As in :func:`mjls_stability_certificate`.
+    precisions : sequence of int
+        As in :func:`mjls_stability_certificate`.
+    case : str, optional
+        Case name recorded in the certificate.
 
     Returns
     -------
@@ -348,8 +378,10 @@ def covariance_bound_certificate(
     ----------
     seed 000, Lemma A.2.1, eqs. (A.53)–(A.54).
     """
-    data = {"W": fraction_strings(exact_matrix(W)), "modes": [{"M": _exact(m)} for m in modes]}
-    return _covariance(data, W, [list(m) for m in modes], X, rate, lmi_margin, precisions, case)
+    modes_q = [[exact_matrix(m) for m in mode] for mode in modes]
+    data = {"W": fraction_strings(exact_matrix(W)), "modes": [{"M": _strings(m)} for m in modes_q]}
+    floats = [[np.asarray(m, float) for m in mode] for mode in modes]
+    return _covariance(data, W, floats, modes_q, X, rate, lmi_margin, precisions, case)
 
 
 def ekf_covariance_bound_certificate(
@@ -364,17 +396,28 @@ def ekf_covariance_bound_certificate(
     precisions: Sequence[int] = PRECISIONS,
     case: str | None = None,
 ) -> dict:
-    """Certificate of Cor. A.2.2's hypothesis for listed steps ``k``: ``M^j = A(I − K_k^j H_k^j)``.
+    """Cor. A.2.2's hypothesis at listed steps ``k``, with ``M_k^j = A (I − K_k^j H_k^j)``.
 
     Parameters
     ----------
     A : (n, n) array
+        Target dynamics, eq. (4.6).
     Ks : sequence over steps of sequences over agents of (n, p_j) arrays
-        Gains ``K_k^j`` (eq. (A.3)); taken as data, exactly as given.
+        Gains ``K_k^j`` (eq. (A.3)), taken as data exactly as given.
     Hs : sequence over steps of sequences over agents of (p_j, n) arrays
         Jacobians ``H_k^j``.
-    W, X, rate, lmi_margin, precisions, case
+    W : (N, N) array
+        Consensus weights.
+    X : sequence of (n, n) arrays
+        Float witness.
+    rate : float or Fraction
         As in :func:`covariance_bound_certificate`.
+    lmi_margin : float
+        As in :func:`mjls_stability_certificate`.
+    precisions : sequence of int
+        As in :func:`mjls_stability_certificate`.
+    case : str, optional
+        Case name recorded in the certificate.
 
     Returns
     -------
@@ -389,33 +432,42 @@ def ekf_covariance_bound_certificate(
     ----------
     seed 000, Corollary A.2.2, eq. (A.55).
     """
-    A_f, n = np.asarray(A, float), np.asarray(A).shape[0]
-    modes = [
-        [
-            A_f @ (np.eye(n) - np.asarray(k, float) @ np.asarray(h, float))
-            for k, h in zip(ks, hs, strict=True)
-        ]
-        for ks, hs in zip(Ks, Hs, strict=True)
+    A_q = exact_matrix(A)
+    eye = identity(len(A_q))
+    Ks_q = [[exact_matrix(k) for k in ks] for ks in Ks]
+    Hs_q = [[exact_matrix(h) for h in hs] for hs in Hs]
+    modes_q = [
+        [matmul(A_q, sub(eye, matmul(k, h))) for k, h in zip(ks, hs, strict=True)]
+        for ks, hs in zip(Ks_q, Hs_q, strict=True)
     ]
     data = {
         "W": fraction_strings(exact_matrix(W)),
-        "A": fraction_strings(exact_matrix(A)),
-        "modes": [{"K": _exact(ks), "H": _exact(hs)} for ks, hs in zip(Ks, Hs, strict=True)],
+        "A": fraction_strings(A_q),
+        "modes": [
+            {"K": _strings(ks), "H": _strings(hs)} for ks, hs in zip(Ks_q, Hs_q, strict=True)
+        ],
     }
-    return _covariance(data, W, modes, X, rate, lmi_margin, precisions, case)
+    floats = [[np.array(m, dtype=float) for m in mode] for mode in modes_q]
+    return _covariance(data, W, floats, modes_q, X, rate, lmi_margin, precisions, case)
 
 
-def _covariance(data, W, modes, X, rate, lmi_margin, precisions, case) -> dict:
-    claim = _claim(
-        "f₁^i(M, X) ≺ rate · X^i for every listed mode M: f_n(M, P) → 0 and P_{k+1} = "
-        "f₁(M_k, P_k) + U_k stays bounded for modes M_k from the list (Lemma A.2.1)",
-        "rate",
-        rate,
-    )
-    margin = min(float_margin("J", W, m, X, float(rate)) for m in modes)
+def _covariance(data, W, modes, modes_q, X, rate, lmi_margin, precisions, case) -> dict:
+    bound = _bound(rate)
+    claim = {
+        "statement": "f₁^i(M, X) ≺ rate · X^i for every listed mode M: f_n(M, P) → 0 and "
+        "P_{k+1} = f₁(M_k, P_k) + U_k stays bounded for modes M_k from the list (Lemma A.2.1)",
+        "rate": str(bound),
+    }
+    W_q = exact_matrix(W)
+    margin = min(float_margin("J", W, m, X, float(bound)) for m in modes)
 
-    def build(rounded: dict) -> dict:
-        return _certificate("covariance-bound", claim, data, {"X": rounded["X"]}, case)
+    def build(rounded: dict[str, list[Matrix]]) -> dict:
+        X_q = rounded["X"]
+        witness = {
+            "X": _strings(X_q),
+            "decrease": [_decrease("J", W_q, m, X_q, bound) for m in modes_q],
+        }
+        return _certificate("covariance-bound", claim, data, witness, case)
 
     return _rounded(
         build,
@@ -428,7 +480,19 @@ def _covariance(data, W, modes, X, rate, lmi_margin, precisions, case) -> dict:
 
 
 def bundle(certificates: Sequence[dict], *, case: str | None = None) -> dict:
-    """Several certificates in one file (``"kind": "bundle"``), valid iff each one is."""
+    """Several certificates in one file (``"kind": "bundle"``), valid iff each one is.
+
+    Parameters
+    ----------
+    certificates : sequence of dict
+        Certificates built by this module or :mod:`theory.tdoa_rank_certificates`.
+    case : str, optional
+        Case name recorded in the bundle.
+
+    Returns
+    -------
+    dict
+    """
     out: dict[str, Any] = {"format": proofs_check.FORMAT, "kind": "bundle"}
     if case is not None:
         out["case"] = case

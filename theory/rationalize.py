@@ -27,7 +27,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from theory.errors import TrackcertError
+from theory.errors import InconclusiveError
 
 __all__ = [
     "PRECISIONS",
@@ -48,8 +48,8 @@ PRECISIONS = (20, 32, 44, 56)
 T = TypeVar("T")
 
 
-class RationalizationError(TrackcertError, ArithmeticError):
-    """Rounding a floating witness to rationals did not give a valid certificate."""
+class RationalizationError(InconclusiveError):
+    """No valid exact certificate could be produced (the CLI reports it as inconclusive, exit 3)."""
 
 
 def dyadic(x: float, exponent: int) -> Fraction:

@@ -219,7 +219,7 @@ def generic_rank_certificates(
                 "tool": "trackcert",
                 "seed": seed,
                 "significant_bits": bits,
-                "rank_tol": rank_tol,
+                "rank_tol": f"{rank_tol:g}",
             }
         return certs
 
