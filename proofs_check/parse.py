@@ -79,7 +79,9 @@ def loads(content: str) -> dict[str, Any]:
     except RecursionError:
         raise MalformedError("JSON nested too deeply") from None
     except json.JSONDecodeError as error:
-        raise MalformedError(f"not valid JSON: {error.msg} at line {error.lineno}") from None
+        raise MalformedError(
+            f"not valid JSON: {error.msg} (line {error.lineno}, column {error.colno})"
+        ) from None
     if not isinstance(data, dict):
         raise MalformedError("top level: expected a JSON object")
     return data

@@ -54,8 +54,10 @@ def check_certificate(cert: dict[str, Any]) -> Verdict:
         checks: list[Check] = []
         for k, item in enumerate(items):
             where = f"certificates[{k + 1}]"
+            if isinstance(item, dict) and item.get("kind") == "bundle":
+                raise p.MalformedError(f"{where}: bundles cannot be nested")
             try:
-                kind, inner = _single(item, where)
+                kind, inner = _single(item, "top level")
             except p.MalformedError as error:
                 raise p.MalformedError(f"{where}: {error}") from None
             checks += [Check(f"[{k + 1} {kind}] {c.name}", c.valid, c.detail) for c in inner]
