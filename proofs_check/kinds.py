@@ -79,7 +79,12 @@ def _weights(raw: Any) -> tuple[Matrix, list[Check]]:
         else f"w_{negative[0][0] + 1},{negative[0][1] + 1} = "
         f"{show(W[negative[0][0]][negative[0][1]])} < 0: the operators need not be positive"
     )
-    return W, [Check("data: W ≥ 0 entrywise", not negative, detail)]
+    sums = [(i, sum(row)) for i, row in enumerate(W) if sum(row) != 1]
+    rows = f"row {sums[0][0] + 1} sums to {show(sums[0][1])}" if sums else "every row sums to 1"
+    return W, [
+        Check("data: W ≥ 0 entrywise", not negative, detail),
+        Check("data: W row-stochastic (seed 000 eq. (5.3))", not sums, rows),
+    ]
 
 
 def definite(name: str, matrix: Matrix) -> Check:

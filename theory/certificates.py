@@ -31,6 +31,7 @@ from theory.rationalize import (
     exact_matrix,
     first_success,
     fraction_strings,
+    stochastic_matrix,
     symmetric_projection,
 )
 
@@ -215,7 +216,7 @@ def mjls_stability_certificate(
     """
     bound = _bound(spectral_radius_below)
     claim = {"statement": "r_σ(L) < ρ for the given Γ_i and W", "spectral_radius_below": str(bound)}
-    W_q, gammas_q = exact_matrix(W), [exact_matrix(g) for g in gammas]
+    W_q, gammas_q = stochastic_matrix(W), [exact_matrix(g) for g in gammas]
     data = {"W": fraction_strings(W_q), "Gamma": _strings(gammas_q)}
     margin = float_margin(operator, W, gammas, P, float(bound))
 
@@ -303,7 +304,7 @@ def s_detectability_certificate(
         "statement": "(A, C, W) is S-detectable: r_σ(L) < 1 with Γ_i = A − L_i C_i",
         "spectral_radius_below": "1",
     }
-    A_q, C_q, W_q = exact_matrix(A), [exact_matrix(c) for c in Cs], exact_matrix(W)
+    A_q, C_q, W_q = exact_matrix(A), [exact_matrix(c) for c in Cs], stochastic_matrix(W)
     data = {"A": fraction_strings(A_q), "C": _strings(C_q), "W": fraction_strings(W_q)}
     A_f = np.asarray(A, float)
     gammas = [
@@ -379,7 +380,10 @@ def covariance_bound_certificate(
     seed 000, Lemma A.2.1, eqs. (A.53)–(A.54).
     """
     modes_q = [[exact_matrix(m) for m in mode] for mode in modes]
-    data = {"W": fraction_strings(exact_matrix(W)), "modes": [{"M": _strings(m)} for m in modes_q]}
+    data = {
+        "W": fraction_strings(stochastic_matrix(W)),
+        "modes": [{"M": _strings(m)} for m in modes_q],
+    }
     floats = [[np.asarray(m, float) for m in mode] for mode in modes]
     return _covariance(data, W, floats, modes_q, X, rate, lmi_margin, precisions, case)
 
@@ -441,7 +445,7 @@ def ekf_covariance_bound_certificate(
         for ks, hs in zip(Ks_q, Hs_q, strict=True)
     ]
     data = {
-        "W": fraction_strings(exact_matrix(W)),
+        "W": fraction_strings(stochastic_matrix(W)),
         "A": fraction_strings(A_q),
         "modes": [
             {"K": _strings(ks), "H": _strings(hs)} for ks, hs in zip(Ks_q, Hs_q, strict=True)
@@ -458,7 +462,7 @@ def _covariance(data, W, modes, modes_q, X, rate, lmi_margin, precisions, case) 
         "P_{k+1} = f₁(M_k, P_k) + U_k stays bounded for modes M_k from the list (Lemma A.2.1)",
         "rate": str(bound),
     }
-    W_q = exact_matrix(W)
+    W_q = stochastic_matrix(W)
     margin = min(float_margin("J", W, m, X, float(bound)) for m in modes)
 
     def build(rounded: dict[str, list[Matrix]]) -> dict:

@@ -3,9 +3,11 @@
 A numerical solver returns a witness (Lyapunov matrices, gains, evaluation points) that satisfies
 strict inequalities only up to rounding. To prove the inequalities we
 
-1. project the witness onto the equality constraints it must satisfy exactly — here symmetry
-   ``P = Pᵀ`` (orthogonal projection: ``(P + Pᵀ)/2``) and unit norm ``‖u‖ = 1`` (through the
-   rational parametrisation of the sphere by inverse stereographic projection);
+1. project onto the equality constraints that must hold exactly — symmetry ``P = Pᵀ``
+   (orthogonal projection: ``(P + Pᵀ)/2``), unit norm ``‖u‖ = 1`` (through the rational
+   parametrisation of the sphere by inverse stereographic projection) and, for the data, the
+   row sums ``Σ_j w_ij = 1`` of consensus weights (exact orthogonal projection onto the affine
+   set, :func:`project_affine`);
 2. round it to dyadic rationals with a chosen number of significant bits;
 3. re-check every strict inequality exactly (``proofs_check``); when the float witness was
    strictly feasible with margin ``μ``, a rounding error well below ``μ`` keeps it feasible.
@@ -38,7 +40,9 @@ __all__ = [
     "exact_matrix",
     "first_success",
     "fraction_strings",
+    "project_affine",
     "rational_unit_vector",
+    "stochastic_matrix",
     "symmetric_projection",
 ]
 
@@ -104,6 +108,47 @@ def exact_matrix(matrix: Any) -> list[list[Fraction]]:
         [x if isinstance(x, Fraction) else exact_decimal(float(x)) for x in np.atleast_1d(row)]
         for row in rows
     ]
+
+
+def project_affine(x: Sequence[Fraction], a: Sequence[Fraction], b: Fraction) -> list[Fraction]:
+    """Exact orthogonal projection of ``x`` onto the hyperplane ``{y : a·y = b}``.
+
+    .. math:: y = x + \\frac{b - a \\cdot x}{a \\cdot a}\\, a
+
+    Raises
+    ------
+    ValueError
+        If ``a = 0``.
+    """
+    norm2 = sum(Fraction(v) * v for v in a)
+    if norm2 == 0:
+        raise ValueError("the constraint vector a is zero")
+    step = (Fraction(b) - sum(Fraction(v) * u for v, u in zip(a, x, strict=True))) / norm2
+    return [Fraction(u) + step * v for u, v in zip(x, a, strict=True)]
+
+
+def stochastic_matrix(W: Any) -> list[list[Fraction]]:
+    """Consensus weights as exact rationals whose rows sum to exactly one.
+
+    Entries are read as decimals (:func:`exact_matrix`); each row is then projected onto
+    ``Σ_j w_ij = 1`` within its support (zeros stay zero), moving each entry by at most the
+    row's rounding error divided by its support size. Rows already summing to one are unchanged.
+
+    Raises
+    ------
+    RationalizationError
+        If a row has a negative entry, is zero, or needs a change larger than ``1e-9``.
+    """
+    out = []
+    for i, row in enumerate(exact_matrix(W)):
+        support = [Fraction(int(x != 0)) for x in row]
+        if any(x < 0 for x in row) or not any(support):
+            raise RationalizationError(f"weights row {i + 1} is not non-negative and non-zero")
+        projected = project_affine(row, support, Fraction(1))
+        if max(abs(p - x) for p, x in zip(projected, row, strict=True)) > Fraction(1, 10**9):
+            raise RationalizationError(f"weights row {i + 1} sums to {float(sum(row))}, not 1")
+        out.append(projected)
+    return out
 
 
 def fraction_strings(value: Any) -> Any:

@@ -31,6 +31,7 @@ from theory.rationalize import (
     first_success,
     fraction_strings,
     rational_unit_vector,
+    stochastic_matrix,
 )
 from theory.tdoa import cv_discrete, tdoa_jacobian
 from theory.tdoa_case import TdoaSpec
@@ -62,7 +63,7 @@ def exact_weights(spec: TdoaSpec) -> list[list[Fraction]]:
     hears = np.asarray(spec.hears[0], dtype=bool)
     n = hears.shape[0]
     if spec.weights_rule == "explicit":
-        return [[exact_decimal(x) for x in row] for row in spec.weights[0]]
+        return stochastic_matrix(spec.weights[0])
     degree = hears.sum(axis=1)
     W = [[Fraction(0)] * n for _ in range(n)]
     for i in range(n):
