@@ -290,6 +290,15 @@ def generic_rank(cert: dict[str, Any]) -> list[Check]:
         )
     max_power = max(r // m for r in rows)
     _refuse_costly(max_power * agents**3 + rank**3, _bits([W, u, [[T]]]))
+    support = [[j for j in range(agents) if j != i and W[i][j] != 0] for i in range(agents)]
+    mismatch = [i for i in range(agents) if sorted(neighbours[i]) != support[i]]
+    detail = (
+        f"agent {mismatch[0] + 1}: neighbours {[j + 1 for j in neighbours[mismatch[0]]]}, "
+        f"w_ij ≠ 0 for j in {[j + 1 for j in support[mismatch[0]]]}"
+        if mismatch
+        else "agent i measures against j iff w_ij ≠ 0 (seed 000 eq. (5.3))"
+    )
+    checks.append(Check("data: neighbours = support of W", not mismatch, detail))
     for a in range(agents):
         norm = sum(x * x for x in u[a])
         checks.append(Check(f"‖u_{a + 1}‖² = 1", norm == 1, f"‖u_{a + 1}‖² = {show(norm)}"))

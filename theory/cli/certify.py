@@ -17,7 +17,7 @@ from theory.case_certificates import case_certificates
 from theory.case_file import load_case
 from theory.certificates import bundle
 from theory.cli.common import console, print_json, reports_errors
-from theory.errors import SolverError
+from theory.errors import CaseError, SolverError
 
 __all__ = ["register", "write_atomically"]
 
@@ -59,7 +59,10 @@ def register(app: typer.Typer) -> None:
         if not proofs_check.check_certificate(proofs_check.parse.loads(text)).valid:
             raise SolverError("the written certificate did not pass proofs_check (a bug)")
         if output is not None:
-            write_atomically(output, text)
+            try:
+                write_atomically(output, text)
+            except OSError as error:
+                raise CaseError("--output", "a writable file path", str(output)) from error
         if as_json or output is None:
             print_json(document)
             return
