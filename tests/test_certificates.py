@@ -298,3 +298,21 @@ def test_dropping_a_block_is_refused(network, data) -> None:
     del tampered[where[0]][where[1]][data.draw(st.integers(0, len(W) - 1))]
     with pytest.raises(MalformedError):
         check_certificate(tampered)
+
+
+def test_corollary_a22_needs_a_uniform_margin() -> None:
+    """Erratum (seed 000 Cor. A.2.2): ``Xⁱ ≻ f₁ⁱ(M_k, X)`` for every k ≥ 0 does not bound P_k.
+
+    N = 1, w = 1, X = 1, U = 1 and M_k = √m_k with m_k = 1 − 1/(k+2)² < 1: each step satisfies
+    the strict inequality (X − f₁ = 1/(k+2)² > 0), yet P_{k+1} = m_k P_k + 1 from P_0 = 0 obeys
+    P_k ≥ k·Π_{j<k} m_j ≥ k/2 (the product telescopes to (k+2)/(2(k+1)) > 1/2), so P_k → ∞.
+    Checked exactly for the first 300 steps.
+    """
+    P, product = Fraction(0), Fraction(1)
+    for k in range(300):
+        assert product == Fraction(k + 2, 2 * (k + 1))
+        assert P >= k * product >= Fraction(k, 2)
+        m = 1 - Fraction(1, (k + 2) ** 2)
+        assert 1 - m * 1 > 0
+        P, product = m * P + 1, product * m
+    assert P >= 150
