@@ -64,7 +64,18 @@ def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:
     kinds=("tdoa",),
 )
 def generic_rank_claim(case: Case) -> list[ClaimResult]:
-    """Run the generic-rank certificates of a TDOA case as claim results (method ``exact``)."""
+    """Run the generic-rank certificates of a TDOA case as claim results (method ``exact``).
+
+    Parameters
+    ----------
+    case : Case
+        A ``tdoa`` case.
+
+    Returns
+    -------
+    list of ClaimResult
+        One per certificate (``verified``), or one ``inconclusive`` result saying why none.
+    """
     try:
         certs = case_certificates(case)
     except RationalizationError as error:

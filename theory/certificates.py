@@ -93,6 +93,23 @@ def float_margin(
               / \\max_i \\|P_i\\|_2
 
     Positive iff the witness is strictly feasible in floating point.
+
+    Parameters
+    ----------
+    operator : {"L", "J", "L-adjoint", "J-adjoint"}
+        The operator ``T`` (see :mod:`proofs_check.operators`).
+    W : (N, N) array
+        Consensus weights.
+    gammas : sequence of (n, n) arrays
+        ``Γ_i`` (or ``M^i``).
+    P : sequence of (n, n) arrays
+        The float witness.
+    bound : float
+        ``ρ``.
+
+    Returns
+    -------
+    float
     """
     P = [symmetric_projection(p) for p in P]
     images = _image(operator, np.asarray(W, float), [np.asarray(g, float) for g in gammas], P)

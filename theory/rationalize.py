@@ -57,7 +57,24 @@ class RationalizationError(InconclusiveError):
 
 
 def dyadic(x: float, exponent: int) -> Fraction:
-    """``x`` rounded to the nearest multiple of ``2**exponent`` (exactly)."""
+    """``x`` rounded to the nearest multiple of ``2**exponent`` (exactly).
+
+    Parameters
+    ----------
+    x : float
+        A finite number.
+    exponent : int
+        The grid is ``2**exponent``.
+
+    Returns
+    -------
+    Fraction
+
+    Raises
+    ------
+    RationalizationError
+        If ``x`` is not finite.
+    """
     if not np.isfinite(x):
         raise RationalizationError(f"cannot round the non-finite value {x!r} to a rational")
     scaled = round(Fraction(float(x)) / Fraction(2) ** exponent)
@@ -89,20 +106,54 @@ def symmetric_projection(matrix: np.ndarray) -> np.ndarray:
 
     Float addition is commutative, so the result is exactly symmetric and stays so after
     entrywise rounding.
+
+    Parameters
+    ----------
+    matrix : ndarray
+        A square matrix.
+
+    Returns
+    -------
+    ndarray
     """
     array = np.asarray(matrix, dtype=float)
     return (array + array.T) / 2
 
 
 def exact_decimal(x: float) -> Fraction:
-    """The rational a user meant by a float: its shortest round-trip decimal (0.24 → 6/25)."""
+    """The rational a user meant by a float: its shortest round-trip decimal (0.24 → 6/25).
+
+    Parameters
+    ----------
+    x : float
+        A finite number.
+
+    Returns
+    -------
+    Fraction
+
+    Raises
+    ------
+    RationalizationError
+        If ``x`` is not finite.
+    """
     if not np.isfinite(x):
         raise RationalizationError(f"data value {x!r} is not finite")
     return Fraction(repr(float(x)))
 
 
 def exact_matrix(matrix: Any) -> list[list[Fraction]]:
-    """A matrix of exact rationals: ``Fraction`` entries kept, floats read as decimals."""
+    """A matrix of exact rationals: ``Fraction`` entries kept, floats read as decimals.
+
+    Parameters
+    ----------
+    matrix : array_like or list of lists
+        Real entries (floats, ints or Fractions); a vector becomes one row.
+
+    Returns
+    -------
+    list of list of Fraction
+    """
     rows = matrix if isinstance(matrix, list) else np.atleast_2d(np.asarray(matrix)).tolist()
     return [
         [x if isinstance(x, Fraction) else exact_decimal(float(x)) for x in np.atleast_1d(row)]
@@ -114,6 +165,19 @@ def project_affine(x: Sequence[Fraction], a: Sequence[Fraction], b: Fraction) ->
     """Exact orthogonal projection of ``x`` onto the hyperplane ``{y : a·y = b}``.
 
     .. math:: y = x + \\frac{b - a \\cdot x}{a \\cdot a}\\, a
+
+    Parameters
+    ----------
+    x : sequence of Fraction
+        The point.
+    a : sequence of Fraction
+        The constraint's normal vector.
+    b : Fraction
+        The constraint's value.
+
+    Returns
+    -------
+    list of Fraction
 
     Raises
     ------
@@ -134,6 +198,15 @@ def stochastic_matrix(W: Any) -> list[list[Fraction]]:
     ``Σ_j w_ij = 1`` within its support (zeros stay zero), moving each entry by at most the
     row's rounding error divided by its support size. Rows already summing to one are unchanged.
 
+    Parameters
+    ----------
+    W : array_like
+        Consensus weights (floats read as decimals, or Fractions).
+
+    Returns
+    -------
+    list of list of Fraction
+
     Raises
     ------
     RationalizationError
@@ -152,7 +225,21 @@ def stochastic_matrix(W: Any) -> list[list[Fraction]]:
 
 
 def fraction_strings(value: Any) -> Any:
-    """Nested lists of Fractions as nested lists of exact strings ``"p/q"``."""
+    """Nested lists of Fractions as nested lists of exact strings ``"p/q"``.
+
+    Parameters
+    ----------
+    value : Fraction or nested iterables of Fraction
+
+    Returns
+    -------
+    str or nested lists of str
+
+    Raises
+    ------
+    TypeError
+        For anything other than Fractions.
+    """
     if isinstance(value, Fraction):
         return str(value)
     if isinstance(value, Iterable) and not isinstance(value, str):
@@ -166,6 +253,18 @@ def rational_unit_vector(u: Sequence[float], bits: int) -> list[Fraction]:
     Inverse stereographic projection from the pole ``±e_d`` farther from ``u`` maps rational
     ``s ∈ Q^{d−1}`` to ``(2s, ±(1 − |s|²)) / (1 + |s|²)``, a rational unit vector; ``s`` is
     ``u``'s projection rounded to ``bits`` bits, so the result is within ``~2^{−bits}`` of ``u``.
+
+    Parameters
+    ----------
+    u : sequence of float
+        A non-zero vector of length ``d ≥ 2`` (normalised first).
+    bits : int
+        Grid ``2^{−bits}`` of the stereographic coordinates.
+
+    Returns
+    -------
+    list of Fraction
+        ``d`` rationals whose squares sum to exactly one.
     """
     vector = np.asarray(u, dtype=float)
     vector = vector / np.linalg.norm(vector)
@@ -180,6 +279,15 @@ def first_success(
     attempt: Callable[[int], T | None], *, precisions: Sequence[int] = PRECISIONS, what: str
 ) -> tuple[T, int]:
     """Call ``attempt(bits)`` for each precision until it returns a result.
+
+    Parameters
+    ----------
+    attempt : callable
+        ``attempt(bits)`` returns a result, or ``None`` when that precision fails.
+    precisions : sequence of int
+        Precisions tried in order.
+    what : str
+        Names the witness in the error message.
 
     Returns
     -------

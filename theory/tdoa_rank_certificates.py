@@ -50,7 +50,17 @@ SOURCE = "seed 000, eqs. (4.36)–(4.37) (generic rank of the TDOA network obser
 
 
 def neighbour_lists(hears: np.ndarray) -> list[list[int]]:
-    """0-based neighbours of each agent: those it receives from (``hears[i, j]``)."""
+    """0-based neighbours of each agent: those it receives from (``hears[i, j]``).
+
+    Parameters
+    ----------
+    hears : (N, N) bool array
+        ``hears[i, j]``: agent ``i`` receives from agent ``j``.
+
+    Returns
+    -------
+    list of list of int
+    """
     return [[int(j) for j in np.flatnonzero(row)] for row in np.asarray(hears, dtype=bool)]
 
 
@@ -58,7 +68,17 @@ def exact_weights(spec: TdoaSpec) -> list[list[Fraction]]:
     """The consensus matrix of a static scene in exact rationals (DESIGN.md's rules).
 
     Metropolis: ``w_ij = 1/(1 + max(d_i, d_j))`` on edges, ``w_ii = 1 − Σ_j w_ij``; uniform:
-    ``w_ij = 1/(d_i + 1)`` on ``N_i ∪ {i}``; explicit: the decimals of the case file.
+    ``w_ij = 1/(d_i + 1)`` on ``N_i ∪ {i}``; explicit: the decimals of the case file, projected
+    onto exact row sums one (:func:`~theory.rationalize.stochastic_matrix`).
+
+    Parameters
+    ----------
+    spec : TdoaSpec
+        A scene; its first step's network is used.
+
+    Returns
+    -------
+    list of list of Fraction
     """
     hears = np.asarray(spec.hears[0], dtype=bool)
     n = hears.shape[0]
@@ -79,7 +99,23 @@ def exact_weights(spec: TdoaSpec) -> list[list[Fraction]]:
 def network_observability(
     directions: np.ndarray, neighbours: list[list[int]], W: np.ndarray, T: float
 ) -> np.ndarray:
-    """Float ``O`` of eq. (4.36) at unit ``directions`` (rows: block ``k`` then TDOA row)."""
+    """Float ``O`` of eq. (4.36) at unit ``directions`` (rows: block ``k`` then TDOA row).
+
+    Parameters
+    ----------
+    directions : (N, d) array
+        Unit vectors from each agent to the target.
+    neighbours : list of list of int
+        0-based neighbours of each agent (its TDOA pairs).
+    W : (N, N) array
+        Consensus weights.
+    T : float
+        Sampling period of eq. (4.6).
+
+    Returns
+    -------
+    ndarray, shape (2dN · Σ|N_i|, 2dN)
+    """
     n_agents, dim = directions.shape
     target = np.zeros(dim)
     positions = target[None, :] - directions

@@ -23,7 +23,20 @@ __all__ = ["register", "write_atomically"]
 
 
 def write_atomically(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file and a rename (never half-written)."""
+    """Write ``text`` to ``path`` through a temporary file and a rename (never half-written).
+
+    Parameters
+    ----------
+    path : Path
+        Destination.
+    text : str
+        Content (UTF-8).
+
+    Raises
+    ------
+    OSError
+        If the folder is not writable (the temporary file is removed).
+    """
     path = Path(path)
     handle = tempfile.NamedTemporaryFile(
         "w", encoding="utf-8", dir=path.parent or Path("."), prefix=f".{path.name}.", delete=False
