@@ -13,7 +13,7 @@ import typer
 
 __all__ = ["COMMAND_MODULES", "app", "main"]
 
-COMMAND_MODULES: tuple[str, ...] = ("theory.cli.cases", "theory.cli.certify")
+COMMAND_MODULES: tuple[str, ...] = ("theory.cli.cases", "theory.cli.dkf", "theory.cli.certify")
 
 app = typer.Typer(
     name="trackcert",
