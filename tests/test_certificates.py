@@ -142,15 +142,17 @@ def detectable_systems(draw):
 
 
 @given(
-    detectable_systems(), st.sampled_from(["consensus-filter", "filter-consensus"]), st.booleans()
+    detectable_systems(),
+    st.sampled_from(["consensus-then-filter", "filter-then-consensus"]),
+    st.booleans(),
 )
-def test_round_trip_s_detectability(system, order, adjoint) -> None:
+def test_round_trip_s_detectability(system, order, dual) -> None:
+    """Primal Lyapunov tuple of the order's operator, or the dual tuple of ``L*``."""
     A, Cs, W, gains = system
     gammas = [A - g @ c for g, c in zip(gains, Cs, strict=True)]
-    operator = {"consensus-filter": "L", "filter-consensus": "J"}[order]
-    operator += "-adjoint" if adjoint else ""
+    operator = "L-adjoint" if dual else {"consensus-then-filter": "L"}.get(order, "J")
     P = fixed_point_witness(operator, W, gammas)
-    cert = s_detectability_certificate(A, Cs, W, order, gains, P, adjoint=adjoint)
+    cert = s_detectability_certificate(A, Cs, W, order, gains, P, dual=dual)
     assert check_certificate(json.loads(json.dumps(cert))).valid
 
 
@@ -165,12 +167,12 @@ def test_chapter5_example1_self_weight_threshold() -> None:
         W = np.array([[w, 1 - w, 0], [1 - w, w, 0], [0, 0, 1]])
         P = fixed_point_witness("L", W, gammas, iterations=2000)
         if certifiable:
-            cert = s_detectability_certificate(A, Cs, W, "consensus-filter", gains, P)
+            cert = s_detectability_certificate(A, Cs, W, "consensus-then-filter", gains, P)
             assert cert["data"]["W"][0][0] == "6/25"
             assert check_certificate(cert).valid
         else:
             with pytest.raises(RationalizationError):
-                s_detectability_certificate(A, Cs, W, "consensus-filter", gains, P)
+                s_detectability_certificate(A, Cs, W, "consensus-then-filter", gains, P)
 
 
 @given(stable_networks(max_n=2, contraction=0.35), st.integers(1, 2))
@@ -267,7 +269,12 @@ def test_changing_any_number_of_the_paper_example_is_rejected() -> None:
     W = np.array([[0.24, 0.76, 0], [0.76, 0.24, 0], [0, 0, 1]])
     gammas = [A - g @ c for g, c in zip(gains, Cs, strict=True)]
     cert = s_detectability_certificate(
-        A, Cs, W, "consensus-filter", gains, fixed_point_witness("L", W, gammas, iterations=2000)
+        A,
+        Cs,
+        W,
+        "consensus-then-filter",
+        gains,
+        fixed_point_witness("L", W, gammas, iterations=2000),
     )
     survivors = [p for p in numeric_leaves(cert) if not rejected(changed(cert, p, Fraction(1, 3)))]
     assert survivors == []

@@ -49,7 +49,7 @@ __all__ = [
 LMI_MARGIN = 1e-9
 """Default relative margin the float witness must clear: ``λ_min / max‖P_i‖``."""
 
-ORDERS = {"consensus-filter": "L", "filter-consensus": "J"}
+ORDERS = {"consensus-then-filter": "L", "filter-then-consensus": "J"}
 """Order of the consensus and filtering steps → operator: eq. (5.13) or eq. (C.6)."""
 
 SOURCES = {
@@ -264,7 +264,7 @@ def s_detectability_certificate(
     gains: Sequence[np.ndarray],
     Ps: Sequence[np.ndarray],
     *,
-    adjoint: bool = False,
+    dual: bool = False,
     lmi_margin: float = LMI_MARGIN,
     precisions: Sequence[int] = PRECISIONS,
     case: str | None = None,
@@ -272,9 +272,12 @@ def s_detectability_certificate(
     """Certificate that ``(A, C, W)`` is S-detectable (seed 000 Def. 5.2.4).
 
     The witness is the gains ``L_i`` and Lyapunov matrices ``P_i`` with ``P ≻ 0`` and
-    ``P − T(P) ≻ 0`` for ``Γ_i = A − L_i C_i``, ``T`` the operator of ``order`` (``L`` of eq.
-    (5.13) for ``"consensus-filter"``, ``J`` of eq. (C.6) for ``"filter-consensus"``) or its
-    adjoint (the dual condition) when ``adjoint`` is true. All four give ``r_σ(L) < 1``.
+    ``P − T(P) ≻ 0`` for ``Γ_i = A − L_i C_i``: ``T`` is the operator of ``order`` (``L`` of eq.
+    (5.13) for ``"consensus-then-filter"``, ``J`` of eq. (C.6) for ``"filter-then-consensus"``),
+    or with ``dual`` the adjoint ``L*_j(Y) = Σ_i w_ij Γ_iᵀ Y_i Γ_i`` (the LMI's dual tuple, the
+    same for both orders). All of them prove ``r_σ(L) = r_σ(J) < 1``. An agent without
+    measurements (``p_i = 0``) is written as one zero row of ``C_i`` with a zero gain column,
+    which leaves ``Γ_i = A`` unchanged.
 
     Parameters
     ----------
@@ -284,14 +287,14 @@ def s_detectability_certificate(
         Measurement matrices, eq. (5.2).
     W : (N, N) array
         Consensus weights.
-    order : {"consensus-filter", "filter-consensus"}
-        Order of the steps: eq. (5.3)–(5.4) or Appendix C.3.
+    order : {"consensus-then-filter", "filter-then-consensus"}
+        Order of the steps: eqs. (5.3)–(5.4) or Appendix C.3.
     gains : sequence of (n, p_i) arrays
         Float gains ``L_i``.
     Ps : sequence of (n, n) arrays
         Float Lyapunov matrices.
-    adjoint : bool
-        Whether ``Ps`` solve the adjoint (dual) inequality.
+    dual : bool
+        Whether ``Ps`` is the dual tuple ``Y`` (operator ``L-adjoint``).
     lmi_margin : float
         As in :func:`mjls_stability_certificate`.
     precisions : sequence of int
@@ -316,7 +319,12 @@ def s_detectability_certificate(
     """
     if order not in ORDERS:
         raise ValueError(f"order must be one of {sorted(ORDERS)}, got {order!r}")
-    operator = ORDERS[order] + ("-adjoint" if adjoint else "")
+    operator = "L-adjoint" if dual else ORDERS[order]
+    n = np.asarray(A).shape[0]
+    Cs = [np.asarray(c, float).reshape(-1, n) for c in Cs]
+    gains = [np.asarray(g, float).reshape(n, -1) for g in gains]
+    gains = [g if c.shape[0] else np.zeros((n, 1)) for g, c in zip(gains, Cs, strict=True)]
+    Cs = [c if c.shape[0] else np.zeros((1, n)) for c in Cs]
     claim = {
         "statement": "(A, C, W) is S-detectable: r_σ(L) < 1 with Γ_i = A − L_i C_i",
         "spectral_radius_below": "1",

@@ -96,7 +96,7 @@ def good() -> dict[str, dict]:
             A,
             Cs,
             Wg,
-            "consensus-filter",
+            "consensus-then-filter",
             gains,
             _lyapunov_L([A - g @ c for g, c in zip(gains, Cs, strict=True)], Wg),
         ),
