@@ -6,6 +6,7 @@ import argparse
 import json
 import sys
 
+from proofs_check.deadline import DEFAULT_SECONDS
 from proofs_check.parse import MalformedError
 from proofs_check.verify import check_file
 
@@ -17,9 +18,15 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="proofs_check", description=__doc__)
     parser.add_argument("file", help="certificate JSON file")
     parser.add_argument("--json", action="store_true", help='print {"valid", "checks"}')
+    parser.add_argument(
+        "--time-limit",
+        type=float,
+        default=DEFAULT_SECONDS,
+        help=f"seconds of exact arithmetic before refusing (default {DEFAULT_SECONDS:g})",
+    )
     args = parser.parse_args(argv)
     try:
-        verdict = check_file(args.file)
+        verdict = check_file(args.file, time_limit=args.time_limit)
     except MalformedError as error:
         if args.json:
             print(json.dumps({"valid": False, "error": str(error), "checks": []}))

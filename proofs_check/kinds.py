@@ -8,6 +8,7 @@ itself is trusted: a stated value (the minor of ``generic-rank``) is recomputed 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -27,7 +28,7 @@ from proofs_check.operators import OPERATORS, apply_operator
 
 __all__ = ["KINDS", "WORK_LIMIT", "Check"]
 
-WORK_LIMIT = 30_000_000
+WORK_LIMIT = 3_000_000
 """Largest accepted work estimate (rational operations × a number-size factor)."""
 
 
@@ -45,12 +46,22 @@ class Check:
 
 
 def show(x: Fraction) -> str:
-    """``x`` exactly (shortened past 60 characters) with a decimal approximation."""
-    exact = str(x) if len(str(x)) <= 60 else f"{str(x)[:28]}…{str(x)[-28:]}"
-    try:
-        return f"{exact} (≈{float(x):.6g})"
-    except OverflowError:
-        return exact
+    """``x`` exactly when short, else its size; always a decimal approximation."""
+    if x == 0:
+        return "0"
+    digits = [
+        len(str(abs(v))) if v.bit_length() < 1000 else None for v in (x.numerator, x.denominator)
+    ]
+    exponent = math.log10(abs(x.numerator)) - math.log10(x.denominator)
+    power = math.floor(exponent)
+    if abs(power) < 300:
+        approx = f"{float(x):.6g}"
+    else:
+        approx = f"{'-' if x < 0 else ''}{10 ** (exponent - power):.6g}e{power:+d}"
+    if None in digits or sum(digits) > 60:
+        sizes = [f"~{v.bit_length() * 0.30103:.0f}" for v in (abs(x.numerator), x.denominator)]
+        return f"≈{approx} (exact value: {sizes[0]}-digit / {sizes[1]}-digit integers)"
+    return f"{x} (≈{approx})"
 
 
 def _refuse_costly(work: float, bits: int) -> None:

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from math import lcm
 
+from proofs_check.deadline import tick
+
 __all__ = [
     "Definiteness",
     "add",
@@ -43,6 +45,7 @@ def matmul(a: Matrix, b: Matrix) -> Matrix:
     width = len(b[0])
     out = []
     for row in a:
+        tick()
         acc = [Fraction(0)] * width
         for k, entry in enumerate(row):
             if entry:
@@ -108,6 +111,7 @@ def positive_definite(a: Matrix) -> Definiteness:
     m = [[int(a[i][j] * d[i] * d[j]) for j in range(n)] for i in range(n)]
     previous, smallest = 1, None
     for k in range(n):
+        tick()
         minor = m[k][k]
         pivot = Fraction(minor, previous) / (d[k] * d[k])
         if minor <= 0:
@@ -127,6 +131,7 @@ def determinant(a: Matrix) -> Fraction:
     m = [[int(x * d[i]) for x in row] for i, row in enumerate(a)]
     sign, previous = 1, 1
     for k in range(n):
+        tick()
         swap = next((i for i in range(k, n) if m[i][k] != 0), None)
         if swap is None:
             return Fraction(0)

@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from proofs_check import deadline
 from proofs_check import parse as p
 from proofs_check.kinds import KINDS, Check
 
@@ -35,14 +36,18 @@ class Verdict:
         return {"valid": self.valid, "checks": [c.to_json() for c in self.checks]}
 
 
-def check_certificate(cert: dict[str, Any]) -> Verdict:
-    """Verify parsed certificate JSON.
+def check_certificate(
+    cert: dict[str, Any], *, time_limit: float = deadline.DEFAULT_SECONDS
+) -> Verdict:
+    """Verify parsed certificate JSON within ``time_limit`` seconds of arithmetic.
 
     Raises
     ------
     MalformedError
-        If the format version, the kind or any field is not as ``docs/certificates.md`` says.
+        If the format version, the kind or any field is not as ``docs/certificates.md`` says,
+        or the certificate is too costly to check (size limits, work estimate, time limit).
     """
+    deadline.start(time_limit)
     _format(cert)
     if cert.get("kind") == "bundle":
         p.fields(cert, "top level", ("format", "kind", "certificates"), TOP_OPTIONAL)
@@ -78,6 +83,6 @@ def _single(cert: Any, where: str) -> tuple[str, list[Check]]:
     return kind, KINDS[kind](cert)
 
 
-def check_file(path: str) -> Verdict:
+def check_file(path: str, *, time_limit: float = deadline.DEFAULT_SECONDS) -> Verdict:
     """Read and verify the certificate file at ``path`` (raises ``MalformedError``)."""
-    return check_certificate(p.load(path))
+    return check_certificate(p.load(path), time_limit=time_limit)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ast
 import json
+import random
 import subprocess
 import sys
 import time
@@ -63,7 +64,7 @@ def test_determinant_agrees_with_sympy(a) -> None:
 def test_checker_imports_only_the_standard_library_and_stays_small() -> None:
     """``proofs_check`` never imports ``theory`` (nor numpy/sympy/flint) and stays < 1,000 lines."""
     allowed = {"__future__", "argparse", "dataclasses", "fractions", "json", "math", "re", "sys"}
-    allowed |= {"typing", "proofs_check"}
+    allowed |= {"time", "typing", "proofs_check"}
     total = 0
     for path in sorted((ROOT / "proofs_check").glob("*.py")):
         source = path.read_text(encoding="utf-8")
@@ -212,3 +213,32 @@ def test_rational_parsing_is_exact() -> None:
     for bad in ("+1", "01", "1/-2", "1.5", "1/02", "", "--1"):
         with pytest.raises(MalformedError):
             rational(bad, "x")
+
+
+def test_time_budget_refuses_arithmetic_that_grows(tmp_path: Path, capsys) -> None:
+    """Coprime denominators make exact sums grow; the budget refuses such a file with exit 2."""
+    rng = random.Random(1)
+
+    def block() -> list[list[str]]:
+        return [[f"{rng.randint(1, 10**30)}/{rng.randint(1, 10**30)}" for _ in range(12)]] * 12
+
+    cert = _mjls()
+    cert["data"] = {"W": [["1/6"] * 6] * 6, "Gamma": [block() for _ in range(6)]}
+    cert["witness"] = {
+        "operator": "L",
+        "P": [block() for _ in range(6)],
+        "decrease": [block() for _ in range(6)],
+    }
+    path = _write(tmp_path, json.dumps(cert))
+    start = time.monotonic()
+    assert main([str(path), "--time-limit", "0.5"]) == 2
+    assert "time budget" in capsys.readouterr().err
+    assert time.monotonic() - start < 10
+
+
+def test_huge_exact_values_are_shown_by_size() -> None:
+    from proofs_check.kinds import show
+
+    text = show(Fraction(3**10000, 7**5000))
+    assert text.startswith("≈") and "digit" in text
+    assert show(Fraction(-3, 7)) == "-3/7 (≈-0.428571)"
