@@ -13,6 +13,7 @@ import typer
 import proofs_check
 import proofs_check.__main__
 import proofs_check.parse
+from proofs_check.deadline import DEFAULT_SECONDS
 from theory.case_certificates import case_certificates
 from theory.case_file import load_case
 from theory.certificates import bundle
@@ -91,6 +92,10 @@ def register(app: typer.Typer) -> None:
     def check(
         file: str = typer.Argument(..., help="Certificate JSON file."),
         as_json: bool = typer.Option(False, "--json", help='Print {"valid", "checks"}.'),
+        time_limit: float = typer.Option(
+            DEFAULT_SECONDS, "--time-limit", help="Seconds of exact arithmetic before refusing."
+        ),
     ) -> None:
         """Re-verify a certificate exactly with proofs_check (0 valid, 1 invalid, 2 malformed)."""
-        raise typer.Exit(proofs_check.__main__.main([file, *(["--json"] if as_json else [])]))
+        args = [file, "--time-limit", str(time_limit), *(["--json"] if as_json else [])]
+        raise typer.Exit(proofs_check.__main__.main(args))
