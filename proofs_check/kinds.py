@@ -3,7 +3,9 @@
 Every function takes the parsed JSON of one certificate, validates its shape (raising
 :class:`~proofs_check.parse.MalformedError`), recomputes every quantity from ``data`` and
 ``witness`` and returns the list of :class:`Check` results. Nothing a certificate says about
-itself is trusted: a stated value (the minor of ``generic-rank``) is recomputed and compared.
+itself is trusted: stated values (the decrease matrices ``ρP_i − T_i(P)``, the minor of
+``generic-rank``) are recomputed and compared exactly, and positivity is tested on the
+recomputed matrices.
 """
 
 from __future__ import annotations
