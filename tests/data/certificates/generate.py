@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from theory.case_certificates import case_certificates
 from theory.case_file import load_case
 from theory.certificates import (
     bundle,
@@ -22,6 +23,7 @@ from theory.certificates import (
     mjls_stability_certificate,
     s_detectability_certificate,
 )
+from theory.s_detectability import s_detectability_witness
 from theory.tdoa_rank_certificates import generic_rank_certificates
 
 HERE = Path(__file__).resolve().parent
@@ -85,7 +87,10 @@ def good() -> dict[str, dict]:
     Hs = [[np.eye(2) + 0.3 * rng.standard_normal((2, 2)) for _ in range(3)]]
     Ks = [[0.7 * np.linalg.inv(h) + 0.05 * rng.standard_normal((2, 2)) for h in Hs[0]]]
     ekf_modes = [[A_ekf @ (np.eye(2) - k @ h) for k, h in zip(Ks[0], Hs[0], strict=True)]]
-    case = load_case(HERE.parents[2] / "cases" / "fig43-case-d.yaml")
+    cases = HERE.parents[2] / "cases"
+    case = load_case(cases / "fig43-case-d.yaml")
+    example2 = load_case(cases / "ch5-example-2-wg.yaml").spec
+    lmi = s_detectability_witness(example2.A, example2.C, example2.W)
     return {
         "mjls-stability-scalar": scalar,
         "mjls-stability-three-agents": mjls_stability_certificate(gammas, W, P),
@@ -103,6 +108,18 @@ def good() -> dict[str, dict]:
         "covariance-bound-two-modes": covariance_bound_certificate(W, modes, _lyapunov_J(modes, W)),
         "covariance-bound-ekf-gains": ekf_covariance_bound_certificate(
             A_ekf, Ks, Hs, W, _lyapunov_J(ekf_modes, W)
+        ),
+        "s-detectability-ch5-example2-Wg-lmi": bundle(
+            case_certificates(load_case(cases / "ch5-example-2-wg.yaml"))
+        ),
+        "s-detectability-ch5-example2-Wg-dual": s_detectability_certificate(
+            example2.A,
+            example2.C,
+            example2.W,
+            example2.order,
+            lmi["gains"],
+            list(lmi["Y"]),
+            dual=True,
         ),
         "generic-rank-fig43-case-d": bundle(generic_rank_certificates(case.spec, case=case.name)),
     }
