@@ -81,6 +81,16 @@ def _bits(mats: list[Matrix]) -> int:
     )
 
 
+def _size(raw: Any, where: str) -> int:
+    """Rows of the first matrix of a raw list (before parsing); refuses costly shapes early."""
+    first = raw[0] if isinstance(raw, list) and raw else None
+    if not isinstance(first, list) or not first:
+        raise p.MalformedError(f"{where}: expected a non-empty list of non-empty matrices")
+    n = len(first)
+    _refuse_costly(len(raw) * (len(raw) * n * n + 4 * n**3), 0)
+    return n
+
+
 def _weights(raw: Any) -> tuple[Matrix, list[Check]]:
     W = p.matrix(raw, "data.W")
     if len(W) != len(W[0]):
@@ -184,9 +194,8 @@ def mjls_stability(cert: dict[str, Any]) -> list[Check]:
     data = p.fields(cert["data"], "data", ("W", "Gamma"))
     witness = p.fields(cert["witness"], "witness", ("operator", "P", "decrease"))
     operator = p.text(witness["operator"], "witness.operator", OPERATORS)
+    n = _size(data["Gamma"], "data.Gamma")
     W, checks = _weights(data["W"])
-    gammas = p.matrix_list(data["Gamma"], "data.Gamma", len(W))
-    n = len(gammas[0])
     gammas = p.matrix_list(data["Gamma"], "data.Gamma", len(W), n, n)
     bound = _bound(claim, "spectral_radius_below")
     return checks + _lyapunov(operator, W, gammas, witness, bound)
@@ -198,8 +207,7 @@ def s_detectability(cert: dict[str, Any]) -> list[Check]:
     data = p.fields(cert["data"], "data", ("A", "C", "W"))
     witness = p.fields(cert["witness"], "witness", ("operator", "gains", "P", "decrease"))
     operator = p.text(witness["operator"], "witness.operator", OPERATORS)
-    A = p.matrix(data["A"], "data.A")
-    n = len(A)
+    n = _size(witness["P"], "witness.P")
     A = p.matrix(data["A"], "data.A", n, n)
     W, checks = _weights(data["W"])
     C = p.matrix_list(data["C"], "data.C", len(W), None, n)
@@ -221,9 +229,8 @@ def covariance_bound(cert: dict[str, Any]) -> list[Check]:
     claim = p.fields(cert["claim"], "claim", ("rate",), ("statement",))
     data = p.fields(cert["data"], "data", ("W", "modes"), ("A",))
     witness = p.fields(cert["witness"], "witness", ("X", "decrease"))
+    n = _size(witness["X"], "witness.X")
     W, checks = _weights(data["W"])
-    X = p.matrix_list(witness["X"], "witness.X", len(W))
-    n = len(X[0])
     X = p.matrix_list(witness["X"], "witness.X", len(W), n, n)
     A = p.matrix(data["A"], "data.A", n, n) if "A" in data else None
     modes = [
