@@ -323,3 +323,27 @@ def test_corollary_a22_needs_a_uniform_margin() -> None:
         assert 1 - m * 1 > 0
         P, product = m * P + 1, product * m
     assert P >= 150
+
+
+@given(stable_networks(max_agents=3, max_n=3), st.sampled_from(OPERATORS))
+def test_checker_operators_match_the_paper_formulas(network, operator) -> None:
+    """``proofs_check.operators`` (exact) agrees with eqs. (5.12)–(5.13), (C.6) written out here,
+    and the adjoints satisfy ``⟨T(V), S⟩ = ⟨V, T*(S)⟩``."""
+    from proofs_check.operators import apply_operator
+    from theory.rationalize import exact_matrix
+
+    W, gammas = network
+    rng = np.random.default_rng(len(W) * 7 + gammas[0].shape[0])
+    V = [(lambda m: m + m.T)(rng.standard_normal(gammas[0].shape)) for _ in W]
+    exact = apply_operator(
+        operator, exact_matrix(W), [exact_matrix(g) for g in gammas], [exact_matrix(v) for v in V]
+    )
+    for got, want in zip(exact, image(operator, W, gammas, V), strict=True):
+        assert np.allclose(np.array(got, dtype=float), want, rtol=1e-12, atol=1e-12)
+    if operator.endswith("adjoint"):
+        S = [(lambda m: m @ m.T)(rng.standard_normal(gammas[0].shape)) for _ in W]
+        forward = image(operator.removesuffix("-adjoint"), W, gammas, V)
+        backward = image(operator, W, gammas, S)
+        left = sum(np.trace(t @ s) for t, s in zip(forward, S, strict=True))
+        right = sum(np.trace(v @ b) for v, b in zip(V, backward, strict=True))
+        assert np.isclose(left, right, rtol=1e-10, atol=1e-10)
