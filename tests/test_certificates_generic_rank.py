@@ -51,7 +51,8 @@ def tdoa_scenes(draw, *, max_agents: int = 4):
 @settings(max_examples=12)
 @given(tdoa_scenes(), st.integers(0, 10))
 def test_round_trip_and_the_certified_rank_is_the_generic_one(spec, seed) -> None:
-    """Each certificate checks; its rank equals the float rank at an independent random point."""
+    """Each certificate checks; its rank equals the float rank at an independent random point
+    (compared only when that float rank clears its tolerance by the default factor)."""
     certs = generic_rank_certificates(spec, seed=seed)
     probe = np.random.default_rng(seed + 1000).standard_normal((spec.n_agents, spec.dim))
     probe /= np.linalg.norm(probe, axis=1, keepdims=True)
@@ -62,7 +63,9 @@ def test_round_trip_and_the_certified_rank_is_the_generic_one(spec, seed) -> Non
         assert check_certificate(json.loads(json.dumps(cert))).valid
         agent = cert["claim"]["agent"]
         cols = slice(None) if agent == 0 else slice((agent - 1) * width, agent * width)
-        assert cert["claim"]["rank_at_least"] == numeric_rank(O[:, cols]).rank
+        probe_rank = numeric_rank(O[:, cols])
+        if probe_rank.conclusive():
+            assert cert["claim"]["rank_at_least"] == probe_rank.rank
 
 
 def test_exact_weights_are_the_design_rules() -> None:
