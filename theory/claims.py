@@ -35,6 +35,7 @@ inconclusive: a margin lies inside tolerance or a solver failed (the evidence sa
 METHODS = ("symbolic", "exact-random", "numeric", "lmi", "simulation", "exact")
 
 CLAIM_MODULES: tuple[str, ...] = (
+    "theory.case_certificates",
     "theory.dcrw_claims",
     "theory.dkf_claims",
     "theory.iss_claims",

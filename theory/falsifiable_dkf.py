@@ -66,7 +66,7 @@ def small_dkf_problems(draw: st.DrawFn) -> SmallDkf:
 
 
 def jointly_detectable(problem: SmallDkf) -> bool:
-    """Whether ``(A, col(C_1, …, C_N))`` is detectable (PBH, seed 000 §5.2)."""
+    """Whether ``problem``'s pair ``(A, col(C_1, …, C_N))`` is detectable (PBH, seed 000 §5.2)."""
     stacked = np.vstack(problem.C) if problem.C else np.zeros((0, problem.A.shape[0]))
     lost = unobservable_eigenvalues(problem.A, stacked)
     return all(abs(lam) < 1 - UNIT_CIRCLE_TOL for lam in lost)
@@ -94,7 +94,7 @@ def _verdict(problem: SmallDkf) -> bool | None:
 
 
 def strongly_connected(problem: SmallDkf) -> bool:
-    """Whether the support of ``W`` is a strongly connected digraph."""
+    """Whether the support of ``problem``'s ``W`` is a strongly connected digraph."""
     graph = nx.from_numpy_array((problem.W > 0).astype(int), create_using=nx.DiGraph)
     return nx.is_strongly_connected(graph)
 

@@ -15,6 +15,7 @@ __all__ = ["COMMAND_MODULES", "app", "main"]
 
 COMMAND_MODULES: tuple[str, ...] = (
     "theory.cli.cases",
+    "theory.cli.certify",
     "theory.cli.dkf",
     "theory.cli.falsify",
     "theory.cli.generic",

@@ -1,0 +1,201 @@
+"""Regenerate the known-good/known-bad certificate files of this folder.
+
+Run from the repository root: ``PYTHONPATH=. python tests/data/certificates/generate.py``.
+``valid/`` files must be accepted by ``proofs_check`` (exit 0), ``invalid/`` ones rejected
+(exit 1) and ``malformed/`` ones refused (exit 2); ``tests/test_proofs_check.py`` asserts
+exactly that. Every bad file is a good one with one deliberate defect, named by the file.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+from pathlib import Path
+
+import numpy as np
+
+from theory.case_certificates import case_certificates
+from theory.case_file import load_case
+from theory.certificates import (
+    bundle,
+    covariance_bound_certificate,
+    ekf_covariance_bound_certificate,
+    mjls_stability_certificate,
+    s_detectability_certificate,
+)
+from theory.s_detectability import s_detectability_witness
+from theory.tdoa_rank_certificates import generic_rank_certificates
+
+HERE = Path(__file__).resolve().parent
+
+
+def _fixed_point(step, start, iterations=3000):
+    value = start
+    for _ in range(iterations):
+        value = step(value)
+    return value
+
+
+def _lyapunov_L(gammas, W):
+    n = gammas[0].shape[0]
+    return _fixed_point(
+        lambda P: [
+            np.eye(n) + g @ np.tensordot(w, np.array(P), 1) @ g.T
+            for g, w in zip(gammas, W, strict=True)
+        ],
+        [np.eye(n)] * len(gammas),
+    )
+
+
+def _lyapunov_J(modes, W):
+    n = modes[0][0].shape[0]
+
+    def step(X):
+        out = [np.eye(n) for _ in X]
+        for M in modes:
+            moved = np.array([m @ x @ m.T for m, x in zip(M, X, strict=True)])
+            out = [o + np.tensordot(w, moved, 1) for o, w in zip(out, W, strict=True)]
+        return out
+
+    return _fixed_point(step, [np.eye(n)] * len(W))
+
+
+def _example1(w11):
+    A = 2 * np.eye(2)
+    Cs = [np.array([[1.0, 0]]), np.array([[0.0, 1]]), np.eye(2)]
+    W = np.array([[w11, 1 - w11, 0], [1 - w11, w11, 0], [0, 0, 1]])
+    gains = [np.array([[2.0], [0]]), np.array([[0.0], [2]]), 2 * np.eye(2)]
+    return A, Cs, W, gains
+
+
+def good() -> dict[str, dict]:
+    scalar = {
+        "format": "trackcert-certificate/1",
+        "kind": "mjls-stability",
+        "source": "seed 000, Lemma 5.2.2",
+        "claim": {"statement": "r_σ(L) < 1", "spectral_radius_below": "1"},
+        "data": {"W": [["1/2", "1/2"], ["1/4", "3/4"]], "Gamma": [[["1/2"]], [["-1/3"]]]},
+        "witness": {"operator": "L", "P": [[["1"]], [["1"]]], "decrease": [[["3/4"]], [["8/9"]]]},
+    }
+    rng = np.random.default_rng(5)
+    gammas = [0.4 * rng.standard_normal((3, 3)) for _ in range(3)]
+    W = np.array([[0.5, 0.25, 0.25], [0.2, 0.8, 0], [0, 0.3, 0.7]])
+    P = _lyapunov_L(gammas, W)
+    A, Cs, Wg, gains = _example1(0.24)
+    modes = [[0.5 * rng.standard_normal((2, 2)) for _ in range(3)] for _ in range(2)]
+    A_ekf = np.array([[1.0, 0.5], [0.0, 1.0]])
+    Hs = [[np.eye(2) + 0.3 * rng.standard_normal((2, 2)) for _ in range(3)]]
+    Ks = [[0.7 * np.linalg.inv(h) + 0.05 * rng.standard_normal((2, 2)) for h in Hs[0]]]
+    ekf_modes = [[A_ekf @ (np.eye(2) - k @ h) for k, h in zip(Ks[0], Hs[0], strict=True)]]
+    cases = HERE.parents[2] / "cases"
+    case = load_case(cases / "fig43-case-d.yaml")
+    example2 = load_case(cases / "ch5-example-2-wg.yaml").spec
+    lmi = s_detectability_witness(example2.A, example2.C, example2.W)
+    return {
+        "mjls-stability-scalar": scalar,
+        "mjls-stability-three-agents": mjls_stability_certificate(gammas, W, P),
+        "mjls-stability-rate-bound": mjls_stability_certificate(
+            gammas, W, P, spectral_radius_below=0.9
+        ),
+        "s-detectability-ch5-example1-Wg": s_detectability_certificate(
+            A,
+            Cs,
+            Wg,
+            "consensus-then-filter",
+            gains,
+            _lyapunov_L([A - g @ c for g, c in zip(gains, Cs, strict=True)], Wg),
+        ),
+        "covariance-bound-two-modes": covariance_bound_certificate(W, modes, _lyapunov_J(modes, W)),
+        "covariance-bound-ekf-gains": ekf_covariance_bound_certificate(
+            A_ekf, Ks, Hs, W, _lyapunov_J(ekf_modes, W)
+        ),
+        "s-detectability-ch5-example2-Wg-lmi": bundle(
+            case_certificates(load_case(cases / "ch5-example-2-wg.yaml"))
+        ),
+        "s-detectability-ch5-example2-Wg-dual": s_detectability_certificate(
+            example2.A,
+            example2.C,
+            example2.W,
+            example2.order,
+            lmi["gains"],
+            list(lmi["Y"]),
+            dual=True,
+        ),
+        "generic-rank-fig43-case-d": bundle(generic_rank_certificates(case.spec, case=case.name)),
+    }
+
+
+def bad(valid: dict[str, dict]) -> tuple[dict[str, dict], dict[str, object]]:
+    invalid, malformed = {}, {}
+    c = copy.deepcopy(valid["mjls-stability-scalar"])
+    c["witness"]["P"][0] = [["-1"]]
+    c["witness"]["decrease"][0] = [["-5/4"]]
+    c["witness"]["decrease"][1] = [["7/18"]]
+    invalid["mjls-not-positive-definite"] = c
+    c = copy.deepcopy(valid["mjls-stability-scalar"])
+    c["witness"]["decrease"][1] = [["1"]]
+    invalid["mjls-decrease-misstated"] = c
+    c = copy.deepcopy(valid["mjls-stability-scalar"])
+    c["data"]["W"][0] = ["3/2", "-1/2"]
+    c["witness"]["decrease"][0] = [["3/4"]]
+    invalid["mjls-negative-weight"] = c
+    c = copy.deepcopy(valid["mjls-stability-three-agents"])
+    c["witness"]["P"][0], c["witness"]["P"][1] = c["witness"]["P"][1], c["witness"]["P"][0]
+    invalid["mjls-two-agents-swapped"] = c
+    c = copy.deepcopy(valid["mjls-stability-three-agents"])
+    c["witness"]["P"][2][0][1] = str(json.loads(json.dumps(c["witness"]["P"][2][0][1])) + "1")
+    invalid["mjls-asymmetric-P"] = c
+    c = copy.deepcopy(valid["s-detectability-ch5-example1-Wg"])
+    c["data"]["W"] = [["1/4", "3/4", "0"], ["3/4", "1/4", "0"], ["0", "0", "1"]]
+    invalid["s-detectability-ch5-example1-Wc-altered-data"] = c
+    c = copy.deepcopy(valid["covariance-bound-two-modes"])
+    c["data"]["modes"][1]["M"][0][0][0] = "3"
+    invalid["covariance-bound-altered-mode"] = c
+    g = valid["generic-rank-fig43-case-d"]
+    c = copy.deepcopy(g)
+    c["certificates"][1]["witness"]["minor"] = "1"
+    invalid["generic-rank-stated-minor-wrong"] = c
+    c = copy.deepcopy(g)
+    c["certificates"][0]["witness"]["directions"][0][0] = "1/2"
+    invalid["generic-rank-direction-not-unit"] = c
+    c = copy.deepcopy(g["certificates"][1])
+    c["witness"]["rows"] = [1, 2, 3, 4, 5, 6]
+    c["witness"]["minor"] = "0"
+    invalid["generic-rank-singular-minor"] = c
+    c = copy.deepcopy(valid["mjls-stability-scalar"])
+    c["format"] = "trackcert-certificate/2"
+    malformed["wrong-format-version"] = c
+    malformed["truncated"] = json.dumps(valid["mjls-stability-scalar"])[:-20]
+    malformed["json-float"] = json.dumps(valid["mjls-stability-scalar"]).replace('"3/4"', "0.75")
+    c = copy.deepcopy(valid["mjls-stability-three-agents"])
+    del c["witness"]["P"][2]
+    malformed["dropped-block"] = c
+    c = copy.deepcopy(valid["mjls-stability-scalar"])
+    c["data"]["Gamma"][1] = [["1", "0"], ["0", "1"]]
+    malformed["shape-mismatch"] = c
+    c = copy.deepcopy(valid["mjls-stability-scalar"])
+    c["witness"]["P"][0] = [["1/0"]]
+    malformed["zero-denominator"] = c
+    c = copy.deepcopy(valid["mjls-stability-scalar"])
+    c["kind"] = "iss"
+    malformed["kind-iss-not-defined"] = c
+    malformed["nested-bundle"] = bundle([bundle([valid["mjls-stability-scalar"]])])
+    return invalid, malformed
+
+
+def main() -> None:
+    valid = good()
+    invalid, malformed = bad(valid)
+    for folder, items in (("valid", valid), ("invalid", invalid), ("malformed", malformed)):
+        (HERE / folder).mkdir(exist_ok=True)
+        for name, content in items.items():
+            text = (
+                content
+                if isinstance(content, str)
+                else json.dumps(content, indent=1, ensure_ascii=False)
+            )
+            (HERE / folder / f"{name}.json").write_text(text + "\n", encoding="utf-8")
+
+
+if __name__ == "__main__":
+    main()
