@@ -3,16 +3,22 @@ eq. (4.36), observability versus detectability (Thm 4.2.3)."""
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import networkx as nx
 import numpy as np
 import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
+from theory.generic_rank import exact_rank
 from theory.network import adjacency_from_edges, metropolis_weights, uniform_weights
 from theory.networked_observability import (
     agent_observability_blocks,
     analyze_network,
+    exact_network_matrix,
+    exact_weights,
+    network_generic_rank,
     network_observability_matrix,
     networked_pair,
     unobservable_subspace,
@@ -172,3 +178,53 @@ def test_path_of_four_is_observable_like_fig43_case_d() -> None:
         jacobians(agents, np.array([17.0, -5, -15]), adjacency),
     )
     assert result.observable and result.rank_sum_claim_holds and result.conclusive
+
+
+@given(st.integers(3, 5), st.data())
+def test_floating_analysis_agrees_with_exact_rank_on_rational_instances(n, data) -> None:
+    """Same instance both ways: integer TDOA rows, exact Metropolis W, T = 1."""
+    adjacency = data.draw(connected_graphs(n))
+    W = exact_weights(adjacency, data.draw(st.sampled_from(["metropolis", "uniform"])))
+    dim = data.draw(st.sampled_from([2, 3]))
+    vectors = st.lists(st.integers(-9, 9), min_size=dim, max_size=dim)
+    edge_vector = {}
+    rows = []
+    for r in range(n):
+        agent_rows = []
+        for s in np.flatnonzero(adjacency[r]):
+            key = (min(r, int(s)), max(r, int(s)))
+            if key not in edge_vector:
+                edge_vector[key] = data.draw(vectors)
+            agent_rows.append(edge_vector[key] if r < s else [-x for x in edge_vector[key]])
+        rows.append(agent_rows)
+    exact = exact_network_matrix(rows, W, dim, Fraction(1))
+    H = [np.array([[*row, *[0] * dim] for row in agent], dtype=float) for agent in rows]
+    W_float = np.array([[float(x) for x in row] for row in W])
+    result = analyze_network(cv_discrete(1.0, dim)[0], W_float, H)
+    assume(result.conclusive)
+    assert result.network_rank == exact_rank(exact)
+    blocks = [
+        exact_rank([line[i * 2 * dim : (i + 1) * 2 * dim] for line in exact]) for i in range(n)
+    ]
+    assert result.agent_ranks == blocks
+
+
+@given(st.integers(4, 6), st.data())
+def test_generic_rank_by_random_evaluation_matches_a_random_float_instance(n, data) -> None:
+    """Exact generic rank (random rational point) = floating rank at an independent random
+    geometry (almost surely generic), when the latter is conclusive."""
+    adjacency = data.draw(connected_graphs(n))
+    W = exact_weights(adjacency, "metropolis")
+    generic = network_generic_rank(adjacency, W, seed=data.draw(st.integers(0, 1000)))
+    rng = np.random.default_rng(data.draw(st.integers(0, 1000)))
+    units = rng.normal(size=(n, 3))
+    units /= np.linalg.norm(units, axis=1, keepdims=True)
+    H = [
+        np.array([np.r_[units[r] - units[s], np.zeros(3)] for s in np.flatnonzero(adjacency[r])])
+        for r in range(n)
+    ]
+    W_float = np.array([[float(x) for x in row] for row in W])
+    result = analyze_network(cv_discrete(1.0, 3)[0], W_float, H)
+    assume(result.conclusive)
+    assert result.network_rank == generic.network_rank
+    assert result.agent_ranks == generic.agent_ranks

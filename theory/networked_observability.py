@@ -40,6 +40,7 @@ __all__ = [
     "NetworkObservability",
     "agent_observability_blocks",
     "analyze_network",
+    "exact_network_matrix",
     "exact_weights",
     "network_generic_rank",
     "network_observability_matrix",
@@ -523,7 +524,7 @@ def network_generic_rank(
     sample = 2**sample_bits
     rows = _random_rows(adjacency, dim, parametrization, rng, sample)
     period = Fraction(T) if T is not None else Fraction(1 + int(rng.integers(0, sample - 1)))
-    O = _integer_network_matrix(rows, [[Fraction(x) for x in r] for r in W], dim, period)
+    O = exact_network_matrix(rows, [[Fraction(x) for x in r] for r in W], dim, period)
     n = 2 * dim
     network_rank = exact_rank(O, field=field)
     agent_ranks = [
@@ -586,10 +587,28 @@ def _random_rows(
     raise ValueError(f"parametrization must be 'geometry' or 'edges'; got {parametrization!r}")
 
 
-def _integer_network_matrix(
+def exact_network_matrix(
     rows: list[list[list[int]]], W: list[list[Fraction]], dim: int, T: Fraction
 ) -> list[list[int]]:
-    """Eq. (4.36) with integer entries: block row ``l`` scaled by the lcm of its denominators."""
+    """Eq. (4.36) over the integers (each block row ``l`` scaled by its denominators' lcm).
+
+    Parameters
+    ----------
+    rows : list of list of list of int
+        Per agent, its TDOA rows' position part (velocity part zero), integers.
+    W : list of list of Fraction
+        Exact consensus weights.
+    dim : int
+        2 or 3.
+    T : Fraction
+        Sampling period.
+
+    Returns
+    -------
+    list of list of int
+        ``O`` with the row order of :func:`agent_observability_blocks` (rows scaled by positive
+        integers, so every rank, of ``O`` and of each block column, is that of eq. (4.36)).
+    """
     N, n = len(W), 2 * dim
     out: list[list[int]] = []
     power = [[Fraction(int(i == j)) for j in range(N)] for i in range(N)]
