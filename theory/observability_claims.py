@@ -234,7 +234,7 @@ def _planar(case: None) -> list[ClaimResult]:
 
 @register(
     "seed000.thm4.2.3",
-    source="seed 000, Thm 4.2.3, Fig. 4.3 and App. B.1",
+    source="seed 000, Thm 4.2.3, Fig. 4.3 and App. B.1; seed 001, Theorem 1",
     statement="The networked system is observable iff every agent is part of a (sub)network of "
     "at least 4 connected, non-coplanar agents.",
     kinds=("tdoa",),
@@ -319,7 +319,7 @@ def _thm_4_2_3_case(case: Case, k: int, step: TdoaStep) -> ClaimResult:
 
 @register(
     "seed000.eq4.36.rank-sum",
-    source="seed 000, §4.2.2 after eq. (4.36)",
+    source="seed 000, §4.2.2 after eq. (4.36); seed 001, after eq. (36)",
     statement="From the structure of D_H, rank O = Σ_i rank O_i.",
     kinds=("tdoa",),
 )
