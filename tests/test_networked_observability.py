@@ -82,10 +82,11 @@ def test_staircase_rank_agrees_with_svd_of_the_whole_matrix(scene, data) -> None
     A, _ = cv_discrete(1.0, 3)
     W = data.draw(st.sampled_from([metropolis_weights, uniform_weights]))(adjacency)
     H = jacobians(agents, target, adjacency)
-    result = analyze_network(A, W, H)
+    basis, margin = unobservable_subspace(*networked_pair(A, W, H), rank_tol=1e-9)
     whole = numeric_rank(network_observability_matrix(A, W, H), rank_tol=1e-9)
-    assume(result.conclusive and whole.conclusive())
-    assert result.network_rank == whole.rank
+    assume(margin >= 1e3 and whole.conclusive())
+    assert 6 * len(agents) - basis.shape[1] == whole.rank
+    assert analyze_network(A, W, H).rank_method in ("staircase", "svd")
 
 
 @given(scenes(), st.data())
