@@ -229,3 +229,46 @@ def test_generic_rank_by_random_evaluation_matches_a_random_float_instance(n, da
     assume(result.conclusive)
     assert result.network_rank == generic.network_rank
     assert result.agent_ranks == generic.agent_ranks
+
+
+@st.composite
+def any_graphs(draw, n: int):
+    """Adjacency of an arbitrary undirected graph on ``n`` nodes (possibly disconnected)."""
+    pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
+    edges = draw(st.lists(st.sampled_from(pairs), unique=True, max_size=2 * n))
+    return adjacency_from_edges(n, np.array(edges, dtype=int).reshape(-1, 2))
+
+
+@given(scenes(min_agents=4, max_agents=7), st.data())
+def test_block_column_rank_is_twice_the_stacked_rank_of_the_component(scene, data) -> None:
+    """docs/theory/tdoa-observability.md, Theorem 4(a): rank O_i = 2·rank [Λ_m]_{m ∈ R(i)}."""
+    agents, target = scene
+    adjacency = data.draw(any_graphs(len(agents)))
+    H = jacobians(agents, target, adjacency)
+    W = data.draw(st.sampled_from([metropolis_weights, uniform_weights]))(adjacency)
+    result = analyze_network(cv_discrete(1.0, 3)[0], W, H)
+    for part in nx.connected_components(nx.from_numpy_array(adjacency.astype(int))):
+        stacked = np.vstack([H[m][:, :3] for m in part])
+        rank = numeric_rank(stacked) if stacked.size else None
+        assume(rank is None or rank.conclusive())
+        for i in part:
+            assert result.agent_ranks[i] == 2 * (rank.rank if rank else 0)
+
+
+@given(scenes(min_agents=4, max_agents=7), st.data())
+def test_detectable_iff_every_component_has_full_stacked_rank(scene, data) -> None:
+    """Theorem 4(c): for undirected graphs the pair is detectable iff each component's stacked
+    Jacobian has rank 3 (components of < 4 agents never do)."""
+    agents, target = scene
+    adjacency = data.draw(any_graphs(len(agents)))
+    H = jacobians(agents, target, adjacency)
+    W = data.draw(st.sampled_from([metropolis_weights, uniform_weights]))(adjacency)
+    result = analyze_network(cv_discrete(1.0, 3)[0], W, H)
+    assume(result.conclusive)
+    full = []
+    for part in nx.connected_components(nx.from_numpy_array(adjacency.astype(int))):
+        stacked = np.vstack([H[m][:, :3] for m in part])
+        rank = numeric_rank(stacked) if stacked.size else None
+        assume(rank is None or rank.conclusive())
+        full.append(rank is not None and rank.rank == 3)
+    assert result.detectable == all(full)
