@@ -722,7 +722,8 @@ def derivation_markdown(result: SingleAgentGenericRank) -> str:
         values = ", ".join(f"{a} (×{c})" for a, c in sorted(result.alpha_counts.items()))
         lines += [
             "",
-            f"With {k} = {d} rows every non-zero minor is α·T^{d}·det(Λ)² (eq. 4.20). A minor is "
+            f"With {k} = {d} rows every non-zero minor is α·T^{d}·det(Λ)² "
+            f"({'eq. 4.20' if d == 3 else 'the planar analogue of eq. 4.20'}). A minor is "
             f"non-zero iff it uses every row of Λ at exactly two powers j < j', and then "
             f"α = ±Π_r (j'_r − j_r) (closed form confirmed: {result.closed_form_alpha}).",
             "",
@@ -738,11 +739,18 @@ def derivation_markdown(result: SingleAgentGenericRank) -> str:
         lines += [f"| {list(r)} | {a} |" for r, a in result.alphas[:12]]
         if len(result.alphas) > 12:
             lines.append(f"| … {len(result.alphas) - 12} more (see the JSON output) | |")
+        wording = (
+            "the 4 agents being coplanar: it means they lie on one circular cone with apex at "
+            "the target"
+            if d == 3
+            else "the 3 agents being collinear: it means they lie on at most two rays from the "
+            "target"
+        )
         lines += [
             "",
             "Note: det Λ = 0 means the TDOA rows (differences of unit vectors from the agents "
-            "to the target) are linearly dependent; this is not the same as the 4 agents being "
-            "coplanar (see docs/theory/tdoa-observability.md).",
+            f"to the target) are linearly dependent; this is not the same as {wording} "
+            "(docs/theory/tdoa-observability.md, Theorem 2).",
         ]
     else:
         lines += [

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from theory.cli.common import EXIT_FAILS, console, print_json, reports_errors
+from theory.cli.common import EXIT_FAILS, print_json, reports_errors
 from theory.errors import CaseError
 from theory.fig43 import FIG43_EDGES, fig43_analysis
 from theory.generic_rank import single_agent_generic_rank
@@ -64,7 +64,7 @@ def register(app: typer.Typer) -> None:
         if as_json:
             print_json({**result.to_json(), "derivation": result.markdown(), "holds": ok})
         else:
-            console.print(result.markdown(), markup=False, highlight=False)
+            typer.echo(result.markdown(), nl=False)  # raw markdown: no re-wrapping of tables
         if not ok:
             raise typer.Exit(EXIT_FAILS)
 
@@ -94,6 +94,6 @@ def _fig43(case: str, weights: str, seed: int, as_json: bool) -> None:
             f"  rank O = Σ rank O_i (paper, after eq. 4.36): {result['rank_sum_claim_holds']}",
             f"  observable: {result['network_observable']}; detectable: {result['detectable']}",
         ]
-        console.print("\n".join(lines), markup=False, highlight=False)
+        typer.echo("\n".join(lines))
     if not ok:
         raise typer.Exit(EXIT_FAILS)
