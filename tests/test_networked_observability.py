@@ -272,3 +272,24 @@ def test_detectable_iff_every_component_has_full_stacked_rank(scene, data) -> No
         assume(rank is None or rank.conclusive())
         full.append(rank is not None and rank.rank == 3)
     assert result.detectable == all(full)
+
+
+@pytest.mark.parametrize(
+    ("w_diag", "seen", "detectable", "conclusive"),
+    [
+        ((2.0, 0.5), (False, False), False, True),  # unstable unobservable mode
+        ((2.0, 0.5), (True, False), True, True),  # only the stable mode is hidden
+        ((1.0, 0.5), (False, True), False, True),  # marginal mode exactly on the circle
+        ((1.0 - 5e-7, 0.5), (False, True), False, False),  # inside the tolerance band
+        ((1.0 - 1e-3, 0.5), (False, True), True, True),  # clearly stable
+    ],
+)
+def test_detectability_against_the_unit_circle(w_diag, seen, detectable, conclusive) -> None:
+    """Modes |μ| ≥ 1 − unit_circle_tol hidden from the outputs make the pair undetectable; a
+    mode within a factor unit_circle_factor of the tolerance is reported inconclusive."""
+    A = np.array([[1.0]])
+    H = [np.array([[1.0]]) if s else np.zeros((0, 1)) for s in seen]
+    result = analyze_network(A, np.diag(w_diag), H)
+    assert result.detectable is detectable
+    assert result.conclusive is conclusive
+    assert len(result.unobservable_eigenvalues) == sum(not s for s in seen)
