@@ -3,10 +3,14 @@ whole O exactly at random points, and the two methods agreeing."""
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 import sympy as sp
+from typer.testing import CliRunner
 
+from theory.cli import app
 from theory.fig43 import FIG43_EDGES, agent_rank_witness, fig43_analysis, shared_lambda_jacobians
 from theory.network import adjacency_from_edges
 from theory.networked_observability import exact_weights, network_generic_rank
@@ -80,3 +84,13 @@ def test_witness_minor_by_a_full_sympy_determinant() -> None:
         rows.append((Wq**power)[m, 0] * row * A**power)
     minor = sp.Matrix.vstack(*rows).det(method="berkowitz")
     assert sp.expand(minor - sp.Rational(witness["c"]) * T**3 * L.det() ** 2) == 0
+
+
+def test_cli_fig43_reports_the_rank_sum_failure() -> None:
+    runner = CliRunner()
+    out = runner.invoke(app, ["generic", "--fig43", "b", "--json"])
+    assert out.exit_code == 0
+    data = json.loads(out.stdout)
+    assert data["exact"]["network_rank"] == 15 and not data["rank_sum_claim_holds"]
+    bad = runner.invoke(app, ["generic", "--fig43", "e"])
+    assert bad.exit_code == 2 and "--fig43" in bad.stderr

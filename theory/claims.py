@@ -39,6 +39,7 @@ CLAIM_MODULES: tuple[str, ...] = (
     "theory.dcrw_claims",
     "theory.dkf_claims",
     "theory.iss_claims",
+    "theory.observability_claims",
     "theory.pf_experiments",
     "theory.pf_vs_ekf",
     "theory.topology_claims",

@@ -108,10 +108,17 @@ def agent_rank_witness(
         ``rows`` (power ``l``, agent ``m`` 1-based, edge 1-based), ``c`` (str), ``minor``
         (factored str) and ``rank`` (``2d`` when ``c ≠ 0``).
 
+    Raises
+    ------
+    ValueError
+        Unless there are exactly ``dim`` edges.
+
     References
     ----------
     seed 000, eq. (4.37), Lemma 4.2.2, App. B.1.
     """
+    if len(edges) != dim:
+        raise ValueError(f"need exactly {dim} edges (a spanning tree of {dim + 1} agents)")
     T = sp.Symbol("T")
     Wq = sp.Matrix([[sp.Rational(x.numerator, x.denominator) for x in r] for r in W])
     powers = [sp.eye(len(W))]

@@ -26,7 +26,7 @@ from __future__ import annotations
 import itertools
 from collections import Counter
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from fractions import Fraction
 from math import comb, prod
 
@@ -95,8 +95,18 @@ def symbolic_single_agent_matrix(
 
 
 def paper_eq_4_20_determinant(Lambda: sp.Matrix) -> sp.Expr:
-    """The bracket printed in seed 000 eq. (4.20) in the entries of ``Lambda`` (its square is the
-    paper's factor)."""
+    """The bracket printed in seed 000 eq. (4.20) (its square is the paper's factor).
+
+    Parameters
+    ----------
+    Lambda : sympy.Matrix, shape (3, 3)
+        ``λ_1, …, λ_9`` row by row (eq. 4.19).
+
+    Returns
+    -------
+    sympy.Expr
+        Equal to ``−det Λ``.
+    """
     l1, l2, l3, l4, l5, l6, l7, l8, l9 = list(Lambda)
     return l3 * (l5 * l7 - l4 * l8) + l2 * (l4 * l9 - l6 * l7) + l1 * (l6 * l8 - l5 * l9)
 
@@ -135,7 +145,17 @@ class MinorExpansions:
         return int(self.row_sets.shape[0])
 
     def terms(self, index: int) -> dict[tuple[int, int], int]:
-        """``{(a, b): c_ab}`` of minor ``index``."""
+        """``{(a, b): c_ab}`` of minor ``index``.
+
+        Parameters
+        ----------
+        index : int
+            Index into ``row_sets``.
+
+        Returns
+        -------
+        dict
+        """
         lo, hi = np.searchsorted(self.minor, [index, index + 1])
         return {
             (int(a), int(b)): int(c)
@@ -143,14 +163,43 @@ class MinorExpansions:
         }
 
     def polynomial(self, index: int, Lambda: sp.Matrix, T: sp.Symbol) -> sp.Expr:
-        """Minor ``index`` as a sympy expression in ``Λ``'s symbols and ``T``."""
+        """Minor ``index`` as a sympy expression ``T^d Σ c_ab M_a M_b``.
+
+        Parameters
+        ----------
+        index : int
+            Index into ``row_sets``.
+        Lambda : sympy.Matrix, shape (k, d)
+            The symbolic ``Λ`` (see :func:`symbolic_single_agent_matrix`).
+        T : sympy.Symbol
+            The sampling period.
+
+        Returns
+        -------
+        sympy.Expr
+        """
         minors = [Lambda.extract(list(s), list(range(self.dim))).det() for s in self.subsets]
         return T**self.dim * sum(
             (c * minors[a] * minors[b] for (a, b), c in self.terms(index).items()), sp.S.Zero
         )
 
     def evaluate(self, index_minors: np.ndarray, Lambda: np.ndarray, T: int) -> list[int]:
-        """Exact integer values of the minors ``index_minors`` at integer ``Λ`` and ``T``."""
+        """Exact integer values of the minors ``index_minors`` at integer ``Λ`` and ``T``.
+
+        Parameters
+        ----------
+        index_minors : ndarray of int
+            Indices into ``row_sets`` (distinct).
+        Lambda : ndarray of int (object dtype allowed), shape (k, d)
+            The point.
+        T : int
+            The sampling period at the point.
+
+        Returns
+        -------
+        list of int
+            In the order of ``index_minors``.
+        """
         m = [int(flint.fmpz_mat(Lambda[list(s)].tolist()).det()) for s in self.subsets]
         values = dict.fromkeys(int(i) for i in index_minors)
         sums = dict.fromkeys(values, 0)
@@ -437,9 +486,6 @@ class SingleAgentGenericRank:
         For each ``d``-subset ``a`` of ``Λ``'s rows (1-based, as a string): a minor equal to
         ``α T^d M_a²`` (rows and ``α``): with footnote 2's ``⇔`` this shows ``rank O = n`` iff
         some ``M_a ≠ 0``, i.e. ``rank Λ ≥ d`` (``k ≥ d``).
-    in_minor_ideal : bool
-        Every minor is ``T^d`` times a quadratic form in the ``M_a`` (true by construction; kept
-        so the evidence says so).
     paper_factor_matches : bool
         ``(eq. 4.20's bracket)² = det(Λ)²`` (``d = k = 3`` only; ``None`` otherwise).
     cross_check : dict
@@ -461,12 +507,10 @@ class SingleAgentGenericRank:
     alpha_counts: dict[int, int]
     closed_form_alpha: bool | None
     witnesses: dict[str, dict]
-    in_minor_ideal: bool
     paper_factor_matches: bool | None
     cross_check: dict
     random_rank: RandomRank
     kronecker_rank: int
-    notes: tuple[str, ...] = field(default=())
 
     def to_json(self) -> dict:
         """JSON-ready summary (``alphas`` included)."""
@@ -474,7 +518,6 @@ class SingleAgentGenericRank:
         data["random_rank"] = dict(self.random_rank.__dict__)
         data["alpha_counts"] = {str(a): c for a, c in sorted(self.alpha_counts.items())}
         data["alphas"] = [{"rows": list(r), "alpha": a} for r, a in self.alphas]
-        data["notes"] = list(self.notes)
         return data
 
     def markdown(self) -> str:
@@ -534,7 +577,6 @@ def single_agent_generic_rank(
         alpha_counts=counts,
         closed_form_alpha=closed,
         witnesses=_witnesses(expansions),
-        in_minor_ideal=True,
         paper_factor_matches=paper,
         cross_check=_cross_check(expansions, seed=seed, bits=sample_bits, limit=cross_check_limit),
         random_rank=random_generic_rank(dim, rows, seed=seed, field=field),
@@ -639,7 +681,18 @@ def _check_dims(dim: int, rows: int) -> None:
 
 
 def derivation_markdown(result: SingleAgentGenericRank) -> str:
-    """A readable derivation of §4.2.1's result for ``result.dim``, ``result.rows`` (markdown)."""
+    """A readable derivation of §4.2.1's result for ``result.dim``, ``result.rows``.
+
+    Parameters
+    ----------
+    result : SingleAgentGenericRank
+        From :func:`single_agent_generic_rank`.
+
+    Returns
+    -------
+    str
+        Markdown, embeddable in the report.
+    """
     d, k, n = result.dim, result.rows, result.n_states
     lines = [
         f"### Generic observability of one agent: d = {d}, {k} TDOA row(s)",
@@ -669,7 +722,8 @@ def derivation_markdown(result: SingleAgentGenericRank) -> str:
         values = ", ".join(f"{a} (×{c})" for a, c in sorted(result.alpha_counts.items()))
         lines += [
             "",
-            f"With {k} = {d} rows every non-zero minor is α·T^{d}·det(Λ)² (eq. 4.20). A minor is "
+            f"With {k} = {d} rows every non-zero minor is α·T^{d}·det(Λ)² "
+            f"({'eq. 4.20' if d == 3 else 'the planar analogue of eq. 4.20'}). A minor is "
             f"non-zero iff it uses every row of Λ at exactly two powers j < j', and then "
             f"α = ±Π_r (j'_r − j_r) (closed form confirmed: {result.closed_form_alpha}).",
             "",
@@ -685,11 +739,18 @@ def derivation_markdown(result: SingleAgentGenericRank) -> str:
         lines += [f"| {list(r)} | {a} |" for r, a in result.alphas[:12]]
         if len(result.alphas) > 12:
             lines.append(f"| … {len(result.alphas) - 12} more (see the JSON output) | |")
+        wording = (
+            "the 4 agents being coplanar: it means they lie on one circular cone with apex at "
+            "the target"
+            if d == 3
+            else "the 3 agents being collinear: it means they lie on at most two rays from the "
+            "target"
+        )
         lines += [
             "",
             "Note: det Λ = 0 means the TDOA rows (differences of unit vectors from the agents "
-            "to the target) are linearly dependent; this is not the same as the 4 agents being "
-            "coplanar (see docs/theory/tdoa-observability.md).",
+            f"to the target) are linearly dependent; this is not the same as {wording} "
+            "(docs/theory/tdoa-observability.md, Theorem 2).",
         ]
     else:
         lines += [

@@ -32,7 +32,7 @@ from math import lcm
 import numpy as np
 
 from theory.generic_rank import exact_rank
-from theory.observability import RANK_TOL, numeric_rank
+from theory.observability import RANK_TOL, numeric_rank, observability_matrix
 
 __all__ = [
     "UNIT_CIRCLE_TOL",
@@ -40,6 +40,7 @@ __all__ = [
     "NetworkObservability",
     "agent_observability_blocks",
     "analyze_network",
+    "exact_network_matrix",
     "exact_weights",
     "network_generic_rank",
     "network_observability_matrix",
@@ -84,6 +85,9 @@ class NetworkObservability:
         Smallest ``max(d/tol, tol/d)`` over unobservable modes, ``d = ||μ| − 1|`` (∞ if none).
     conclusive : bool
         ``margin ≥ inconclusive_factor`` and ``unit_circle_margin ≥ unit_circle_factor``.
+    rank_method : str
+        Which computation of ``rank O`` decided (``"staircase"`` or ``"svd"``, the one with the
+        larger margin when both agree; otherwise a note of the disagreement, and inconclusive).
     """
 
     network_rank: int
@@ -99,6 +103,7 @@ class NetworkObservability:
     unit_circle_tol: float
     unit_circle_margin: float
     conclusive: bool
+    rank_method: str = "staircase"
 
     def to_json(self) -> dict:
         """Plain JSON types (complex numbers as ``{"re", "im"}``)."""
@@ -307,7 +312,7 @@ def analyze_network(
     """
     A, W, blocks = _checked(A, W, H_blocks)
     WA, D_H = networked_pair(A, W, blocks)
-    basis, margin = unobservable_subspace(WA, D_H, rank_tol=rank_tol)
+    basis, margin, method = _unobservable_basis(WA, D_H, rank_tol)
     n_states = WA.shape[0]
     network_rank = n_states - basis.shape[1]
     eigenvalues = _snap(np.linalg.eigvals(basis.T @ WA @ basis), _mode_candidates(A, W))
@@ -335,7 +340,27 @@ def analyze_network(
         unit_circle_tol=unit_circle_tol,
         unit_circle_margin=float(unit_margin),
         conclusive=bool(margin >= inconclusive_factor and unit_margin >= unit_circle_factor),
+        rank_method=method,
     )
+
+
+def _unobservable_basis(
+    WA: np.ndarray, D_H: np.ndarray, rank_tol: float
+) -> tuple[np.ndarray, float, str]:
+    """Kernel of ``O`` two ways: the staircase and the SVD of the whole ``O`` (eq. 4.36).
+
+    ``A`` has all eigenvalues 1 and ``W`` none outside the unit disc, so the rows of ``O`` grow
+    at most linearly and its SVD is usually well conditioned; the staircase never forms ``O``.
+    When both find the same rank, the one with the larger margin supplies the basis and the
+    margin; when they disagree the verdict is inconclusive (margin 0).
+    """
+    staircase, staircase_margin = unobservable_subspace(WA, D_H, rank_tol=rank_tol)
+    whole, whole_margin = _null_space(observability_matrix(WA, D_H), rank_tol, scale=None)
+    if staircase.shape[1] != whole.shape[1]:
+        return staircase, 0.0, "disagreement: staircase vs SVD of O"
+    if whole_margin > staircase_margin:
+        return whole, whole_margin, "svd"
+    return staircase, staircase_margin, "staircase"
 
 
 def _checked(
@@ -357,7 +382,9 @@ def _null_space(
     cols = matrix.shape[1]
     if matrix.shape[0] == 0:
         return np.eye(cols), np.inf
-    _, sv, vh = np.linalg.svd(matrix, full_matrices=True)
+    # Tall matrices: the thin SVD already carries every right singular vector (and the full U of
+    # a tall O would cost O(rows²)); wide ones need the full V for their kernel.
+    _, sv, vh = np.linalg.svd(matrix, full_matrices=matrix.shape[0] < cols)
     top = float(sv[0]) if sv.size else 0.0
     reference = max(top, scale) if scale is not None else top
     threshold = rank_tol * reference if reference > 0 else rank_tol
@@ -523,7 +550,7 @@ def network_generic_rank(
     sample = 2**sample_bits
     rows = _random_rows(adjacency, dim, parametrization, rng, sample)
     period = Fraction(T) if T is not None else Fraction(1 + int(rng.integers(0, sample - 1)))
-    O = _integer_network_matrix(rows, [[Fraction(x) for x in r] for r in W], dim, period)
+    O = exact_network_matrix(rows, [[Fraction(x) for x in r] for r in W], dim, period)
     n = 2 * dim
     network_rank = exact_rank(O, field=field)
     agent_ranks = [
@@ -586,10 +613,28 @@ def _random_rows(
     raise ValueError(f"parametrization must be 'geometry' or 'edges'; got {parametrization!r}")
 
 
-def _integer_network_matrix(
+def exact_network_matrix(
     rows: list[list[list[int]]], W: list[list[Fraction]], dim: int, T: Fraction
 ) -> list[list[int]]:
-    """Eq. (4.36) with integer entries: block row ``l`` scaled by the lcm of its denominators."""
+    """Eq. (4.36) over the integers (each block row ``l`` scaled by its denominators' lcm).
+
+    Parameters
+    ----------
+    rows : list of list of list of int
+        Per agent, its TDOA rows' position part (velocity part zero), integers.
+    W : list of list of Fraction
+        Exact consensus weights.
+    dim : int
+        2 or 3.
+    T : Fraction
+        Sampling period.
+
+    Returns
+    -------
+    list of list of int
+        ``O`` with the row order of :func:`agent_observability_blocks` (rows scaled by positive
+        integers, so every rank, of ``O`` and of each block column, is that of eq. (4.36)).
+    """
     N, n = len(W), 2 * dim
     out: list[list[int]] = []
     power = [[Fraction(int(i == j)) for j in range(N)] for i in range(N)]

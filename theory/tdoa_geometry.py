@@ -137,14 +137,35 @@ def stacked_jacobian_position(
 
 
 def rational(value: float | int | Fraction) -> Fraction:
-    """The rational a user wrote for ``value`` (``Fraction(repr(x))`` for floats: 0.1 → 1/10)."""
+    """The rational a user wrote: ``Fraction(repr(x))`` for floats (``0.1 → 1/10``).
+
+    Parameters
+    ----------
+    value : float, int or Fraction
+        A coordinate as parsed from a case file.
+
+    Returns
+    -------
+    Fraction
+    """
     if isinstance(value, Fraction | int):
         return Fraction(value)
     return Fraction(repr(float(value)))
 
 
 def exact_affine_rank(points: Sequence[Sequence[float | Fraction]]) -> int:
-    """Exact dimension of the affine hull of rational points (``-1`` for no points)."""
+    """Exact dimension of the affine hull of points read as rationals (see :func:`rational`).
+
+    Parameters
+    ----------
+    points : sequence of sequences of float or Fraction
+        The points.
+
+    Returns
+    -------
+    int
+        ``-1`` for no points, ``0`` for one.
+    """
     pts = [[rational(x) for x in p] for p in points]
     if not pts:
         return -1
