@@ -1,0 +1,10 @@
+"""Closed-loop simulation of distributed TDOA localization and pursuit (seed 000 §4.3–4.4).
+
+One module per idea: :mod:`targets` (the constant-velocity target), :mod:`measurements` (TDOA),
+:mod:`ekf` (extended Kalman updates), :mod:`consensus` (averaging of estimates and covariances),
+:mod:`filters` (averaged / decentralized / centralized network filters), :mod:`formation`
+(desired offsets), :mod:`agents` (3D steering robots with dynamic feedback linearization),
+:mod:`scenario` (one closed-loop run), :mod:`metrics`, :mod:`runner` (Monte Carlo),
+:mod:`figures`, :mod:`crb` (static CRB and posterior CRB), :mod:`consensus_kf` (seed 000 ch. 5)
+and :mod:`tdoa_sim_case` (the ``kind: tdoa-sim`` case block).
+"""
