@@ -38,6 +38,8 @@ def measurement_step(
     positions: np.ndarray,
     neighbours: list[np.ndarray],
     r: float,
+    *,
+    linearize_at: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The measurement update of every agent at one ping.
 
@@ -57,6 +59,10 @@ def measurement_step(
         0-based neighbours of each agent (whose TOAs agent ``i`` hears).
     r : float
         Measurement noise variance, ``R_i = r I``.
+    linearize_at : ndarray, shape (d,), optional
+        Evaluate the Jacobians here (e.g. the true target position: the *linearized* filter whose
+        covariance is the Riccati recursion along the true geometry) instead of at each
+        agent's prediction (the EKF).
 
     Returns
     -------
@@ -71,15 +77,19 @@ def measurement_step(
     if kind == "centralized":
         point = x[0, :dim]
         h = np.concatenate(tdoa_predictions(point, positions, neighbours))
-        H = np.vstack(tdoa_jacobians(point, positions, neighbours))
+        H = np.vstack(tdoa_jacobians(_at(point, linearize_at), positions, neighbours))
         y = np.concatenate(readings)
         x0, P0 = ekf_update(x[0], P[0], y - h, H, r * np.eye(y.shape[0]))
         n = x.shape[0]
         return np.tile(x0, (n, 1)), np.tile(P0, (n, 1, 1))
     points = x[:, :dim]
     predictions = tdoa_predictions(points, positions, neighbours)
-    jacobians = tdoa_jacobians(points, positions, neighbours)
+    jacobians = tdoa_jacobians(_at(points, linearize_at), positions, neighbours)
     x_new, P_new = np.empty_like(x), np.empty_like(P)
     for i, (y, h, H) in enumerate(zip(readings, predictions, jacobians, strict=True)):
         x_new[i], P_new[i] = ekf_update(x[i], P[i], y - h, H, r * np.eye(y.shape[0]))
     return x_new, P_new
+
+
+def _at(points: np.ndarray, linearize_at: np.ndarray | None) -> np.ndarray:
+    return points if linearize_at is None else np.broadcast_to(linearize_at, points.shape)

@@ -116,7 +116,10 @@ def run_tdoa_scenario(spec: TdoaSimSpec, rng: np.random.Generator) -> TdoaRun:
         positions = states[:, :3]
         neighbours = neighbour_lists(_hears(spec, positions))
         readings = tdoa_readings(truth[k, :3], positions, neighbours, spec.r, rng)
-        x, P = measurement_step(spec.filter, x, P, readings, positions, neighbours, spec.r)
+        at = truth[k, :3] if spec.linearize == "truth" else None
+        x, P = measurement_step(
+            spec.filter, x, P, readings, positions, neighbours, spec.r, linearize_at=at
+        )
         for j in range(m):
             if shares_estimates(spec.filter):
                 x, P = average_round(_weights(spec, states[:, :3]), x, P)

@@ -17,6 +17,7 @@ Block fields (seed 000 §4.4 defaults in brackets)::
       comm_range: 21               # distance rule "closer than comm_range" (re-evaluated each τ)
       weights: metropolis          # metropolis | uniform | explicit N × N (with edges only)
       filter: averaged             # averaged | decentralized | centralized
+      linearize: estimate          # estimate (the EKF) | truth (linearized filter, for checks)
       steps: 100                   # number of pings after the first
       formation: cube              # cube | crown | explicit N × 3 offsets d_i
       formation_radius: 10         # circumradius of the cube / radius of the crown
@@ -74,6 +75,7 @@ FIELDS = (
     "comm_range",
     "weights",
     "filter",
+    "linearize",
     "steps",
     "formation",
     "formation_radius",
@@ -111,6 +113,9 @@ class TdoaSimSpec:
     weights : str or ndarray
         ``"metropolis"``, ``"uniform"`` or an explicit matrix.
     filter : str
+    linearize : str
+        ``estimate`` (EKF) or ``truth`` (Jacobians at the true target: the covariance is the
+        Riccati recursion of the linearized system, used to cross-check observability).
     steps : int
     offsets : ndarray, shape (N, 3)
         Formation offsets ``d_i`` of eq. (4.45).
@@ -133,6 +138,7 @@ class TdoaSimSpec:
     comm_range: float | None
     weights: str | np.ndarray
     filter: str
+    linearize: str
     steps: int
     offsets: np.ndarray
     pole: float
@@ -188,6 +194,9 @@ def parse_tdoa_sim(block: Mapping[str, Any]) -> TdoaSimSpec:
         comm_range=comm_range,
         weights=_weights(block.get("weights", "metropolis"), hears, n),
         filter=one_of(block.get("filter", "averaged"), FILTERS, f"{KIND}.filter"),
+        linearize=one_of(
+            block.get("linearize", "estimate"), ("estimate", "truth"), f"{KIND}.linearize"
+        ),
         steps=positive_int(block.get("steps", 100), f"{KIND}.steps"),
         offsets=_offsets(block, agents),
         pole=positive_number(block.get("pole", 0.5), f"{KIND}.pole"),
