@@ -68,7 +68,7 @@ def test_distance_rule_network_localizes_where_lone_agents_cannot() -> None:
 
 def test_summary_has_the_design_keys() -> None:
     spec = _spec("sim-ch4-fixed-b0", steps=5)
-    summary = summarize_runs(monte_carlo(spec, runs=2, seed=0, workers=1))
+    summary = summarize_runs(spec, monte_carlo(spec, runs=2, seed=0, workers=1))
     assert len(summary["agents"]) == 8
     for agent in summary["agents"]:
         assert {"id", "final_localization_error", "mean_localization_error"} <= set(agent)

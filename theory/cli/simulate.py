@@ -61,7 +61,7 @@ def register(app: typer.Typer) -> None:
                 workers=workers,
                 progress=lambda done: progress.update(task, completed=done),
             )
-        summary = summarize_runs(results)
+        summary = summarize_runs(spec, results)
         error_bound = loaded.tolerances.get("error_bound", 10.0 * math.sqrt(spec.r))
         expectations = check_expectations(summary, loaded.expect, error_bound=error_bound)
         folder = Path(output)

@@ -31,7 +31,7 @@ from theory.sim.targets import simulate_cv_target
 from theory.sim.tdoa_sim_case import TdoaSimSpec
 from theory.tdoa import cv_discrete
 
-__all__ = ["TdoaRun", "covariance_norms", "run_tdoa_scenario"]
+__all__ = ["TdoaRun", "covariance_norms", "hears_at", "run_tdoa_scenario"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,7 +114,7 @@ def run_tdoa_scenario(spec: TdoaSimSpec, rng: np.random.Generator) -> TdoaRun:
     travelled = np.zeros(n)
     for k in range(K + 1):
         positions = states[:, :3]
-        neighbours = neighbour_lists(_hears(spec, positions))
+        neighbours = neighbour_lists(hears_at(spec, positions))
         readings = tdoa_readings(truth[k, :3], positions, neighbours, spec.r, rng)
         at = truth[k, :3] if spec.linearize == "truth" else None
         x, P = measurement_step(
@@ -135,7 +135,8 @@ def run_tdoa_scenario(spec: TdoaSimSpec, rng: np.random.Generator) -> TdoaRun:
     return record.result(spec, truth)
 
 
-def _hears(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
+def hears_at(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
+    """``hears[i, j]`` for agents at ``positions`` (fixed edges, or the range rule)."""
     if spec.hears is not None:
         return spec.hears
     return adjacency_from_range(positions, spec.comm_range)
@@ -144,7 +145,7 @@ def _hears(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
 def _weights(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
     if isinstance(spec.weights, np.ndarray):
         return spec.weights
-    hears = _hears(spec, positions)
+    hears = hears_at(spec, positions)
     return metropolis_weights(hears) if spec.weights == "metropolis" else uniform_weights(hears)
 
 
