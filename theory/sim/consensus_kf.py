@@ -15,10 +15,11 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-__all__ = ["ORDERS", "ConsensusKfRun", "simulate_consensus_kf"]
+__all__ = ["ORDERS", "ConsensusKfRun", "ch5_examples", "simulate_consensus_kf"]
 
 ORDERS = ("consensus-first", "filter-first")
 
@@ -136,3 +137,33 @@ def simulate_consensus_kf(
         estimates[k + 1], covariances[k + 1] = xs, Ps
         states[k + 1] = A @ x + rng.multivariate_normal(np.zeros(n), Q)
     return ConsensusKfRun(states, estimates, covariances)
+
+
+def ch5_examples() -> dict[str, dict[str, Any]]:
+    """Seed 000 §5.3 Examples 1–2: matrices, initial data, every W of the text, and the agents
+    whose pair ``(A, C_i)`` is not detectable (``unstable_agents``, 0-based)."""
+    return {
+        "example 1": {
+            "A": 2.0 * np.eye(2),
+            "C": [np.array([[1.0, 0.0]]), np.array([[0.0, 1.0]]), np.eye(2)],
+            "R": [0.1 * np.eye(1), 0.1 * np.eye(1), 0.1 * np.eye(2)],
+            "Q": 0.1 * np.eye(2),
+            "x0": np.array([-15.0, 15.0]),
+            "P0": 10.0 * np.eye(2),
+            "W_g": [[0.24, 0.76, 0], [0.76, 0.24, 0], [0, 0, 1]],
+            "W_c": [[0.25, 0.75, 0], [0.75, 0.25, 0], [0, 0, 1]],
+            "W_b": [[0.26, 0.74, 0], [0.74, 0.26, 0], [0, 0, 1]],
+            "unstable_agents": [0, 1],
+        },
+        "example 2": {
+            "A": np.array([[0.8147, 0.8147, 0.2785], [0.9058, 0.9058, 0.5469], [0, 0, 0.9575]]),
+            "C": [np.eye(3)[[i]] for i in range(3)],
+            "R": [np.eye(1)] * 3,
+            "Q": np.eye(3),
+            "x0": np.array([-2.2691, -2.0143, 1.6173]),
+            "P0": 100.0 * np.eye(3),
+            "W_g": [[1, 0, 0], [0, 1, 0], [0.34, 0.34, 0.32]],
+            "W_b": [[1, 0, 0], [0, 1, 0], [0.33, 0.33, 0.34]],
+            "unstable_agents": [2],
+        },
+    }
