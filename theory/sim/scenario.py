@@ -31,7 +31,7 @@ from theory.sim.targets import simulate_cv_target
 from theory.sim.tdoa_sim_case import TdoaSimSpec
 from theory.tdoa import cv_discrete
 
-__all__ = ["TdoaRun", "covariance_norms", "hears_at", "run_tdoa_scenario"]
+__all__ = ["TdoaRun", "covariance_norms", "hears_at", "run_tdoa_scenario", "weights_at"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -122,7 +122,7 @@ def run_tdoa_scenario(spec: TdoaSimSpec, rng: np.random.Generator) -> TdoaRun:
         )
         for j in range(m):
             if shares_estimates(spec.filter):
-                x, P = average_round(_weights(spec, states[:, :3]), x, P)
+                x, P = average_round(weights_at(spec, states[:, :3]), x, P)
             norms = covariance_norms(P, spec.cov_norm)
             if j == 0:
                 record.ping(k, x, P, norms, [len(nb) for nb in neighbours])
@@ -142,7 +142,8 @@ def hears_at(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
     return adjacency_from_range(positions, spec.comm_range)
 
 
-def _weights(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
+def weights_at(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
+    """The consensus matrix ``W`` for agents at ``positions``."""
     if isinstance(spec.weights, np.ndarray):
         return spec.weights
     hears = hears_at(spec, positions)

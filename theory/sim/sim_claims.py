@@ -3,6 +3,7 @@
 * ``seed000.sec4.3.1.platonic`` — Platonic solids are the optimal formations (complete network).
 * ``seed000.sec4.4.b-tradeoff`` — as ``b`` grows, distance travelled falls, covariance norms grow.
 * ``seed000.sec5.3.sim-examples`` — Examples 1–2: P bounded for ``W_g``, unbounded for ``W_b``.
+* ``seed000.lemA.1.2`` — inequality (A.24) with ``α`` of (A.35) along a run.
 """
 
 from __future__ import annotations
@@ -15,11 +16,12 @@ from typing import Any
 import numpy as np
 
 from theory.claims import ClaimResult, register
+from theory.sim.appendix_a import lemma_a12_along
 from theory.sim.consensus_kf import ORDERS, ch5_examples, simulate_consensus_kf
 from theory.sim.crb import crb_trace, optimal_crb_trace, platonic_solids
 from theory.sim.scenario import run_tdoa_scenario
 
-__all__ = ["check_b_tradeoff", "check_ch5_examples", "check_platonic"]
+__all__ = ["check_b_tradeoff", "check_ch5_examples", "check_lemma_a12", "check_platonic"]
 
 BOUND_RTOL = 1e-9
 B_SWEEP = (0.0, 3.0, 15.0, math.inf)
@@ -138,5 +140,54 @@ def check_ch5_examples(case: Any = None, *, steps: int = 400) -> list[ClaimResul
             evidence=evidence,
             tolerance={"converged_tol": CONVERGED_TOL, "growth": GROWTH},
             message=f"norms of P_i at k = {steps // 2} and {steps}",
+        )
+    ]
+
+
+APPENDIX_A_MAX_STEPS = 40
+
+
+@register(
+    "seed000.lemA.1.2",
+    source="seed 000, App. A, Lemma A.1.2, eqs. (A.18)-(A.24), (A.35)",
+    statement="Under (A.18)-(A.23), inequality (A.24) holds for all k with alpha of (A.35).",
+    kinds=("tdoa-sim",),
+)
+def check_lemma_a12(case: Any) -> list[ClaimResult]:
+    """Run the case's averaged EKF with ``τ = T`` and check (A.24) at every ping."""
+    spec = dataclasses.replace(
+        case.spec,
+        filter="averaged",
+        tau=case.spec.T,
+        steps=min(case.spec.steps, APPENDIX_A_MAX_STEPS),
+    )
+    out = lemma_a12_along(spec, run_tdoa_scenario(spec, np.random.default_rng(0)))
+    margin = float(out["one_minus_alpha"] - out["factors"].max())
+    holds = bool(out["holds"].all())
+    return [
+        ClaimResult(
+            claim="seed000.lemA.1.2",
+            case=case.name,
+            method="simulation",
+            status="corrected" if holds else "refuted",
+            evidence={
+                "constants": out["constants"],
+                "one_minus_alpha": out["one_minus_alpha"],
+                "max_factor": float(out["factors"].max()),
+                "first_failure_step": None if holds else int(np.argmin(out["holds"])),
+                "bqb_rank": out["bqb_rank"],
+                "bqb_lower_bound": out["bqb_lower_bound"],
+                "seed": 0,
+                "steps": spec.steps,
+            },
+            margin=margin,
+            message=(
+                "(A.24) holds along the run, but the proof needs BQB' >= delta sigma_w^2 I, "
+                f"impossible for BQB' of rank {out['bqb_rank']} of 6; alpha of (A.35) is "
+                f"{1 - out['one_minus_alpha']:.2e}, so the bound (A.11) decays only after "
+                "~1/alpha steps"
+                if holds
+                else "(A.24) fails along the run"
+            ),
         )
     ]
