@@ -72,7 +72,21 @@ def crb_trace(
     pairs: Sequence[tuple[int, int]] | None = None,
     sigma2: float = 1.0,
 ) -> float:
-    """``tr(J⁻¹)`` of eq. (4.43); ``inf`` when ``J`` is singular (rank below ``d``)."""
+    """``tr(J⁻¹)`` of eq. (4.43); ``inf`` when ``J`` is singular (rank below ``d``).
+
+    Parameters
+    ----------
+    target : ndarray, shape (d,)
+    positions : ndarray, shape (N, d)
+    pairs : sequence of (int, int), optional
+        0-based pairs used (default all).
+    sigma2 : float
+        Measurement variance ``σ_v²``.
+
+    Returns
+    -------
+    float
+    """
     J = tdoa_fisher(target, positions, pairs, sigma2)
     eig = np.linalg.eigvalsh(J)
     if eig[0] <= 1e-12 * max(eig[-1], 1.0):
@@ -81,7 +95,21 @@ def crb_trace(
 
 
 def optimal_crb_trace(n_agents: int, dim: int = 3, sigma2: float = 1.0) -> float:
-    """The lower bound ``d²σ²/N²`` of ``tr(J⁻¹)`` over all formations (complete pair set)."""
+    """The lower bound ``d²σ²/N²`` of ``tr(J⁻¹)`` over all formations (complete pair set).
+
+    Parameters
+    ----------
+    n_agents : int
+        ``N``.
+    dim : int
+        ``d`` (2 or 3).
+    sigma2 : float
+        Measurement variance ``σ_v²``.
+
+    Returns
+    -------
+    float
+    """
     return dim**2 * sigma2 / n_agents**2
 
 

@@ -26,7 +26,17 @@ FILTERS = ("averaged", "decentralized", "centralized")
 
 
 def shares_estimates(kind: str) -> bool:
-    """Whether the filter averages estimates with neighbours between pings."""
+    """Whether the filter ``kind`` averages estimates with neighbours between pings.
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`FILTERS`.
+
+    Returns
+    -------
+    bool
+    """
     return kind == "averaged"
 
 

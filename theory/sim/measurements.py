@@ -20,7 +20,21 @@ def neighbour_lists(hears: np.ndarray) -> list[np.ndarray]:
 def tdoa_predictions(
     point: np.ndarray, positions: np.ndarray, neighbours: list[np.ndarray]
 ) -> list[np.ndarray]:
-    """``h_i(point)`` for every agent (eq. (4.3)); ``point`` may differ per agent (shape (N, d))."""
+    """``h_i(point)`` for every agent (eq. (4.3)).
+
+    Parameters
+    ----------
+    point : ndarray, shape (d,) or (N, d)
+        Where to evaluate (one point, or one per agent).
+    positions : ndarray, shape (N, d)
+        Agent positions.
+    neighbours : list of ndarray
+        0-based neighbours of each agent.
+
+    Returns
+    -------
+    list of ndarray
+    """
     point = np.broadcast_to(point, positions.shape)
     out = []
     for i, nbrs in enumerate(neighbours):
@@ -32,7 +46,21 @@ def tdoa_predictions(
 def tdoa_jacobians(
     point: np.ndarray, positions: np.ndarray, neighbours: list[np.ndarray]
 ) -> list[np.ndarray]:
-    """``H_i`` of eqs. (4.7)–(4.10) at ``point`` (one, or one per agent); shape (|N_i|, 2d)."""
+    """``H_i`` of eqs. (4.7)–(4.10), each of shape (|N_i|, 2d).
+
+    Parameters
+    ----------
+    point : ndarray, shape (d,) or (N, d)
+        Where to evaluate (one point, or one per agent).
+    positions : ndarray, shape (N, d)
+        Agent positions.
+    neighbours : list of ndarray
+        0-based neighbours of each agent.
+
+    Returns
+    -------
+    list of ndarray
+    """
     point = np.broadcast_to(point, positions.shape)
     out = []
     for i, nbrs in enumerate(neighbours):

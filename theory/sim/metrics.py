@@ -28,6 +28,17 @@ def run_pcrb(spec: TdoaSimSpec, run: TdoaRun) -> np.ndarray:
 
     Uses every agent's TDOA rows at the agents' recorded positions (seed 000 eq. (4.2): the rows
     of different agents have independent noise) along the run's true trajectory.
+
+    Parameters
+    ----------
+    spec : TdoaSimSpec
+        The scenario of the run.
+    run : TdoaRun
+        The run.
+
+    Returns
+    -------
+    ndarray, shape (K+1,)
     """
     A, B = cv_discrete(spec.T, 3)
     positions = run.paths[:: spec.rounds]

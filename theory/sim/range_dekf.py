@@ -33,6 +33,16 @@ def table_target(table: str, times: np.ndarray) -> np.ndarray:
 
     Table I: ``q = [20 sin(0.01t + π), 0.3t]``; Table II: ``q = [30 sin(0.01t + π), 0.1t, −0.5t]``.
 
+    Parameters
+    ----------
+    table : {"I", "II"}
+    times : ndarray
+        Times (s).
+
+    Returns
+    -------
+    ndarray, shape (len(times), 2d)
+
     Raises
     ------
     ValueError
@@ -52,7 +62,22 @@ def table_target(table: str, times: np.ndarray) -> np.ndarray:
 
 
 def st_curve(gamma: np.ndarray, radii: tuple[float, ...], gamma0: float, c: float = 1.0):
-    """Spatial path ``r(γ)`` of (15) (3-D, ``radii = (r_x, r_y, r_z)``) or (16) (2-D)."""
+    """Spatial path ``r(γ)`` of (15) (3-D, ``radii = (r_x, r_y, r_z)``) or (16) (2-D).
+
+    Parameters
+    ----------
+    gamma : ndarray
+        Path parameters ``γ``.
+    radii : tuple of float
+    gamma0 : float
+        Phase ``γ0``.
+    c : float
+        Vertical frequency divisor of (15).
+
+    Returns
+    -------
+    ndarray, shape (..., d)
+    """
     gamma = np.asarray(gamma, dtype=float)
     columns = [radii[0] * np.cos(gamma + gamma0), radii[1] * np.sin(gamma + gamma0)]
     if len(radii) == 3:
@@ -64,6 +89,18 @@ def encircling_paths(
     target: np.ndarray, times: np.ndarray, n: int, radii: tuple[float, ...], omega: float
 ) -> np.ndarray:
     """Trackers on their S-T curves ``q(t) + r(ω̄t + γ0^[i])``, ``γ0^[i] = 2π(i−1)/N``.
+
+    Parameters
+    ----------
+    target : ndarray, shape (K+1, 2d)
+        True target states.
+    times : ndarray, shape (K+1,)
+    n : int
+        Number of trackers.
+    radii : tuple of float
+        ``(r_x, r_y)`` or ``(r_x, r_y, r_z)``.
+    omega : float
+        ``ω̄``.
 
     Returns
     -------

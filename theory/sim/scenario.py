@@ -78,7 +78,19 @@ class TdoaRun:
 
 
 def covariance_norms(P: np.ndarray, norm: str) -> np.ndarray:
-    """``‖P_i‖`` of a stack of covariances: ``spectral`` (largest eigenvalue) or ``frobenius``."""
+    """``‖P_i‖`` of a stack of covariances.
+
+    Parameters
+    ----------
+    P : ndarray, shape (..., n, n)
+        Symmetric positive semi-definite matrices.
+    norm : {"spectral", "frobenius"}
+        Spectral: the largest eigenvalue.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
     if norm == "spectral":
         return np.linalg.eigvalsh(P)[..., -1]
     return np.sqrt(np.einsum("...ij,...ij->...", P, P))
@@ -136,14 +148,34 @@ def run_tdoa_scenario(spec: TdoaSimSpec, rng: np.random.Generator) -> TdoaRun:
 
 
 def hears_at(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
-    """``hears[i, j]`` for agents at ``positions`` (fixed edges, or the range rule)."""
+    """``hears[i, j]`` for agents at ``positions`` (fixed edges, or the range rule).
+
+    Parameters
+    ----------
+    spec : TdoaSimSpec
+    positions : ndarray, shape (N, 3)
+
+    Returns
+    -------
+    ndarray of bool, shape (N, N)
+    """
     if spec.hears is not None:
         return spec.hears
     return adjacency_from_range(positions, spec.comm_range)
 
 
 def weights_at(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
-    """The consensus matrix ``W`` for agents at ``positions``."""
+    """The consensus matrix ``W`` for agents at ``positions``.
+
+    Parameters
+    ----------
+    spec : TdoaSimSpec
+    positions : ndarray, shape (N, 3)
+
+    Returns
+    -------
+    ndarray, shape (N, N)
+    """
     if isinstance(spec.weights, np.ndarray):
         return spec.weights
     hears = hears_at(spec, positions)

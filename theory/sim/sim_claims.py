@@ -38,7 +38,13 @@ CONVERGED_TOL = 1e-3
 )
 def check_platonic(case: Any = None) -> list[ClaimResult]:
     """Each Platonic solid reaches ``tr(J⁻¹) = 9σ²/N²``; so does the (non-Platonic) square
-    antiprism, so "the" optimal formations are the balanced tight frames, not only the solids."""
+    antiprism, so "the" optimal formations are the balanced tight frames, not only the solids.
+
+    Parameters
+    ----------
+    case : None
+        Model claim (no case).
+    """
     ratios = {
         name: crb_trace(np.zeros(3), v) / optimal_crb_trace(len(v))
         for name, v in platonic_solids().items()
@@ -114,7 +120,15 @@ def check_b_tradeoff(case: Any) -> list[ClaimResult]:
     statement="Covariances stay bounded for W_g and grow unbounded for W_b (both filter orders).",
 )
 def check_ch5_examples(case: Any = None, *, steps: int = 400) -> list[ClaimResult]:
-    """Simulate both examples, both orders; compare ``‖P_i‖`` at ``K/2`` and ``K``."""
+    """Simulate both examples, both orders; compare ``‖P_i‖`` at ``K/2`` and ``K``.
+
+    Parameters
+    ----------
+    case : None
+        Model claim (no case).
+    steps : int
+        Horizon ``K``.
+    """
     evidence: dict[str, Any] = {}
     ok = True
     for name, ex in ch5_examples().items():

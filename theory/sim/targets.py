@@ -11,12 +11,7 @@ import numpy as np
 
 from theory.tdoa import cv_discrete
 
-__all__ = ["cv_transition", "simulate_cv_target"]
-
-
-def cv_transition(elapsed: float, dim: int = 3) -> np.ndarray:
-    """``exp(F t)`` of eq. (4.1) for an elapsed time ``t`` (position += t · velocity)."""
-    return cv_discrete(elapsed, dim)[0]
+__all__ = ["simulate_cv_target"]
 
 
 def simulate_cv_target(
