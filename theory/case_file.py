@@ -33,7 +33,11 @@ __all__ = [
 
 HEADER_FIELDS = ("name", "source", "kind", "description", "expect", "tolerances")
 
-KIND_MODULES: tuple[str, ...] = ("theory.tdoa_case", "theory.sim.tdoa_sim_case")
+KIND_MODULES: tuple[str, ...] = (
+    "theory.tdoa_case",
+    "theory.sim.tdoa_sim_case",
+    "theory.pursuit_case",
+)
 """Modules that register case kinds (imported on first use)."""
 
 

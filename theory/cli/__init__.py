@@ -13,7 +13,7 @@ import typer
 
 __all__ = ["COMMAND_MODULES", "app", "main"]
 
-COMMAND_MODULES: tuple[str, ...] = ("theory.cli.cases", "theory.cli.simulate")
+COMMAND_MODULES: tuple[str, ...] = ("theory.cli.cases", "theory.cli.simulate", "theory.cli.iss")
 
 app = typer.Typer(
     name="trackcert",
