@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
+from typer.testing import CliRunner
 
+from theory.cli import app
 from theory.sim.pursuit import DecSettings, simulate_dec_2d
 from theory.sim.range_dekf import table_target
 
@@ -58,3 +62,29 @@ def test_singular_delta_is_refused() -> None:
             target, START[:1], np.zeros(1), np.zeros(1), [[]], target[0], np.eye(4), 1,
             np.random.default_rng(0), DecSettings(epsilon=(0.0, 0.5)),
         )  # fmt: skip
+
+
+def test_cli_simulates_a_bundled_pursuit_case(tmp_path) -> None:
+    """DESIGN.md: ``--json`` has per-agent localization errors and, for pursuit,
+    ``final_pursuit_error``."""
+    out = tmp_path / "out"
+    args = ["simulate", "pursuit-table1-n3", "--steps", "600", "--workers", "1", "-o", str(out)]
+    result = CliRunner().invoke(app, [*args, "--json"])
+    assert result.exit_code == 0, result.output
+    report = json.loads(result.stdout)
+    assert [a["id"] for a in report["agents"]] == [1, 2, 3]
+    for agent in report["agents"]:
+        assert {
+            "final_localization_error",
+            "mean_localization_error",
+            "final_pursuit_error",
+        } <= set(agent)
+        assert agent["final_pursuit_error"] < 5.0
+    for name in ("runs.npz", "agents.csv", "timeseries.csv", "coordination.png", "errors.png"):
+        assert (out / name).is_file(), name
+
+
+def test_cli_refuses_3d_pursuit_naming_the_field(tmp_path) -> None:
+    result = CliRunner().invoke(app, ["simulate", "pursuit-table2-n3", "-o", str(tmp_path)])
+    assert result.exit_code == 2
+    assert "pursuit.dim" in result.stderr and "pursuit-table2-n3" in result.stderr

@@ -1,15 +1,22 @@
-"""``trackcert simulate CASE``: closed-loop simulation, data files and figures (DESIGN.md)."""
+"""``trackcert simulate CASE``: closed-loop simulation, data files and figures (DESIGN.md).
+
+Runs ``kind: tdoa-sim`` cases (seed 000 ch. 4, :mod:`theory.sim.scenario`) and 2-D
+``kind: pursuit`` cases (seed 003, :mod:`theory.sim.pursuit_sim`).
+"""
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import json
 import math
 from pathlib import Path
+from typing import Any
 
 import typer
 from rich.progress import Progress
 
-from theory.case_file import load_case
+from theory.case_file import Case, load_case
 from theory.cli.common import (
     EXIT_FAILS,
     console,
@@ -22,35 +29,44 @@ from theory.errors import CaseError
 
 __all__ = ["register"]
 
+KINDS = ("tdoa-sim", "pursuit")
+
 
 def register(app: typer.Typer) -> None:
-    """Add the ``simulate`` command to ``app``."""
+    """Add the ``simulate`` command to ``app``.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The application.
+    """
 
     @app.command("simulate")
     @reports_errors
     def simulate(
-        case: str = typer.Argument(..., help="Case file or bundled case name (kind tdoa-sim)."),
+        case: str = typer.Argument(..., help="Case file or bundled case (tdoa-sim or pursuit)."),
         output: str = typer.Option(..., "-o", "--output", help="Folder for data and figures."),
         runs: int = typer.Option(1, "--runs", min=1, help="Monte Carlo runs."),
         seed: int = typer.Option(0, "--seed", help="Root seed (run i uses child i)."),
         workers: int = typer.Option(
             None, "--workers", min=1, help="Worker processes (default: all local cores)."
         ),
+        steps: int = typer.Option(
+            None, "--steps", min=1, help="Override the number of steps (pings / 0.1 s steps)."
+        ),
         figures: bool = typer.Option(True, "--figures/--no-figures", help="Write PNG figures."),
         as_json: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
     ) -> None:
         """Simulate the closed loop; write runs.npz, CSV tables, PNG figures and summary.json."""
-        from theory.sim.figures import write_figures
-        from theory.sim.metrics import check_expectations, summarize_runs
-        from theory.sim.outputs import write_data
         from theory.sim.runner import default_workers, monte_carlo
 
         loaded = load_case(case)
-        if loaded.kind != "tdoa-sim":
+        if loaded.kind not in KINDS:
             raise CaseError(
-                "kind", "tdoa-sim (the kinds trackcert simulate runs)", loaded.kind, file=case
+                "kind", f"one of {list(KINDS)} (the kinds simulate runs)", loaded.kind, file=case
             )
-        spec = loaded.spec
+        backend = _tdoa_backend if loaded.kind == "tdoa-sim" else _pursuit_backend
+        spec, simulate_one, header = backend(loaded, steps)
         workers = workers or default_workers()
         with Progress(console=error_console, transient=True) as progress:
             task = progress.add_task(f"simulating {loaded.name}", total=runs)
@@ -60,26 +76,19 @@ def register(app: typer.Typer) -> None:
                 seed=seed,
                 workers=workers,
                 progress=lambda done: progress.update(task, completed=done),
+                simulate=simulate_one,
             )
-        summary = summarize_runs(spec, results)
-        error_bound = loaded.tolerances.get("error_bound", 10.0 * math.sqrt(spec.r))
-        expectations = check_expectations(summary, loaded.expect, error_bound=error_bound)
         folder = Path(output)
         folder.mkdir(parents=True, exist_ok=True)
-        files = write_data(results, summary, folder)
-        if figures:
-            files += write_figures(results, folder)
+        summary, expectations, files = header["finish"](loaded, spec, results, folder, figures)
         report = {
             "case": loaded.name,
             "source": loaded.source,
             "kind": loaded.kind,
-            "filter": spec.filter,
-            "b": spec.b,
+            **header["fields"],
             "runs": runs,
             "seed": seed,
             "workers": min(workers, runs),
-            "steps": spec.steps,
-            "tolerances": {"error_bound": error_bound},
             **summary,
             "expectations": expectations,
             "files": [str(f) for f in files],
@@ -93,19 +102,64 @@ def register(app: typer.Typer) -> None:
             raise typer.Exit(EXIT_FAILS)
 
 
+def _tdoa_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
+    from theory.sim.scenario import run_tdoa_scenario
+
+    spec = case.spec if steps is None else dataclasses.replace(case.spec, steps=steps)
+    fields = {"filter": spec.filter, "b": spec.b, "steps": spec.steps}
+    return spec, run_tdoa_scenario, {"fields": fields, "finish": _finish_tdoa}
+
+
+def _finish_tdoa(case: Case, spec: Any, results: list, folder: Path, figures: bool):
+    from theory.sim.figures import write_figures
+    from theory.sim.metrics import check_expectations, summarize_runs
+    from theory.sim.outputs import write_data
+
+    summary = summarize_runs(spec, results)
+    error_bound = case.tolerances.get("error_bound", 10.0 * math.sqrt(spec.r))
+    expectations = check_expectations(summary, case.expect, error_bound=error_bound)
+    files = write_data(results, summary, folder)
+    if figures:
+        files += write_figures(results, folder)
+    return {"tolerances": {"error_bound": error_bound}, **summary}, expectations, files
+
+
+def _pursuit_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
+    from theory.sim.pursuit_sim import DEFAULT_STEPS, check_pursuit_case, run_pursuit_case
+
+    try:
+        check_pursuit_case(case.spec)
+    except CaseError as error:
+        raise error.in_file(case.file) from None
+    steps = steps or DEFAULT_STEPS
+    fields = {"controller": case.spec.controller, "steps": steps, "dt": 0.1}
+    simulate_one = functools.partial(run_pursuit_case, steps=steps)
+    return case.spec, simulate_one, {"fields": fields, "finish": _finish_pursuit}
+
+
+def _finish_pursuit(case: Case, spec: Any, results: list, folder: Path, figures: bool):
+    from theory.sim.pursuit_sim import (
+        summarize_pursuit,
+        write_pursuit_data,
+        write_pursuit_figures,
+    )
+
+    summary = summarize_pursuit(spec, results)
+    files = write_pursuit_data(results, summary, folder)
+    if figures:
+        files += write_pursuit_figures(results, folder)
+    return summary, {}, files
+
+
 def _print_table(report: dict) -> None:
     from rich.table import Table
 
     table = Table(title=f"{report['case']} ({report['runs']} run(s), seed {report['seed']})")
-    for column in ("agent", "final error (m)", "mean error (m)", "mean ‖P‖", "distance (m)"):
-        table.add_column(column, justify="right")
+    columns = [key for key in report["agents"][0] if key != "id"]
+    table.add_column("agent", justify="right")
+    for column in columns:
+        table.add_column(column.replace("_", " "), justify="right")
     for agent in report["agents"]:
-        table.add_row(
-            str(agent["id"]),
-            f"{agent['final_localization_error']:.3g}",
-            f"{agent['mean_localization_error']:.3g}",
-            f"{agent['mean_cov_norm']:.3g}",
-            f"{agent['distance']:.1f}",
-        )
+        table.add_row(str(agent["id"]), *(f"{agent[c]:.3g}" for c in columns))
     console.print(table)
-    console.print(f"total distance {report['total_distance']:.1f} m; files in {report['files'][0]}")
+    console.print(f"files in {Path(report['files'][0]).parent}")

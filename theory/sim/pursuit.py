@@ -19,8 +19,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from theory.sim.range_dekf import st_curve
-
 __all__ = ["DecRun", "DecSettings", "simulate_dec_2d"]
 
 
@@ -94,10 +92,14 @@ def _rotation(psi: np.ndarray) -> np.ndarray:
     return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
 
 
-def _path_derivative(gamma: np.ndarray, radii, gamma0: np.ndarray) -> np.ndarray:
-    return np.stack(
-        [-radii[0] * np.sin(gamma + gamma0), radii[1] * np.cos(gamma + gamma0)], axis=-1
-    )
+def _path(gamma: np.ndarray, radii: np.ndarray, gamma0: np.ndarray) -> np.ndarray:
+    """``r^[i](γ^[i])`` of (16) for every tracker, shape (N, 2)."""
+    return radii * np.column_stack([np.cos(gamma + gamma0), np.sin(gamma + gamma0)])
+
+
+def _path_derivative(gamma: np.ndarray, radii: np.ndarray, gamma0: np.ndarray) -> np.ndarray:
+    """``r'^[i](γ^[i])``, shape (N, 2)."""
+    return radii * np.column_stack([-np.sin(gamma + gamma0), np.cos(gamma + gamma0)])
 
 
 def simulate_dec_2d(
@@ -111,6 +113,9 @@ def simulate_dec_2d(
     steps: int,
     rng: np.random.Generator,
     settings: DecSettings = DecSettings(),
+    *,
+    paths: np.ndarray | None = None,
+    fusion: np.ndarray | None = None,
 ) -> DecRun:
     """Simulate the 2-D DEC system of seed 003 §V for ``steps`` steps of ``settings.dt``.
 
@@ -123,13 +128,20 @@ def simulate_dec_2d(
     initial_gammas : ndarray, shape (N,)
     in_neighbours : list of list of int
         0-based in-neighbours ``N_in^[i]`` (fusion and coordination).
-    x0 : ndarray, shape (4,)
-        Every tracker's initial estimate ``x̂_{1|0}``.
-    P0 : ndarray, shape (4, 4)
+    x0 : ndarray, shape (4,) or (N, 4)
+        Initial estimates ``x̂_{1|0}`` (one for all trackers, or one each).
+    P0 : ndarray, shape (4, 4) or (N, 4, 4)
+        Initial covariances ``P_{1|0}``.
     steps : int
     rng : numpy.random.Generator
         Source of the range noise.
     settings : DecSettings
+    paths : ndarray, shape (N, 3), optional
+        Rows ``(r_x, r_y, γ0)`` of each tracker's path (16); default ``settings.radii`` and
+        ``γ0^[i] = 2π(i−1)/N``.
+    fusion : ndarray, shape (N, N), optional
+        Fusion weights ``π^[i,j]``; default ``settings.fusion_weight`` on each in-edge and the
+        rest on the tracker itself.
 
     Returns
     -------
@@ -156,18 +168,23 @@ def simulate_dec_2d(
     n = initial_positions.shape[0]
     delta_inv = np.linalg.inv(np.array([[1.0, s.epsilon[1]], [0.0, -s.epsilon[0]]]))
     Kp, eps = np.diag(s.Kp), np.array(s.epsilon)
-    gamma0 = 2 * np.pi * np.arange(n) / n if n > 1 else np.zeros(1)
+    if paths is None:
+        paths = np.column_stack(
+            [np.tile(s.radii, (n, 1)), 2 * np.pi * np.arange(n) / n if n > 1 else np.zeros(1)]
+        )
+    radii, gamma0 = paths[:, :2], paths[:, 2]
     adjacency = np.zeros((n, n))
     for i, nbrs in enumerate(in_neighbours):
         adjacency[i, nbrs] = 1.0
     laplacian = np.diag(adjacency.sum(axis=1)) - adjacency
-    fusion = np.eye(n) * (1 - s.fusion_weight * adjacency.sum(axis=1)) + s.fusion_weight * adjacency
+    if fusion is None:
+        fusion = np.diag(1 - s.fusion_weight * adjacency.sum(axis=1)) + s.fusion_weight * adjacency
     F = np.array([[1, 0, s.Ts, 0], [0, 1, 0, s.Ts], [0, 0, 1, 0], [0, 0, 0, 1.0]])
     W_proc = np.diag(1.0 / np.array(s.Q))
     p, psi = initial_positions.astype(float).copy(), initial_headings.astype(float).copy()
     gamma, e_gamma = initial_gammas.astype(float).copy(), np.zeros(n)
-    Omega = np.tile(np.linalg.inv(P0), (n, 1, 1))
-    x_pred = np.tile(x0, (n, 1)).astype(float)
+    Omega = np.linalg.inv(np.broadcast_to(P0, (n, 4, 4)))
+    x_pred = np.broadcast_to(x0, (n, 4)).astype(float)
     x_hat, t_hat = x_pred.copy(), 0.0
     record = {k: [] for k in ("p", "psi", "g", "gd", "pe", "le")}
     for m in range(steps + 1):
@@ -179,12 +196,8 @@ def simulate_dec_2d(
             t_hat = t
         q_hat = x_hat[:, :2] + (t - t_hat) * x_hat[:, 2:]
         R = _rotation(psi)
-        path = (
-            st_curve(gamma, s.radii, 0.0)
-            if n == 1
-            else np.array([st_curve(gamma[i], s.radii, gamma0[i]) for i in range(n)])
-        )
-        dpath = _path_derivative(gamma, s.radii, gamma0)
+        path = _path(gamma, radii, gamma0)
+        dpath = _path_derivative(gamma, radii, gamma0)
         omega_d = s.omega_bar - s.k_c * laplacian @ gamma
         gamma_rate = omega_d + e_gamma
         e_hat = np.einsum("nji,nj->ni", R, p - path - q_hat) - eps

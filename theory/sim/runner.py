@@ -9,11 +9,11 @@ from __future__ import annotations
 import os
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
+from typing import Any
 
 import numpy as np
 
-from theory.sim.scenario import TdoaRun, run_tdoa_scenario
-from theory.sim.tdoa_sim_case import TdoaSimSpec
+from theory.sim.scenario import run_tdoa_scenario
 
 __all__ = ["default_workers", "monte_carlo", "run_seeds"]
 
@@ -28,24 +28,25 @@ def run_seeds(seed: int, runs: int) -> list[np.random.SeedSequence]:
     return np.random.SeedSequence(seed).spawn(runs)
 
 
-def _one(spec: TdoaSimSpec, sequence: np.random.SeedSequence) -> TdoaRun:
-    return run_tdoa_scenario(spec, np.random.default_rng(sequence))
+def _one(simulate: Callable, spec: Any, sequence: np.random.SeedSequence) -> Any:
+    return simulate(spec, np.random.default_rng(sequence))
 
 
 def monte_carlo(
-    spec: TdoaSimSpec,
+    spec: Any,
     *,
     runs: int = 1,
     seed: int = 0,
     workers: int | None = None,
     progress: Callable[[int], None] | None = None,
-) -> list[TdoaRun]:
+    simulate: Callable[[Any, np.random.Generator], Any] = run_tdoa_scenario,
+) -> list[Any]:
     """Run the scenario ``runs`` times, in parallel over ``workers`` processes.
 
     Parameters
     ----------
-    spec : TdoaSimSpec
-        The scenario.
+    spec : object
+        The scenario (e.g. a ``TdoaSimSpec``), passed to ``simulate``.
     runs : int
         Number of independent runs (≥ 1).
     seed : int
@@ -54,11 +55,14 @@ def monte_carlo(
         Worker processes; default all local cores; 1 runs in this process.
     progress : callable, optional
         Called with the number of runs finished so far, after each run.
+    simulate : callable
+        ``simulate(spec, rng) -> run``, a picklable module-level function (default: the TDOA
+        closed loop :func:`~theory.sim.scenario.run_tdoa_scenario`).
 
     Returns
     -------
-    list of TdoaRun
-        In run order.
+    list
+        The runs, in run order.
 
     Raises
     ------
@@ -71,15 +75,15 @@ def monte_carlo(
     if workers < 1:
         raise ValueError(f"workers must be ≥ 1, got {workers}")
     sequences = run_seeds(seed, runs)
-    results: list[TdoaRun] = []
+    results: list[Any] = []
     if workers == 1:
         for sequence in sequences:
-            results.append(_one(spec, sequence))
+            results.append(_one(simulate, spec, sequence))
             if progress:
                 progress(len(results))
         return results
     with ProcessPoolExecutor(max_workers=workers) as pool:
-        for run in pool.map(_one, [spec] * runs, sequences):
+        for run in pool.map(_one, [simulate] * runs, [spec] * runs, sequences):
             results.append(run)
             if progress:
                 progress(len(results))
