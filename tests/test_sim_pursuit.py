@@ -88,3 +88,17 @@ def test_cli_refuses_3d_pursuit_naming_the_field(tmp_path) -> None:
     result = CliRunner().invoke(app, ["simulate", "pursuit-table2-n3", "-o", str(tmp_path)])
     assert result.exit_code == 2
     assert "pursuit.dim" in result.stderr and "pursuit-table2-n3" in result.stderr
+
+
+def test_iss_estimate_holds_along_simulated_trajectories() -> None:
+    """Theorem 2 (corrected constants of theory.iss) along the DEC trajectories of Table I."""
+    from theory.case_file import load_case
+    from theory.sim.iss_check import iss_margin_along
+    from theory.sim.pursuit_sim import run_pursuit_case
+
+    for name in ("pursuit-table1-n1", "pursuit-table1-n3"):
+        spec = load_case(name).spec
+        run = run_pursuit_case(spec, np.random.default_rng(0), steps=800)
+        out = iss_margin_along(spec, run)
+        assert out["holds"], (name, out["margin"], out["worst_time"])
+        assert out["mu"][-1] < out["mu"][0]  # the pursuit errors contract from the start

@@ -74,16 +74,20 @@ class DecSettings:
 @dataclass(frozen=True, eq=False)
 class DecRun:
     """Arrays every ``dt``: ``times`` (M+1,), ``positions`` (M+1, N, 2), ``headings``,
-    ``gammas``, ``gamma_rates`` (M+1, N), ``pursuit_errors`` ``‖e_p‖`` with the true target
-    (M+1, N), ``localization_errors`` ``‖q̂ − q‖`` (M+1, N), ``target`` (M+1, 4)."""
+    ``gammas``, ``gamma_rates``, ``gamma_errors`` ``e_γ = γ̇ − ω_d`` (M+1, N),
+    ``pursuit_errors`` ``‖e_p‖`` with the true target (M+1, N), ``localization_errors``
+    ``‖q̂ − q‖`` and ``estimation_errors`` ``‖x̂ − x‖`` (state used by the controller at that
+    instant) (M+1, N), ``target`` (M+1, 4)."""
 
     times: np.ndarray
     positions: np.ndarray
     headings: np.ndarray
     gammas: np.ndarray
     gamma_rates: np.ndarray
+    gamma_errors: np.ndarray
     pursuit_errors: np.ndarray
     localization_errors: np.ndarray
+    estimation_errors: np.ndarray
     target: np.ndarray
 
 
@@ -186,7 +190,7 @@ def simulate_dec_2d(
     Omega = np.linalg.inv(np.broadcast_to(P0, (n, 4, 4)))
     x_pred = np.broadcast_to(x0, (n, 4)).astype(float)
     x_hat, t_hat = x_pred.copy(), 0.0
-    record = {k: [] for k in ("p", "psi", "g", "gd", "pe", "le")}
+    record = {k: [] for k in ("p", "psi", "g", "gd", "ge", "pe", "le", "xe")}
     for m in range(steps + 1):
         t = m * s.dt
         if m % every == 0:
@@ -204,8 +208,9 @@ def simulate_dec_2d(
         e_true = np.einsum("nji,nj->ni", R, p - path - target[m, :2]) - eps
         for key, value in zip(
             record,
-            (p.copy(), psi.copy(), gamma.copy(), gamma_rate, np.linalg.norm(e_true, axis=1),
-             np.linalg.norm(x_hat[:, :2] - target[m, :2], axis=1)),
+            (p.copy(), psi.copy(), gamma.copy(), gamma_rate, e_gamma.copy(),
+             np.linalg.norm(e_true, axis=1), np.linalg.norm(q_hat - target[m, :2], axis=1),
+             np.linalg.norm(np.hstack([q_hat, x_hat[:, 2:]]) - target[m], axis=1)),
             strict=True,
         ):  # fmt: skip
             record[key].append(value)
@@ -226,8 +231,10 @@ def simulate_dec_2d(
         headings=np.array(record["psi"]),
         gammas=np.array(record["g"]),
         gamma_rates=np.array(record["gd"]),
+        gamma_errors=np.array(record["ge"]),
         pursuit_errors=np.array(record["pe"]),
         localization_errors=np.array(record["le"]),
+        estimation_errors=np.array(record["xe"]),
         target=target[: steps + 1],
     )
 
