@@ -37,6 +37,7 @@ KIND_MODULES: tuple[str, ...] = (
     "theory.tdoa_case",
     "theory.sim.tdoa_sim_case",
     "theory.pursuit_case",
+    "theory.dkf_case",
 )
 """Modules that register case kinds (imported on first use)."""
 

@@ -34,7 +34,11 @@ inconclusive: a margin lies inside tolerance or a solver failed (the evidence sa
 
 METHODS = ("symbolic", "exact-random", "numeric", "lmi", "simulation", "exact")
 
-CLAIM_MODULES: tuple[str, ...] = ("theory.sim.sim_claims", "theory.iss_claims")
+CLAIM_MODULES: tuple[str, ...] = (
+    "theory.sim.sim_claims",
+    "theory.iss_claims",
+    "theory.dkf_claims",
+)
 """Modules that register claims; each feature appends its module here."""
 
 _REGISTRY: dict[str, Claim] = {}

@@ -13,7 +13,12 @@ import typer
 
 __all__ = ["COMMAND_MODULES", "app", "main"]
 
-COMMAND_MODULES: tuple[str, ...] = ("theory.cli.cases", "theory.cli.simulate", "theory.cli.iss")
+COMMAND_MODULES: tuple[str, ...] = (
+    "theory.cli.cases",
+    "theory.cli.simulate",
+    "theory.cli.iss",
+    "theory.cli.dkf",
+)
 
 app = typer.Typer(
     name="trackcert",

@@ -1,0 +1,90 @@
+"""``trackcert dkf CASE``: S-detectability and necessary conditions of a consensus Kalman filter.
+
+Exit codes: 0 S-detectable (witness verified), 1 not (certificate verified), 2 bad input,
+3 inconclusive (the LMI decision is near its boundary or the solver failed: the output says which).
+"""
+
+from __future__ import annotations
+
+import typer
+from rich.table import Table
+
+from theory.case_file import load_case
+from theory.claims import all_claims
+from theory.cli.common import (
+    EXIT_FAILS,
+    EXIT_HOLDS,
+    EXIT_INCONCLUSIVE,
+    console,
+    print_json,
+    reports_errors,
+)
+from theory.dkf_claims import analyze_dkf
+from theory.errors import CaseError
+
+__all__ = ["register"]
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``dkf`` command to ``app``."""
+
+    @app.command("dkf")
+    @reports_errors
+    def dkf(
+        case: str = typer.Argument(..., help="Case file or bundled case name."),
+        as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+        solver: str = typer.Option("CLARABEL", "--solver", help="CLARABEL or SCS."),
+        self_weight: bool = typer.Option(
+            True, "--self-weight/--no-self-weight", help="Bisect each agent's largest self-weight."
+        ),
+    ) -> None:
+        """S-detectability (LMI), Thm 5.2.10's conditions and the blind-set condition."""
+        loaded = load_case(case)
+        if loaded.kind != "dkf":
+            raise CaseError("kind", "dkf", loaded.kind, file=loaded.file)
+        if solver not in ("CLARABEL", "SCS"):
+            raise CaseError("--solver", "CLARABEL or SCS", solver, file=loaded.file)
+        analysis = analyze_dkf(loaded, search_self_weight=self_weight, solver=solver)
+        data = analysis.to_json()
+        data["claims"] = [
+            result.to_json(claim.source)
+            for claim in all_claims()
+            if "dkf" in claim.kinds
+            for result in claim.run(loaded)
+        ]
+        if as_json:
+            print_json(data)
+        else:
+            _print_table(data)
+        verdict = data["s_detectable"]
+        code = {True: EXIT_HOLDS, False: EXIT_FAILS, None: EXIT_INCONCLUSIVE}[verdict]
+        raise typer.Exit(code)
+
+
+def _print_table(data: dict) -> None:
+    detail = data["s_detectability"]
+    verdict = {True: "yes", False: "no", None: "inconclusive"}[data["s_detectable"]]
+    console.print(f"case {data['case']} ({data['order']}): S-detectable: {verdict}", markup=False)
+    console.print(f"  {detail['reason']}", markup=False, highlight=False)
+    console.print(
+        f"  r(B) = {data['spectral_radius_B']}, r(L) = {data['spectral_radius_L']} "
+        f"(gains: {data['gains_source']})",
+        markup=False,
+    )
+    table = Table(title="necessary conditions")
+    for column in ("condition", "agents", "value", "ok"):
+        table.add_column(column)
+    for s in data["source_components"]:
+        table.add_row("source component detectable", str(s["agents"]), "", str(s["detectable"]))
+    for b in data["self_weight_bounds"]:
+        table.add_row(
+            "w_ii < 1/r(A_iᵘ)²",
+            str([b["agent"]]),
+            f"{b['w_ii']:g} vs {b['bound']:.6g}",
+            str(b["ok"]),
+        )
+    for b in data["blind_sets"]:
+        table.add_row("|λ|² r(W_SS) < 1", str(b["agents"]), f"{b['value']:.6g}", str(b["ok"]))
+    console.print(table)
+    for claim in data["claims"]:
+        console.print(f"  {claim['id']}: {claim['status']}", markup=False)

@@ -1,0 +1,144 @@
+"""Thm 5.2.10's self-weight bound decided in exact rational arithmetic (python-flint).
+
+``w_ii r_σ(A_iᵘ)² < 1`` is decided without floating point, so boundary cases such as seed 000
+Example 1's ``W_c`` (``w_ii = 0.25``, ``r_σ = 2``: exactly on the bound) get a verdict:
+
+1. the data are read as the decimals written (``Fraction(repr(x))``: 0.24 is 6/25);
+2. the unobservable subspace ``N = null O`` (observability matrix, eq. (4.18)) gets a rational
+   basis ``V`` from the reduced row echelon form; ``A_u = (V'V)⁻¹ V' A V`` (exact: ``N`` is
+   A-invariant, so ``A V = V A_u``);
+3. with ``p(x) = det(x I − A_u)`` of degree k, ``s(z) = (−1)^k p(√z) p(−√z)`` has the roots
+   ``λ²``, and ``t(z) = w^k s(z / w)`` the roots ``w λ²``;
+4. ``w r_σ(A_u)² < 1`` iff ``t`` is Schur stable, decided by the Schur–Cohn reduction: with
+   ``|t_0| < |t_k|``, ``t`` is Schur stable iff ``(t_k t(z) − t_0 t*(z)) / z`` is, where ``t*`` is
+   ``t`` with reversed coefficients; ``|t_0| ≥ |t_k|`` means the product of the roots has modulus
+   ≥ 1, so some root is outside the open disk.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+from flint import fmpq, fmpq_mat
+
+__all__ = ["exact_unobservable_part", "schur_stable", "self_weight_ok_exact", "to_fraction"]
+
+
+def to_fraction(x: float) -> Fraction:
+    """The decimal a float was written as: ``Fraction(repr(x))`` (0.24 → 6/25)."""
+    return Fraction(repr(float(x)))
+
+
+def _mat(rows: list[list[Fraction]]) -> fmpq_mat:
+    m, n = len(rows), len(rows[0]) if rows else 0
+    return fmpq_mat(m, n, [fmpq(x.numerator, x.denominator) for row in rows for x in row])
+
+
+def _rational(M: np.ndarray) -> list[list[Fraction]]:
+    return [[to_fraction(x) for x in row] for row in np.atleast_2d(M)]
+
+
+def exact_unobservable_part(A: np.ndarray, C: np.ndarray) -> fmpq_mat:
+    """``A_u`` of the Kalman decomposition of ``(A, C)``, exact over the rationals.
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        System matrix (entries read as written decimals).
+    C : ndarray, shape (p, n)
+        Measurement matrix (``p = 0`` allowed).
+
+    Returns
+    -------
+    flint.fmpq_mat
+        ``k × k`` with ``k = n − rank O`` (``0 × 0`` if observable).
+    """
+    n = A.shape[0]
+    Aq = _mat(_rational(A))
+    rows: list[list[Fraction]] = []
+    block = _rational(np.asarray(C, dtype=float).reshape(-1, n)) if np.size(C) else []
+    power = [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
+    for _ in range(n):
+        if block:
+            product = _mat(block) * _mat(power)
+            rows.extend([[Fraction(int(x.p), int(x.q)) for x in r] for r in product.tolist()])
+        power = [[Fraction(int(x.p), int(x.q)) for x in r] for r in (_mat(power) * Aq).tolist()]
+    V = _null_basis(rows, n)
+    if not V:
+        return fmpq_mat(0, 0)
+    Vq = _mat([[V[c][r] for c in range(len(V))] for r in range(n)])
+    Vt = Vq.transpose()
+    return (Vt * Vq).solve(Vt * Aq * Vq)
+
+
+def _null_basis(rows: list[list[Fraction]], n: int) -> list[list[Fraction]]:
+    if not rows:
+        return [[Fraction(int(i == j)) for i in range(n)] for j in range(n)]
+    R, rank = _mat(rows).rref()
+    R = [[Fraction(int(x.p), int(x.q)) for x in r] for r in R.tolist()[:rank]]
+    pivots = [next(j for j, x in enumerate(r) if x != 0) for r in R]
+    basis = []
+    for free in (j for j in range(n) if j not in pivots):
+        v = [Fraction(0)] * n
+        v[free] = Fraction(1)
+        for r, p in zip(R, pivots, strict=True):
+            v[p] = -r[free]
+        basis.append(v)
+    return basis
+
+
+def schur_stable(coefficients: list[Fraction]) -> bool:
+    """Whether every root of ``Σ c_j z^j`` lies in the open unit disk (Schur–Cohn, exact).
+
+    Parameters
+    ----------
+    coefficients : list of Fraction
+        ``c_0, …, c_k`` with ``c_k ≠ 0``.
+    """
+    c = list(coefficients)
+    while len(c) > 1:
+        if abs(c[0]) >= abs(c[-1]):
+            return False
+        lead, const = c[-1], c[0]
+        reduced = [lead * a - const * b for a, b in zip(c, reversed(c), strict=True)]
+        c = reduced[1:]
+    return True
+
+
+def self_weight_ok_exact(A: np.ndarray, C: np.ndarray, w: float) -> bool:
+    """``w r_σ(A_u)² < 1`` decided exactly (seed 000 Thm 5.2.10 (2)).
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        System matrix.
+    C : ndarray, shape (p, n)
+        Agent i's measurement matrix.
+    w : float
+        The self-weight ``w_ii`` (read as the written decimal).
+
+    Returns
+    -------
+    bool
+
+    References
+    ----------
+    seed 000 Thm 5.2.10 (2); this module's docstring for the method.
+    """
+    A_u = exact_unobservable_part(A, C)
+    k = A_u.nrows()
+    if k == 0:
+        return True
+    p = [Fraction(int(x.p), int(x.q)) for x in A_u.charpoly().coeffs()]  # c_0 … c_k
+    p_neg = [c * (-1) ** j for j, c in enumerate(p)]
+    product = [Fraction(0)] * (2 * k + 1)
+    for i, a in enumerate(p):
+        for j, b in enumerate(p_neg):
+            product[i + j] += a * b
+    s = [(-1) ** k * product[2 * j] for j in range(k + 1)]
+    wq = to_fraction(w)
+    if wq == 0:
+        return True
+    t = [s[j] * wq ** (k - j) for j in range(k + 1)]
+    return schur_stable(t)
