@@ -19,7 +19,13 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["ORDERS", "ConsensusKfRun", "ch5_examples", "simulate_consensus_kf"]
+__all__ = [
+    "ORDERS",
+    "ConsensusKfRun",
+    "ch5_examples",
+    "coupled_riccati",
+    "simulate_consensus_kf",
+]
 
 ORDERS = ("consensus-first", "filter-first")
 
@@ -55,11 +61,71 @@ def _local_step(
     y: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
     """One-step predictor of (5.4), (5.8)–(5.9) from ``(x, P)``."""
+    gain, P_next = _riccati_step(A, C, Q, R, P)
+    return A @ x + gain @ (y - C @ x), P_next
+
+
+def _riccati_step(
+    A: np.ndarray, C: np.ndarray, Q: np.ndarray, R: np.ndarray, P: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Gain (5.8) and the Riccati map (5.9) at ``P``."""
     S = C @ P @ C.T + R
     gain = np.linalg.solve(S, C @ P @ A.T).T
-    x_next = A @ x + gain @ (y - C @ x)
     P_next = A @ P @ A.T + Q - gain @ S @ gain.T
-    return x_next, 0.5 * (P_next + P_next.T)
+    return gain, 0.5 * (P_next + P_next.T)
+
+
+def coupled_riccati(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    Q: np.ndarray,
+    R: Sequence[np.ndarray],
+    P0: np.ndarray,
+    steps: int,
+    *,
+    order: str = "consensus-first",
+) -> np.ndarray:
+    """The coupled Riccati recursion of the consensus Kalman filter alone (no data needed).
+
+    Parameters
+    ----------
+    A, C, W, Q, R : ndarray or sequences
+        As in :func:`simulate_consensus_kf`.
+    P0 : ndarray, shape (n, n)
+        Every agent's ``P_i(0)``.
+    steps : int
+        Number of steps ``K``.
+    order : {"consensus-first", "filter-first"}
+
+    Returns
+    -------
+    ndarray, shape (K+1, N)
+        Spectral norms ``‖P_i(k)‖``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``order``.
+
+    References
+    ----------
+    seed 000, eqs. (5.7)–(5.9), App. C.3.
+    """
+    if order not in ORDERS:
+        raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
+    agents = W.shape[0]
+    P = np.tile(P0, (agents, 1, 1))
+    norms = np.empty((steps + 1, agents))
+    norms[0] = np.linalg.norm(P, 2, axis=(1, 2))
+    for k in range(steps):
+        if order == "consensus-first":
+            P = np.einsum("ij,jkl->ikl", W, P)
+        P = np.array([_riccati_step(A, C[i], Q, R[i], P[i])[1] for i in range(agents)])
+        if order == "filter-first":
+            P = np.einsum("ij,jkl->ikl", W, P)
+        norms[k + 1] = np.linalg.norm(P, 2, axis=(1, 2))
+    return norms
 
 
 def simulate_consensus_kf(
