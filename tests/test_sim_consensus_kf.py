@@ -83,3 +83,46 @@ def test_unknown_order_is_refused() -> None:
 def test_registered_claim_verifies_both_examples() -> None:
     result = get_claim("seed000.sec5.3.sim-examples").run(None)[0]
     assert result.status == "verified", result.evidence
+
+
+@pytest.mark.parametrize("order", ORDERS)
+@pytest.mark.parametrize("example", [EXAMPLE_1, EXAMPLE_2], ids=["example 1", "example 2"])
+def test_diverging_p_does_not_mean_diverging_error(example: dict, order: str) -> None:
+    """Finding (docs/errata.md): with W_b the P_i of (5.9) diverge, yet the exact error
+    covariance under the filter's own gains stays bounded and within 2 % of W_g's."""
+    from theory.sim.consensus_kf import true_error_covariance
+
+    results = {}
+    for name in ("W_g", "W_b"):
+        traces, p_norms = true_error_covariance(
+            example["A"], example["C"], np.array(example[name], float), example["Q"],
+            example["R"], example["P0"], 600, order=order,
+        )  # fmt: skip
+        results[name] = (traces, p_norms)
+    g_traces, _ = results["W_g"]
+    b_traces, b_norms = results["W_b"]
+    assert b_norms[-1].max() > GROWTH * b_norms[300].max()  # P unbounded
+    assert abs(b_traces[-1] - b_traces[300]) <= 1e-6 * b_traces[300]  # the error is not
+    assert abs(b_traces[-1] / g_traces[-1] - 1) < 0.02
+
+
+def test_error_covariance_matches_monte_carlo() -> None:
+    """The exact recursion against the sample covariance of 400 simulated runs (Example 1,
+    W_g): agreement within 4 standard errors of the Monte Carlo mean."""
+    from theory.sim.consensus_kf import true_error_covariance
+
+    W = np.array(EXAMPLE_1["W_g"], float)
+    traces, _ = true_error_covariance(
+        EXAMPLE_1["A"], EXAMPLE_1["C"], W, EXAMPLE_1["Q"], EXAMPLE_1["R"], EXAMPLE_1["P0"], 30
+    )
+    rng = np.random.default_rng(7)
+    samples = []
+    for _ in range(400):
+        x0 = rng.multivariate_normal(np.zeros(2), EXAMPLE_1["P0"])
+        run = simulate_consensus_kf(
+            EXAMPLE_1["A"], EXAMPLE_1["C"], W, EXAMPLE_1["Q"], EXAMPLE_1["R"], x0=x0,
+            estimate0=np.zeros(2), P0=EXAMPLE_1["P0"], steps=30, rng=rng,
+        )  # fmt: skip
+        samples.append((run.errors[-1] ** 2).sum())
+    mean, stderr = np.mean(samples), np.std(samples) / np.sqrt(len(samples))
+    assert abs(mean - traces[-1]) < 4 * stderr, (mean, traces[-1], stderr)

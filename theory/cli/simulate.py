@@ -1,7 +1,8 @@
 """``trackcert simulate CASE``: closed-loop simulation, data files and figures (DESIGN.md).
 
-Runs ``kind: tdoa-sim`` cases (seed 000 ch. 4, :mod:`theory.sim.scenario`) and 2-D
-``kind: pursuit`` cases (seed 003, :mod:`theory.sim.pursuit_sim`).
+Runs ``kind: tdoa-sim`` cases (seed 000 ch. 4, :mod:`theory.sim.scenario`), 2-D
+``kind: pursuit`` cases (seed 003, :mod:`theory.sim.pursuit_sim`) and ``kind: dkf`` cases
+(seed 000 ch. 5, :mod:`theory.sim.dkf_sim`).
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from theory.errors import CaseError
 
 __all__ = ["register"]
 
-KINDS = ("tdoa-sim", "pursuit")
+KINDS = ("tdoa-sim", "pursuit", "dkf")
 
 
 def register(app: typer.Typer) -> None:
@@ -44,7 +45,9 @@ def register(app: typer.Typer) -> None:
     @app.command("simulate")
     @reports_errors
     def simulate(
-        case: str = typer.Argument(..., help="Case file or bundled case (tdoa-sim or pursuit)."),
+        case: str = typer.Argument(
+            ..., help="Case file or bundled case (tdoa-sim, pursuit or dkf)."
+        ),
         output: str = typer.Option(..., "-o", "--output", help="Folder for data and figures."),
         runs: int = typer.Option(1, "--runs", min=1, help="Monte Carlo runs."),
         seed: int = typer.Option(0, "--seed", help="Root seed (run i uses child i)."),
@@ -65,7 +68,9 @@ def register(app: typer.Typer) -> None:
             raise CaseError(
                 "kind", f"one of {list(KINDS)} (the kinds simulate runs)", loaded.kind, file=case
             )
-        backend = _tdoa_backend if loaded.kind == "tdoa-sim" else _pursuit_backend
+        backend = {"tdoa-sim": _tdoa_backend, "pursuit": _pursuit_backend, "dkf": _dkf_backend}[
+            loaded.kind
+        ]
         spec, simulate_one, header = backend(loaded, steps)
         workers = workers or default_workers()
         with Progress(console=error_console, transient=True) as progress:
@@ -151,6 +156,22 @@ def _finish_pursuit(case: Case, spec: Any, results: list, folder: Path, figures:
     return summary, {}, files
 
 
+def _dkf_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
+    from theory.sim.dkf_sim import DEFAULT_STEPS, run_dkf_case
+
+    steps = steps or DEFAULT_STEPS
+    fields = {"order": case.spec.order, "steps": steps}
+    simulate_one = functools.partial(run_dkf_case, steps=steps)
+    return case.spec, simulate_one, {"fields": fields, "finish": _finish_dkf}
+
+
+def _finish_dkf(case: Case, spec: Any, results: list, folder: Path, figures: bool):
+    from theory.sim.dkf_sim import summarize_dkf, write_dkf_data
+
+    summary = summarize_dkf(spec, results)
+    return summary, {}, write_dkf_data(results, summary, folder)
+
+
 def _print_table(report: dict) -> None:
     from rich.table import Table
 
@@ -160,6 +181,10 @@ def _print_table(report: dict) -> None:
     for column in columns:
         table.add_column(column.replace("_", " "), justify="right")
     for agent in report["agents"]:
-        table.add_row(str(agent["id"]), *(f"{agent[c]:.3g}" for c in columns))
+        table.add_row(str(agent["id"]), *(_cell(agent[c]) for c in columns))
     console.print(table)
     console.print(f"files in {Path(report['files'][0]).parent}")
+
+
+def _cell(value: Any) -> str:
+    return f"{value:.3g}" if isinstance(value, float) else str(value)

@@ -8,6 +8,11 @@
 step with its own ``x̂_j``, ``P_j``, then averages: ``x̂_i ← Σ_j w_ij [Ax̂_j + L_j(y_j − C_jx̂_j)]``,
 ``P_i ← Σ_j w_ij [AP_jA' + Q − AP_jC_j'(C_jP_jC_j' + R_j)⁻¹C_jP_jA']``.
 
+The estimation errors ``ε_i = x − x̂_i`` are propagated directly, by (5.5) and its
+filter-first twin ``ε_i ← Σ_j w_ij [(A − L_jC_j)ε_j + ω − L_jv_j]`` (C.4 with noise): for an
+unstable ``A`` the state itself overflows the floating-point range long before the errors do,
+and ``x − x̂`` computed from two huge numbers would be meaningless.
+
 The case kind ``dkf`` belongs to another module; this one takes the matrices directly.
 """
 
@@ -25,6 +30,7 @@ __all__ = [
     "ch5_examples",
     "coupled_riccati",
     "simulate_consensus_kf",
+    "true_error_covariance",
 ]
 
 ORDERS = ("consensus-first", "filter-first")
@@ -36,13 +42,12 @@ class ConsensusKfRun:
 
     Attributes
     ----------
-    states : ndarray, shape (K+1, n)
-    estimates : ndarray, shape (K+1, N, n)
+    errors : ndarray, shape (K+1, N, n)
+        ``ε_i(k) = x(k) − x̂_i(k)``.
     covariances : ndarray, shape (K+1, N, n, n)
     """
 
-    states: np.ndarray
-    estimates: np.ndarray
+    errors: np.ndarray
     covariances: np.ndarray
 
     @property
@@ -56,13 +61,15 @@ def _local_step(
     C: np.ndarray,
     Q: np.ndarray,
     R: np.ndarray,
-    x: np.ndarray,
+    error: np.ndarray,
     P: np.ndarray,
-    y: np.ndarray,
+    omega: np.ndarray,
+    rng: np.random.Generator,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """One-step predictor of (5.4), (5.8)–(5.9) from ``(x, P)``."""
+    """Error and covariance after the local step (5.4), (5.8)–(5.9): ``(A − LC)ε + ω − Lv``."""
     gain, P_next = _riccati_step(A, C, Q, R, P)
-    return A @ x + gain @ (y - C @ x), P_next
+    noise = rng.multivariate_normal(np.zeros(C.shape[0]), R) if C.shape[0] else np.zeros(0)
+    return (A - gain @ C) @ error + omega - gain @ noise, P_next
 
 
 def _riccati_step(
@@ -142,7 +149,7 @@ def simulate_consensus_kf(
     rng: np.random.Generator,
     order: str = "consensus-first",
 ) -> ConsensusKfRun:
-    """Simulate ``x(k+1) = Ax(k) + ω(k)``, ``y_i = C_ix + v_i`` and the consensus Kalman filter.
+    """Simulate the consensus Kalman filter's errors for ``x(k+1) = Ax + ω``, ``y_i = C_ix + v_i``.
 
     Parameters
     ----------
@@ -157,7 +164,7 @@ def simulate_consensus_kf(
     x0 : ndarray, shape (n,)
         Initial state.
     estimate0 : ndarray, shape (n,)
-        Every agent's initial estimate.
+        Every agent's initial estimate (only ``x0 − estimate0`` matters).
     P0 : ndarray, shape (n, n)
         Every agent's initial ``P_i(0)``.
     steps : int
@@ -183,26 +190,102 @@ def simulate_consensus_kf(
     if order not in ORDERS:
         raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
     n, agents = A.shape[0], W.shape[0]
-    states = np.empty((steps + 1, n))
-    estimates = np.empty((steps + 1, agents, n))
+    errors = np.empty((steps + 1, agents, n))
     covariances = np.empty((steps + 1, agents, n, n))
-    states[0], estimates[0], covariances[0] = x0, estimate0, P0
+    errors[0], covariances[0] = np.asarray(x0) - np.asarray(estimate0), P0
     for k in range(steps):
-        x, xs, Ps = states[k], estimates[k], covariances[k]
-        ys = [
-            Ci @ x + rng.multivariate_normal(np.zeros(len(Ri)), Ri)
-            for Ci, Ri in zip(C, R, strict=True)
-        ]
+        es, Ps = errors[k], covariances[k]
+        omega = rng.multivariate_normal(np.zeros(n), Q)
         if order == "consensus-first":
-            xs, Ps = W @ xs, np.einsum("ij,jkl->ikl", W, Ps)
-        stepped = [_local_step(A, C[i], Q, R[i], xs[i], Ps[i], ys[i]) for i in range(agents)]
-        xs = np.array([s[0] for s in stepped])
+            es, Ps = W @ es, np.einsum("ij,jkl->ikl", W, Ps)
+        stepped = [_local_step(A, C[i], Q, R[i], es[i], Ps[i], omega, rng) for i in range(agents)]
+        es = np.array([s[0] for s in stepped])
         Ps = np.array([s[1] for s in stepped])
         if order == "filter-first":
-            xs, Ps = W @ xs, np.einsum("ij,jkl->ikl", W, Ps)
-        estimates[k + 1], covariances[k + 1] = xs, Ps
-        states[k + 1] = A @ x + rng.multivariate_normal(np.zeros(n), Q)
-    return ConsensusKfRun(states, estimates, covariances)
+            es, Ps = W @ es, np.einsum("ij,jkl->ikl", W, Ps)
+        errors[k + 1], covariances[k + 1] = es, Ps
+    return ConsensusKfRun(errors, covariances)
+
+
+def true_error_covariance(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    Q: np.ndarray,
+    R: Sequence[np.ndarray],
+    P0: np.ndarray,
+    steps: int,
+    *,
+    order: str = "consensus-first",
+) -> tuple[np.ndarray, np.ndarray]:
+    """The exact network error covariance under the filter's own gains, beside its ``P_i``.
+
+    With the gains ``L_i(k)`` of (5.8) computed from the coupled Riccati recursion, the network
+    error ``ε = col(ε_i)`` obeys ``ε⁺ = Bε + 1⊗ω − blkdiag(L_i)v`` with
+    ``B = diag(A − L_iC_i)(W⊗I)`` (consensus-first, (5.11)) or ``(W⊗I)diag(A − L_iC_i)``
+    (filter-first, (C.5)), so ``Σ⁺ = BΣBᵀ + (11ᵀ⊗Q) + blkdiag(L_iR_iL_iᵀ)`` (filter-first:
+    the noise term is premultiplied by ``W⊗I`` and postmultiplied by its transpose).
+    The initial errors are independent with covariance ``P0`` each.
+
+    Parameters
+    ----------
+    A, C, W, Q, R : ndarray or sequences
+        As in :func:`simulate_consensus_kf`.
+    P0 : ndarray, shape (n, n)
+    steps : int
+    order : {"consensus-first", "filter-first"}
+
+    Returns
+    -------
+    traces : ndarray, shape (K+1,)
+        ``tr Σ(k)`` (sum over agents of their mean squared errors).
+    p_norms : ndarray, shape (K+1, N)
+        ``‖P_i(k)‖`` of the Riccati recursion.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``order``.
+
+    References
+    ----------
+    seed 000, eqs. (5.5)–(5.11), App. C.3.
+    """
+    if order not in ORDERS:
+        raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
+    n, agents = A.shape[0], W.shape[0]
+    mix = np.kron(W, np.eye(n))
+    P = np.tile(P0, (agents, 1, 1))
+    Sigma = np.kron(np.eye(agents), P0)
+    common = np.kron(np.ones((agents, agents)), Q)
+    traces, p_norms = [np.trace(Sigma)], [np.linalg.norm(P, 2, axis=(1, 2))]
+    for _ in range(steps):
+        if order == "consensus-first":
+            P = np.einsum("ij,jkl->ikl", W, P)
+        steps_i = [_riccati_step(A, C[i], Q, R[i], P[i]) for i in range(agents)]
+        gains = [g for g, _ in steps_i]
+        P = np.array([p for _, p in steps_i])
+        local = _block_diag([A - gains[i] @ C[i] for i in range(agents)])
+        measurement = _block_diag([g @ R[i] @ g.T for i, g in enumerate(gains)])
+        if order == "consensus-first":
+            B, noise = local @ mix, common + measurement
+        else:
+            P = np.einsum("ij,jkl->ikl", W, P)
+            B, noise = mix @ local, mix @ (common + measurement) @ mix.T
+        Sigma = B @ Sigma @ B.T + noise
+        traces.append(np.trace(Sigma))
+        p_norms.append(np.linalg.norm(P, 2, axis=(1, 2)))
+    return np.array(traces), np.array(p_norms)
+
+
+def _block_diag(blocks: Sequence[np.ndarray]) -> np.ndarray:
+    rows = sum(b.shape[0] for b in blocks)
+    out = np.zeros((rows, rows))
+    at = 0
+    for b in blocks:
+        out[at : at + b.shape[0], at : at + b.shape[1]] = b
+        at += b.shape[0]
+    return out
 
 
 def ch5_examples() -> dict[str, dict[str, Any]]:
