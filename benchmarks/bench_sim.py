@@ -29,7 +29,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 from theory.case_file import load_case
 from theory.sim.agents import linearizing_control
-from theory.sim.pursuit import DecSettings, simulate_dec_2d
+from theory.sim.pursuit import DecSettings, simulate_dec
 from theory.sim.range_dekf import table_target
 from theory.sim.runner import monte_carlo
 
@@ -85,7 +85,7 @@ def _dec_run(seed: int) -> float:
     target = table_target("I", 0.1 * np.arange(steps + 1))
     start = target[0, :2] + np.array([[-40.0, -40.0], [-30.0, -45.0], [-45.0, -30.0]])
     x0 = np.concatenate([target[0, :2] + [5.0, -5.0], [0.0, 0.0]])
-    run = simulate_dec_2d(
+    run = simulate_dec(
         target, start, np.zeros(3), np.array([0.0, 1.0, 2.0]), [[1], [2], [0]], x0,
         10 * np.eye(4), steps, np.random.default_rng(seed), DecSettings(),
     )  # fmt: skip

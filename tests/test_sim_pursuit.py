@@ -9,7 +9,7 @@ import pytest
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.sim.pursuit import DecSettings, simulate_dec_2d
+from theory.sim.pursuit import DecSettings, simulate_dec
 from theory.sim.range_dekf import table_target
 
 STEPS = 1500  # 150 s of 0.1 s; the paper's runs are 450 s
@@ -22,7 +22,7 @@ def _run(n: int, controller: str = "II", seed: int = 0, steps: int = STEPS):
     times = 0.1 * np.arange(steps + 1)
     target = table_target("I", times)
     x0 = np.concatenate([target[0, :2] + [5.0, -5.0], [0.0, 0.0]])
-    return simulate_dec_2d(
+    return simulate_dec(
         target,
         target[0, :2] + START[:n],
         np.zeros(n),
@@ -58,7 +58,7 @@ def test_singular_delta_is_refused() -> None:
     """Eq. (22)/Remark 6: Δ̄ exists only when ε₁ ≠ 0."""
     target = table_target("I", np.zeros(2))
     with pytest.raises(ValueError, match="epsilon"):
-        simulate_dec_2d(
+        simulate_dec(
             target, START[:1], np.zeros(1), np.zeros(1), [[]], target[0], np.eye(4), 1,
             np.random.default_rng(0), DecSettings(epsilon=(0.0, 0.5)),
         )  # fmt: skip
@@ -84,10 +84,24 @@ def test_cli_simulates_a_bundled_pursuit_case(tmp_path) -> None:
         assert (out / name).is_file(), name
 
 
-def test_cli_refuses_3d_pursuit_naming_the_field(tmp_path) -> None:
-    result = CliRunner().invoke(app, ["simulate", "pursuit-table2-n3", "-o", str(tmp_path)])
+def test_cli_refuses_singular_delta_naming_the_field(tmp_path) -> None:
+    result = CliRunner().invoke(app, ["simulate", "pursuit-singular-epsilon", "-o", str(tmp_path)])
     assert result.exit_code == 2
-    assert "pursuit.dim" in result.stderr and "pursuit-table2-n3" in result.stderr
+    assert "pursuit." in result.stderr and "pursuit-singular-epsilon" in result.stderr
+
+
+def test_three_trackers_in_3d_table_ii() -> None:
+    """§VI-B (Table II, 3-D, three trackers, Type II): pursuit and localization errors settle to
+    a few metres and the path parameters agree, moving at ω̄ = 0.1 rad/s (200 s, dt = 0.02 s)."""
+    from theory.case_file import load_case
+    from theory.sim.pursuit_sim import run_pursuit_case
+
+    run = run_pursuit_case(load_case("pursuit-table2-n3").spec, np.random.default_rng(0), 10000)
+    late = slice(-2500, None)
+    assert run.pursuit_errors[late].max() < 5.0
+    assert run.localization_errors[late].max() < 5.0
+    assert np.ptp(run.gammas[-1]) < 0.05
+    assert np.abs(run.gamma_rates[-1] - 0.1).max() < 0.01
 
 
 def test_iss_estimate_holds_along_simulated_trajectories() -> None:

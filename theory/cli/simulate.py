@@ -130,14 +130,20 @@ def _finish_tdoa(case: Case, spec: Any, results: list, folder: Path, figures: bo
 
 
 def _pursuit_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
-    from theory.sim.pursuit_sim import DEFAULT_STEPS, check_pursuit_case, run_pursuit_case
+    from theory.sim.pursuit_sim import (
+        check_pursuit_case,
+        default_steps,
+        integration_step,
+        run_pursuit_case,
+    )
 
     try:
         check_pursuit_case(case.spec)
     except CaseError as error:
         raise error.in_file(case.file) from None
-    steps = steps or DEFAULT_STEPS
-    fields = {"controller": case.spec.controller, "steps": steps, "dt": 0.1}
+    steps = steps or default_steps(case.spec.dim)
+    dt = integration_step(case.spec.dim)
+    fields = {"controller": case.spec.controller, "dim": case.spec.dim, "steps": steps, "dt": dt}
     simulate_one = functools.partial(run_pursuit_case, steps=steps)
     return case.spec, simulate_one, {"fields": fields, "finish": _finish_pursuit}
 

@@ -1,10 +1,10 @@
-"""``trackcert simulate`` for ``kind: pursuit`` cases (seed 003, 2-D): run, summary, files.
+"""``trackcert simulate`` for ``kind: pursuit`` cases (seed 003, 2-D and 3-D): run, summary, files.
 
-Adapts a :class:`~theory.pursuit_case.PursuitSpec` to :func:`theory.sim.pursuit.simulate_dec_2d`.
+Adapts a :class:`~theory.pursuit_case.PursuitSpec` to :func:`theory.sim.pursuit.simulate_dec`.
 Defaults where the case leaves the simulation unspecified (documented in
-``docs/simulation.md``): tracker ``i`` (0-based) starts at ``q(0) + (−40 + 5i, −40 − 5i)`` m
-with heading 0 and ``γ^[i](0) = i`` rad; estimates start at ``[q(0) + (5, −5); 0, 0]`` with
-``P = 10 I``; steps of ``dt = 0.1`` s.
+``docs/simulation.md``): tracker ``i`` (0-based) starts at ``q(0) + (−40 + 5i, −40 − 5i[, 0])``
+m with zero Euler angles and ``γ^[i](0) = i`` rad; estimates start at
+``[q(0) + (5, −5[, 0]); 0]`` with ``P = 10 I``; steps of ``dt = 0.1`` s.
 """
 
 from __future__ import annotations
@@ -23,20 +23,52 @@ import numpy as np
 
 from theory.errors import CaseError
 from theory.pursuit_case import PursuitSpec
-from theory.sim.pursuit import DecRun, DecSettings, simulate_dec_2d
+from theory.sim.pursuit import DecRun, DecSettings, delta_matrix, simulate_dec
 
 __all__ = [
-    "DEFAULT_STEPS",
+    "DEFAULT_DURATION",
     "check_pursuit_case",
+    "default_steps",
+    "integration_step",
     "run_pursuit_case",
     "summarize_pursuit",
     "write_pursuit_data",
     "write_pursuit_figures",
 ]
 
-DEFAULT_STEPS = 4500
-"""450 s of 0.1 s (the paper's runs; the issue's 4501 samples)."""
-DT = 0.1
+DEFAULT_DURATION = 450.0
+"""Seconds simulated by default (the paper's runs; 4501 samples of 0.1 s in 2-D)."""
+
+
+def integration_step(dim: int) -> float:
+    """Forward-Euler step: 0.1 s in 2-D; 0.02 s in 3-D, where 0.1 s makes the loop blow up
+    (turn rates of tens of rad/s early on) and 0.02 s agrees with 0.005 s to 1e-2 m.
+
+    Parameters
+    ----------
+    dim : int
+        2 or 3.
+
+    Returns
+    -------
+    float
+    """
+    return 0.1 if dim == 2 else 0.02
+
+
+def default_steps(dim: int) -> int:
+    """``DEFAULT_DURATION / integration_step(dim)``.
+
+    Parameters
+    ----------
+    dim : int
+        2 or 3.
+
+    Returns
+    -------
+    int
+    """
+    return round(DEFAULT_DURATION / integration_step(dim))
 
 
 def check_pursuit_case(spec: PursuitSpec) -> None:
@@ -49,28 +81,28 @@ def check_pursuit_case(spec: PursuitSpec) -> None:
     Raises
     ------
     CaseError
-        3-D cases, missing ``target`` or ``dekf`` blocks, ``ε₁ = 0``.
+        Missing ``target`` or ``dekf`` blocks, a rank-deficient ``Δ`` of (22).
     """
-    if spec.dim != 2:
-        raise CaseError("pursuit.dim", "2 (the simulation covers the 2-D DEC loop)", spec.dim)
     if spec.target is None:
         raise CaseError("pursuit.target", "a target motion to simulate", "nothing")
     if spec.dekf is None:
         raise CaseError("pursuit.dekf", "DEKF settings (Ts, sigma, V, Q) to simulate", "nothing")
-    if spec.epsilon[0] == 0:
+    if np.linalg.matrix_rank(delta_matrix(spec.epsilon)) < spec.dim:
         raise CaseError(
-            "pursuit.epsilon[1]", "a non-zero ε₁ (Δ of (22) is singular otherwise)", 0.0
+            "pursuit.epsilon",
+            "an ε making Δ of (22) full row rank (ε₁ ≠ 0 in 2-D)",
+            [float(e) for e in spec.epsilon],
         )
 
 
 def _target_states(spec: PursuitSpec, steps: int) -> np.ndarray:
-    times = DT * np.arange(steps + 1)
+    times = integration_step(spec.dim) * np.arange(steps + 1)
     motion = spec.target
     return np.array([np.concatenate([motion.position(t), motion.velocity_at(t)]) for t in times])
 
 
 def run_pursuit_case(
-    spec: PursuitSpec, rng: np.random.Generator, steps: int = DEFAULT_STEPS
+    spec: PursuitSpec, rng: np.random.Generator, steps: int | None = None
 ) -> DecRun:
     """One run of the 2-D DEC loop for a pursuit case.
 
@@ -80,24 +112,27 @@ def run_pursuit_case(
         A case accepted by :func:`check_pursuit_case`.
     rng : numpy.random.Generator
         Source of the range noise.
-    steps : int
-        Number of ``0.1 s`` steps.
+    steps : int, optional
+        Number of :func:`integration_step` steps (default :func:`default_steps`).
 
     Returns
     -------
     DecRun
     """
-    dekf = spec.dekf
+    steps = default_steps(spec.dim) if steps is None else steps
+    dekf, d = spec.dekf, spec.dim
     target = _target_states(spec, steps)
     positions, headings, gammas = [], [], []
     for i, tracker in enumerate(spec.trackers):
         initial = tracker.initial
-        default = target[0, :2] + np.array([-40.0 + 5 * i, -40.0 - 5 * i])
+        default = target[0, :d] + np.array([-40.0 + 5 * i, -40.0 - 5 * i, 0.0][:d])
         positions.append(initial.get("position", default))
-        headings.append(float(initial["euler"][0]) if "euler" in initial else 0.0)
+        euler = np.asarray(initial.get("euler", np.zeros(1 if d == 2 else 3)), dtype=float)
+        headings.append(euler[0] if d == 2 else euler)
         gammas.append(initial.get("gamma", float(i)))
-    x0 = dekf.x0 if dekf.x0 is not None else np.concatenate([target[0, :2] + [5.0, -5.0], [0, 0]])
-    P0 = dekf.P0 if dekf.P0 is not None else 10.0 * np.eye(4)
+    offset = np.array([5.0, -5.0, 0.0][:d])
+    x0 = dekf.x0 if dekf.x0 is not None else np.concatenate([target[0, :d] + offset, np.zeros(d)])
+    P0 = dekf.P0 if dekf.P0 is not None else 10.0 * np.eye(2 * d)
     settings = DecSettings(
         omega_bar=spec.omega_bar,
         epsilon=tuple(float(e) for e in spec.epsilon),
@@ -108,12 +143,17 @@ def run_pursuit_case(
         V=dekf.V,
         Q=tuple(float(q) for q in np.diag(dekf.Q)),
         Ts=dekf.Ts,
-        dt=DT,
+        dt=integration_step(spec.dim),
         sigma=dekf.sigma,
     )
-    paths = np.array([[t.r_x, t.r_y, t.gamma0] for t in spec.trackers])
+    paths = np.array(
+        [
+            [t.r_x, t.r_y, t.gamma0] if d == 2 else [t.r_x, t.r_y, t.r_z, t.c, t.gamma0]
+            for t in spec.trackers
+        ]
+    )
     in_neighbours = [list(np.flatnonzero(row)) for row in spec.adjacency]
-    return simulate_dec_2d(
+    return simulate_dec(
         target, np.array(positions, float), np.array(headings), np.array(gammas, float),
         in_neighbours, x0, P0, steps, rng, settings, paths=paths, fusion=dekf.weights,
     )  # fmt: skip
