@@ -10,9 +10,9 @@ import pytest
 
 import theory.sim
 
-MODULES = [
-    f"theory.sim.{info.name}" for info in pkgutil.iter_modules(theory.sim.__path__)
-] + ["theory.cli.simulate"]
+MODULES = [f"theory.sim.{info.name}" for info in pkgutil.iter_modules(theory.sim.__path__)] + [
+    "theory.cli.simulate"
+]
 
 
 def _public_functions():
