@@ -37,6 +37,7 @@ KIND_MODULES: tuple[str, ...] = (
     "theory.dkf_case",
     "theory.pf_case",
     "theory.pursuit_case",
+    "theory.sim.tdoa_sim_case",
     "theory.tdoa_case",
 )
 """Modules that register case kinds (imported on first use)."""

@@ -42,6 +42,7 @@ CLAIM_MODULES: tuple[str, ...] = (
     "theory.observability_claims",
     "theory.pf_experiments",
     "theory.pf_vs_ekf",
+    "theory.sim.sim_claims",
     "theory.topology_claims",
 )
 """Modules that register claims; each feature appends its module here."""

@@ -1,0 +1,110 @@
+"""Speed of the closed-loop simulation (seed 000 §4.4 scenario), with same-run baselines.
+
+Prints, for the bundled case ``sim-ch4-fixed-b0``:
+
+* time per run, pings/second and robot-integration steps/second (one worker);
+* Monte Carlo throughput over all local cores against one worker (ratio);
+* the vectorised agent controller against a per-agent Python loop (ratio).
+
+and for the seed 003 2-D three-tracker scenario (Table I, 4501 steps of 0.1 s, DEKF every 2 s):
+time per run, steps/second, and Monte Carlo throughput over all local cores against one worker.
+
+Usage: ``python benchmarks/bench_sim.py [--steps 100] [--runs 4]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from concurrent.futures import ProcessPoolExecutor
+
+from theory.case_file import load_case
+from theory.sim.agents import linearizing_control
+from theory.sim.pursuit import DecSettings, simulate_dec
+from theory.sim.range_dekf import table_target
+from theory.sim.runner import monte_carlo
+
+
+def _timed(function, *args, **kwargs) -> float:
+    start = time.perf_counter()
+    function(*args, **kwargs)
+    return time.perf_counter() - start
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--steps", type=int, default=100, help="pings per run")
+    parser.add_argument("--runs", type=int, default=4, help="Monte Carlo runs")
+    args = parser.parse_args()
+    spec = dataclasses.replace(load_case("sim-ch4-fixed-b0").spec, steps=args.steps)
+    fine_steps = args.steps * spec.rounds * spec.substeps
+
+    one = _timed(monte_carlo, spec, runs=1, seed=0, workers=1)
+    print(f"§4.4 scenario, {args.steps} pings, N = {spec.n_agents}: {one:.2f} s per run")
+    print(f"  {args.steps / one:.0f} pings/s, {fine_steps / one:.0f} RK4 steps/s (one worker)")
+
+    cores = os.cpu_count() or 1
+    serial = _timed(monte_carlo, spec, runs=args.runs, seed=0, workers=1)
+    parallel = _timed(monte_carlo, spec, runs=args.runs, seed=0, workers=cores)
+    print(
+        f"Monte Carlo {args.runs} runs: {args.runs / serial:.2f} runs/s on 1 worker, "
+        f"{args.runs / parallel:.2f} runs/s on {cores} workers (ratio {serial / parallel:.2f})"
+    )
+
+    rng = np.random.default_rng(0)
+    states = rng.normal(size=(spec.n_agents, 9))
+    states[:, 3] = 1.0
+    target = rng.normal(size=(spec.n_agents, 3, 3))
+    repeats = 2000
+    vectorised = _timed(lambda: [linearizing_control(states, target, 0.5) for _ in range(repeats)])
+    looped = _timed(
+        lambda: [
+            [linearizing_control(states[i : i + 1], target[i : i + 1], 0.5) for i in range(8)]
+            for _ in range(repeats)
+        ]
+    )
+    print(
+        f"controller, {repeats} evaluations of {spec.n_agents} agents: vectorised "
+        f"{vectorised * 1e6 / repeats:.0f} µs, per-agent loop {looped * 1e6 / repeats:.0f} µs "
+        f"(ratio {looped / vectorised:.1f})"
+    )
+    bench_dec(args.runs)
+
+
+def _dec_run(seed: int) -> float:
+    steps = 4500
+    target = table_target("I", 0.1 * np.arange(steps + 1))
+    start = target[0, :2] + np.array([[-40.0, -40.0], [-30.0, -45.0], [-45.0, -30.0]])
+    x0 = np.concatenate([target[0, :2] + [5.0, -5.0], [0.0, 0.0]])
+    run = simulate_dec(
+        target, start, np.zeros(3), np.array([0.0, 1.0, 2.0]), [[1], [2], [0]], x0,
+        10 * np.eye(4), steps, np.random.default_rng(seed), DecSettings(),
+    )  # fmt: skip
+    return float(run.localization_errors[-1].max())
+
+
+def bench_dec(runs: int) -> None:
+    """Seed 003 Table I, three trackers."""
+    one = _timed(_dec_run, 0)
+    print(f"seed 003 2-D, 3 trackers, 4501 steps: {one:.2f} s per run, {4501 / one:.0f} steps/s")
+    cores = os.cpu_count() or 1
+    serial = _timed(lambda: [_dec_run(s) for s in range(runs)])
+    with ProcessPoolExecutor(max_workers=cores) as pool:
+        parallel = _timed(lambda: list(pool.map(_dec_run, range(runs))))
+    print(
+        f"  Monte Carlo {runs} runs: {runs / serial:.2f} runs/s on 1 worker, "
+        f"{runs / parallel:.2f} runs/s on {cores} workers (ratio {serial / parallel:.2f})"
+    )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,204 @@
+"""Seed 003: range-only target model, range measurements and the information-form DEKF.
+
+* Target model (7)–(8): ``x_{k+1} = F x_k + w_k`` with ``F = [I, T_s I; 0, I]`` (2-D or 3-D).
+* Range measurement (9)–(10): ``y_k^[i] = ‖p_k^[i] − q_k‖ + η_k^[i]``.
+* Algorithm 2 (Algorithm 1 is its ``N = 1`` case, Remark 7): correction in information form
+  (41), one fusion round with weights ``π^[i,j]`` (43), prediction (44)
+  ``Ω_{k+1|k} = W − WF(Ω_{k|k} + FᵀWF)⁻¹FᵀW``, ``x̂_{k+1|k} = F x̂_{k|k}``.
+* Tables I–II: the targets' trajectories and the S-T curves (15)–(16) the trackers follow
+  once tracking and coordination (38)–(39) have converged.
+
+The trackers' under-actuated kinematics and the Type I/II controllers with coordination
+(45)–(52) are not implemented here: :func:`encircling_paths` places the trackers on their desired
+S-T curves around the *true* target, the steady state those controllers are designed to reach.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = [
+    "RangeDekfRun",
+    "encircling_paths",
+    "range_dekf",
+    "st_curve",
+    "table_target",
+]
+
+
+def table_target(table: str, times: np.ndarray) -> np.ndarray:
+    """Target states ``[q; v]`` of seed 003 Table I (2-D) or Table II (3-D) at ``times``.
+
+    Table I: ``q = [20 sin(0.01t + π), 0.3t]``; Table II: ``q = [30 sin(0.01t + π), 0.1t, −0.5t]``.
+
+    Parameters
+    ----------
+    table : {"I", "II"}
+    times : ndarray
+        Times (s).
+
+    Returns
+    -------
+    ndarray, shape (len(times), 2d)
+
+    Raises
+    ------
+    ValueError
+        For a table other than ``"I"`` or ``"II"``.
+    """
+    t = np.asarray(times, dtype=float)
+    s, c = np.sin(0.01 * t + np.pi), np.cos(0.01 * t + np.pi)
+    if table == "I":
+        q = np.column_stack([20 * s, 0.3 * t])
+        v = np.column_stack([0.2 * c, np.full_like(t, 0.3)])
+    elif table == "II":
+        q = np.column_stack([30 * s, 0.1 * t, -0.5 * t])
+        v = np.column_stack([0.3 * c, np.full_like(t, 0.1), np.full_like(t, -0.5)])
+    else:
+        raise ValueError(f"table must be 'I' or 'II', got {table!r}")
+    return np.hstack([q, v])
+
+
+def st_curve(gamma: np.ndarray, radii: tuple[float, ...], gamma0: float, c: float = 1.0):
+    """Spatial path ``r(γ)`` of (15) (3-D, ``radii = (r_x, r_y, r_z)``) or (16) (2-D).
+
+    Parameters
+    ----------
+    gamma : ndarray
+        Path parameters ``γ``.
+    radii : tuple of float
+    gamma0 : float
+        Phase ``γ0``.
+    c : float
+        Vertical frequency divisor of (15).
+
+    Returns
+    -------
+    ndarray, shape (..., d)
+    """
+    gamma = np.asarray(gamma, dtype=float)
+    columns = [radii[0] * np.cos(gamma + gamma0), radii[1] * np.sin(gamma + gamma0)]
+    if len(radii) == 3:
+        columns.append(radii[2] * np.sin(gamma / c + gamma0))
+    return np.stack(columns, axis=-1)
+
+
+def encircling_paths(
+    target: np.ndarray, times: np.ndarray, n: int, radii: tuple[float, ...], omega: float
+) -> np.ndarray:
+    """Trackers on their S-T curves ``q(t) + r(ω̄t + γ0^[i])``, ``γ0^[i] = 2π(i−1)/N``.
+
+    Parameters
+    ----------
+    target : ndarray, shape (K+1, 2d)
+        True target states.
+    times : ndarray, shape (K+1,)
+    n : int
+        Number of trackers.
+    radii : tuple of float
+        ``(r_x, r_y)`` or ``(r_x, r_y, r_z)``.
+    omega : float
+        ``ω̄``.
+
+    Returns
+    -------
+    ndarray, shape (K+1, n, d)
+    """
+    d = len(radii)
+    return np.stack(
+        [
+            target[:, :d] + st_curve(omega * times, radii, 2 * np.pi * i / n if n > 1 else 0.0)
+            for i in range(n)
+        ],
+        axis=1,
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class RangeDekfRun:
+    """Estimates ``x̂_{k|k}^[i]`` (shape (K+1, N, 2d)) and information matrices ``Ω_{k|k}^[i]``."""
+
+    estimates: np.ndarray
+    information: np.ndarray
+
+    def errors(self, target: np.ndarray) -> np.ndarray:
+        """Position errors ``‖q̂^[i] − q‖``, shape (K+1, N)."""
+        d = target.shape[1] // 2
+        return np.linalg.norm(self.estimates[:, :, :d] - target[:, None, :d], axis=-1)
+
+
+def range_dekf(
+    trackers: np.ndarray,
+    target: np.ndarray,
+    *,
+    Ts: float,
+    noise_var: float,
+    V: float,
+    Q: np.ndarray,
+    fusion: np.ndarray,
+    x0: np.ndarray,
+    P0: np.ndarray,
+    rng: np.random.Generator,
+) -> RangeDekfRun:
+    """Run Algorithm 2 of seed 003 on given tracker and target trajectories.
+
+    Parameters
+    ----------
+    trackers : ndarray, shape (K+1, N, d)
+        Tracker positions at the sampling instants.
+    target : ndarray, shape (K+1, 2d)
+        True target states.
+    Ts : float
+        Sampling period (range every ``Ts``).
+    noise_var : float
+        Variance of the simulated range noise ``η``.
+    V : float
+        The filter's inverse range variance ``V^[i]``.
+    Q : ndarray, shape (2d, 2d)
+        The filter's process covariance (``W = Q⁻¹``).
+    fusion : ndarray, shape (N, N)
+        Row-stochastic fusion weights ``π^[i,j]`` (row ``i``: tracker ``i``'s in-neighbours).
+    x0 : ndarray, shape (2d,)
+        Every tracker's ``x̂_{1|0}``.
+    P0 : ndarray, shape (2d, 2d)
+        Every tracker's ``P_{1|0}``.
+    rng : numpy.random.Generator
+        Source of the range noise.
+
+    Returns
+    -------
+    RangeDekfRun
+
+    References
+    ----------
+    seed 003, eqs. (7)–(10), (33)–(35), (41)–(44), Algorithms 1–2.
+    """
+    steps, n, d = trackers.shape
+    F = np.block([[np.eye(d), Ts * np.eye(d)], [np.zeros((d, d)), np.eye(d)]])
+    W = np.linalg.inv(Q)
+    Omega = np.tile(np.linalg.inv(P0), (n, 1, 1))
+    x = np.tile(x0, (n, 1))
+    estimates = np.empty((steps, n, 2 * d))
+    information = np.empty((steps, n, 2 * d, 2 * d))
+    for k in range(steps):
+        ranges = np.linalg.norm(trackers[k] - target[k, :d], axis=1)
+        y = ranges + np.sqrt(noise_var) * rng.standard_normal(n)
+        z_tilde = np.einsum("nij,nj->ni", Omega, x)
+        Omega_tilde = Omega.copy()
+        for i in range(n):
+            diff = x[i, :d] - trackers[k, i]
+            predicted = np.linalg.norm(diff)
+            C = np.concatenate([diff / predicted, np.zeros(d)])
+            y_lin = y[i] - predicted + C @ x[i]
+            z_tilde[i] += C * V * y_lin
+            Omega_tilde[i] += V * np.outer(C, C)
+        z = fusion @ z_tilde
+        Omega = np.einsum("ij,jkl->ikl", fusion, Omega_tilde)
+        x = np.linalg.solve(Omega, z[..., None])[..., 0]
+        estimates[k], information[k] = x, Omega
+        inner = np.linalg.inv(Omega + F.T @ W @ F)
+        Omega = W - W @ F @ inner @ F.T @ W
+        x = x @ F.T
+    return RangeDekfRun(estimates, information)
