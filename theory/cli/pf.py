@@ -14,10 +14,11 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from theory.case_file import load_case
+from theory.case_file import Case, load_case
 from theory.claims import all_claims
 from theory.cli.common import (
     EXIT_FAILS,
+    EXIT_HOLDS,
     EXIT_INCONCLUSIVE,
     console,
     print_json,
@@ -27,7 +28,7 @@ from theory.cli.common import (
 from theory.errors import CaseError
 from theory.pf_experiments import monte_carlo, node_summary, shared_monte_carlo
 
-__all__ = ["register"]
+__all__ = ["register", "run_pf_case"]
 
 SNAPSHOT_STEPS = (0, 5, 20)
 
@@ -45,51 +46,75 @@ def register(app: typer.Typer) -> None:
         as_json: bool = typer.Option(False, "--json", help="Print JSON."),
     ) -> None:
         """Run the distributed TDOA particle filter of seed 002 on a ``kind: pf`` case."""
-        case = load_case(case_name)
-        folder = None if out is None else Path(out)
-        if case.kind != "pf":
-            raise CaseError(
-                "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
-            )
-        spec = replace(
-            case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
-        )
-        case = replace(case, spec=spec)
-        mc = shared_monte_carlo(spec)
-        claims = [
-            (claim.source, result)
-            for claim in all_claims()
-            if "pf" in claim.kinds
-            for result in claim.run(case)
-        ]
-        figures = []
-        if folder is not None:
-            from theory.pf_figures import write_figures
+        raise typer.Exit(run_pf_case(load_case(case_name), runs, seed, out, as_json))
 
-            first = monte_carlo(spec, runs=1, snapshot_steps=SNAPSHOT_STEPS)  # = run 0 of mc
-            figures = write_figures(replace(mc, snapshots=first.snapshots), spec, folder, case.name)
-        report = {
-            "case": case.name,
-            "runs": spec.runs,
-            "seed": spec.seed,
-            "model": spec.model,
-            "share": spec.config.share,
-            "config": to_jsonable(vars(spec.config)),
-            "agents": node_summary(mc, spec),
-            "claims": [result.to_json(source) for source, result in claims],
-            "figures": figures,
-        }
-        if folder is not None:
-            (folder / "pf.json").write_text(json.dumps(to_jsonable(report), indent=2) + "\n")
-        if as_json:
-            print_json(report)
-        else:
-            _print(report)
-        statuses = {result.status for _, result in claims}
-        if "refuted" in statuses:
-            raise typer.Exit(EXIT_FAILS)
-        if "inconclusive" in statuses:
-            raise typer.Exit(EXIT_INCONCLUSIVE)
+
+def run_pf_case(
+    case: Case, runs: int | None, seed: int | None, out: str | None, as_json: bool
+) -> int:
+    """Run ``case`` (``kind: pf``), print the summary and return the exit code.
+
+    Parameters
+    ----------
+    case : Case
+        A loaded case; anything but ``kind: pf`` is refused.
+    runs, seed : int or None
+        Monte Carlo runs and base seed (``None``: the case's own).
+    out : str or None
+        Folder for ``pf.json`` and figures (``None``: write nothing).
+    as_json : bool
+        Print JSON instead of a table.
+
+    Returns
+    -------
+    int
+        1 when a claim is refuted, 3 when one is inconclusive, 0 otherwise.
+    """
+    folder = None if out is None else Path(out)
+    if case.kind != "pf":
+        raise CaseError(
+            "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
+        )
+    spec = replace(
+        case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
+    )
+    case = replace(case, spec=spec)
+    mc = shared_monte_carlo(spec)
+    claims = [
+        (claim.source, result)
+        for claim in all_claims()
+        if "pf" in claim.kinds
+        for result in claim.run(case)
+    ]
+    figures = []
+    if folder is not None:
+        from theory.pf_figures import write_figures
+
+        first = monte_carlo(spec, runs=1, snapshot_steps=SNAPSHOT_STEPS)  # = run 0 of mc
+        figures = write_figures(replace(mc, snapshots=first.snapshots), spec, folder, case.name)
+    report = {
+        "case": case.name,
+        "runs": spec.runs,
+        "seed": spec.seed,
+        "model": spec.model,
+        "share": spec.config.share,
+        "config": to_jsonable(vars(spec.config)),
+        "agents": node_summary(mc, spec),
+        "claims": [result.to_json(source) for source, result in claims],
+        "figures": figures,
+    }
+    if folder is not None:
+        (folder / "pf.json").write_text(json.dumps(to_jsonable(report), indent=2) + "\n")
+    if as_json:
+        print_json(report)
+    else:
+        _print(report)
+    statuses = {result.status for _, result in claims}
+    if "refuted" in statuses:
+        return EXIT_FAILS
+    if "inconclusive" in statuses:
+        return EXIT_INCONCLUSIVE
+    return EXIT_HOLDS
 
 
 def _print(report: dict) -> None:

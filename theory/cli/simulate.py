@@ -2,7 +2,8 @@
 
 Runs ``kind: tdoa-sim`` cases (seed 000 ch. 4, :mod:`theory.sim.scenario`), 2-D
 ``kind: pursuit`` cases (seed 003, :mod:`theory.sim.pursuit_sim`) and ``kind: dkf`` cases
-(seed 000 ch. 5, :mod:`theory.sim.dkf_sim`).
+(seed 000 ch. 5, :mod:`theory.sim.dkf_sim`); ``kind: pf`` cases (seed 002) are handed to
+:func:`theory.cli.pf.run_pf_case`, as ``trackcert pf`` runs them.
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ from theory.errors import CaseError
 
 __all__ = ["register"]
 
-KINDS = ("tdoa-sim", "pursuit", "dkf")
+KINDS = ("tdoa-sim", "pursuit", "dkf", "pf")
 
 
 def register(app: typer.Typer) -> None:
@@ -46,11 +47,15 @@ def register(app: typer.Typer) -> None:
     @reports_errors
     def simulate(
         case: str = typer.Argument(
-            ..., help="Case file or bundled case (tdoa-sim, pursuit or dkf)."
+            ..., help="Case file or bundled case (tdoa-sim, pursuit, dkf or pf)."
         ),
         output: str = typer.Option(..., "-o", "--output", help="Folder for data and figures."),
-        runs: int = typer.Option(1, "--runs", min=1, help="Monte Carlo runs."),
-        seed: int = typer.Option(0, "--seed", help="Root seed (run i uses child i)."),
+        runs: int = typer.Option(
+            None, "--runs", min=1, help="Monte Carlo runs (default 1; pf cases: the case's)."
+        ),
+        seed: int = typer.Option(
+            None, "--seed", help="Root seed, run i uses child i (default 0; pf cases: the case's)."
+        ),
         workers: int = typer.Option(
             None, "--workers", min=1, help="Worker processes (default: all local cores)."
         ),
@@ -68,6 +73,11 @@ def register(app: typer.Typer) -> None:
             raise CaseError(
                 "kind", f"one of {list(KINDS)} (the kinds simulate runs)", loaded.kind, file=case
             )
+        if loaded.kind == "pf":
+            from theory.cli.pf import run_pf_case
+
+            raise typer.Exit(run_pf_case(loaded, runs, seed, output, as_json))
+        runs, seed = runs or 1, seed or 0
         backend = {"tdoa-sim": _tdoa_backend, "pursuit": _pursuit_backend, "dkf": _dkf_backend}[
             loaded.kind
         ]
