@@ -89,6 +89,11 @@ BAD = [
     ),
     ("expect", {"observable": [True], "colour": "red"}, "expect.colour"),
     ("tolerances", {"rank_tol": -1}, "tolerances.rank_tol"),
+    ("expect", {"observable": [True, True]}, "expect.observable"),
+    ("expect", {"observable": [1, 1, 1, 1]}, "expect.observable"),
+    ("expect", {"network_detectable": "yes"}, "expect.network_detectable"),
+    ("expect", {"network_rank": -3}, "expect.network_rank"),
+    ("expect", {"unobservable_steps": [0, 0, 0, 2]}, "expect.unobservable_steps"),
 ]
 
 

@@ -45,11 +45,23 @@ KIND_MODULES: tuple[str, ...] = (
 
 @dataclass(frozen=True)
 class KindSpec:
-    """How one case kind is parsed: its block parser, allowed ``expect`` keys and tolerances."""
+    """How one case kind is parsed.
+
+    Attributes
+    ----------
+    parse : callable
+        Validates the kind's block and returns its spec.
+    expect_keys, tolerance_keys : tuple of str
+        Keys the ``expect`` and ``tolerances`` blocks may use.
+    check_expect : callable or None
+        ``check_expect(spec, expect)`` validates the expected values against the spec (types,
+        one entry per agent, …), raising :class:`~theory.errors.CaseError`.
+    """
 
     parse: Callable[[Mapping[str, Any]], Any]
     expect_keys: tuple[str, ...]
     tolerance_keys: tuple[str, ...] = ()
+    check_expect: Callable[[Any, Mapping[str, Any]], None] | None = None
 
 
 _KINDS: dict[str, KindSpec] = {}
@@ -89,13 +101,15 @@ def register_kind(
     *,
     expect_keys: tuple[str, ...],
     tolerance_keys: tuple[str, ...] = (),
+    check_expect: Callable[[Any, Mapping[str, Any]], None] | None = None,
 ) -> None:
     """Register the parser of ``kind`` (called by the kind's module at import time).
 
     ``parse`` validates the kind's block and returns its spec; ``expect_keys`` and
-    ``tolerance_keys`` are the keys the case's ``expect`` and ``tolerances`` blocks may use.
+    ``tolerance_keys`` are the keys the case's ``expect`` and ``tolerances`` blocks may use;
+    ``check_expect(spec, expect)``, when given, validates the expected values themselves.
     """
-    _KINDS[kind] = KindSpec(parse, tuple(expect_keys), tuple(tolerance_keys))
+    _KINDS[kind] = KindSpec(parse, tuple(expect_keys), tuple(tolerance_keys), check_expect)
 
 
 def known_kinds() -> dict[str, KindSpec]:
@@ -188,6 +202,8 @@ def _parse(data: object, file: str) -> Case:
     spec_info = kinds[kind]
     spec = spec_info.parse(require(data, kind, ""))
     expect = dict(check_keys(data.get("expect") or {}, spec_info.expect_keys, "expect"))
+    if spec_info.check_expect is not None:
+        spec_info.check_expect(spec, expect)
     tolerances = {
         key: positive_number(value, f"tolerances.{key}")
         for key, value in check_keys(

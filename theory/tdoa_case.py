@@ -41,7 +41,7 @@ from theory.validation import (
     row_stochastic,
 )
 
-__all__ = ["TdoaSpec", "parse_tdoa"]
+__all__ = ["TdoaSpec", "check_tdoa_expect", "parse_tdoa"]
 
 FIELDS = ("T", "dim", "agents", "target", "edges", "comm_range", "directed", "weights")
 EXPECT_KEYS = (
@@ -255,4 +255,54 @@ def _weights(raw: object, hears: np.ndarray, directed: bool) -> tuple[np.ndarray
     raise CaseError("tdoa.weights", "metropolis, uniform, or an N × N row-stochastic matrix", raw)
 
 
-register_kind("tdoa", parse_tdoa, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+PER_AGENT_BOOLS = ("observable", "heuristic_4_noncoplanar", "mirror_ambiguous")
+FLAGS = ("network_observable", "network_detectable")
+
+
+def check_tdoa_expect(spec: TdoaSpec, expect: Mapping[str, Any]) -> None:
+    """Validate the values of a tdoa case's ``expect`` block against ``spec``.
+
+    Per-agent verdicts are lists of N booleans, network flags are booleans, ``network_rank``
+    and ``first_failure_step`` are non-negative integers (or null: no failing step), and
+    ``unobservable_steps`` is a list of N integers between 0 and the number of steps.
+
+    Raises
+    ------
+    CaseError
+        Naming the ``expect`` field, the expected form and what was found.
+    """
+    n = spec.n_agents
+    for key, value in expect.items():
+        field = f"expect.{key}"
+        if key in PER_AGENT_BOOLS and not _list_of(value, bool, n):
+            raise CaseError(field, f"a list of {n} true/false values, one per agent", value)
+        if key in FLAGS and not isinstance(value, bool):
+            raise CaseError(field, "true or false", value)
+        if key == "network_rank" and not _count(value):
+            raise CaseError(field, "a non-negative integer", value)
+        if key == "first_failure_step" and value is not None and not _count(value):
+            raise CaseError(field, "a step number (integer) or null", value)
+        if key == "unobservable_steps" and not (
+            _list_of(value, int, n) and all(0 <= v <= spec.steps for v in value)
+        ):
+            raise CaseError(field, f"a list of {n} step counts between 0 and {spec.steps}", value)
+
+
+def _count(value: object) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool) and value >= 0
+
+
+def _list_of(value: object, kind: type, length: int) -> bool:
+    ok = isinstance(value, list) and len(value) == length
+    return ok and all(
+        isinstance(v, kind) and (kind is bool or not isinstance(v, bool)) for v in value
+    )
+
+
+register_kind(
+    "tdoa",
+    parse_tdoa,
+    expect_keys=EXPECT_KEYS,
+    tolerance_keys=TOLERANCE_KEYS,
+    check_expect=check_tdoa_expect,
+)
