@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import importlib
 import inspect
 import pkgutil
@@ -43,6 +44,37 @@ def documented_parameters(doc: str) -> set[str] | None:
 
 
 CALLABLES = sorted(public_callables(), key=lambda item: item[0])
+METHODS = sorted(
+    (
+        (f"{name}.{key}", value)
+        for name, obj in CALLABLES
+        if inspect.isclass(obj)
+        for key, value in vars(obj).items()
+        if inspect.isfunction(value) and not key.startswith("_")
+    ),
+    key=lambda item: item[0],
+)
+DATACLASSES = [(n, obj) for n, obj in CALLABLES if dataclasses.is_dataclass(obj)]
+
+
+@pytest.mark.parametrize(("name", "method"), METHODS, ids=[n for n, _ in METHODS])
+def test_public_method_mentions_its_parameters(name: str, method) -> None:
+    doc = inspect.getdoc(method)
+    assert doc, f"{name} has no docstring"
+    for parameter in inspect.signature(method).parameters:
+        if parameter not in SKIP_PARAMS:
+            assert re.search(rf"\b{re.escape(parameter)}\b", doc), (
+                f"{name}: parameter {parameter!r} is not mentioned in the docstring"
+            )
+
+
+@pytest.mark.parametrize(("name", "cls"), DATACLASSES, ids=[n for n, _ in DATACLASSES])
+def test_public_dataclass_documents_its_fields(name: str, cls) -> None:
+    doc = inspect.getdoc(cls) or ""
+    missing = [
+        f.name for f in dataclasses.fields(cls) if not re.search(rf"\b{re.escape(f.name)}\b", doc)
+    ]
+    assert not missing, f"{name}: fields {missing} are not documented"
 
 
 @pytest.mark.parametrize(("name", "obj"), CALLABLES, ids=[n for n, _ in CALLABLES])

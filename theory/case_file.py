@@ -45,7 +45,17 @@ KIND_MODULES: tuple[str, ...] = (
 
 @dataclass(frozen=True)
 class KindSpec:
-    """How one case kind is parsed: its block parser, allowed ``expect`` keys and tolerances."""
+    """How one case kind is parsed: its block parser, allowed ``expect`` keys and tolerances.
+
+    Attributes
+    ----------
+    parse : callable
+        Validates the kind's block (a mapping) and returns its spec; raises ``CaseError``.
+    expect_keys : tuple of str
+        Keys the case's ``expect`` block may use.
+    tolerance_keys : tuple of str
+        Keys the case's ``tolerances`` block may use.
+    """
 
     parse: Callable[[Mapping[str, Any]], Any]
     expect_keys: tuple[str, ...]
