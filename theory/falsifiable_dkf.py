@@ -36,7 +36,17 @@ UNIT_CIRCLE_TOL = 1e-9
 
 @dataclass(frozen=True, eq=False)
 class SmallDkf:
-    """``A``, the per-agent ``C_i`` and the row-stochastic ``W`` of one example."""
+    """``A``, the per-agent ``C_i`` and the row-stochastic ``W`` of one example.
+
+    Attributes
+    ----------
+    A : ndarray, shape (n, n)
+        State matrix (integer entries).
+    C : tuple of ndarray
+        Measurement matrix ``C_i`` of each agent, shape (p_i, n) with ``p_i`` 0 or 1.
+    W : ndarray, shape (N, N)
+        Row-stochastic consensus weights with a positive diagonal.
+    """
 
     A: np.ndarray
     C: tuple[np.ndarray, ...]

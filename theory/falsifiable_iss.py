@@ -27,7 +27,21 @@ REL_TOL = 1e-9
 
 @dataclass(frozen=True, eq=False)
 class CoordinationExample:
-    """A digraph Laplacian, a coordination gain, path parameters γ and their errors e_γ."""
+    """A digraph Laplacian, a coordination gain, path parameters γ and their errors e_γ.
+
+    Attributes
+    ----------
+    laplacian : ndarray, shape (N, N)
+        Laplacian ``L = D_in − A`` of a strongly connected digraph (seed 003 §II-B).
+    k_c : float
+        Coordination gain k_c > 0, eq. (45).
+    gamma : ndarray, shape (N,)
+        Path parameters γ of the trackers.
+    e_gamma : ndarray, shape (N,)
+        Errors e_γ entering γ̇, eq. (47).
+    omega_bar : float
+        Nominal path-parameter speed ω̄, eq. (46).
+    """
 
     laplacian: np.ndarray
     k_c: float

@@ -79,7 +79,21 @@ class Property:
 
 @dataclass(frozen=True)
 class FalsifyResult:
-    """Outcome of :func:`falsify`: ``counterexample`` is ``None`` when none was found."""
+    """Outcome of :func:`falsify`: ``counterexample`` is ``None`` when none was found.
+
+    Attributes
+    ----------
+    property : Property
+        The property searched.
+    examples : int
+        The example budget (hypothesis's ``max_examples``).
+    seed : int
+        Seed of the search (the same seed gives the same result).
+    counterexample : object or None
+        The shrunk example on which the property fails.
+    case : dict or None
+        A case file (plain data) reproducing ``counterexample``.
+    """
 
     property: Property
     examples: int

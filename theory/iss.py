@@ -492,7 +492,24 @@ def iss_bound(spec: PursuitSpec) -> IssBound:
 
 @dataclass(frozen=True)
 class Condition:
-    """One condition of the analysis; ``status``: holds, fails, inconclusive or not-applicable."""
+    """One condition of the analysis; ``status``: holds, fails, inconclusive or not-applicable.
+
+    Attributes
+    ----------
+    name : str
+        Stable identifier, e.g. ``delta_full_rank``.
+    source : str
+        Where the condition comes from in the paper (seed 003).
+    status : str
+        ``holds``, ``fails``, ``inconclusive`` or ``not-applicable``.
+    value : object
+        The quantity decided (exact values as strings), ``None`` when there is none.
+    margin : float or None
+        How far ``value`` is from deciding the other way, relative to its scale; compared with
+        the margin tolerance.
+    detail : str
+        One line on how the condition was decided.
+    """
 
     name: str
     source: str
@@ -502,7 +519,7 @@ class Condition:
     detail: str = ""
 
     def to_json(self, tolerance: float) -> dict[str, Any]:
-        """Plain JSON record."""
+        """Plain JSON record, echoing the margin ``tolerance`` the status was decided with."""
         return {
             "name": self.name,
             "source": self.source,

@@ -91,7 +91,10 @@ class OnlineLearner:
         return np.zeros(0, bool) if self.params is None else ~np.isnan(self.params[:, 0])
 
     def observe(self, estimates: np.ndarray) -> OnlineLearner:
-        """Append ``χ(k)`` of every node and refit where there are enough samples."""
+        """Append ``χ(k)`` of every node and refit where there are enough samples.
+
+        ``estimates`` has shape ``(F, 2)``, one row per node; returns the updated learner.
+        """
         history = (*self.history, np.asarray(estimates, dtype=float))
         tracks = np.asarray(history[self.burn_in :])
         params = np.full((len(estimates), 4), np.nan)
@@ -104,7 +107,8 @@ class OnlineLearner:
         return replace(self, history=history, params=params)
 
     def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
-        """Turns and steps ``(F, P)``: the learned DCRW where fitted, the prior elsewhere."""
+        """Turns and steps of ``shape`` ``(F, P)``, drawn from ``rng``: the learned DCRW where
+        fitted, the prior elsewhere."""
         turn, step = self.prior.sample(rng, shape)
         if self.params is None or not self.fitted.any():
             return turn, step

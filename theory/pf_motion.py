@@ -31,7 +31,7 @@ class DcrwMotion:
     params: DcrwParams
 
     def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
-        """Turning angles and step lengths, each of ``shape``."""
+        """Turning angles and step lengths, each of ``shape``, drawn from ``rng``."""
         p = self.params
         return (
             sample_wrapped_cauchy(rng, p.mu, p.gamma, shape),
@@ -60,7 +60,8 @@ class GaussianMotion:
     step_sigma: float = 1.0
 
     def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
-        """Turning angles on ``(−π, π]`` and steps ``≥ 0``, each of ``shape``."""
+        """Turning angles on ``(−π, π]`` and steps ``≥ 0``, each of ``shape``, drawn from
+        ``rng``."""
         bound = np.pi / self.turn_sigma
         turn = stats.truncnorm.rvs(
             -bound, bound, scale=self.turn_sigma, size=shape, random_state=rng
@@ -83,7 +84,7 @@ class UniformMotion:
     max_step: float
 
     def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
-        """Turning angles and step lengths, each of ``shape``."""
+        """Turning angles and step lengths, each of ``shape``, drawn from ``rng``."""
         return rng.uniform(-np.pi, np.pi, shape), rng.uniform(0.0, self.max_step, shape)
 
     def observe(self, estimates: np.ndarray) -> UniformMotion:

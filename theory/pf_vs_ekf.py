@@ -57,7 +57,8 @@ class Comparison:
     seed: int
 
     def tail(self, errors: np.ndarray) -> np.ndarray:
-        """``(R, F)`` mean error over the second half of the steps."""
+        """``(R, F)`` mean over the second half of the steps of ``errors`` (shape (R, K+1, F),
+        e.g. ``pf_errors`` or ``ekf_errors``)."""
         return errors[:, errors.shape[1] // 2 :].mean(axis=1)
 
 

@@ -110,7 +110,24 @@ class TrackerPath:
 
 @dataclass(frozen=True)
 class TargetMotion:
-    """q_k(t) = offset_k + velocity_k·t + amplitude_k·sin(frequency_k·t + phase_k) (Tables I–II)."""
+    """q_k(t) = offset_k + velocity_k·t + amplitude_k·sin(frequency_k·t + phase_k) (Tables I–II).
+
+    Each attribute is an ndarray of shape (dim,), one entry per coordinate ``k``; a key missing
+    from the case file is zero.
+
+    Attributes
+    ----------
+    offset : ndarray
+        Position at ``t = 0`` apart from the sinusoid (m).
+    velocity : ndarray
+        Constant drift velocity (m/s).
+    amplitude : ndarray
+        Amplitude of the sinusoidal term (m).
+    frequency : ndarray
+        Angular frequency of the sinusoidal term (rad/s).
+    phase : ndarray
+        Phase of the sinusoidal term (rad).
+    """
 
     offset: np.ndarray
     velocity: np.ndarray
@@ -135,7 +152,27 @@ class TargetMotion:
 
 @dataclass(frozen=True, eq=False)
 class DekfSettings:
-    """Settings of the distributed EKF (seed 003 Algorithm 2), validated for the simulation."""
+    """Settings of the distributed EKF (seed 003 Algorithm 2), validated for the simulation.
+
+    Attributes
+    ----------
+    Ts : float
+        Sampling period (s), > 0.
+    sigma : float
+        Standard deviation of the range noise (m), eq. (10), > 0.
+    V : float
+        Inverse measurement-noise weight ``V^[i]``, > 0.
+    Q : ndarray, shape (2·dim, 2·dim)
+        Positive-definite process-noise weight.
+    weights : ndarray, shape (N, N)
+        Row-stochastic fusion weights ``π^[i,j]`` supported on the in-edges (uniform by default).
+    x0 : ndarray, shape (N, 2·dim), or None
+        Initial estimates, one row per tracker; ``None``: the simulation's default
+        (:mod:`theory.sim.pursuit_sim`).
+    P0 : ndarray, shape (N, 2·dim, 2·dim), or None
+        Positive-definite initial covariance of each tracker (one matrix given in the case file
+        is repeated); ``None``: the simulation's default.
+    """
 
     Ts: float
     sigma: float

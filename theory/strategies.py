@@ -43,7 +43,18 @@ WEIGHT_KINDS = ("metropolis", "uniform", "random", "singular")
 
 @dataclass(frozen=True, eq=False)
 class TdoaScene:
-    """A target and receivers. ``family`` says which geometric family it was drawn from."""
+    """A target and receivers. ``family`` says which geometric family it was drawn from.
+
+    Attributes
+    ----------
+    target : ndarray, shape (dim,)
+        Target position.
+    agents : ndarray, shape (N, dim)
+        Receiver positions, one row per agent.
+    family : str
+        One of ``general``, ``coplanar``, ``cone``, ``target-in-plane`` (see
+        :func:`tdoa_scenes`).
+    """
 
     target: np.ndarray
     agents: np.ndarray
@@ -53,7 +64,22 @@ class TdoaScene:
 @dataclass(frozen=True, eq=False)
 class DkfProblem:
     """A consensus-filter problem (seed 000 ch. 5): system, per-agent measurements, weights,
-    gains, and the seed that built them."""
+    gains, and the seed that built them.
+
+    Attributes
+    ----------
+    seed : int
+        Seed of the ``numpy.random.Generator`` that drew everything else (a failing example is
+        reproduced from it).
+    A : ndarray, shape (n, n)
+        State matrix.
+    C : tuple of ndarray
+        Measurement matrix ``C_i`` of each agent, shape (p_i, n) with ``p_i`` possibly 0.
+    W : ndarray, shape (N, N)
+        Row-stochastic consensus weights.
+    L : tuple of ndarray
+        Filter gain ``L_i`` of each agent, shape (n, p_i).
+    """
 
     seed: int
     A: np.ndarray
@@ -64,7 +90,25 @@ class DkfProblem:
 
 @dataclass(frozen=True)
 class PursuitParameters:
-    """Seed 003 tracking/coordination parameters (ranges of its Tables I–II)."""
+    """Seed 003 tracking/coordination parameters (ranges of its Tables I–II).
+
+    Attributes
+    ----------
+    dim : int
+        2 or 3.
+    radius : tuple of float
+        Semi-axes of the path, one per dimension.
+    omega_bar : float
+        Nominal path-parameter speed ω̄ (rad/s), eqs. (18), (46).
+    epsilon : tuple of float
+        Offset ε of eq. (19): first entry < 0, last entry 0.
+    K_p : tuple of float
+        Diagonal of the positive-definite position gain ``K_p``.
+    k_gamma : float
+        Path-parameter gain k_γ > 0, eq. (50b).
+    k_c : float
+        Coordination gain k_c > 0, eq. (45).
+    """
 
     dim: int
     radius: tuple[float, ...]

@@ -266,6 +266,13 @@ def check_tdoa_expect(spec: TdoaSpec, expect: Mapping[str, Any]) -> None:
     and ``first_failure_step`` are non-negative integers (or null: no failing step), and
     ``unobservable_steps`` is a list of N integers between 0 and the number of steps.
 
+    Parameters
+    ----------
+    spec : TdoaSpec
+        The validated scene (gives N and the number of steps).
+    expect : mapping
+        The case's ``expect`` block, keys already checked.
+
     Raises
     ------
     CaseError

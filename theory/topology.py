@@ -114,6 +114,27 @@ class NetworkVerdict:
     """The networked pair ``(W ⊗ A, D_H)`` (seed 000 eqs. (4.24), (4.36)).
 
     ``rank``/``observable`` are ``None`` when no method applies (see ``note``).
+
+    Attributes
+    ----------
+    rank : int or None
+        Rank of the networked observability matrix ``O`` (summed over components), ``None``
+        when not computed.
+    n_states : int
+        States of the networked pair, ``2·d·N``.
+    observable : bool or None
+        ``rank == n_states``; ``None`` with ``rank``.
+    detectable : bool
+        The PBH test at the eigenvalue 1, the only one on the unit circle (always computed).
+    unobservable_eigenvalues : tuple of complex or None
+        Eigenvalues of the unobservable modes, ``None`` when the rank was not computed.
+    method : str
+        How the rank was decided: ``spectral``/``dense`` per component, or ``skipped``.
+    margin : float
+        Smallest factor by which a deciding singular value clears its threshold
+        ``rank_tol · σ_max`` (detectability and rank).
+    note : str
+        Why a rank was not computed (empty otherwise).
     """
 
     rank: int | None
@@ -128,7 +149,27 @@ class NetworkVerdict:
 
 @dataclass(frozen=True)
 class TopologyResult:
-    """Per-agent and network verdicts of one TDOA scene at one time step."""
+    """Per-agent and network verdicts of one TDOA scene at one time step.
+
+    Attributes
+    ----------
+    step : int
+        1-based time step.
+    dim : int
+        Spatial dimension ``d``.
+    agents : tuple of AgentVerdict
+        One verdict per agent, in id order.
+    network : NetworkVerdict
+        The verdict on the whole networked pair.
+    information_flow : str
+        Whether the graph is undirected or directed, and what ``O_i`` sees in each case.
+    tolerances : dict of str to float
+        The tolerances used (``rank_tol``, ``inconclusive_factor``, ``uniqueness_tol``,
+        ``cluster_tol``), echoed in the output.
+    inconclusive : tuple of str
+        One line per decision whose singular value is within ``inconclusive_factor`` of its
+        threshold; empty when every verdict is conclusive.
+    """
 
     step: int
     dim: int

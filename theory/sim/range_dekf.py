@@ -118,13 +118,22 @@ def encircling_paths(
 
 @dataclass(frozen=True, eq=False)
 class RangeDekfRun:
-    """Estimates ``x̂_{k|k}^[i]`` (shape (K+1, N, 2d)) and information matrices ``Ω_{k|k}^[i]``."""
+    """Estimates and information matrices of every tracker at every step (seed 003 Algorithm 2).
+
+    Attributes
+    ----------
+    estimates : ndarray, shape (K+1, N, 2d)
+        Filtered estimates ``x̂_{k|k}^[i]`` (position then velocity).
+    information : ndarray, shape (K+1, N, 2d, 2d)
+        Information matrices ``Ω_{k|k}^[i]``.
+    """
 
     estimates: np.ndarray
     information: np.ndarray
 
     def errors(self, target: np.ndarray) -> np.ndarray:
-        """Position errors ``‖q̂^[i] − q‖``, shape (K+1, N)."""
+        """Position errors ``‖q̂^[i] − q‖``, shape (K+1, N), against the true ``target`` states
+        (shape (K+1, 2d))."""
         d = target.shape[1] // 2
         return np.linalg.norm(self.estimates[:, :, :d] - target[:, None, :d], axis=-1)
 
