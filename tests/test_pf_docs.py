@@ -19,7 +19,6 @@ MODULES = (
     "theory.pf_figures",
     "theory.pf_motion",
     "theory.pf_vs_ekf",
-    "theory.tdoa_ekf",
 )
 
 
