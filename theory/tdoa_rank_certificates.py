@@ -24,7 +24,7 @@ import flint
 import numpy as np
 import scipy.linalg
 
-from theory.networked_observability import exact_weights as exact_weights_of
+from theory import networked_observability
 from theory.observability import RANK_TOL, numeric_rank
 from theory.rationalize import (
     RationalizationError,
@@ -84,7 +84,9 @@ def exact_weights(spec: TdoaSpec) -> list[list[Fraction]]:
     """
     if spec.weights_rule == "explicit":
         return stochastic_matrix(spec.weights[0])
-    return exact_weights_of(np.asarray(spec.hears[0], dtype=bool), spec.weights_rule)
+    return networked_observability.exact_weights(
+        np.asarray(spec.hears[0], dtype=bool), spec.weights_rule
+    )
 
 
 def network_observability(
