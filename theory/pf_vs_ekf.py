@@ -58,6 +58,27 @@ __all__ = [
 ]
 
 
+@dataclass(frozen=True, eq=False)
+class Comparison:
+    """PF and EKF norm errors on the same paths and measurements.
+
+    Attributes
+    ----------
+    pf_errors, ekf_errors : ndarray, shape (R, K+1, F)
+        ``E_i(k)`` of each filter.
+    seed : int
+        Base seed.
+    """
+
+    pf_errors: np.ndarray
+    ekf_errors: np.ndarray
+    seed: int
+
+    def tail(self, errors: np.ndarray) -> np.ndarray:
+        """``(R, F)`` mean error over the second half of the steps."""
+        return errors[:, errors.shape[1] // 2 :].mean(axis=1)
+
+
 @dataclass(frozen=True)
 class EkfConfig:
     """Parameters of the averaged EKF.
@@ -162,27 +183,6 @@ def run_ekf(
         estimates.append(x[:, :2].copy())
         x, P = ekf_predict(x, P, A, Q)
     return np.asarray(estimates)
-
-
-@dataclass(frozen=True, eq=False)
-class Comparison:
-    """PF and EKF norm errors on the same paths and measurements.
-
-    Attributes
-    ----------
-    pf_errors, ekf_errors : ndarray, shape (R, K+1, F)
-        ``E_i(k)`` of each filter.
-    seed : int
-        Base seed.
-    """
-
-    pf_errors: np.ndarray
-    ekf_errors: np.ndarray
-    seed: int
-
-    def tail(self, errors: np.ndarray) -> np.ndarray:
-        """``(R, F)`` mean error over the second half of the steps."""
-        return errors[:, errors.shape[1] // 2 :].mean(axis=1)
 
 
 def compare_on_same_data(
