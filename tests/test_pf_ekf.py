@@ -11,9 +11,15 @@ from hypothesis import strategies as st
 from theory.case_file import load_case
 from theory.claims import get_claim
 from theory.particle_filter import PfNetwork, simulate_measurements
-from theory.pf_vs_ekf import compare_on_same_data, measurement_ranks
+from theory.pf_vs_ekf import (
+    EkfConfig,
+    compare_on_same_data,
+    consensus_weights,
+    ekf_step,
+    measurement_ranks,
+    run_ekf,
+)
 from theory.tdoa import cv_discrete
-from theory.tdoa_ekf import EkfConfig, consensus_weights, ekf_step, run_ekf
 
 TRIANGLE = np.array([[0.0, 35.0], [-30.31, -17.5], [30.31, -17.5]])
 

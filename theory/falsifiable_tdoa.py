@@ -8,6 +8,7 @@ Examples whose rank decision is inside tolerance are not counted as counterexamp
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -105,56 +106,52 @@ SCENES_3D = st.one_of(
     tdoa_scenes(dim=3, family="target-in-plane"),
 )
 
-register_property(
-    Property(
-        id="seed000.thm4.2.3/paper",
-        claim="seed000.thm4.2.3",
-        wording="paper",
-        statement="A connected component of ≥ 4 non-coplanar agents can localize the target.",
-        examples=SCENES_3D,
-        holds=_heuristic_paper,
-        to_case=scene_case,
-        expected_to_hold=False,
+
+def _scene_property(
+    property_id: str,
+    statement: str,
+    holds: Callable[[TdoaScene], bool],
+    *,
+    expected_to_hold: bool = True,
+) -> None:
+    """Register ``property_id = "<claim>/<wording>"`` over :data:`SCENES_3D`."""
+    claim, wording = property_id.split("/")
+    register_property(
+        Property(
+            id=property_id,
+            claim=claim,
+            wording=wording,
+            statement=statement,
+            examples=SCENES_3D,
+            holds=holds,
+            to_case=scene_case,
+            expected_to_hold=expected_to_hold,
+        )
     )
+
+
+_scene_property(
+    "seed000.thm4.2.3/paper",
+    "A connected component of ≥ 4 non-coplanar agents can localize the target.",
+    _heuristic_paper,
+    expected_to_hold=False,
 )
-register_property(
-    Property(
-        id="seed000.thm4.2.3/corrected",
-        claim="seed000.thm4.2.3",
-        wording="corrected",
-        statement=(
-            "A connected component can localize the target iff the unit directions from the "
-            "agents to the target do not lie on one circle of the unit sphere (equivalently, the "
-            "agents do not lie on one circular cone, or plane, through the target)."
-        ),
-        examples=SCENES_3D,
-        holds=_heuristic_corrected,
-        to_case=scene_case,
-    )
+_scene_property(
+    "seed000.thm4.2.3/corrected",
+    "A connected component can localize the target iff the unit directions from the agents to "
+    "the target do not lie on one circle of the unit sphere (equivalently, the agents do not lie "
+    "on one circular cone, or plane, through the target).",
+    _heuristic_corrected,
 )
-register_property(
-    Property(
-        id="seed000.sec4.2.1.coplanar/paper",
-        claim="seed000.sec4.2.1.coplanar",
-        wording="paper",
-        statement="det Λ = 0 when the 4 agents are coplanar: coplanar agents cannot localize.",
-        examples=SCENES_3D,
-        holds=_coplanar_paper,
-        to_case=scene_case,
-        expected_to_hold=False,
-    )
+_scene_property(
+    "seed000.sec4.2.1.coplanar/paper",
+    "det Λ = 0 when the 4 agents are coplanar: coplanar agents cannot localize.",
+    _coplanar_paper,
+    expected_to_hold=False,
 )
-register_property(
-    Property(
-        id="seed000.sec4.2.1.coplanar/corrected",
-        claim="seed000.sec4.2.1.coplanar",
-        wording="corrected",
-        statement=(
-            "Coplanar receivers hear the target and its mirror image through their plane with "
-            "identical TDOAs (a global ambiguity), whatever the local rank."
-        ),
-        examples=SCENES_3D,
-        holds=_coplanar_corrected,
-        to_case=scene_case,
-    )
+_scene_property(
+    "seed000.sec4.2.1.coplanar/corrected",
+    "Coplanar receivers hear the target and its mirror image through their plane with identical "
+    "TDOAs (a global ambiguity), whatever the local rank.",
+    _coplanar_corrected,
 )

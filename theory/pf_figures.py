@@ -92,24 +92,12 @@ def plot_learned_pdfs(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
     phi = np.linspace(-np.pi, np.pi, 361)
     delta = np.linspace(1e-3, 4 * spec.target.lam, 300)
     for f, node in enumerate(spec.network.filters):
-        color = f"C{f}"
+        faint = {"color": f"C{f}", "alpha": 0.15, "lw": 0.7}
         for mu, gamma, kappa, lam in mc.learned[:, f]:
             if np.isfinite(mu):
-                left.plot(
-                    phi,
-                    np.exp(wrapped_cauchy_logpdf(phi, mu, gamma)),
-                    color=color,
-                    alpha=0.15,
-                    lw=0.7,
-                )
-                right.plot(
-                    delta,
-                    np.exp(weibull_logpdf(delta, kappa, lam)),
-                    color=color,
-                    alpha=0.15,
-                    lw=0.7,
-                )
-        left.plot([], [], color=color, label=f"learned, node {node + 1}")
+                left.plot(phi, np.exp(wrapped_cauchy_logpdf(phi, mu, gamma)), **faint)
+                right.plot(delta, np.exp(weibull_logpdf(delta, kappa, lam)), **faint)
+        left.plot([], [], color=faint["color"], label=f"learned, node {node + 1}")
     true = spec.target
     left.plot(phi, np.exp(wrapped_cauchy_logpdf(phi, true.mu, true.gamma)), "k", lw=2, label="true")
     right.plot(delta, np.exp(weibull_logpdf(delta, true.kappa, true.lam)), "k", lw=2)

@@ -13,6 +13,14 @@ enough. It decides, at seeded random target positions, the rank of each node's T
 (position block), the observability of its constant-velocity pair ``(A, H_i)``, and that of its
 connected component (all the component's TDOA rows stacked), with :mod:`theory.observability`'s
 scale-aware rank tolerance.
+
+The EKF is the simulation engine's averaged EKF of seed 000 eqs. (4.26)–(4.35) (seed 002's
+reference [36]), run in 2D on the PF's network: each filtering node corrects with its own TDOA
+vector (:func:`theory.sim.ekf.ekf_update`, Joseph form, geometry of
+:mod:`theory.sim.measurements`), averages state and covariance with its filtering neighbours
+(:func:`theory.sim.consensus.average_round`, Metropolis weights) and predicts with the
+constant-velocity model (:func:`theory.sim.ekf.ekf_predict`). Nodes without a measurement only
+average and predict.
 """
 
 from __future__ import annotations
@@ -24,9 +32,9 @@ import numpy as np
 
 from theory.claims import ClaimResult, register
 from theory.dcrw import sample_dcrw_path
-from theory.network import components
+from theory.network import components, metropolis_weights
 from theory.observability import RANK_TOL, numeric_rank, observability_matrix
-from theory.particle_filter import run_filter, simulate_measurements
+from theory.particle_filter import PfNetwork, run_filter, simulate_measurements
 from theory.pf_case import PfSpec
 from theory.pf_experiments import (
     DEFAULT_TOLERANCES,
@@ -34,10 +42,20 @@ from theory.pf_experiments import (
     convergence_margin,
     convergence_verdicts,
 )
+from theory.sim.consensus import average_round
+from theory.sim.ekf import ekf_predict, ekf_update
+from theory.sim.measurements import tdoa_jacobians, tdoa_predictions
 from theory.tdoa import cv_discrete
-from theory.tdoa_ekf import EkfConfig, run_ekf
 
-__all__ = ["Comparison", "compare_on_same_data", "measurement_ranks"]
+__all__ = [
+    "Comparison",
+    "EkfConfig",
+    "compare_on_same_data",
+    "consensus_weights",
+    "ekf_step",
+    "measurement_ranks",
+    "run_ekf",
+]
 
 
 @dataclass(frozen=True, eq=False)
@@ -60,6 +78,112 @@ class Comparison:
         """``(R, F)`` mean over the second half of the steps of ``errors`` (shape (R, K+1, F),
         e.g. ``pf_errors`` or ``ekf_errors``)."""
         return errors[:, errors.shape[1] // 2 :].mean(axis=1)
+
+
+@dataclass(frozen=True)
+class EkfConfig:
+    """Parameters of the averaged EKF.
+
+    Attributes
+    ----------
+    T : float
+        Ping period (s).
+    accel_sigma : float
+        Standard deviation of the white acceleration noise of the CV model (m/s², ``Q = σ_a² I``).
+    sigma : float
+        TDOA noise standard deviation assumed (m, ``R_i = σ² I``).
+    position_sigma, velocity_sigma : float
+        Standard deviations of the initial covariance ``P(0)``.
+    """
+
+    T: float = 1.0
+    accel_sigma: float = 1.5
+    sigma: float = 1.0
+    position_sigma: float = 35.0
+    velocity_sigma: float = 3.0
+
+
+def consensus_weights(network: PfNetwork) -> np.ndarray:
+    """Metropolis weights (DESIGN.md) on the graph of the filtering nodes of ``network``."""
+    index = list(network.filters)
+    return metropolis_weights(network.hears[np.ix_(index, index)])
+
+
+def ekf_step(
+    x: np.ndarray,
+    P: np.ndarray,
+    y: np.ndarray,
+    network: PfNetwork,
+    config: EkfConfig,
+    W: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Correct every node with ``y (F, N)``, average (eqs. (4.27)–(4.28), (4.34)–(4.35)).
+
+    Parameters
+    ----------
+    x : ndarray, shape (F, 4)
+        Predicted states ``x̂_i(k|k−1)`` = ``[p; ṗ]``.
+    P : ndarray, shape (F, 4, 4)
+        Predicted covariances.
+    y : ndarray, shape (F, N)
+        TDOA measurements (entries outside the measurement mask ignored).
+    network, config, W :
+        Nodes, parameters and consensus weights.
+
+    Returns
+    -------
+    (x̄, P̄) :
+        The corrected states and covariances averaged over neighbours (eqs. (4.28), (4.35)).
+    """
+    corrected_x, corrected_P = np.empty_like(x), np.empty_like(P)
+    for f, node in enumerate(network.filters):
+        neighbours = np.flatnonzero(network.hears[node])
+        # the node first, then its neighbours: agent 0 of the engine's TDOA geometry
+        local, pairs = network.nodes[np.r_[node, neighbours]], [np.arange(1, neighbours.size + 1)]
+        (h,) = tdoa_predictions(x[f, :2], local, pairs)
+        (H,) = tdoa_jacobians(x[f, :2], local, pairs)
+        R = config.sigma**2 * np.eye(neighbours.size)
+        corrected_x[f], corrected_P[f] = ekf_update(x[f], P[f], y[f, neighbours] - h, H, R)
+    return average_round(W, corrected_x, corrected_P)
+
+
+def run_ekf(
+    measurements: np.ndarray,
+    network: PfNetwork,
+    config: EkfConfig,
+    initial: np.ndarray,
+) -> np.ndarray:
+    """Run the averaged EKF on ``measurements`` from ``initial`` positions.
+
+    Parameters
+    ----------
+    measurements : ndarray, shape (K+1, F, N)
+        TDOA measurements (:func:`theory.particle_filter.simulate_measurements`).
+    network : PfNetwork
+        Nodes and links; the filtering nodes run the EKF.
+    config : EkfConfig
+        Model and noise parameters.
+    initial : ndarray, shape (F, 2)
+        Initial position estimates (velocity 0).
+
+    Returns
+    -------
+    ndarray, shape (K+1, F, 2)
+        The averaged position estimates ``x̄_i(k)`` (seed 000 eq. (4.28)).
+    """
+    A, B = cv_discrete(config.T, dim=2)
+    Q = B @ B.T * config.accel_sigma**2
+    W = consensus_weights(network)
+    n_filters = len(network.filters)
+    x = np.hstack([initial, np.zeros((n_filters, 2))])
+    P0 = np.diag([config.position_sigma**2] * 2 + [config.velocity_sigma**2] * 2)
+    P = np.broadcast_to(P0, (n_filters, 4, 4)).copy()
+    estimates = []
+    for y in measurements:
+        x, P = ekf_step(x, P, y, network, config, W)
+        estimates.append(x[:, :2].copy())
+        x, P = ekf_predict(x, P, A, Q)
+    return np.asarray(estimates)
 
 
 def compare_on_same_data(

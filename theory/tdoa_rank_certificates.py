@@ -24,6 +24,7 @@ import flint
 import numpy as np
 import scipy.linalg
 
+from theory import networked_observability
 from theory.observability import RANK_TOL, numeric_rank
 from theory.rationalize import (
     RationalizationError,
@@ -68,8 +69,9 @@ def exact_weights(spec: TdoaSpec) -> list[list[Fraction]]:
     """The consensus matrix of a static scene in exact rationals (DESIGN.md's rules).
 
     Metropolis: ``w_ij = 1/(1 + max(d_i, d_j))`` on edges, ``w_ii = 1 − Σ_j w_ij``; uniform:
-    ``w_ij = 1/(d_i + 1)`` on ``N_i ∪ {i}``; explicit: the decimals of the case file, projected
-    onto exact row sums one (:func:`~theory.rationalize.stochastic_matrix`).
+    ``w_ij = 1/(d_i + 1)`` on ``N_i ∪ {i}`` (both by
+    :func:`theory.networked_observability.exact_weights`); explicit: the decimals of the case
+    file, projected onto exact row sums one (:func:`~theory.rationalize.stochastic_matrix`).
 
     Parameters
     ----------
@@ -80,20 +82,11 @@ def exact_weights(spec: TdoaSpec) -> list[list[Fraction]]:
     -------
     list of list of Fraction
     """
-    hears = np.asarray(spec.hears[0], dtype=bool)
-    n = hears.shape[0]
     if spec.weights_rule == "explicit":
         return stochastic_matrix(spec.weights[0])
-    degree = hears.sum(axis=1)
-    W = [[Fraction(0)] * n for _ in range(n)]
-    for i in range(n):
-        for j in np.flatnonzero(hears[i]):
-            if spec.weights_rule == "metropolis":
-                W[i][j] = Fraction(1, 1 + int(max(degree[i], degree[j])))
-            else:
-                W[i][j] = Fraction(1, int(degree[i]) + 1)
-        W[i][i] = 1 - sum(W[i])
-    return W
+    return networked_observability.exact_weights(
+        np.asarray(spec.hears[0], dtype=bool), spec.weights_rule
+    )
 
 
 def network_observability(
