@@ -50,12 +50,8 @@ def tdoa_jacobians(
 
     Parameters
     ----------
-    point : ndarray, shape (d,) or (N, d)
-        Where to evaluate (one point, or one per agent).
-    positions : ndarray, shape (N, d)
-        Agent positions.
-    neighbours : list of ndarray
-        0-based neighbours of each agent.
+    point, positions, neighbours : ndarray, ndarray, list of ndarray
+        As in :func:`tdoa_predictions`.
 
     Returns
     -------

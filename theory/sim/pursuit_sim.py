@@ -21,6 +21,7 @@ import numpy as np
 
 from theory.errors import CaseError
 from theory.pursuit_case import PursuitSpec
+from theory.sim.figures import save_figure
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
 from theory.sim.pursuit import DecRun, DecSettings, delta_matrix, simulate_dec
 
@@ -56,17 +57,8 @@ def integration_step(dim: int) -> float:
 
 
 def default_steps(dim: int) -> int:
-    """``DEFAULT_DURATION / integration_step(dim)``.
-
-    Parameters
-    ----------
-    dim : int
-        2 or 3.
-
-    Returns
-    -------
-    int
-    """
+    """Steps in ``DEFAULT_DURATION``: ``round(DEFAULT_DURATION / integration_step(dim))``, an
+    int, for ``dim`` 2 or 3."""
     return round(DEFAULT_DURATION / integration_step(dim))
 
 
@@ -249,7 +241,7 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.legend(fontsize=7)
-    paths.append(_save(fig, folder / "trajectories.png"))
+    paths.append(save_figure(fig, folder / "trajectories.png"))
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     for name, ax in zip(("pursuit_errors", "localization_errors"), axes, strict=True):
         values = np.mean([getattr(r, name) for r in runs], axis=0)
@@ -259,19 +251,12 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
         ax.set_ylabel(name.replace("_", " ") + " (m)")
         ax.legend(fontsize=7)
     axes[-1].set_xlabel("time (s)")
-    paths.append(_save(fig, folder / "errors.png"))
+    paths.append(save_figure(fig, folder / "errors.png"))
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     axes[0].plot(run.times, run.gammas - run.gammas.mean(axis=1, keepdims=True), lw=1)
     axes[0].set_ylabel("γ_i − mean γ (rad)")
     axes[1].plot(run.times, run.gamma_rates, lw=1)
     axes[1].set_ylabel("dγ_i/dt (rad/s)")
     axes[1].set_xlabel("time (s)")
-    paths.append(_save(fig, folder / "coordination.png"))
+    paths.append(save_figure(fig, folder / "coordination.png"))
     return paths
-
-
-def _save(fig: Any, path: Path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
