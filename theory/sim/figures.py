@@ -91,7 +91,7 @@ def _per_agent(
 
 
 def save_figure(fig: Any, path: Path) -> Path:
-    """Lay out ``fig``, write it to ``path`` as a 110-dpi PNG and close it.
+    """Lay out ``fig``, write it to ``path`` as a 110-dpi PNG, close it and return ``path``.
 
     Parameters
     ----------
@@ -99,11 +99,6 @@ def save_figure(fig: Any, path: Path) -> Path:
         The figure.
     path : pathlib.Path
         The file to write.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
     """
     fig.tight_layout()
     fig.savefig(path, dpi=110)

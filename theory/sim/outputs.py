@@ -49,7 +49,7 @@ def write_data(runs: Sequence[TdoaRun], summary: dict[str, Any], folder: Path) -
 
 
 def write_runs_npz(runs: Sequence[Any], path: Path, **extra: np.ndarray) -> Path:
-    """Every field of the run dataclasses, stacked over runs, in one compressed NPZ file.
+    """Write every field of the run dataclasses, stacked over runs, to an NPZ file; return ``path``.
 
     Parameters
     ----------
@@ -59,11 +59,6 @@ def write_runs_npz(runs: Sequence[Any], path: Path, **extra: np.ndarray) -> Path
         The file to write.
     **extra : ndarray
         Further arrays to store under their keyword names.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
     """
     arrays = {
         f.name: np.stack([getattr(r, f.name) for r in runs]) for f in dataclasses.fields(runs[0])
@@ -73,7 +68,7 @@ def write_runs_npz(runs: Sequence[Any], path: Path, **extra: np.ndarray) -> Path
 
 
 def write_agents_csv(agents: Sequence[Mapping[str, Any]], path: Path) -> Path:
-    """One CSV row per agent of a summary, the columns named by the first agent's keys.
+    """Write one CSV row per agent of a summary (columns: the first agent's keys); return ``path``.
 
     Parameters
     ----------
@@ -81,11 +76,6 @@ def write_agents_csv(agents: Sequence[Mapping[str, Any]], path: Path) -> Path:
         The summary's ``agents`` list.
     path : pathlib.Path
         The file to write.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
     """
     with path.open("w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(agents[0]))
@@ -95,7 +85,7 @@ def write_agents_csv(agents: Sequence[Mapping[str, Any]], path: Path) -> Path:
 
 
 def write_timeseries_csv(path: Path, times: np.ndarray, columns: Mapping[str, np.ndarray]) -> Path:
-    """A CSV of per-agent time series: ``time``, then ``{name}_{i}`` for each name and agent.
+    """Write per-agent time series as CSV (``time``, then ``{name}_{i}``); return ``path``.
 
     Parameters
     ----------
@@ -105,11 +95,6 @@ def write_timeseries_csv(path: Path, times: np.ndarray, columns: Mapping[str, np
         Time of each row (written with ``:g``).
     columns : mapping of str to ndarray, shape (K, N)
         One block of columns per name, agent ``i`` (1-based) in column ``i − 1`` (``:.6g``).
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
     """
     blocks = list(columns.values())
     with path.open("w", newline="") as handle:
