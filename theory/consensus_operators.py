@@ -114,12 +114,8 @@ def L_adjoint_map(W: np.ndarray, Gamma: np.ndarray, Y: np.ndarray) -> np.ndarray
 
     Parameters
     ----------
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    Gamma : ndarray, shape (N, n, n)
-        Closed loops ``Γ_i`` (see :func:`closed_loop`).
-    Y : ndarray, shape (N, n, n)
-        The tuple the map is applied to.
+    W, Gamma, Y : ndarray
+        As ``W``, ``Gamma``, ``V`` in :func:`L_map`.
     """
     return E_map(W.T, Gamma.transpose(0, 2, 1) @ Y @ Gamma)
 
@@ -129,12 +125,8 @@ def J_map(W: np.ndarray, Gamma: np.ndarray, V: np.ndarray) -> np.ndarray:
 
     Parameters
     ----------
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    Gamma : ndarray, shape (N, n, n)
-        Closed loops ``Γ_i`` (see :func:`closed_loop`).
-    V : ndarray, shape (N, n, n)
-        The tuple the map is applied to.
+    W, Gamma, V : ndarray
+        As in :func:`L_map`.
     """
     return E_map(W, Gamma @ V @ Gamma.transpose(0, 2, 1))
 
@@ -143,18 +135,26 @@ def _block_diag(blocks: np.ndarray) -> np.ndarray:
     return sla.block_diag(*blocks) if len(blocks) else np.zeros((0, 0))
 
 
+def _mixed(W: np.ndarray, blocks: np.ndarray, *, consensus_first: bool) -> np.ndarray:
+    """``diag[blocks] (W ⊗ I)`` if ``consensus_first``, else ``(W ⊗ I) diag[blocks]``."""
+    mix = np.kron(W, np.eye(blocks.shape[1]))
+    return _block_diag(blocks) @ mix if consensus_first else mix @ _block_diag(blocks)
+
+
+def _kron_squares(Gamma: np.ndarray) -> np.ndarray:
+    """``Γ_i ⊗ Γ_i`` for every agent, shape ``(N, n², n²)``."""
+    return np.stack([np.kron(G, G) for G in Gamma])
+
+
 def B_matrix(W: np.ndarray, Gamma: np.ndarray) -> np.ndarray:
     """``B = diag[Γ_i] (W ⊗ I_n)`` (seed 000 eq. (5.11)), acting on ``[ε_1; …; ε_N]``.
 
     Parameters
     ----------
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    Gamma : ndarray, shape (N, n, n)
-        Closed loops ``Γ_i`` (see :func:`closed_loop`).
+    W, Gamma : ndarray
+        As in :func:`L_map`.
     """
-    n = Gamma.shape[1]
-    return _block_diag(Gamma) @ np.kron(W, np.eye(n))
+    return _mixed(W, Gamma, consensus_first=True)
 
 
 def B2_matrix(W: np.ndarray, Gamma: np.ndarray) -> np.ndarray:
@@ -162,13 +162,10 @@ def B2_matrix(W: np.ndarray, Gamma: np.ndarray) -> np.ndarray:
 
     Parameters
     ----------
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    Gamma : ndarray, shape (N, n, n)
-        Closed loops ``Γ_i`` (see :func:`closed_loop`).
+    W, Gamma : ndarray
+        As in :func:`L_map`.
     """
-    n = Gamma.shape[1]
-    return np.kron(W, np.eye(n)) @ _block_diag(Gamma)
+    return _mixed(W, Gamma, consensus_first=False)
 
 
 def E_matrix(W: np.ndarray, n: int) -> np.ndarray:
@@ -189,12 +186,10 @@ def L_matrix(W: np.ndarray, Gamma: np.ndarray) -> np.ndarray:
 
     Parameters
     ----------
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    Gamma : ndarray, shape (N, n, n)
-        Closed loops ``Γ_i`` (see :func:`closed_loop`).
+    W, Gamma : ndarray
+        As in :func:`L_map`.
     """
-    return _block_diag(np.stack([np.kron(G, G) for G in Gamma])) @ E_matrix(W, Gamma.shape[1])
+    return _mixed(W, _kron_squares(Gamma), consensus_first=True)
 
 
 def J_matrix(W: np.ndarray, Gamma: np.ndarray) -> np.ndarray:
@@ -202,12 +197,10 @@ def J_matrix(W: np.ndarray, Gamma: np.ndarray) -> np.ndarray:
 
     Parameters
     ----------
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    Gamma : ndarray, shape (N, n, n)
-        Closed loops ``Γ_i`` (see :func:`closed_loop`).
+    W, Gamma : ndarray
+        As in :func:`L_map`.
     """
-    return E_matrix(W, Gamma.shape[1]) @ _block_diag(np.stack([np.kron(G, G) for G in Gamma]))
+    return _mixed(W, _kron_squares(Gamma), consensus_first=False)
 
 
 def covariance_operator_matrix(W: np.ndarray, Gamma: np.ndarray, order: str) -> np.ndarray:
@@ -215,10 +208,8 @@ def covariance_operator_matrix(W: np.ndarray, Gamma: np.ndarray, order: str) -> 
 
     Parameters
     ----------
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    Gamma : ndarray, shape (N, n, n)
-        Closed loops ``Γ_i`` (see :func:`closed_loop`).
+    W, Gamma : ndarray
+        As in :func:`L_map`.
     order : str
         ``consensus-then-filter`` or ``filter-then-consensus``.
     """

@@ -328,10 +328,8 @@ def w_detectability(
 
     Parameters
     ----------
-    A, C, W : ndarray
-        System, measurement matrices, weights.
-    rank_tol, value_tol : float
-        PBH rank tolerance; tolerance of ``|λ|`` around 1.
+    A, C, W, rank_tol, value_tol : ndarray, float
+        As in :func:`source_components`.
 
     Returns
     -------

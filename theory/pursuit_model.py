@@ -289,10 +289,8 @@ def path_derivative_numeric(
 
     Parameters
     ----------
-    gamma : float
-        Path parameter.
-    r_x, r_y, gamma0, r_z, c : float
-        Path constants (``r_z``, ``c`` only in 3D).
+    gamma, r_x, r_y, gamma0, r_z, c : float
+        As in :func:`path_numeric`.
     """
     planar = [-r_x * np.sin(gamma + gamma0), r_y * np.cos(gamma + gamma0)]
     if r_z is None:

@@ -33,6 +33,7 @@ from theory.consensus_operators import (
     covariance_operator_matrix,
     spectral_radius,
 )
+from theory.dkf_case import ORDERS
 
 __all__ = [
     "AveragedBoundCheck",
@@ -41,17 +42,15 @@ __all__ = [
     "check_averaged_bound",
     "check_covariance_bound",
     "coupled_riccati",
+    "coupled_riccati_step",
+    "error_noise_covariance",
     "riccati_gains",
 ]
 
 
-def _ricc(A, Q, Ci, Ri, Pi):
-    if Ci.shape[0] == 0:
-        return A @ Pi @ A.T + Q
-    S = Ci @ Pi @ Ci.T + Ri
-    K = A @ Pi @ Ci.T
-    out = A @ Pi @ A.T + Q - K @ np.linalg.solve(S, K.T)
-    return (out + out.T) / 2
+def _gain(A: np.ndarray, Ci: np.ndarray, Ri: np.ndarray, Pi: np.ndarray) -> np.ndarray:
+    """``A Π C_i' (R_i + C_i Π C_i')⁻¹``, ``n × 0`` for an agent without sensor."""
+    return np.linalg.solve(Ci @ Pi @ Ci.T + Ri, Ci @ Pi @ A.T).T
 
 
 def riccati_gains(
@@ -66,12 +65,81 @@ def riccati_gains(
     Pi : ndarray, shape (N, n, n)
         Intermediate covariances ``Π_i``.
     """
-    return tuple(
-        A @ Pi[i] @ Ci.T @ np.linalg.inv(R[i] + Ci @ Pi[i] @ Ci.T)
-        if Ci.shape[0]
-        else np.zeros((A.shape[0], 0))
-        for i, Ci in enumerate(C)
+    return tuple(_gain(A, Ci, R[i], Pi[i]) for i, Ci in enumerate(C))
+
+
+def coupled_riccati_step(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    Q: np.ndarray,
+    R: Sequence[np.ndarray],
+    P: np.ndarray,
+    *,
+    order: str,
+) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
+    """One step of the coupled Riccati recursion: the gains ``L_i(k)`` and ``P(k+1)``.
+
+    ``consensus-then-filter``: ``Π = E(P)``, ``L_i`` of (5.8) at ``Π_i``, ``P_i⁺ = Ric_i(Π_i)``;
+    ``filter-then-consensus``: ``L_i`` at ``P_i`` and ``P⁺ = E(Ric(P))``.
+
+    Parameters
+    ----------
+    A, C, W, Q, R : ndarray
+        Problem data (seed 000 eqs. (5.1)–(5.2)).
+    P : ndarray, shape (N, n, n)
+        ``P(k)``.
+    order : str
+        One of :data:`theory.dkf_case.ORDERS`.
+
+    Returns
+    -------
+    gains : tuple of ndarray
+        ``L_i(k)``, shapes (n, p_i).
+    P_next : ndarray, shape (N, n, n)
+        ``P(k+1)``, symmetrized.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``order``.
+
+    References
+    ----------
+    seed 000 eqs. (5.7)–(5.9), App. C.3.
+    """
+    if order not in ORDERS:
+        raise ValueError(f"order {order!r} is not one of {ORDERS}")
+    base = E_map(W, P) if order == "consensus-then-filter" else P
+    gains = riccati_gains(A, C, R, base)
+    nxt = np.stack(
+        [A @ Pi @ A.T + Q - Li @ Ci @ Pi @ A.T for Pi, Li, Ci in zip(base, gains, C, strict=True)]
     )
+    nxt = (nxt + nxt.transpose(0, 2, 1)) / 2
+    return gains, (E_map(W, nxt) if order == "filter-then-consensus" else nxt)
+
+
+def error_noise_covariance(
+    Q: np.ndarray, R: Sequence[np.ndarray], gains: Sequence[np.ndarray]
+) -> np.ndarray:
+    """``(11' ⊗ Q) + blkdiag(L_i R_i L_i')``: the noise covariance of ``[ε_1; …; ε_N]`` in (5.5).
+
+    Parameters
+    ----------
+    Q : ndarray, shape (n, n)
+        Process noise covariance (ω is common to all agents).
+    R : sequence of ndarray
+        Measurement noise covariances ``R_i``.
+    gains : sequence of ndarray
+        Gains ``L_i``.
+
+    Returns
+    -------
+    ndarray, shape (N n, N n)
+    """
+    N = len(gains)
+    LRL = [Li @ Ri @ Li.T for Li, Ri in zip(gains, R, strict=True)]
+    return np.kron(np.ones((N, N)), Q) + sla.block_diag(*LRL)
 
 
 @dataclass(frozen=True, eq=False)
@@ -151,10 +219,7 @@ def coupled_riccati(
     status, iterations = "max_iter", 0
     while iterations < max_iter:
         iterations += 1
-        base = E_map(W, P) if order == "consensus-then-filter" else P
-        nxt = np.stack([_ricc(A, Q, C[i], R[i], base[i]) for i in range(N)])
-        if order == "filter-then-consensus":
-            nxt = E_map(W, nxt)
+        nxt = coupled_riccati_step(A, C, W, Q, R, P, order=order)[1]
         step = float(np.max(np.linalg.norm(nxt - P, 2, axis=(1, 2))))
         P = nxt
         norms.append(float(np.max(np.linalg.norm(P, 2, axis=(1, 2)))))
@@ -164,8 +229,7 @@ def coupled_riccati(
         if step <= conv_tol * norms[-1]:
             status = "converged"
             break
-    base = E_map(W, P) if order == "consensus-then-filter" else P
-    gains = riccati_gains(A, C, R, base) if status != "diverged" else ()
+    gains = coupled_riccati_step(A, C, W, Q, R, P, order=order)[0] if status != "diverged" else ()
     stabilizing, radius = None, None
     if status == "converged":
         T = covariance_operator_matrix(W, closed_loop(A, C, gains), order)
@@ -247,7 +311,7 @@ def check_covariance_bound(
     Gamma = closed_loop(A, C, gains)
     Bm = B_matrix(W, Gamma)
     LRL = [Li @ Ri @ Li.T for Li, Ri in zip(gains, R, strict=True)]
-    noise = np.kron(np.ones((N, N)), Q) + sla.block_diag(*LRL)
+    noise = error_noise_covariance(Q, R, gains)
     joint = np.kron(np.ones((N, N)), P0)
     P = np.broadcast_to(P0, (N, n, n)).copy()
     rng = np.random.default_rng(seed)

@@ -6,7 +6,7 @@ import functools
 import json
 import sys
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import Any, NoReturn, TypeVar
 
 import numpy as np
 import typer
@@ -19,11 +19,15 @@ __all__ = [
     "EXIT_FAILS",
     "EXIT_HOLDS",
     "EXIT_INCONCLUSIVE",
+    "case_argument",
     "console",
     "error_console",
+    "finish",
+    "json_option",
     "print_json",
     "reports_errors",
     "to_jsonable",
+    "verdict_exit_code",
 ]
 
 EXIT_HOLDS, EXIT_FAILS, EXIT_BAD_INPUT, EXIT_INCONCLUSIVE = 0, 1, 2, 3
@@ -79,3 +83,56 @@ def to_jsonable(value: Any) -> Any:
 def print_json(data: Any) -> None:
     """Write ``data`` as indented JSON to stdout."""
     sys.stdout.write(json.dumps(to_jsonable(data), indent=2, sort_keys=False) + "\n")
+
+
+def case_argument(help: str = "Case file or bundled case name.") -> Any:
+    """The positional ``CASE`` argument of a command (a ``typer.Argument``).
+
+    Parameters
+    ----------
+    help : str
+        Its help text.
+    """
+    return typer.Argument(..., help=help)
+
+
+def json_option(help: str = "Print JSON.") -> Any:
+    """The ``--json`` flag of a command (a ``typer.Option``, default off).
+
+    Parameters
+    ----------
+    help : str
+        Its help text.
+    """
+    return typer.Option(False, "--json", help=help)
+
+
+def verdict_exit_code(verdict: bool | None) -> int:
+    """The DESIGN.md exit code of a verdict: True 0 (holds), False 1 (fails), None 3."""
+    return {True: EXIT_HOLDS, False: EXIT_FAILS, None: EXIT_INCONCLUSIVE}[verdict]
+
+
+def finish(data: Any, code: int, *, as_json: bool, show: Callable[[], None]) -> NoReturn:
+    """Print ``data`` as JSON (``as_json``) or call ``show``, then exit with ``code``.
+
+    Parameters
+    ----------
+    data : Any
+        The command's JSON record.
+    code : int
+        Exit code.
+    as_json : bool
+        The ``--json`` flag.
+    show : callable
+        Prints the human-readable form.
+
+    Raises
+    ------
+    typer.Exit
+        Always, with ``code``.
+    """
+    if as_json:
+        print_json(data)
+    else:
+        show()
+    raise typer.Exit(code)

@@ -12,12 +12,12 @@ from rich.table import Table
 from theory.case_file import load_case
 from theory.claims import all_claims
 from theory.cli.common import (
-    EXIT_FAILS,
-    EXIT_HOLDS,
-    EXIT_INCONCLUSIVE,
+    case_argument,
     console,
-    print_json,
+    finish,
+    json_option,
     reports_errors,
+    verdict_exit_code,
 )
 from theory.dkf_claims import analyze_dkf
 from theory.errors import CaseError
@@ -31,8 +31,8 @@ def register(app: typer.Typer) -> None:
     @app.command("dkf")
     @reports_errors
     def dkf(
-        case: str = typer.Argument(..., help="Case file or bundled case name."),
-        as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+        case: str = case_argument(),
+        as_json: bool = json_option(),
         solver: str = typer.Option("CLARABEL", "--solver", help="CLARABEL or SCS."),
         self_weight: bool = typer.Option(
             True, "--self-weight/--no-self-weight", help="Bisect each agent's largest self-weight."
@@ -52,13 +52,8 @@ def register(app: typer.Typer) -> None:
             if "dkf" in claim.kinds
             for result in claim.run(loaded)
         ]
-        if as_json:
-            print_json(data)
-        else:
-            _print_table(data)
-        verdict = data["s_detectable"]
-        code = {True: EXIT_HOLDS, False: EXIT_FAILS, None: EXIT_INCONCLUSIVE}[verdict]
-        raise typer.Exit(code)
+        code = verdict_exit_code(data["s_detectable"])
+        finish(data, code, as_json=as_json, show=lambda: _print_table(data))
 
 
 def _print_table(data: dict) -> None:

@@ -16,12 +16,12 @@ from rich.table import Table
 from theory.case_file import load_case
 from theory.claims import get_claim
 from theory.cli.common import (
-    EXIT_FAILS,
-    EXIT_HOLDS,
-    EXIT_INCONCLUSIVE,
+    case_argument,
     console,
-    print_json,
+    finish,
+    json_option,
     reports_errors,
+    verdict_exit_code,
 )
 from theory.errors import CaseError
 from theory.iss import (
@@ -139,9 +139,9 @@ def _expectations(expect: dict[str, Any], holds: bool, conditions: list) -> list
 
 def _exit_code(record: dict[str, Any]) -> int:
     statuses = {c["status"] for c in record["conditions"]}
-    if "fails" in statuses:
-        return EXIT_FAILS
-    return EXIT_INCONCLUSIVE if "inconclusive" in statuses else EXIT_HOLDS
+    return verdict_exit_code(
+        False if "fails" in statuses else None if "inconclusive" in statuses else True
+    )
 
 
 def _print_table(record: dict[str, Any]) -> None:
@@ -180,16 +180,12 @@ def register(app: typer.Typer) -> None:
     @app.command("iss")
     @reports_errors
     def iss(
-        case: str = typer.Argument(..., help="Case file or bundled case name (kind: pursuit)."),
-        as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+        case: str = case_argument("Case file or bundled case name (kind: pursuit)."),
+        as_json: bool = json_option(),
         margin_tol: float = typer.Option(
             None, "--margin-tol", help="Relative margin under which a condition is inconclusive."
         ),
     ) -> None:
         """ISS Lyapunov analysis of the pursuit/coordination loop (seed 003)."""
         record = iss_report(load_case(case), margin_tol=margin_tol)
-        if as_json:
-            print_json(record)
-        else:
-            _print_table(record)
-        raise typer.Exit(_exit_code(record))
+        finish(record, _exit_code(record), as_json=as_json, show=lambda: _print_table(record))

@@ -15,12 +15,14 @@ from rich.table import Table
 
 from theory.case_file import Case, load_case
 from theory.cli.common import (
-    EXIT_FAILS,
     EXIT_HOLDS,
     EXIT_INCONCLUSIVE,
+    case_argument,
     console,
-    print_json,
+    finish,
+    json_option,
     reports_errors,
+    verdict_exit_code,
 )
 from theory.errors import CaseError, SolverError
 from theory.time_varying import (
@@ -83,8 +85,8 @@ def register(app: typer.Typer) -> None:
     @app.command("topology")
     @reports_errors
     def topology(
-        case: str = typer.Argument(..., help="Case file path or bundled case name."),
-        as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+        case: str = case_argument("Case file path or bundled case name."),
+        as_json: bool = json_option(),
         rank_tol: float = typer.Option(None, "--rank-tol", help="Relative rank tolerance."),
         inconclusive_factor: float = typer.Option(
             None, "--inconclusive-factor", help="Margin below which a verdict is unsure."
@@ -106,17 +108,16 @@ def register(app: typer.Typer) -> None:
             result, loaded.expect
         )
         code = _exit_code(result)
-        if as_json:
-            print_json(_json(loaded, result, mismatches, code))
-        else:
-            _print_human(loaded, result, mismatches, code)
-        raise typer.Exit(code)
+        finish(
+            _json(loaded, result, mismatches, code),
+            code,
+            as_json=as_json,
+            show=lambda: _print_human(loaded, result, mismatches, code),
+        )
 
 
 def _exit_code(result: TrajectoryResult) -> int:
-    if not result.conclusive:
-        return EXIT_INCONCLUSIVE
-    return EXIT_HOLDS if result.first_failure_step is None else EXIT_FAILS
+    return verdict_exit_code(result.first_failure_step is None if result.conclusive else None)
 
 
 def _verdict(result: TrajectoryResult, code: int) -> str:

@@ -24,6 +24,10 @@ from typing import Any
 
 import numpy as np
 
+from theory.consensus_operators import B2_matrix, B_matrix, closed_loop
+from theory.dkf_case import ORDERS as RICCATI_ORDERS
+from theory.riccati import coupled_riccati_step, error_noise_covariance
+
 __all__ = [
     "ORDERS",
     "ConsensusKfRun",
@@ -56,30 +60,11 @@ class ConsensusKfRun:
         return np.linalg.norm(self.covariances, 2, axis=(2, 3))
 
 
-def _local_step(
-    A: np.ndarray,
-    C: np.ndarray,
-    Q: np.ndarray,
-    R: np.ndarray,
-    error: np.ndarray,
-    P: np.ndarray,
-    omega: np.ndarray,
-    rng: np.random.Generator,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Error and covariance after the local step (5.4), (5.8)–(5.9): ``(A − LC)ε + ω − Lv``."""
-    gain, P_next = _riccati_step(A, C, Q, R, P)
-    noise = rng.multivariate_normal(np.zeros(C.shape[0]), R) if C.shape[0] else np.zeros(0)
-    return (A - gain @ C) @ error + omega - gain @ noise, P_next
-
-
-def _riccati_step(
-    A: np.ndarray, C: np.ndarray, Q: np.ndarray, R: np.ndarray, P: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Gain (5.8) and the Riccati map (5.9) at ``P``."""
-    S = C @ P @ C.T + R
-    gain = np.linalg.solve(S, C @ P @ A.T).T
-    P_next = A @ P @ A.T + Q - gain @ S @ gain.T
-    return gain, 0.5 * (P_next + P_next.T)
+def _riccati_order(order: str) -> str:
+    """The :mod:`theory.riccati` name of a filter order; ValueError for an unknown one."""
+    if order not in ORDERS:
+        raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
+    return dict(zip(ORDERS, RICCATI_ORDERS, strict=True))[order]
 
 
 def coupled_riccati(
@@ -119,20 +104,13 @@ def coupled_riccati(
     ----------
     seed 000, eqs. (5.7)–(5.9), App. C.3.
     """
-    if order not in ORDERS:
-        raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
-    agents = W.shape[0]
-    P = np.tile(P0, (agents, 1, 1))
-    norms = np.empty((steps + 1, agents))
-    norms[0] = np.linalg.norm(P, 2, axis=(1, 2))
-    for k in range(steps):
-        if order == "consensus-first":
-            P = np.einsum("ij,jkl->ikl", W, P)
-        P = np.array([_riccati_step(A, C[i], Q, R[i], P[i])[1] for i in range(agents)])
-        if order == "filter-first":
-            P = np.einsum("ij,jkl->ikl", W, P)
-        norms[k + 1] = np.linalg.norm(P, 2, axis=(1, 2))
-    return norms
+    riccati_order = _riccati_order(order)
+    P = np.tile(P0, (W.shape[0], 1, 1))
+    norms = [np.linalg.norm(P, 2, axis=(1, 2))]
+    for _ in range(steps):
+        P = coupled_riccati_step(A, C, W, Q, R, P, order=riccati_order)[1]
+        norms.append(np.linalg.norm(P, 2, axis=(1, 2)))
+    return np.array(norms)
 
 
 def simulate_consensus_kf(
@@ -187,24 +165,30 @@ def simulate_consensus_kf(
     ----------
     seed 000, eqs. (5.1)–(5.9), App. C.3.
     """
-    if order not in ORDERS:
-        raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
+    riccati_order = _riccati_order(order)
     n, agents = A.shape[0], W.shape[0]
     errors = np.empty((steps + 1, agents, n))
     covariances = np.empty((steps + 1, agents, n, n))
     errors[0], covariances[0] = np.asarray(x0) - np.asarray(estimate0), P0
     for k in range(steps):
-        es, Ps = errors[k], covariances[k]
         omega = rng.multivariate_normal(np.zeros(n), Q)
-        if order == "consensus-first":
-            es, Ps = W @ es, np.einsum("ij,jkl->ikl", W, Ps)
-        stepped = [_local_step(A, C[i], Q, R[i], es[i], Ps[i], omega, rng) for i in range(agents)]
-        es = np.array([s[0] for s in stepped])
-        Ps = np.array([s[1] for s in stepped])
-        if order == "filter-first":
-            es, Ps = W @ es, np.einsum("ij,jkl->ikl", W, Ps)
-        errors[k + 1], covariances[k + 1] = es, Ps
+        gains, covariances[k + 1] = coupled_riccati_step(
+            A, C, W, Q, R, covariances[k], order=riccati_order
+        )
+        es = W @ errors[k] if order == "consensus-first" else errors[k]
+        es = np.array(
+            [
+                (A - L @ Ci) @ e + omega - L @ _measurement_noise(rng, Ri)
+                for e, L, Ci, Ri in zip(es, gains, C, R, strict=True)
+            ]
+        )
+        errors[k + 1] = W @ es if order == "filter-first" else es
     return ConsensusKfRun(errors, covariances)
+
+
+def _measurement_noise(rng: np.random.Generator, R_i: np.ndarray) -> np.ndarray:
+    """``v_i ~ N(0, R_i)`` (empty for an agent without sensor)."""
+    return rng.multivariate_normal(np.zeros(R_i.shape[0]), R_i) if R_i.shape[0] else np.zeros(0)
 
 
 def true_error_covariance(
@@ -251,41 +235,24 @@ def true_error_covariance(
     ----------
     seed 000, eqs. (5.5)–(5.11), App. C.3.
     """
-    if order not in ORDERS:
-        raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
+    riccati_order = _riccati_order(order)
     n, agents = A.shape[0], W.shape[0]
     mix = np.kron(W, np.eye(n))
     P = np.tile(P0, (agents, 1, 1))
     Sigma = np.kron(np.eye(agents), P0)
-    common = np.kron(np.ones((agents, agents)), Q)
     traces, p_norms = [np.trace(Sigma)], [np.linalg.norm(P, 2, axis=(1, 2))]
     for _ in range(steps):
+        gains, P = coupled_riccati_step(A, C, W, Q, R, P, order=riccati_order)
+        Gamma = closed_loop(A, C, gains)
+        noise = error_noise_covariance(Q, R, gains)
         if order == "consensus-first":
-            P = np.einsum("ij,jkl->ikl", W, P)
-        steps_i = [_riccati_step(A, C[i], Q, R[i], P[i]) for i in range(agents)]
-        gains = [g for g, _ in steps_i]
-        P = np.array([p for _, p in steps_i])
-        local = _block_diag([A - gains[i] @ C[i] for i in range(agents)])
-        measurement = _block_diag([g @ R[i] @ g.T for i, g in enumerate(gains)])
-        if order == "consensus-first":
-            B, noise = local @ mix, common + measurement
+            B = B_matrix(W, Gamma)
         else:
-            P = np.einsum("ij,jkl->ikl", W, P)
-            B, noise = mix @ local, mix @ (common + measurement) @ mix.T
+            B, noise = B2_matrix(W, Gamma), mix @ noise @ mix.T
         Sigma = B @ Sigma @ B.T + noise
         traces.append(np.trace(Sigma))
         p_norms.append(np.linalg.norm(P, 2, axis=(1, 2)))
     return np.array(traces), np.array(p_norms)
-
-
-def _block_diag(blocks: Sequence[np.ndarray]) -> np.ndarray:
-    rows = sum(b.shape[0] for b in blocks)
-    out = np.zeros((rows, rows))
-    at = 0
-    for b in blocks:
-        out[at : at + b.shape[0], at : at + b.shape[1]] = b
-        at += b.shape[0]
-    return out
 
 
 def ch5_examples() -> dict[str, dict[str, Any]]:

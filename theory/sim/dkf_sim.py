@@ -11,7 +11,6 @@ agent the final and mean estimation error ``‖x̂_i − x‖`` (as ``final_loca
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -20,6 +19,7 @@ import numpy as np
 
 from theory.dkf_case import DkfSpec
 from theory.sim.consensus_kf import ConsensusKfRun, simulate_consensus_kf, true_error_covariance
+from theory.sim.outputs import write_agents_csv, write_runs_npz
 
 __all__ = [
     "CONVERGED_TOL",
@@ -131,19 +131,7 @@ def write_dkf_data(
     -------
     list of pathlib.Path
     """
-    import csv
-
-    npz = folder / "runs.npz"
-    np.savez_compressed(
-        npz,
-        **{
-            f.name: np.stack([getattr(r, f.name) for r in runs])
-            for f in dataclasses.fields(ConsensusKfRun)
-        },
-    )
-    agents_csv = folder / "agents.csv"
-    with agents_csv.open("w", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(summary["agents"][0]))
-        writer.writeheader()
-        writer.writerows(summary["agents"])
-    return [npz, agents_csv]
+    return [
+        write_runs_npz(runs, folder / "runs.npz"),
+        write_agents_csv(summary["agents"], folder / "agents.csv"),
+    ]

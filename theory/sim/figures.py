@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -16,7 +17,7 @@ import numpy as np
 
 from theory.sim.scenario import TdoaRun
 
-__all__ = ["write_figures"]
+__all__ = ["save_figure", "write_figures"]
 
 
 def write_figures(runs: Sequence[TdoaRun], folder: Path) -> list[Path]:
@@ -34,21 +35,21 @@ def write_figures(runs: Sequence[TdoaRun], folder: Path) -> list[Path]:
     list of pathlib.Path
         The files written.
     """
+    per_ping = (
+        ("localization_errors", "localization error ‖p̄ᵢ − p‖ (m)", "errors.png"),
+        ("cov_norms", "covariance norm ‖P̄ᵢ‖", "covariance.png"),
+    )
     return [
         _trajectories(runs[0], folder / "trajectories.png"),
-        _per_agent(
-            runs[0].ping_times,
-            np.mean([r.localization_errors for r in runs], axis=0),
-            "localization error ‖p̄ᵢ − p‖ (m)",
-            folder / "errors.png",
-            log=True,
-        ),
-        _per_agent(
-            runs[0].ping_times,
-            np.mean([r.cov_norms for r in runs], axis=0),
-            "covariance norm ‖P̄ᵢ‖",
-            folder / "covariance.png",
-            log=True,
+        *(
+            _per_agent(
+                runs[0].ping_times,
+                np.mean([getattr(r, name) for r in runs], axis=0),
+                label,
+                folder / file,
+                log=True,
+            )
+            for name, label, file in per_ping
         ),
         _per_agent(
             runs[0].fine_times,
@@ -70,10 +71,7 @@ def _trajectories(run: TdoaRun, path: Path) -> Path:
     ax.set_ylabel("y (m)")
     ax.set_zlabel("z (m)")
     ax.legend(fontsize=6, loc="upper left")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def _per_agent(
@@ -89,6 +87,19 @@ def _per_agent(
     ax.set_ylabel(label)
     ax.legend(fontsize=6, ncol=2)
     ax.grid(True, alpha=0.3)
+    return save_figure(fig, path)
+
+
+def save_figure(fig: Any, path: Path) -> Path:
+    """Lay out ``fig``, write it to ``path`` as a 110-dpi PNG, close it and return ``path``.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : pathlib.Path
+        The file to write.
+    """
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -35,12 +35,8 @@ def tdoa_predictions(
     -------
     list of ndarray
     """
-    point = np.broadcast_to(point, positions.shape)
-    out = []
-    for i, nbrs in enumerate(neighbours):
-        ranges = np.linalg.norm(point[i][None, :] - positions, axis=1)
-        out.append(ranges[i] - ranges[nbrs])
-    return out
+    ranges = np.linalg.norm(_offsets(point, positions), axis=2)
+    return [ranges[i, i] - ranges[i, nbrs] for i, nbrs in enumerate(neighbours)]
 
 
 def tdoa_jacobians(
@@ -50,25 +46,22 @@ def tdoa_jacobians(
 
     Parameters
     ----------
-    point : ndarray, shape (d,) or (N, d)
-        Where to evaluate (one point, or one per agent).
-    positions : ndarray, shape (N, d)
-        Agent positions.
-    neighbours : list of ndarray
-        0-based neighbours of each agent.
+    point, positions, neighbours : ndarray, ndarray, list of ndarray
+        As in :func:`tdoa_predictions`.
 
     Returns
     -------
     list of ndarray
     """
-    point = np.broadcast_to(point, positions.shape)
-    out = []
-    for i, nbrs in enumerate(neighbours):
-        diff = point[i][None, :] - positions
-        units = diff / np.linalg.norm(diff, axis=1, keepdims=True)
-        rows = units[i][None, :] - units[nbrs]
-        out.append(np.hstack([rows, np.zeros_like(rows)]))
-    return out
+    diff = _offsets(point, positions)
+    units = diff / np.linalg.norm(diff, axis=2, keepdims=True)
+    rows = [units[i, i][None, :] - units[i, nbrs] for i, nbrs in enumerate(neighbours)]
+    return [np.hstack([r, np.zeros_like(r)]) for r in rows]
+
+
+def _offsets(point: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """``point_i − p_j`` for every agent ``i`` and position ``p_j``, shape (N, N, d)."""
+    return np.broadcast_to(point, positions.shape)[:, None, :] - positions[None, :, :]
 
 
 def tdoa_readings(

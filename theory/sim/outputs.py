@@ -1,10 +1,14 @@
-"""Data files of a simulation: NPZ arrays per run and CSV tables (``trackcert simulate -o``)."""
+"""Data files of a simulation: NPZ arrays per run and CSV tables (``trackcert simulate -o``).
+
+:func:`write_data` writes the files of a TDOA scenario; the three writers it is built from serve
+the ``pursuit`` and ``dkf`` simulations too.
+"""
 
 from __future__ import annotations
 
 import csv
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -12,7 +16,7 @@ import numpy as np
 
 from theory.sim.scenario import TdoaRun
 
-__all__ = ["write_data"]
+__all__ = ["write_agents_csv", "write_data", "write_runs_npz", "write_timeseries_csv"]
 
 
 def write_data(runs: Sequence[TdoaRun], summary: dict[str, Any], folder: Path) -> list[Path]:
@@ -31,29 +35,74 @@ def write_data(runs: Sequence[TdoaRun], summary: dict[str, Any], folder: Path) -
     -------
     list of pathlib.Path
     """
+    errors = np.stack([r.localization_errors for r in runs])
+    npz = write_runs_npz(runs, folder / "runs.npz", localization_errors=errors)
+    series = write_timeseries_csv(
+        folder / "timeseries.csv",
+        runs[0].ping_times,
+        {
+            "error": errors.mean(axis=0),
+            "cov_norm": np.mean([r.cov_norms for r in runs], axis=0),
+        },
+    )
+    return [npz, write_agents_csv(summary["agents"], folder / "agents.csv"), series]
+
+
+def write_runs_npz(runs: Sequence[Any], path: Path, **extra: np.ndarray) -> Path:
+    """Write every field of the run dataclasses, stacked over runs, to an NPZ file; return ``path``.
+
+    Parameters
+    ----------
+    runs : sequence of dataclass instances
+        Runs of one type.
+    path : pathlib.Path
+        The file to write.
+    **extra : ndarray
+        Further arrays to store under their keyword names.
+    """
     arrays = {
-        f.name: np.stack([getattr(r, f.name) for r in runs]) for f in dataclasses.fields(TdoaRun)
+        f.name: np.stack([getattr(r, f.name) for r in runs]) for f in dataclasses.fields(runs[0])
     }
-    arrays["localization_errors"] = np.stack([r.localization_errors for r in runs])
-    npz = folder / "runs.npz"
-    np.savez_compressed(npz, **arrays)
-    agents_csv = folder / "agents.csv"
-    columns = list(summary["agents"][0])
-    with agents_csv.open("w", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=columns)
+    np.savez_compressed(path, **arrays, **extra)
+    return path
+
+
+def write_agents_csv(agents: Sequence[Mapping[str, Any]], path: Path) -> Path:
+    """Write one CSV row per agent of a summary (columns: the first agent's keys); return ``path``.
+
+    Parameters
+    ----------
+    agents : sequence of dict
+        The summary's ``agents`` list.
+    path : pathlib.Path
+        The file to write.
+    """
+    with path.open("w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(agents[0]))
         writer.writeheader()
-        writer.writerows(summary["agents"])
-    series = folder / "timeseries.csv"
-    errors = arrays["localization_errors"].mean(axis=0)
-    norms = arrays["cov_norms"].mean(axis=0)
-    n = errors.shape[1]
-    with series.open("w", newline="") as handle:
+        writer.writerows(agents)
+    return path
+
+
+def write_timeseries_csv(path: Path, times: np.ndarray, columns: Mapping[str, np.ndarray]) -> Path:
+    """Write per-agent time series as CSV (``time``, then ``{name}_{i}``); return ``path``.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file to write.
+    times : ndarray, shape (K,)
+        Time of each row (written with ``:g``).
+    columns : mapping of str to ndarray, shape (K, N)
+        One block of columns per name, agent ``i`` (1-based) in column ``i − 1`` (``:.6g``).
+    """
+    blocks = list(columns.values())
+    with path.open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(
             ["time"]
-            + [f"error_{i + 1}" for i in range(n)]
-            + [f"cov_norm_{i + 1}" for i in range(n)]
+            + [f"{name}_{i + 1}" for name, block in columns.items() for i in range(block.shape[1])]
         )
-        for t, e, p in zip(runs[0].ping_times, errors, norms, strict=True):
-            writer.writerow([f"{t:g}", *(f"{v:.6g}" for v in e), *(f"{v:.6g}" for v in p)])
-    return [npz, agents_csv, series]
+        for k, t in enumerate(times):
+            writer.writerow([f"{t:g}", *(f"{v:.6g}" for block in blocks for v in block[k])])
+    return path

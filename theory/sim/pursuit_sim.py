@@ -9,8 +9,6 @@ m with zero Euler angles and ``γ^[i](0) = i`` rad; estimates start at
 
 from __future__ import annotations
 
-import csv
-import dataclasses
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -23,6 +21,8 @@ import numpy as np
 
 from theory.errors import CaseError
 from theory.pursuit_case import PursuitSpec
+from theory.sim.figures import save_figure
+from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
 from theory.sim.pursuit import DecRun, DecSettings, delta_matrix, simulate_dec
 
 __all__ = [
@@ -57,17 +57,8 @@ def integration_step(dim: int) -> float:
 
 
 def default_steps(dim: int) -> int:
-    """``DEFAULT_DURATION / integration_step(dim)``.
-
-    Parameters
-    ----------
-    dim : int
-        2 or 3.
-
-    Returns
-    -------
-    int
-    """
+    """Steps in ``DEFAULT_DURATION``: ``round(DEFAULT_DURATION / integration_step(dim))``, an
+    int, for ``dim`` 2 or 3."""
     return round(DEFAULT_DURATION / integration_step(dim))
 
 
@@ -211,38 +202,20 @@ def write_pursuit_data(runs: Sequence[DecRun], summary: dict[str, Any], folder: 
     -------
     list of pathlib.Path
     """
-    npz = folder / "runs.npz"
-    np.savez_compressed(
-        npz,
-        **{
-            f.name: np.stack([getattr(r, f.name) for r in runs]) for f in dataclasses.fields(DecRun)
+    every = slice(None, None, 10)
+    series = write_timeseries_csv(
+        folder / "timeseries.csv",
+        runs[0].times[every],
+        {
+            "localization_error": np.mean([r.localization_errors for r in runs], axis=0)[every],
+            "pursuit_error": np.mean([r.pursuit_errors for r in runs], axis=0)[every],
         },
     )
-    agents_csv = folder / "agents.csv"
-    with agents_csv.open("w", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(summary["agents"][0]))
-        writer.writeheader()
-        writer.writerows(summary["agents"])
-    series = folder / "timeseries.csv"
-    loc = np.mean([r.localization_errors for r in runs], axis=0)
-    pur = np.mean([r.pursuit_errors for r in runs], axis=0)
-    n = loc.shape[1]
-    with series.open("w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(
-            ["time"]
-            + [f"localization_error_{i + 1}" for i in range(n)]
-            + [f"pursuit_error_{i + 1}" for i in range(n)]
-        )
-        for k in range(0, len(runs[0].times), 10):
-            writer.writerow(
-                [
-                    f"{runs[0].times[k]:g}",
-                    *(f"{v:.6g}" for v in loc[k]),
-                    *(f"{v:.6g}" for v in pur[k]),
-                ]
-            )
-    return [npz, agents_csv, series]
+    return [
+        write_runs_npz(runs, folder / "runs.npz"),
+        write_agents_csv(summary["agents"], folder / "agents.csv"),
+        series,
+    ]
 
 
 def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
@@ -268,7 +241,7 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.legend(fontsize=7)
-    paths.append(_save(fig, folder / "trajectories.png"))
+    paths.append(save_figure(fig, folder / "trajectories.png"))
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     for name, ax in zip(("pursuit_errors", "localization_errors"), axes, strict=True):
         values = np.mean([getattr(r, name) for r in runs], axis=0)
@@ -278,19 +251,12 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
         ax.set_ylabel(name.replace("_", " ") + " (m)")
         ax.legend(fontsize=7)
     axes[-1].set_xlabel("time (s)")
-    paths.append(_save(fig, folder / "errors.png"))
+    paths.append(save_figure(fig, folder / "errors.png"))
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     axes[0].plot(run.times, run.gammas - run.gammas.mean(axis=1, keepdims=True), lw=1)
     axes[0].set_ylabel("γ_i − mean γ (rad)")
     axes[1].plot(run.times, run.gamma_rates, lw=1)
     axes[1].set_ylabel("dγ_i/dt (rad/s)")
     axes[1].set_xlabel("time (s)")
-    paths.append(_save(fig, folder / "coordination.png"))
+    paths.append(save_figure(fig, folder / "coordination.png"))
     return paths
-
-
-def _save(fig: Any, path: Path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path

@@ -169,8 +169,8 @@ def weights_at(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
 
     Parameters
     ----------
-    spec : TdoaSimSpec
-    positions : ndarray, shape (N, 3)
+    spec, positions : TdoaSimSpec, ndarray
+        As in :func:`hears_at`.
 
     Returns
     -------
