@@ -16,6 +16,7 @@ import numpy as np
 from theory.dcrw import weibull_logpdf, wrapped_cauchy_logpdf
 from theory.pf_case import PfSpec
 from theory.pf_experiments import MonteCarlo
+from theory.sim.figures import save_figure
 
 __all__ = ["plot_errors", "plot_learned_pdfs", "plot_particles", "write_figures"]
 
@@ -45,7 +46,7 @@ def plot_errors(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
         title=f"{mc.errors.shape[0]} runs, model {mc.model}, m = {mc.share}, seed {mc.seed}",
     )
     ax.legend()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_particles(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
@@ -77,7 +78,7 @@ def plot_particles(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
         ax.scatter(*mc.paths[0, k], marker="o", color="red", s=40, label="target")
         ax.set(title=f"k = {k}", aspect="equal")
     axes[0][0].legend(fontsize=7)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_learned_pdfs(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
@@ -104,7 +105,7 @@ def plot_learned_pdfs(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
     left.set(xlabel="turning angle φ (rad)", ylabel="pdf", title="eq. (3.1)")
     right.set(xlabel="step length δ (m)", title="eq. (3.2)")
     left.legend(fontsize=7)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def write_figures(mc: MonteCarlo, spec: PfSpec, folder: Path, stem: str) -> list[str]:
@@ -128,10 +129,3 @@ def write_figures(mc: MonteCarlo, spec: PfSpec, folder: Path, stem: str) -> list
     if mc.learned is not None:
         paths.append(plot_learned_pdfs(mc, spec, folder / f"{stem}-learned-pdfs.png"))
     return [str(p) for p in paths]
-
-
-def _save(fig: plt.Figure, path: Path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
