@@ -14,9 +14,7 @@ import proofs_check
 import proofs_check.__main__
 import proofs_check.parse
 from proofs_check.deadline import DEFAULT_SECONDS
-from theory.case_certificates import case_certificates
 from theory.case_file import load_case
-from theory.certificates import bundle
 from theory.cli.common import console, print_json, reports_errors
 from theory.errors import CaseError, SolverError
 
@@ -68,6 +66,9 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Write every certificate the case supports (a bundle), re-checked exactly."""
         loaded = load_case(case)
+        from theory.case_certificates import case_certificates  # cvxpy: imported on use
+        from theory.certificates import bundle
+
         document = bundle(case_certificates(loaded, seed=seed), case=loaded.name)
         text = json.dumps(document, indent=1, ensure_ascii=False) + "\n"
         if not proofs_check.check_certificate(proofs_check.parse.loads(text)).valid:

@@ -19,7 +19,6 @@ from theory.cli.common import (
     reports_errors,
     verdict_exit_code,
 )
-from theory.dkf_claims import analyze_dkf
 from theory.errors import CaseError
 
 __all__ = ["register"]
@@ -44,6 +43,8 @@ def register(app: typer.Typer) -> None:
             raise CaseError("kind", "dkf", loaded.kind, file=loaded.file)
         if solver not in ("CLARABEL", "SCS"):
             raise CaseError("--solver", "CLARABEL or SCS", solver, file=loaded.file)
+        from theory.dkf_claims import analyze_dkf  # cvxpy: imported on use
+
         analysis = analyze_dkf(loaded, search_self_weight=self_weight, solver=solver)
         data = analysis.to_json()
         data["claims"] = [

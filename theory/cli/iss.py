@@ -24,15 +24,6 @@ from theory.cli.common import (
     verdict_exit_code,
 )
 from theory.errors import CaseError
-from theory.iss import (
-    DEFAULT_MARGIN_TOL,
-    coordination_iss,
-    iss_bound,
-    iss_conditions,
-    pursuit_iss,
-)
-from theory.iss_claims import run_case_claims
-from theory.iss_symbolic import lyapunov_derivative_check
 
 __all__ = ["iss_report", "register"]
 
@@ -57,6 +48,16 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
     CaseError
         If the case is not of kind ``pursuit``.
     """
+    from theory.iss import (  # sympy/scipy: imported on use
+        DEFAULT_MARGIN_TOL,
+        coordination_iss,
+        iss_bound,
+        iss_conditions,
+        pursuit_iss,
+    )
+    from theory.iss_claims import run_case_claims
+    from theory.iss_symbolic import lyapunov_derivative_check
+
     if case.kind != "pursuit":
         raise CaseError(
             "kind", "pursuit (trackcert iss analyses seed 003 cases)", case.kind, file=case.file

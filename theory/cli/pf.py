@@ -26,7 +26,6 @@ from theory.cli.common import (
     to_jsonable,
 )
 from theory.errors import CaseError
-from theory.pf_experiments import monte_carlo, node_summary, shared_monte_carlo
 
 __all__ = ["register", "run_pf_case"]
 
@@ -70,6 +69,8 @@ def run_pf_case(
     int
         1 when a claim is refuted, 3 when one is inconclusive, 0 otherwise.
     """
+    from theory.pf_experiments import monte_carlo, node_summary, shared_monte_carlo
+
     folder = None if out is None else Path(out)
     if case.kind != "pf":
         raise CaseError(
