@@ -83,14 +83,16 @@ def _jacobians(example: WeightedScene) -> list[np.ndarray]:
 
 
 def analyze_weighted_scene(example: WeightedScene) -> NetworkObservability:
-    """Rank of ``O``, ``rank O_i`` and detectability of ``(W ⊗ A, D_H)`` (seed 000 eq. (4.36))."""
+    """Rank of ``O``, ``rank O_i`` and detectability of ``(W ⊗ A, D_H)`` (seed 000 eq. (4.36))
+    for ``example``."""
     dim = example.scene.agents.shape[1]
     A = cv_discrete(PERIOD, dim)[0]
     return analyze_network(A, example.weights, _jacobians(example))
 
 
 def component_ranks(example: WeightedScene) -> list[tuple[int, bool]]:
-    """(rank, conclusive) of each connected component's stacked position Jacobian."""
+    """(rank, conclusive) of each connected component's stacked position Jacobian in
+    ``example``."""
     parts = components(weights_support(example.weights))
     target, agents = example.scene.target, example.scene.agents
     return [component_rank(TdoaScene(target, agents[part], "component")) for part in parts]

@@ -582,9 +582,7 @@ def pursuit_cases(
 
 
 @st.composite
-def tracker_states(
-    draw: st.DrawFn, *, spec: PursuitSpec, bound: float = 10.0
-) -> TrackerState:
+def tracker_states(draw: st.DrawFn, *, spec: PursuitSpec, bound: float = 10.0) -> TrackerState:
     """States of one tracker of ``spec``: errors, attitude, γ, estimation errors, ω_d, target.
 
     Vectors have entries in ``[−bound, bound]``; e_γ = 0 for controller Type I.
