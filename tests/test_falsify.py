@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 import yaml
 from typer.testing import CliRunner
@@ -12,7 +13,13 @@ from typer.testing import CliRunner
 from theory.case_file import parse_case
 from theory.cli import app
 from theory.falsifiable_dkf import jointly_detectable, strongly_connected
-from theory.falsifiable_iss import coordination_terms
+from theory.falsifiable_iss import (
+    PursuitExample,
+    coordination_terms,
+    phi_terms,
+    pursuit_terms,
+)
+from theory.falsifiable_networked import WeightedScene, analyze_weighted_scene
 from theory.falsifiable_tdoa import component_rank, scene_case
 from theory.falsify import DEFAULT_EXAMPLES, all_properties, falsify
 from theory.strategies import TdoaScene
@@ -50,15 +57,69 @@ def test_tdoa_counterexample_reloads_to_the_same_verdict(prop) -> None:
     assert case.expect["observable"] == [rank == case.spec.dim] * case.spec.n_agents
 
 
-def test_coordination_counterexample_reloads() -> None:
-    prop = next(p for p in WRONG if p.id == "seed003.eq74/paper")
+@pytest.mark.parametrize("printed", ["paper", "paper75"])
+def test_coordination_counterexample_reloads(printed: str) -> None:
+    name = {"paper": "seed003.eq74/paper", "paper75": "seed003.eq75/paper"}[printed]
+    prop = next(p for p in WRONG if p.id == name)
     result = falsify(prop, examples=DEFAULT_EXAMPLES, seed=0)
     case = parse_case(result.case)
     spec = case.spec
     example = result.counterexample
     assert len(spec.trackers) == example.laplacian.shape[0]
+    assert (spec.laplacian == example.laplacian).all()
+    assert [t.gamma0 for t in spec.trackers] == example.gamma.tolist()
     terms = coordination_terms(example)
-    assert terms["v_dot"] > terms["paper"] and terms["v_dot"] <= terms["corrected"] + 1e-9
+    assert terms["v_dot"] > terms[printed] and terms["v_dot"] <= terms["corrected"] + 1e-9
+
+
+def test_rank_sum_counterexample_reloads_to_the_same_verdict() -> None:
+    prop = next(p for p in WRONG if p.id == "seed000.eq4.36.rank-sum/paper")
+    result = falsify(prop, examples=DEFAULT_EXAMPLES, seed=3)
+    case = parse_case(yaml.safe_load(yaml.safe_dump(result.case)))
+    spec = case.spec
+    original = result.counterexample
+    scene = TdoaScene(spec.target[0], spec.agents[0], "reloaded")
+    reloaded = WeightedScene(scene, spec.weights[0], spec.weights_rule)
+    assert np.allclose(reloaded.weights, original.weights, rtol=0, atol=1e-15)
+    assert not prop.holds(reloaded)
+    net = analyze_weighted_scene(reloaded)
+    assert net.conclusive and net.network_rank < net.rank_sum
+    assert case.expect["network_rank"] == net.network_rank
+    assert case.expect["network_detectable"] == net.detectable
+
+
+def test_singular_weights_break_the_rank_sum() -> None:
+    """Uniform weights on a complete graph (W = J/N, rank 1) on a scene that localizes."""
+    prop = next(p for p in WRONG if p.id == "seed000.eq4.36.rank-sum/paper")
+    agents = np.array([[10.0, 0, 0], [0, 10, 0], [0, 0, 10], [-10, -10, -10]])
+    scene = TdoaScene(np.zeros(3), agents, "general")
+    example = WeightedScene(scene, np.full((4, 4), 0.25), "uniform")
+    net = analyze_weighted_scene(example)
+    assert net.conclusive and net.detectable and not net.observable
+    assert not prop.holds(example) and net.network_rank < net.rank_sum
+
+
+def test_eq71_counterexample_is_exact_equality() -> None:
+    prop = next(p for p in WRONG if p.id == "seed003.eq71/paper")
+    result = falsify(prop, examples=DEFAULT_EXAMPLES, seed=0)
+    example = result.counterexample
+    terms = phi_terms(example)
+    assert terms["x_sq"] > 0 and terms["phi_sq"] == terms["mu_x_sq"]
+    (tracker,) = parse_case(result.case).spec.trackers
+    assert (tracker.r_x, tracker.r_y) == (example.r_x, example.r_y)
+
+
+def test_eq72_counterexample_reloads() -> None:
+    """The case carries the gains and the path; with the described state, (72) fails again
+    while the region of (78) excludes the state."""
+    prop = next(p for p in WRONG if p.id == "seed003.eq72/paper")
+    result = falsify(prop, examples=DEFAULT_EXAMPLES, seed=0)
+    found = result.counterexample
+    reloaded = PursuitExample(parse_case(result.case), found.state, found.theta)
+    assert not prop.holds(reloaded)
+    terms = pursuit_terms(reloaded)
+    assert terms["lambda_min"] < 1
+    assert terms["e_norm"] < terms["c"] * terms["x_norm"] / (found.theta * terms["lambda_min"])
 
 
 def test_cli_exit_codes_and_json() -> None:

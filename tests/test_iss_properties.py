@@ -9,6 +9,7 @@ The printed inequalities that are false are refuted by explicit counterexamples.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from fractions import Fraction
 
 import networkx as nx
@@ -41,7 +42,7 @@ from theory.pursuit_model import (
     path_numeric,
     rotation_numeric,
 )
-from theory.strategies import digraph_laplacians
+from theory.strategies import digraph_laplacians, pursuit_cases, tracker_states
 
 REL_TOL = 1e-9
 """Relative tolerance on inequalities evaluated in floating point (scale: the terms' magnitudes)."""
@@ -54,99 +55,17 @@ def vectors(dim: int, elements=reals) -> st.SearchStrategy:
     return st.lists(elements, min_size=dim, max_size=dim).map(np.array)
 
 
-@st.composite
-def pursuit_cases(draw, *, n_trackers: int = 1):
-    """A valid pursuit case dict: dim 2|3, Type I|II, symmetric K_p with condition number ≤ 100."""
-    dim = draw(st.sampled_from([2, 3]))
-    controller = draw(st.sampled_from(["I", "II"]))
-    eigen = draw(st.lists(positive_gains, min_size=dim, max_size=dim))
-    q_rot = rotation_numeric(draw(vectors(1 if dim == 2 else 3, st.floats(-3, 3))))
-    K_p = q_rot @ np.diag(eigen) @ q_rot.T
-    K_p = (K_p + K_p.T) / 2
-    eps1 = draw(st.floats(0.1, 3.0)) * draw(st.sampled_from([-1, 1]))
-    epsilon = [eps1, *draw(st.lists(st.floats(-3, 3), min_size=dim - 1, max_size=dim - 1))]
-    trackers = []
-    for _ in range(n_trackers):
-        path = {"r_x": draw(st.floats(0.5, 50)), "r_y": draw(st.floats(0.5, 50))}
-        path["gamma0"] = draw(st.floats(-math.pi, math.pi))
-        if dim == 3:
-            path["r_z"] = draw(st.floats(0.5, 50))
-            path["c"] = draw(st.floats(1.2, 5)) * draw(st.sampled_from([-1, 1]))
-        trackers.append(path)
-    block = {
-        "dim": dim,
-        "controller": controller,
-        "omega_bar": draw(st.floats(-1, 1)),
-        "epsilon": epsilon,
-        "K_p": K_p.tolist(),
-        "k_gamma": draw(positive_gains),
-        "trackers": trackers,
-    }
-    if n_trackers > 1:
-        block["k_c"] = draw(positive_gains)
-        block["edges"] = [[(i + 1) % n_trackers + 1, i + 1] for i in range(n_trackers)]
-    return parse_case({"name": "random", "kind": "pursuit", "pursuit": block})
-
-
-@st.composite
-def tracker_states(draw, spec):
-    """A state of one tracker: e_p, e_γ, rotation, γ, estimation errors, ω_d, v̇_c, target."""
-    dim = spec.dim
-    return {
-        "e_p": draw(vectors(dim)),
-        "e_gamma": draw(reals) if spec.controller == "II" else 0.0,
-        "rotation": rotation_numeric(draw(vectors(1 if dim == 2 else 3, st.floats(-3.1, 3.1)))),
-        "gamma": draw(st.floats(-20, 20)),
-        "q_err": draw(vectors(dim)),
-        "v_err": draw(vectors(dim)),
-        "omega_d": draw(st.floats(-2, 2)),
-        "omega_d_dot": draw(st.floats(-2, 2)),
-        "target": draw(vectors(dim)),
-        "target_v": draw(vectors(dim)),
-    }
-
-
-def _rates(spec, state, tracker=0):
-    path = spec.trackers[tracker]
-    params = {"r_x": path.r_x, "r_y": path.r_y, "gamma0": path.gamma0}
-    if spec.dim == 3:
-        params.update({"r_z": path.r_z, "c": path.c})
-    rotation = state["rotation"]
-    position = (
-        rotation @ (state["e_p"] + spec.epsilon)
-        + path_numeric(state["gamma"], **params)
-        + state["target"]
-    )
-    return closed_loop_rates(
-        position=position,
-        rotation=rotation,
-        gamma=state["gamma"],
-        gamma_dot=state["omega_d"] + state["e_gamma"],
-        target_position=state["target"],
-        target_velocity=state["target_v"],
-        estimate_position=state["target"] + state["q_err"],
-        estimate_velocity=state["target_v"] + state["v_err"],
-        epsilon=spec.epsilon,
-        K_p=spec.K_p,
-        k_gamma=spec.k_gamma,
-        controller=spec.controller,
-        omega_d=state["omega_d"],
-        omega_d_dot=state["omega_d_dot"],
-        path_params=params,
-    ), params
-
-
 @given(data=st.data())
 def test_corrected_eq72_no_violation(data) -> None:
     """V̇ ≤ −λ_min(K)‖e‖² + c‖e‖‖x̃‖ along the real closed loop, c = √μ + ‖K‖ and c♯ (Thm 1)."""
     case = data.draw(pursuit_cases())
     spec = case.spec
-    state = data.draw(tracker_states(spec))
-    rates, _ = _rates(spec, state)
+    state = data.draw(tracker_states(spec=spec))
+    rates = state.rates(spec)
     pursuit = pursuit_iss(spec)
     e_norm = math.sqrt(float(rates.e_p @ rates.e_p) + rates.e_gamma**2)
-    x_norm = math.sqrt(float(state["q_err"] @ state["q_err"] + state["v_err"] @ state["v_err"]))
-    assert np.allclose(rates.e_p, state["e_p"], atol=1e-9 * (1 + np.abs(state["e_p"]).max()))
+    x_norm = math.sqrt(float(state.q_err @ state.q_err + state.v_err @ state.v_err))
+    assert np.allclose(rates.e_p, state.e_p, atol=1e-9 * (1 + np.abs(state.e_p).max()))
     scale = pursuit.norm_K * e_norm**2 + pursuit.cross_gain * e_norm * x_norm + 1.0
     for c in (pursuit.cross_gain, pursuit.sharp_cross_gain):  # the paper's c and the sharp c♯
         bound = -pursuit.lambda_min * e_norm**2 + c * e_norm * x_norm
@@ -162,17 +81,16 @@ def test_corrected_eq71_no_violation(data) -> None:
     """‖Φ‖² ≤ μ‖x̃‖² with Φ = col(Rᵀṽ, −q̃ᵀr′(γ)) and the case's μ (eq. (71) with ≤)."""
     case = data.draw(pursuit_cases())
     spec = case.spec
-    state = data.draw(tracker_states(spec))
+    state = data.draw(tracker_states(spec=spec))
     path = spec.trackers[0]
     params = {"r_x": path.r_x, "r_y": path.r_y, "gamma0": path.gamma0}
     if spec.dim == 3:
         params.update({"r_z": path.r_z, "c": path.c})
-    r_prime = path_derivative_numeric(state["gamma"], **params)
+    r_prime = path_derivative_numeric(state.gamma, **params)
     phi_sq = (
-        float(np.sum((state["rotation"].T @ state["v_err"]) ** 2))
-        + float(state["q_err"] @ r_prime) ** 2
+        float(np.sum((state.rotation.T @ state.v_err) ** 2)) + float(state.q_err @ r_prime) ** 2
     )
-    x_sq = float(state["q_err"] @ state["q_err"] + state["v_err"] @ state["v_err"])
+    x_sq = float(state.q_err @ state.q_err + state.v_err @ state.v_err)
     mu = pursuit_iss(spec).mu
     assert phi_sq <= mu * x_sq * (1 + REL_TOL) + REL_TOL
 
@@ -182,9 +100,9 @@ def test_pursuit_error_independent_of_coordination(data) -> None:
     """Remark 10: e's dynamics do not depend on v̇_c (Type II uses it in γ̈ and cancels it)."""
     case = data.draw(pursuit_cases())
     spec = case.spec
-    state = data.draw(tracker_states(spec))
-    first, _ = _rates(spec, state)
-    second, _ = _rates(spec, {**state, "omega_d_dot": state["omega_d_dot"] + 1.0})
+    state = data.draw(tracker_states(spec=spec))
+    first = state.rates(spec)
+    second = replace(state, omega_d_dot=state.omega_d_dot + 1.0).rates(spec)
     assert np.allclose(first.de_p, second.de_p, rtol=1e-9, atol=1e-9)
     assert math.isclose(first.de_gamma, second.de_gamma, rel_tol=1e-9, abs_tol=1e-9)
 
@@ -422,9 +340,9 @@ def test_lemma2_equality_along_the_kinematics(data) -> None:
     """Lemma 2 numerically: with q̃ = ṽ = 0, V̇ = −eᵀKe at every state (not just ≤)."""
     case = data.draw(pursuit_cases())
     spec = case.spec
-    state = data.draw(tracker_states(spec))
+    state = data.draw(tracker_states(spec=spec))
     zero = np.zeros(spec.dim)
-    rates, _ = _rates(spec, {**state, "q_err": zero, "v_err": zero})
+    rates = replace(state, q_err=zero, v_err=zero).rates(spec)
     e = np.append(rates.e_p, rates.e_gamma) if spec.controller == "II" else rates.e_p
     K = pursuit_iss(spec).K
     expected = -float(e @ K @ e)

@@ -11,9 +11,11 @@ from hypothesis.errors import InvalidArgument
 from theory.strategies import (
     is_connected,
     networks,
+    pursuit_cases,
     pursuit_parameters,
     state_space_pairs,
     tdoa_scenes,
+    tracker_states,
     weight_matrices,
 )
 from theory.tdoa import unit_directions
@@ -82,6 +84,21 @@ def test_pursuit_parameters_have_nonzero_first_epsilon(params) -> None:
     assert len(params.K_p) == 3 and min(params.K_p) > 0
 
 
+@given(data=st.data())
+def test_pursuit_cases_and_tracker_states_respect_bounds(data) -> None:
+    case = data.draw(pursuit_cases(n_trackers=3, dims=(3,), gains=(0.1, 0.2), path_sizes=(1, 2)))
+    spec = case.spec
+    eigenvalues = np.linalg.eigvalsh(spec.K_p)
+    assert spec.dim == 3 and spec.n_trackers == 3 and spec.k_c is not None
+    assert 0.1 * (1 - 1e-9) <= eigenvalues[0] and eigenvalues[-1] <= 0.2 * (1 + 1e-9)
+    assert all(1 <= t.r_x <= 2 and 1 <= t.r_z <= 2 for t in spec.trackers)
+    state = data.draw(tracker_states(spec=spec, bound=3.0))
+    assert np.allclose(state.rotation @ state.rotation.T, np.eye(3))
+    assert max(np.abs(state.e_p).max(), np.abs(state.q_err).max()) <= 3.0
+    assert state.e_gamma == 0.0 or spec.controller == "II"
+    assert np.allclose(state.rates(spec).e_p, state.e_p, atol=1e-9)
+
+
 @pytest.mark.parametrize(
     "strategy",
     [
@@ -93,6 +110,12 @@ def test_pursuit_parameters_have_nonzero_first_epsilon(params) -> None:
         lambda: networks(min_agents=5, max_agents=3),
         lambda: state_space_pairs(max_condition=0.5),
         lambda: pursuit_parameters(dim=1),
+        lambda: pursuit_cases(n_trackers=0),
+        lambda: pursuit_cases(dims=(4,)),
+        lambda: pursuit_cases(controllers=("III",)),
+        lambda: pursuit_cases(gains=(0.0, 1.0)),
+        lambda: pursuit_cases(path_sizes=(2.0, 1.0)),
+        lambda: pursuit_cases().flatmap(lambda case: tracker_states(spec=case.spec, bound=-1)),
     ],
 )
 def test_impossible_arguments_raise(strategy) -> None:

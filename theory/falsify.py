@@ -37,6 +37,7 @@ DEFAULT_EXAMPLES = 200
 PROPERTY_MODULES: tuple[str, ...] = (
     "theory.falsifiable_dkf",
     "theory.falsifiable_iss",
+    "theory.falsifiable_networked",
     "theory.falsifiable_tdoa",
 )
 
