@@ -24,6 +24,7 @@ from proofs_check.linalg import (
     matmul,
     positive_definite,
     scale,
+    semidefinite,
     sub,
 )
 from proofs_check.operators import OPERATORS, apply_operator
@@ -110,8 +111,8 @@ def _weights(raw: Any) -> tuple[Matrix, list[Check]]:
     ]
 
 
-def definite(name: str, matrix: Matrix) -> Check:
-    """The exact check "``matrix`` is symmetric positive definite", with the failing pivot."""
+def definite(name: str, matrix: Matrix, *, semi: bool = False) -> Check:
+    """The exact check "``matrix`` is symmetric positive (semi)definite", with the failing pivot."""
     asym = first_asymmetry(matrix)
     if asym is not None:
         r, c, diff = asym
@@ -119,10 +120,13 @@ def definite(name: str, matrix: Matrix) -> Check:
             f"not symmetric: entries ({r + 1},{c + 1}) and ({c + 1},{r + 1}) differ by {show(diff)}"
         )
         return Check(name, False, detail)
-    result = positive_definite(matrix)
+    result = semidefinite(matrix) if semi else positive_definite(matrix)
     if result.positive:
-        detail = f"all {len(matrix)} LDLᵀ pivots > 0; smallest {show(result.pivot)}"
-        return Check(name, True, detail)
+        detail = f"all {len(matrix)} LDLᵀ pivots {'≥' if semi else '>'} 0"
+        return Check(name, True, f"{detail}; smallest {show(result.pivot)}")
+    if semi:
+        why = f"LDLᵀ pivot {result.order} is {show(result.pivot)}"
+        return Check(name, False, why + (" < 0" if result.pivot else " with a non-zero row"))
     return Check(
         name,
         False,

@@ -4,6 +4,7 @@ Positive definiteness is decided by Sylvester's criterion computed with fraction
 elimination, never by eigenvalues: a symmetric ``S`` is positive definite iff every leading
 principal minor is positive, and the ``k``-th pivot of Gaussian elimination without pivoting
 (the ``D`` of ``S = L D Lᵀ``) is the ratio of the ``k``-th to the ``(k−1)``-th leading minor.
+Semidefiniteness is decided by the same elimination, with the zero-pivot rule.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ __all__ = [
     "matmul",
     "positive_definite",
     "scale",
+    "semidefinite",
     "sub",
     "transpose",
 ]
@@ -122,6 +124,24 @@ def positive_definite(a: Matrix) -> Definiteness:
                 m[i][j] = (m[i][j] * minor - m[i][k] * m[k][j]) // previous
         previous = minor
     return Definiteness(True, 0, smallest if smallest is not None else Fraction(0))
+
+
+def semidefinite(a: Matrix) -> Definiteness:
+    """Exact test of ``a ⪰ 0`` for symmetric ``a``: symmetric LDLᵀ in which a zero pivot must
+    have a zero row to its right (else a 2 × 2 principal minor of the Schur complement is
+    negative). On failure ``pivot`` is the negative (or zero) pivot at step ``order``.
+    """
+    m, pivots = [list(row) for row in a], []
+    for k, row in enumerate(m):
+        tick()
+        if row[k] < 0 or (row[k] == 0 and any(row[k + 1 :])):
+            return Definiteness(False, k + 1, row[k])
+        pivots.append(row[k])
+        for i in range(k + 1, len(m)):
+            factor = m[i][k] / row[k] if row[k] else 0
+            for j in range(k + 1, len(m)) if factor else ():
+                m[i][j] -= factor * row[j]
+    return Definiteness(True, 0, min(pivots, default=Fraction(0)))
 
 
 def determinant(a: Matrix) -> Fraction:

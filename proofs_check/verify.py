@@ -12,6 +12,7 @@ from typing import Any
 
 from proofs_check import deadline
 from proofs_check import parse as p
+from proofs_check.iss import iss
 from proofs_check.kinds import KINDS, Check
 
 __all__ = ["Verdict", "check_certificate", "check_file"]
@@ -83,8 +84,9 @@ def _format(cert: Any) -> None:
 def _single(cert: Any, where: str) -> tuple[str, list[Check]]:
     _format(cert)
     p.fields(cert, where, TOP_REQUIRED, TOP_OPTIONAL)
-    kind = p.text(cert["kind"], "kind", tuple(KINDS))
-    return kind, KINDS[kind](cert)
+    checkers = {**KINDS, "iss": iss}
+    kind = p.text(cert["kind"], "kind", tuple(checkers))
+    return kind, checkers[kind](cert)
 
 
 def check_file(path: str, *, time_limit: float = deadline.DEFAULT_SECONDS) -> Verdict:
