@@ -102,7 +102,7 @@ def definite(name: str, matrix: Matrix, *, semi: bool = False) -> Check:
         r, c, diff = asym
         pair = f"({r + 1},{c + 1}) and ({c + 1},{r + 1})"
         return Check(name, False, f"not symmetric: entries {pair} differ by {show(diff)}")
-    result = la.semidefinite(matrix) if semi else la.positive_definite(matrix)
+    result = la.positive_definite(matrix, semi=semi)
     if result.positive:
         detail = f"all {len(matrix)} LDLᵀ pivots {'≥' if semi else '>'} 0"
         return Check(name, True, f"{detail}; smallest {show(result.pivot)}")
