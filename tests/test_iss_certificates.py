@@ -21,6 +21,7 @@ from typer.testing import CliRunner
 import proofs_check
 from proofs_check.linalg import positive_definite
 from theory.case_file import load_case, parse_case
+from theory.claims import get_claim
 from theory.cli import app
 from theory.iss_certificates import iss_certificate
 from theory.strategies import pursuit_parameters
@@ -212,3 +213,12 @@ def test_semidefinite_test_agrees_with_all_principal_minors(gram, shift) -> None
         for rows in itertools.combinations(range(4), k)
     ]
     assert positive_definite(a, semi=True).positive == all(m >= 0 for m in minors)
+
+
+def test_the_claim_reports_the_certificate() -> None:
+    claim = get_claim("seed003.thm2.certified")
+    (result,) = claim.run(load_case("pursuit-table1-n3"))
+    assert (result.method, result.status) == ("exact", "verified")
+    assert abs(result.evidence["gain_approx"] - 650.4) < 0.1
+    (refused,) = claim.run(load_case("pursuit-singular-epsilon"))
+    assert refused.status == "inconclusive" and "delta_full_rank" in refused.message

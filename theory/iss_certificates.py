@@ -6,6 +6,7 @@ re-checks it with the independent checker :mod:`proofs_check` before returning i
 :func:`pursuit_certificates` is the ``pursuit`` entry of
 :data:`theory.case_certificates.CERTIFIERS`: a case whose conditions fail (a graph that is not
 strongly connected, ``ε₁ = 0``) gets no certificate, and the reason says which condition.
+The claim ``seed003.thm2.certified`` reports the certificate (method ``exact``).
 """
 
 from __future__ import annotations
@@ -15,10 +16,11 @@ from typing import Any
 
 import proofs_check
 from theory.case_file import Case
+from theory.claims import ClaimResult, register
 from theory.iss import iss_certificate_data
 from theory.pursuit_case import PursuitSpec
 
-__all__ = ["iss_certificate", "pursuit_certificates"]
+__all__ = ["iss_certificate", "iss_certificate_claim", "pursuit_certificates"]
 
 STATEMENT = (
     "seed 003 Theorem 2 (corrected): ‖ξ(t)‖ + ‖e(t)‖ ≤ β(‖μ(0)‖, t) + gain·sup‖x̃‖ with "
@@ -113,3 +115,37 @@ def pursuit_certificates(case: Case, seed: int) -> tuple[list[dict[str, Any]], l
         return [iss_certificate(case.spec, case=case.name)], []
     except ValueError as error:
         return [], [str(error)]
+
+
+@register(
+    "seed003.thm2.certified",
+    source="seed 003, Theorem 2 and Lemmas 1–4 (corrected, docs/theory/pursuit-iss.md §5, §7)",
+    statement="the corrected ISS estimate of the pursuit and coordination errors is certified by "
+    "exact inequalities E1–E5, C1–C6 re-derived by proofs_check (kind iss)",
+    kinds=("pursuit",),
+)
+def iss_certificate_claim(case: Case) -> list[ClaimResult]:
+    """Build the ``iss`` certificate of a pursuit case and report it (method ``exact``).
+
+    Parameters
+    ----------
+    case : Case
+        A ``pursuit`` case.
+
+    Returns
+    -------
+    list of ClaimResult
+        ``verified`` with the certified constants as evidence, or ``inconclusive`` with the
+        failing conditions (then ``trackcert iss`` reports the refutation).
+    """
+    claim_id = "seed003.thm2.certified"
+    try:
+        cert = iss_certificate(case.spec, case=case.name)
+    except ValueError as error:
+        return [ClaimResult(claim_id, case.name, "exact", "inconclusive", message=str(error))]
+    witness = cert["witness"]
+    keys = [k for k in ("lambda", "alpha", "kappa", "g_e", "g_xi", "gain") if k in witness]
+    evidence = {k: witness[k] for k in keys} | {
+        f"{k}_approx": float(Fraction(witness[k])) for k in keys
+    }
+    return [ClaimResult(claim_id, case.name, "exact", "verified", evidence, message=STATEMENT)]
