@@ -417,6 +417,7 @@ def _coordination(raw_L: Any, raw_r: Any, n: int, k_c: Fraction, w: dict, two: b
         definite("C4: b²I − WᵀRW ⪰ 0", la.sub(la.scale(b * b, la.identity(n)), WRW), semi=True),
         Check("C5: ρ > 0, ρ² ≤ min r_i", 0 < rho and rho**2 <= min(r), room),
         Check("C5: κ² min r_i ≥ max r_i", spread >= 0, f"κ² min r_i − max r_i = {show(spread)}"),
+        Check("C6: k_c > 0", k_c > 0, f"k_c = {show(k_c)}"),
         _same("C6: α = k_c a", w["alpha"], alpha),
         _same(f"C6: g_ξ = {'b/(ρα)' if two else '0 (Type I)'}", w["g_xi"], g_xi),
         _same("C6: gain = g_e(1 + g_ξ)", w["gain"], w["g_e"] * (1 + g_xi)),

@@ -222,3 +222,11 @@ def test_the_claim_reports_the_certificate() -> None:
     assert abs(result.evidence["gain_approx"] - 650.4) < 0.1
     (refused,) = claim.run(load_case("pursuit-singular-epsilon"))
     assert refused.status == "inconclusive" and "delta_full_rank" in refused.message
+
+
+def test_zero_coordination_gain_is_rejected(table_certificates) -> None:
+    """k_c = 0 stops the coordination decay (α = 0): consistent derived values do not help."""
+    cert = copy.deepcopy(table_certificates["pursuit-table1-n3"])
+    cert["data"]["k_c"] = "0"
+    cert["witness"] |= {"alpha": "0", "g_xi": "0", "gain": cert["witness"]["g_e"]}
+    assert _failing(cert) == ["C6: k_c > 0"]
