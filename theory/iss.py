@@ -904,6 +904,7 @@ CERTIFICATE_INEQUALITIES = (
     "C3  B^T (M - 2 a R) B positive semidefinite for B = [e_i - (r_i/r_N) e_N]_{i<N}, a > 0",
     "C4  b^2 I - W^T R W positive semidefinite, W = I - 1 r^T",
     "C5  rho > 0, rho^2 <= min_i r_i;  kappa^2 * min_i r_i >= max_i r_i",
-    "C6  k_c > 0; alpha = k_c a; g_xi = b / (rho alpha) (Type II; 0 for Type I); gain = g_e (1 + g_xi)",
+    "C6  k_c > 0; alpha = k_c a; g_xi = b / (rho alpha) (Type II; 0 for Type I); "
+    "gain = g_e (1 + g_xi)",
 )
 """The exact list a checker verifies (E: pursuit subsystem, C: coordination, N > 1 only)."""
