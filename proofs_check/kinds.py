@@ -4,8 +4,8 @@ Every function takes the parsed JSON of one certificate, validates its shape (ra
 :class:`~proofs_check.parse.MalformedError`), recomputes every quantity from ``data`` and
 ``witness`` and returns the list of :class:`Check` results. Nothing a certificate says about
 itself is trusted: stated values (the decrease matrices ``ρP_i − T_i(P)``, the minor of
-``generic-rank``) are recomputed and compared exactly, and positivity is tested on the
-recomputed matrices.
+``generic-rank``, the constants of ``iss``) are recomputed and compared exactly, and positivity
+is tested on the recomputed matrices.
 """
 
 from __future__ import annotations
@@ -15,17 +15,9 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
+from proofs_check import linalg as la
 from proofs_check import parse as p
-from proofs_check.linalg import (
-    Matrix,
-    determinant,
-    first_asymmetry,
-    identity,
-    matmul,
-    positive_definite,
-    scale,
-    sub,
-)
+from proofs_check.linalg import Matrix
 from proofs_check.operators import OPERATORS, apply_operator
 
 __all__ = ["KINDS", "WORK_LIMIT", "Check"]
@@ -41,10 +33,6 @@ class Check:
     name: str
     valid: bool
     detail: str
-
-    def to_json(self) -> dict[str, Any]:
-        """``{"name", "valid", "detail"}``."""
-        return {"name": self.name, "valid": self.valid, "detail": self.detail}
 
 
 def show(x: Fraction) -> str:
@@ -69,9 +57,8 @@ def show(x: Fraction) -> str:
 def _refuse_costly(work: float, bits: int) -> None:
     cost = work * (1 + bits / 128) ** 2
     if cost > WORK_LIMIT:
-        raise p.MalformedError(
-            f"refused: estimated work {cost:.3g} exceeds the limit {WORK_LIMIT:.3g}"
-        )
+        why = f"refused: estimated work {cost:.3g} exceeds the limit {WORK_LIMIT:.3g}"
+        raise p.MalformedError(why)
 
 
 def _bits(mats: list[Matrix]) -> int:
@@ -96,12 +83,10 @@ def _weights(raw: Any) -> tuple[Matrix, list[Check]]:
     if len(W) != len(W[0]):
         raise p.MalformedError(f"data.W: expected a square matrix, got {len(W)} × {len(W[0])}")
     negative = [(i, j) for i, row in enumerate(W) for j, w in enumerate(row) if w < 0]
-    detail = (
-        "all w_ij ≥ 0, so the operators are positive"
-        if not negative
-        else f"w_{negative[0][0] + 1},{negative[0][1] + 1} = "
-        f"{show(W[negative[0][0]][negative[0][1]])} < 0: the operators need not be positive"
-    )
+    detail = "all w_ij ≥ 0, so the operators are positive"
+    if negative:
+        i, j = negative[0]
+        detail = f"w_{i + 1},{j + 1} = {show(W[i][j])} < 0: the operators need not be positive"
     sums = [(i, sum(row)) for i, row in enumerate(W) if sum(row) != 1]
     rows = f"row {sums[0][0] + 1} sums to {show(sums[0][1])}" if sums else "every row sums to 1"
     return W, [
@@ -110,25 +95,22 @@ def _weights(raw: Any) -> tuple[Matrix, list[Check]]:
     ]
 
 
-def definite(name: str, matrix: Matrix) -> Check:
-    """The exact check "``matrix`` is symmetric positive definite", with the failing pivot."""
-    asym = first_asymmetry(matrix)
+def definite(name: str, matrix: Matrix, *, semi: bool = False) -> Check:
+    """The exact check "``matrix`` is symmetric positive (semi)definite", with the failing pivot."""
+    asym = la.first_asymmetry(matrix)
     if asym is not None:
         r, c, diff = asym
-        detail = (
-            f"not symmetric: entries ({r + 1},{c + 1}) and ({c + 1},{r + 1}) differ by {show(diff)}"
-        )
-        return Check(name, False, detail)
-    result = positive_definite(matrix)
+        pair = f"({r + 1},{c + 1}) and ({c + 1},{r + 1})"
+        return Check(name, False, f"not symmetric: entries {pair} differ by {show(diff)}")
+    result = la.positive_definite(matrix, semi=semi)
     if result.positive:
-        detail = f"all {len(matrix)} LDLᵀ pivots > 0; smallest {show(result.pivot)}"
-        return Check(name, True, detail)
-    return Check(
-        name,
-        False,
-        f"leading principal minor of order {result.order} is not positive: "
-        f"LDLᵀ pivot {show(result.pivot)} ≤ 0",
-    )
+        detail = f"all {len(matrix)} LDLᵀ pivots {'≥' if semi else '>'} 0"
+        return Check(name, True, f"{detail}; smallest {show(result.pivot)}")
+    if semi:
+        why = f"LDLᵀ pivot {result.order} is {show(result.pivot)}"
+        return Check(name, False, why + (" < 0" if result.pivot else " with a non-zero row"))
+    minor = f"leading principal minor of order {result.order} is not positive"
+    return Check(name, False, f"{minor}: LDLᵀ pivot {show(result.pivot)} ≤ 0")
 
 
 def _decrease(
@@ -152,7 +134,7 @@ def _decrease(
     checks = []
     for i, (P_i, T_i, R_i) in enumerate(zip(P, images, stated, strict=True)):
         label = factor + name.format(i=i + 1)
-        actual = sub(scale(bound, P_i), T_i)
+        actual = la.sub(la.scale(bound, P_i), T_i)
         checks.append(_equal(f"stated {label} = recomputed", R_i, actual))
         checks.append(definite(f"{label} ≻ 0", actual))
     return checks
@@ -162,12 +144,8 @@ def _equal(name: str, stated: Matrix, actual: Matrix) -> Check:
     for r, (row_s, row_a) in enumerate(zip(stated, actual, strict=True)):
         for c, (x, y) in enumerate(zip(row_s, row_a, strict=True)):
             if x != y:
-                return Check(
-                    name,
-                    False,
-                    f"entry ({r + 1},{c + 1}): stated {show(x)}, "
-                    f"recomputed {show(y)}, off by {show(x - y)}",
-                )
+                where = f"entry ({r + 1},{c + 1}): stated {show(x)}, recomputed {show(y)}"
+                return Check(name, False, f"{where}, off by {show(x - y)}")
     return Check(name, True, "equal entry by entry")
 
 
@@ -216,7 +194,7 @@ def s_detectability(cert: dict[str, Any]) -> list[Check]:
         for i, g in enumerate(_items(witness["gains"], "witness.gains", len(W)))
     ]
     _refuse_costly(len(W) * n**3, _bits([A, *C, *gains]))
-    gammas = [sub(A, matmul(L_i, C_i)) for L_i, C_i in zip(gains, C, strict=True)]
+    gammas = [la.sub(A, la.matmul(L_i, C_i)) for L_i, C_i in zip(gains, C, strict=True)]
     bound = _bound(claim, "spectral_radius_below")
     return checks + _lyapunov(operator, W, gammas, witness, bound)
 
@@ -261,7 +239,8 @@ def _mode(raw: Any, where: str, A: Matrix | None, agents: int, n: int) -> list[M
         for j, k in enumerate(_items(entry["K"], f"{where}.K", agents))
     ]
     _refuse_costly(agents * 2 * n**3, _bits([A, *K, *H]))
-    return [matmul(A, sub(identity(n), matmul(K_j, H_j))) for K_j, H_j in zip(K, H, strict=True)]
+    eye = la.identity(n)
+    return [la.matmul(A, la.sub(eye, la.matmul(K_j, H_j))) for K_j, H_j in zip(K, H, strict=True)]
 
 
 def _items(value: Any, where: str, count: int | None) -> list[Any]:
@@ -300,38 +279,35 @@ def generic_rank(cert: dict[str, Any]) -> list[Check]:
     rank = p.index(claim["rank_at_least"], "claim.rank_at_least", 1, width)
     stated = p.rational(witness["minor"], "witness.minor")
     if len(rows) != rank or len(cols) != rank:
-        raise p.MalformedError(
-            f"witness: expected {rank} rows and {rank} columns (claim.rank_at_least)"
-        )
+        expected = f"{rank} rows and {rank} columns"
+        raise p.MalformedError(f"witness: expected {expected} (claim.rank_at_least)")
     block = range(2 * dim * (agent - 1), 2 * dim * agent) if agent else range(width)
     if any(c not in block for c in cols):
-        raise p.MalformedError(
-            f"witness.cols: columns outside agent {agent}'s block {block.start + 1}…"
-        )
+        outside = f"columns outside agent {agent}'s block {block.start + 1}…"
+        raise p.MalformedError(f"witness.cols: {outside}")
     max_power = max(r // m for r in rows)
     _refuse_costly(max_power * agents**3 + rank**3, _bits([W, u, [[T]]]))
     support = [[j for j in range(agents) if j != i and W[i][j] != 0] for i in range(agents)]
     mismatch = [i for i in range(agents) if sorted(neighbours[i]) != support[i]]
-    detail = (
-        f"agent {mismatch[0] + 1}: neighbours {[j + 1 for j in neighbours[mismatch[0]]]}, "
-        f"w_ij ≠ 0 for j in {[j + 1 for j in support[mismatch[0]]]}"
-        if mismatch
-        else "agent i measures against j iff w_ij ≠ 0 (seed 000 eq. (5.3))"
-    )
+    detail = "agent i measures against j iff w_ij ≠ 0 (seed 000 eq. (5.3))"
+    if mismatch:
+        i = mismatch[0]
+        ids = [j + 1 for j in neighbours[i]], [j + 1 for j in support[i]]
+        detail = f"agent {i + 1}: neighbours {ids[0]}, w_ij ≠ 0 for j in {ids[1]}"
     checks.append(Check("data: neighbours = support of W", not mismatch, detail))
     for a in range(agents):
         norm = sum(x * x for x in u[a])
         checks.append(Check(f"‖u_{a + 1}‖² = 1", norm == 1, f"‖u_{a + 1}‖² = {show(norm)}"))
-    powers = [identity(agents)]
+    powers = [la.identity(agents)]
     for _ in range(max_power):
-        powers.append(matmul(powers[-1], W))
+        powers.append(la.matmul(powers[-1], W))
     sub_matrix = []
     for r in rows:
         k, (a, j) = r // m, owners[r % m]
         g = [x - y for x, y in zip(u[a], u[j], strict=True)]
         row = [powers[k][a][b] * v for b in range(agents) for v in (*g, *(k * T * x for x in g))]
         sub_matrix.append([row[c] for c in cols])
-    value = determinant(sub_matrix)
+    value = la.determinant(sub_matrix)
     where = f"rows {[r + 1 for r in rows]}, columns {[c + 1 for c in cols]}"
     checks.append(Check(f"{rank}×{rank} minor ≠ 0", value != 0, f"{where}: {show(value)}"))
     checks.append(
@@ -363,10 +339,101 @@ def _indices(raw: Any, where: str, size: int) -> list[int]:
     return out
 
 
+def _same(name: str, stated: Fraction, actual: Fraction) -> Check:
+    return Check(name, stated == actual, f"stated {show(stated)}, recomputed {show(actual)}")
+
+
+def iss(cert: dict[str, Any]) -> list[Check]:
+    """The ISS estimate of seed 003 Theorem 2 (corrected) with the witness's constants."""
+    p.fields(cert["claim"], "claim", ("statement",))
+    need = ("dim", "controller", "epsilon", "K_p", "paths")
+    data = p.fields(cert["data"], "data", need, ("k_gamma", "laplacian", "k_c"))
+    dim = p.index(data["dim"], "data.dim", 2, 3)
+    two_stage = p.text(data["controller"], "data.controller", ("I", "II")) == "II"
+    names = ("r_x", "r_y", "r_z", "c")[: 2 * dim - 2]  # paths (15) and (16)
+    paths = [p.fields(x, "data.paths", names) for x in _items(data["paths"], "data.paths", None)]
+    paths = [[p.rational(path[k], f"data.paths: {k}") for k in names] for path in paths]
+    if dim == 3 and not all(path[3] for path in paths):
+        raise p.MalformedError("data.paths: c must be non-zero")
+    n = len(paths)
+    if (two_stage, n > 1, n > 1) != ("k_gamma" in data, "laplacian" in data, "k_c" in data):
+        raise p.MalformedError("data: k_gamma iff controller II; laplacian and k_c iff N > 1")
+    keys = ("lambda", "kp_bar", "mu_r", "s", "g_e", "gain")
+    keys += ("a", "b", "rho", "kappa", "alpha", "g_xi") if n > 1 else ()
+    raw = p.fields(cert["witness"], "witness", keys + ("r",) * (n > 1))
+    w = {k: p.rational(raw[k], f"witness.{k}") for k in keys}
+    eps = p.matrix([data["epsilon"]], "data.epsilon", 1, dim)[0]
+    K_p = p.matrix(data["K_p"], "data.K_p", dim, dim)
+    K = [[*row, Fraction(0)] for row in K_p] + [[Fraction(0)] * dim] if two_stage else K_p
+    if two_stage:
+        K[dim].append(p.rational(data["k_gamma"], "data.k_gamma"))
+    lam, kp_bar, s = w["lambda"], w["kp_bar"], w["s"]
+    mu_r = max(max(v[:2]) ** 2 + ((v[2] / v[3]) ** 2 if dim == 3 else 0) for v in paths)
+    bound = f"k̄_p² + 1{' + μ_r' if two_stage else ''}"
+    room = s * s - kp_bar**2 - 1 - (mu_r if two_stage else 0)
+    sharp = f"s = {show(s)}, s² − ({bound}) = {show(room)}"
+    checks = [
+        Check("E1: ε₁ ≠ 0 (ΔΔᵀ is invertible)", eps[0] != 0, f"ε₁ = {show(eps[0])}"),
+        Check("E2: λ > 0", lam > 0, f"λ = {show(lam)}"),
+        definite("E2: K − λI ⪰ 0", la.sub(K, la.scale(lam, la.identity(len(K)))), semi=True),
+        definite("E3: k̄_p I − K_p ⪰ 0", la.sub(la.scale(kp_bar, la.identity(dim)), K_p), semi=True),
+        _same("E4: μ_r = max_i max(r_x, r_y)² (+ (r_z/c)² in 3D)", w["mu_r"], mu_r),
+        Check(f"E4: s ≥ 0, s² ≥ {bound}", s >= 0 and room >= 0, sharp),
+        _same("E5: g_e = s/λ", w["g_e"], s / lam if lam else Fraction(0)),
+    ]
+    if n == 1:
+        return [*checks, _same("C6: gain = g_e (N = 1)", w["gain"], w["g_e"])]
+    k_c = p.rational(data["k_c"], "data.k_c")
+    return checks + _coordination(data["laplacian"], raw["r"], n, k_c, w, two_stage)
+
+
+def _coordination(raw_L: Any, raw_r: Any, n: int, k_c: Fraction, w: dict, two: bool) -> list[Check]:
+    """C1–C6: ``V_c = ½ξᵀRξ`` on ``ξ ⊥ r`` for ``ξ̇ = −k_c Lξ + W e_γ`` (seed 003 Lemmas 1, 3)."""
+    L = p.matrix(raw_L, "data.laplacian", n, n)
+    r = p.matrix([raw_r], "witness.r", 1, n)[0]
+    _refuse_costly(6 * n**3, _bits([L, [r]]))
+    a, b, rho, kappa = w["a"], w["b"], w["rho"], w["kappa"]
+    rL = [sum(r[i] * L[i][j] for i in range(n)) for j in range(n)]
+    M = [[r[i] * L[i][j] + L[j][i] * r[j] for j in range(n)] for i in range(n)]
+    up = [f"M_{i + 1},{j + 1} > 0" for i in range(n) for j in range(n) if i != j and M[i][j] > 0]
+    R = [[r[i] * (i == j) for j in range(n)] for i in range(n)]
+    W = la.sub(la.identity(n), [list(r)] * n)
+    alpha = k_c * a
+    g_xi = b / (rho * alpha) if two and rho * alpha else Fraction(0)
+    spread = kappa**2 * min(r) - max(r)
+    room = f"ρ = {show(rho)}, min r_i − ρ² = {show(min(r) - rho**2)}"
+    rows = ", ".join(show(sum(row)) for row in L)
+    M1 = ", ".join(show(sum(row)) for row in M)
+    stochastic = f"Σr_i = {show(sum(r))}, min r_i = {show(min(r))}"
+    WRW = la.matmul(la.transpose(W), la.matmul(R, W))
+    checks = [
+        Check("C1: L1 = 0", not any(map(sum, L)), f"row sums of L: {rows}"),
+        Check("C1: rᵀL = 0", not any(rL), "rᵀL = " + ", ".join(show(x) for x in rL)),
+        Check("C1: Σr_i = 1, r_i > 0", sum(r) == 1 and min(r) > 0, stochastic),
+        Check("C2: M_ij ≤ 0 (i ≠ j)", not up, up[0] if up else "M = RL + LᵀR"),
+        Check("C2: M1 = 0, so M ⪰ 0", not any(map(sum, M)), f"row sums of M: {M1}"),
+        Check("C3: a > 0", a > 0, f"a = {show(a)}"),
+        Check("C4: b ≥ 0", b >= 0, f"b = {show(b)}"),
+        definite("C4: b²I − WᵀRW ⪰ 0", la.sub(la.scale(b * b, la.identity(n)), WRW), semi=True),
+        Check("C5: ρ > 0, ρ² ≤ min r_i", 0 < rho and rho**2 <= min(r), room),
+        Check("C5: κ² min r_i ≥ max r_i", spread >= 0, f"κ² min r_i − max r_i = {show(spread)}"),
+        Check("C6: k_c > 0", k_c > 0, f"k_c = {show(k_c)}"),
+        _same("C6: α = k_c a", w["alpha"], alpha),
+        _same(f"C6: g_ξ = {'b/(ρα)' if two else '0 (Type I)'}", w["g_xi"], g_xi),
+        _same("C6: gain = g_e(1 + g_ξ)", w["gain"], w["g_e"] * (1 + g_xi)),
+    ]
+    if r[-1]:
+        B = [*la.identity(n - 1), [-x / r[-1] for x in r[:-1]]]  # columns e_i − (r_i/r_N)e_N
+        gap = la.matmul(la.matmul(la.transpose(B), la.sub(M, la.scale(2 * a, R))), B)
+        checks.insert(6, definite("C3: Bᵀ(M − 2aR)B ⪰ 0", gap, semi=True))
+    return checks
+
+
 KINDS = {
     "mjls-stability": mjls_stability,
     "s-detectability": s_detectability,
     "covariance-bound": covariance_bound,
     "generic-rank": generic_rank,
+    "iss": iss,
 }
 """Each kind's checker."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
-from math import lcm
+from math import lcm, prod
 
 from proofs_check.deadline import tick
 
@@ -82,29 +82,23 @@ def first_asymmetry(a: Matrix) -> tuple[int, int, Fraction] | None:
 
 @dataclass(frozen=True)
 class Definiteness:
-    """Outcome of the exact positive-definiteness test.
-
-    Attributes
-    ----------
-    positive : bool
-        Whether every leading principal minor is positive.
-    order : int
-        The order of the first non-positive leading minor (``0`` when ``positive``).
-    pivot : Fraction
-        The LDLᵀ pivot at ``order`` when not positive (``≤ 0``: by how much it fails), else the
-        smallest pivot (how much room there is).
-    """
+    """Outcome of the exact (semi)definiteness test: whether it is ``positive``; else ``order``,
+    the first failing leading minor, and ``pivot``, the LDLᵀ pivot there (by how much it fails);
+    when positive, ``order`` is 0 and ``pivot`` the smallest pivot (how much room there is)."""
 
     positive: bool
     order: int
     pivot: Fraction
 
 
-def positive_definite(a: Matrix) -> Definiteness:
+def positive_definite(a: Matrix, *, semi: bool = False) -> Definiteness:
     """Exact Sylvester test of a symmetric matrix (the caller checks symmetry first).
 
     Rows and columns are scaled by positive integers ``d_i`` (a congruence, which keeps the
-    signs of the leading minors) so that Bareiss elimination runs on integers.
+    signs of the leading minors) so that Bareiss elimination runs on integers. With ``semi``
+    it tests ``a ⪰ 0``: a zero pivot whose row is zero is dropped (the Schur complement is
+    ``0 ⊕ S′`` and elimination goes on with ``S′``); a zero pivot with a non-zero row fails,
+    since a 2 × 2 principal minor of the Schur complement is then negative.
     """
     n = len(a)
     d = [lcm(*(x.denominator for x in a[i])) for i in range(n)]
@@ -114,6 +108,9 @@ def positive_definite(a: Matrix) -> Definiteness:
         tick()
         minor = m[k][k]
         pivot = Fraction(minor, previous) / (d[k] * d[k])
+        if semi and minor == 0 and not any(m[k][k + 1 :]):
+            smallest = pivot
+            continue
         if minor <= 0:
             return Definiteness(False, k + 1, pivot)
         smallest = pivot if smallest is None or pivot < smallest else smallest
@@ -141,7 +138,4 @@ def determinant(a: Matrix) -> Fraction:
             for j in range(k + 1, n):
                 m[i][j] = (m[i][j] * m[k][k] - m[i][k] * m[k][j]) // previous
         previous = m[k][k]
-    denominator = 1
-    for factor in d:
-        denominator *= factor
-    return Fraction(sign * m[n - 1][n - 1], denominator) if n else Fraction(1)
+    return Fraction(sign * m[n - 1][n - 1], prod(d)) if n else Fraction(1)

@@ -74,36 +74,29 @@ def loads(content: str) -> dict[str, Any]:
             content,
             parse_float=_refuse_float,
             parse_int=_small_int,
-            parse_constant=_refuse_constant,
+            parse_constant=_refuse_float,
         )
     except RecursionError:
         raise MalformedError("JSON nested too deeply") from None
     except json.JSONDecodeError as error:
-        raise MalformedError(
-            f"not valid JSON: {error.msg} (line {error.lineno}, column {error.colno})"
-        ) from None
+        why = f"not valid JSON: {error.msg} (line {error.lineno}, column {error.colno})"
+        raise MalformedError(why) from None
     if not isinstance(data, dict):
         raise MalformedError("top level: expected a JSON object")
     return data
 
 
 def _refuse_float(token: str) -> Any:
-    raise MalformedError(
-        f'JSON number {token[:40]!r}: numbers must be exact rational strings such as "-3/7"'
-    )
+    why = f'JSON number {token[:40]!r}: numbers must be exact rational strings such as "-3/7"'
+    raise MalformedError(why)
 
 
 def _small_int(token: str) -> int:
     digits = token.lstrip("-")
     if len(digits) > MAX_INT_DIGITS:
-        raise MalformedError(
-            f"JSON integer of {len(digits)} digits: only small indices are integers"
-        )
+        why = f"JSON integer of {len(digits)} digits: only small indices are integers"
+        raise MalformedError(why)
     return int(token)
-
-
-def _refuse_constant(token: str) -> Any:
-    raise MalformedError(f"JSON constant {token}: not a number")
 
 
 def fields(value: Any, where: str, required: tuple[str, ...], optional: tuple[str, ...] = ()):
@@ -138,13 +131,11 @@ def index(value: Any, where: str, low: int, high: int) -> int:
 def rational(value: Any, where: str) -> Fraction:
     """An exact rational from a string ``"p"`` or ``"p/q"`` (q > 0, no spaces, no exponent)."""
     if not isinstance(value, str):
-        raise MalformedError(
-            f'{where}: expected a rational string like "-3/7", got {value!r}'[:200]
-        )
+        why = f'{where}: expected a rational string like "-3/7", got {value!r}'[:200]
+        raise MalformedError(why)
     if len(value) > MAX_NUMBER_CHARS:
-        raise MalformedError(
-            f"{where}: number of {len(value)} characters (limit {MAX_NUMBER_CHARS})"
-        )
+        why = f"{where}: number of {len(value)} characters (limit {MAX_NUMBER_CHARS})"
+        raise MalformedError(why)
     if not _RATIONAL.fullmatch(value):
         raise MalformedError(f'{where}: {value[:60]!r} is not a rational string like "-3/7"')
     return Fraction(value)
@@ -179,7 +170,6 @@ def matrix_list(
     if not isinstance(value, list) or not value or len(value) > MAX_ITEMS:
         raise MalformedError(f"{where}: expected a non-empty list of at most {MAX_ITEMS} matrices")
     if count is not None and len(value) != count:
-        raise MalformedError(
-            f"{where}: expected {count} matrices (one per agent), got {len(value)}"
-        )
+        why = f"{where}: expected {count} matrices (one per agent), got {len(value)}"
+        raise MalformedError(why)
     return [matrix(item, f"{where}[{k + 1}]", rows, cols) for k, item in enumerate(value)]

@@ -7,7 +7,7 @@ position and kind.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from typing import Any
 
 from proofs_check import deadline
@@ -33,7 +33,7 @@ class Verdict:
 
     def to_json(self) -> dict[str, Any]:
         """``{"valid", "checks": [{"name", "valid", "detail"}]}``."""
-        return {"valid": self.valid, "checks": [c.to_json() for c in self.checks]}
+        return {"valid": self.valid, "checks": [asdict(c) for c in self.checks]}
 
 
 def check_certificate(
@@ -57,9 +57,8 @@ def _check(cert: dict[str, Any]) -> Verdict:
         p.fields(cert, "top level", ("format", "kind", "certificates"), TOP_OPTIONAL)
         items = cert["certificates"]
         if not isinstance(items, list) or not items or len(items) > p.MAX_ITEMS:
-            raise p.MalformedError(
-                f"certificates: expected a non-empty list of at most {p.MAX_ITEMS}"
-            )
+            why = f"certificates: expected a non-empty list of at most {p.MAX_ITEMS}"
+            raise p.MalformedError(why)
         checks: list[Check] = []
         for k, item in enumerate(items):
             where = f"certificates[{k + 1}]"

@@ -126,7 +126,7 @@ HOSTILE = {
     "top-level list": "[]",
     "wrong version": json.dumps({**_mjls(), "format": "trackcert-certificate/2"}),
     "no version": json.dumps({k: v for k, v in _mjls().items() if k != "format"}),
-    "unknown kind": json.dumps({**_mjls(), "kind": "iss"}),
+    "unknown kind": json.dumps({**_mjls(), "kind": "lyapunov"}),
     "unknown field": json.dumps({**_mjls(), "extra": 1}),
     "missing witness": json.dumps({k: v for k, v in _mjls().items() if k != "witness"}),
     "JSON float": json.dumps(_mjls()).replace('"3/4"', "0.75"),

@@ -10,7 +10,7 @@
   those gains. The witness used is the primal Lyapunov tuple of the filter's order; the dual
   tuple is the fallback.
 
-``iss`` certificates (the pursuit kind) are not defined yet.
+* ``pursuit``: ``iss`` (:mod:`theory.iss_certificates`), when the case's conditions hold.
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ from theory.consensus_operators import (
     vec_tuple,
 )
 from theory.errors import InconclusiveError
+from theory.iss_certificates import pursuit_certificates
 from theory.rationalize import RationalizationError
 from theory.s_detectability import s_detectability_witness
 from theory.tdoa_rank_certificates import generic_rank_certificates
@@ -134,7 +135,11 @@ def _dkf(case: Case, seed: int) -> Certified:
     return certs, reasons
 
 
-CERTIFIERS: dict[str, Callable[[Case, int], Certified]] = {"tdoa": _tdoa, "dkf": _dkf}
+CERTIFIERS: dict[str, Callable[[Case, int], Certified]] = {
+    "tdoa": _tdoa,
+    "dkf": _dkf,
+    "pursuit": pursuit_certificates,
+}
 """Case kind → builder of its certificates (and of the reasons for missing ones)."""
 
 

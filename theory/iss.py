@@ -887,7 +887,7 @@ def _verify_coordination(data: dict[str, Any], witness: dict[str, Any]) -> list[
     c5 = rho > 0 and rho * rho <= min(r) and kappa * kappa * min(r) >= max(r)
     alpha = data["k_c"] * a
     g_xi = b / (rho * alpha) if data["controller"] == "II" else Fraction(0)
-    c6 = witness["alpha"] == alpha and witness["g_xi"] == g_xi
+    c6 = data["k_c"] > 0 and witness["alpha"] == alpha and witness["g_xi"] == g_xi
     c6 = c6 and witness["gain"] == witness["g_e"] * (1 + g_xi)
     return [("C1", c1), ("C2", c2), ("C3", c3), ("C4", c4), ("C5", c5), ("C6", c6)]
 
@@ -904,6 +904,7 @@ CERTIFICATE_INEQUALITIES = (
     "C3  B^T (M - 2 a R) B positive semidefinite for B = [e_i - (r_i/r_N) e_N]_{i<N}, a > 0",
     "C4  b^2 I - W^T R W positive semidefinite, W = I - 1 r^T",
     "C5  rho > 0, rho^2 <= min_i r_i;  kappa^2 * min_i r_i >= max_i r_i",
-    "C6  alpha = k_c a; g_xi = b / (rho alpha) (Type II; 0 for Type I); gain = g_e (1 + g_xi)",
+    "C6  k_c > 0; alpha = k_c a; g_xi = b / (rho alpha) (Type II; 0 for Type I); "
+    "gain = g_e (1 + g_xi)",
 )
 """The exact list a checker verifies (E: pursuit subsystem, C: coordination, N > 1 only)."""

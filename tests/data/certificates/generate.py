@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import copy
 import json
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -23,6 +24,7 @@ from theory.certificates import (
     mjls_stability_certificate,
     s_detectability_certificate,
 )
+from theory.iss_certificates import iss_certificate
 from theory.s_detectability import s_detectability_witness
 from theory.tdoa_rank_certificates import generic_rank_certificates
 
@@ -122,6 +124,10 @@ def good() -> dict[str, dict]:
             dual=True,
         ),
         "generic-rank-fig43-case-d": bundle(generic_rank_certificates(case.spec, case=case.name)),
+        **{
+            f"iss-{name}": iss_certificate(load_case(cases / f"{name}.yaml").spec, case=name)
+            for name in ("pursuit-table1-n3", "pursuit-table2-n1")
+        },
     }
 
 
@@ -176,11 +182,34 @@ def bad(valid: dict[str, dict]) -> tuple[dict[str, dict], dict[str, object]]:
     c = copy.deepcopy(valid["mjls-stability-scalar"])
     c["witness"]["P"][0] = [["1/0"]]
     malformed["zero-denominator"] = c
-    c = copy.deepcopy(valid["mjls-stability-scalar"])
-    c["kind"] = "iss"
-    malformed["kind-iss-not-defined"] = c
+    invalid["iss-lambda-doubled"] = _iss_changed(valid["iss-pursuit-table1-n3"], "lambda", 2)
+    invalid["iss-a-above-connectivity"] = _iss_changed(
+        valid["iss-pursuit-table1-n3"], "a", Fraction(11, 10)
+    )
+    invalid["iss-kp-bar-below-norm"] = _iss_changed(
+        valid["iss-pursuit-table2-n1"], "kp_bar", Fraction(9, 10)
+    )
+    c = copy.deepcopy(valid["iss-pursuit-table1-n3"])
+    del c["witness"]["r"]
+    malformed["iss-dropped-left-eigenvector"] = c
     malformed["nested-bundle"] = bundle([bundle([valid["mjls-stability-scalar"]])])
     return invalid, malformed
+
+
+def _iss_changed(cert: dict, key: str, factor) -> dict:
+    """``cert`` with one witness bound scaled and the derived constants recomputed, so that only
+    the inequality of that bound fails (E2 for ``lambda``, E3 for ``kp_bar``, C3 for ``a``)."""
+    c = copy.deepcopy(cert)
+    w = {k: Fraction(v) if isinstance(v, str) else v for k, v in c["witness"].items()}
+    w[key] *= factor
+    w["g_e"] = w["s"] / w["lambda"]
+    w["gain"] = w["g_e"]
+    if "a" in w:
+        w["alpha"] = Fraction(c["data"]["k_c"]) * w["a"]
+        w["g_xi"] = w["b"] / (w["rho"] * w["alpha"])
+        w["gain"] = w["g_e"] * (1 + w["g_xi"])
+    c["witness"] = {k: v if isinstance(v, list) else str(v) for k, v in w.items()}
+    return c
 
 
 def main() -> None:
