@@ -34,7 +34,7 @@ inconclusive: a margin lies inside tolerance or a solver failed (the evidence sa
 
 METHODS = ("symbolic", "exact-random", "numeric", "lmi", "simulation", "exact")
 
-CLAIM_MODULES: tuple[str, ...] = ()
+CLAIM_MODULES: tuple[str, ...] = ("theory.model_claims",)
 """Modules that register claims; each feature appends its module here."""
 
 _REGISTRY: dict[str, Claim] = {}

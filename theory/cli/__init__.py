@@ -13,7 +13,7 @@ import typer
 
 __all__ = ["COMMAND_MODULES", "app", "main"]
 
-COMMAND_MODULES: tuple[str, ...] = ("theory.cli.cases",)
+COMMAND_MODULES: tuple[str, ...] = ("theory.cli.cases", "theory.cli.report")
 
 app = typer.Typer(
     name="trackcert",
