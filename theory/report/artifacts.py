@@ -154,8 +154,8 @@ def check_with_cli(relative: Path, out_dir: Path) -> dict[str, Any]:
     try:
         verdict = json.loads(done.stdout)
     except json.JSONDecodeError:
-        lines = (done.stderr or done.stdout).strip().splitlines()
-        error = lines[-1] if lines else "no output"
+        lines = [line.strip(" │╭╮╰╯─") for line in (done.stderr or done.stdout).splitlines()]
+        error = " ".join(line for line in lines if line) or "no output"
         return {"command": shown, "exit_code": done.returncode, "valid": None, "error": error}
     valid = verdict.get("valid") if isinstance(verdict, dict) else None
     checks = verdict.get("checks", []) if isinstance(verdict, dict) else []
