@@ -48,7 +48,10 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Run every registered check on every case; write index.html, report.md, report.json.
 
-        Exit 0 when every expectation of every case is met, 1 otherwise, 2 on bad input.
+        Exit 0 when every expectation of every case is met, 1 otherwise, 2 on bad input. CASES
+        are case files or bundled names; --seed seeds every randomized check; --only keeps the
+        claims whose id matches a pattern; --errata names the errata document; --json prints
+        report.json.
         """
         loaded = [load_case(c) for c in (cases or list(bundled_cases()))]
         claims = select_claims(all_claims(), only or [])

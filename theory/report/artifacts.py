@@ -128,6 +128,13 @@ def _slug(text: str) -> str:
 def check_with_cli(relative: Path, out_dir: Path) -> dict[str, Any]:
     """Run ``trackcert check RELATIVE --json`` in ``out_dir`` and record its verdict.
 
+    Parameters
+    ----------
+    relative : Path
+        The certificate's path relative to ``out_dir`` (so the verdict names no absolute path).
+    out_dir : Path
+        The report folder, used as the working directory.
+
     Returns
     -------
     dict

@@ -90,14 +90,42 @@ def canonical(value: Any, where: str = "$") -> Any:
 def dumps(value: Any, *, width: int = 100) -> str:
     """The canonical text of ``value``: JSON with sorted keys, UTF-8, newline at the end.
 
-    A list or mapping whose one-line form fits in ``width`` characters stays on one line (so a
-    matrix prints one row a line); larger ones are expanded with a 2-space indent.
+    Parameters
+    ----------
+    value : object
+        Anything :func:`canonical` accepts.
+    width : int
+        A list or mapping whose one-line form fits in ``width`` characters stays on one line (so
+        a matrix prints one row a line); larger ones are expanded with a 2-space indent.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    TypeError
+        As :func:`canonical`.
     """
     return layout(canonical(value), width=width) + "\n"
 
 
 def layout(data: Any, *, width: int = 100, indent: int = 0) -> str:
-    """Deterministic JSON text of plain ``data`` (see :func:`dumps`)."""
+    """Deterministic JSON text of plain ``data``.
+
+    Parameters
+    ----------
+    data : object
+        Plain JSON data (as returned by :func:`canonical`).
+    width : int
+        Line width under which a container stays on one line.
+    indent : int
+        Indentation of the line ``data`` starts on.
+
+    Returns
+    -------
+    str
+    """
     flat = json.dumps(data, sort_keys=True, ensure_ascii=False)
     if not isinstance(data, dict | list) or not data or indent + len(flat) <= width:
         return flat

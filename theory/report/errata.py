@@ -31,7 +31,14 @@ class ErratumEntry:
 
 
 def default_errata_path() -> Path | None:
-    """``docs/errata.md`` of a source checkout, or the copy bundled in an installed package."""
+    """The errata document to report by default.
+
+    Returns
+    -------
+    Path or None
+        ``theory/bundled_docs/errata.md`` of an installed package, else ``docs/errata.md`` of a
+        source checkout, else ``None``.
+    """
     package = Path(theory.__file__).resolve().parent
     for candidate in (package / "bundled_docs" / "errata.md", package.parent / "docs/errata.md"):
         if candidate.is_file():

@@ -59,7 +59,14 @@ class Expectation:
     verdict: str
 
     def to_json(self) -> dict[str, Any]:
-        """Plain data for ``report.json``."""
+        """Plain data for ``report.json``.
+
+        Returns
+        -------
+        dict
+            ``case``, ``key``, ``expected``, ``observations`` (each ``claim``, ``value``,
+            ``status``, ``matches``) and ``verdict``.
+        """
         return {
             "case": self.case,
             "key": self.key,
@@ -118,7 +125,19 @@ def _verdict(expected: Any, found: tuple[Observation, ...]) -> str:
 
 
 def matches(expected: Any, observed: Any) -> bool:
-    """Whether ``observed`` agrees with ``expected`` (rules in the module docstring)."""
+    """Whether ``observed`` agrees with ``expected`` (rules in the module docstring).
+
+    Parameters
+    ----------
+    expected : object
+        A value of a case's ``expect`` block (plain YAML data).
+    observed : object
+        The value a claim reported (plain JSON data).
+
+    Returns
+    -------
+    bool
+    """
     if isinstance(expected, bool) or isinstance(observed, bool):
         return isinstance(expected, bool) and isinstance(observed, bool) and expected == observed
     if isinstance(expected, float) and isinstance(observed, int | float):

@@ -21,7 +21,18 @@ _INLINE = (
 
 
 def markdown_to_html(text: str) -> str:
-    """HTML for the Markdown subset described in the module docstring."""
+    """HTML for the Markdown subset described in the module docstring.
+
+    Parameters
+    ----------
+    text : str
+        Markdown.
+
+    Returns
+    -------
+    str
+        HTML in which every character of ``text`` outside the recognised markup is escaped.
+    """
     out: list[str] = []
     lines = text.splitlines()
     i = 0

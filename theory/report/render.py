@@ -102,7 +102,19 @@ def _read_errata(errata_path: str | Path | None):
 
 
 def render_html(document: dict[str, Any], out_dir: Path) -> str:
-    """The self-contained ``index.html`` for ``document`` (figures read from ``out_dir``)."""
+    """The self-contained ``index.html`` for ``document``.
+
+    Parameters
+    ----------
+    document : dict
+        The ``report.json`` document.
+    out_dir : Path
+        The report folder, where the figures to embed were copied.
+
+    Returns
+    -------
+    str
+    """
     env = _environment(autoescape=True)
     env.filters["datauri"] = lambda path: _data_uri(out_dir / path)
     env.filters["md"] = lambda text: Markup(markdown_to_html(text))
@@ -110,7 +122,17 @@ def render_html(document: dict[str, Any], out_dir: Path) -> str:
 
 
 def render_markdown(document: dict[str, Any]) -> str:
-    """``report.md`` for ``document``."""
+    """``report.md`` for ``document``.
+
+    Parameters
+    ----------
+    document : dict
+        The ``report.json`` document.
+
+    Returns
+    -------
+    str
+    """
     env = _environment(autoescape=False)
     env.filters["cell"] = lambda text: str(text).replace("|", "\\|").replace("\n", " ")
     return env.get_template("report.md.j2").render(doc=document, **_views(document))

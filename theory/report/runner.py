@@ -101,19 +101,60 @@ class RunResult:
 
 
 def paper_of(claim_id: str, source: str) -> str:
-    """The seed paper of a claim: ``"000"`` for ``seed000.*`` ids or sources citing ``seed 000``."""
+    """The seed paper a claim belongs to.
+
+    Parameters
+    ----------
+    claim_id : str
+        Registered id; ``seed000.…`` names paper ``000``.
+    source : str
+        The claim's source, used when the id names no paper (``"seed 003, eq. (4)"``).
+
+    Returns
+    -------
+    str
+        ``"000"``, ``"001"``, ``"002"``, ``"003"`` or ``"other"``.
+    """
     match = re.match(r"seed(\d{3})\b", claim_id) or re.search(r"seed\s*(\d{3})", source)
     return match.group(1) if match else "other"
 
 
 def derive_seed(seed: int, claim_id: str, case: str) -> int:
-    """A 32-bit seed for one claim on one case: SHA-256 of ``"{seed}:{claim_id}:{case}"``."""
+    """The seed one claim receives on one case.
+
+    Parameters
+    ----------
+    seed : int
+        The report's seed.
+    claim_id : str
+        Registered claim id.
+    case : str
+        Case name (``"-"`` for model claims).
+
+    Returns
+    -------
+    int
+        The first 4 bytes (big-endian) of SHA-256 of ``"{seed}:{claim_id}:{case}"``: stable
+        across runs, platforms and the order in which claims run.
+    """
     digest = hashlib.sha256(f"{seed}:{claim_id}:{case}".encode()).digest()
     return int.from_bytes(digest[:4], "big")
 
 
 def select_claims(claims: Sequence[Claim], patterns: Sequence[str]) -> list[Claim]:
-    """The claims whose id matches one of the shell-style ``patterns`` (all when none given)."""
+    """The claims whose id matches one of ``patterns``.
+
+    Parameters
+    ----------
+    claims : sequence of Claim
+        Candidates.
+    patterns : sequence of str
+        Shell-style patterns (``seed000.*``); none given selects every claim.
+
+    Returns
+    -------
+    list of Claim
+    """
     if not patterns:
         return list(claims)
     return [c for c in claims if any(fnmatch.fnmatchcase(c.id, p) for p in patterns)]
