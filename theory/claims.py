@@ -36,9 +36,11 @@ METHODS = ("symbolic", "exact-random", "numeric", "lmi", "simulation", "exact")
 
 CLAIM_MODULES: tuple[str, ...] = (
     "theory.case_certificates",
+    "theory.case_expectations",
     "theory.dcrw_claims",
     "theory.dkf_claims",
     "theory.iss_claims",
+    "theory.model_claims",
     "theory.observability_claims",
     "theory.pf_experiments",
     "theory.pf_vs_ekf",

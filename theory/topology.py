@@ -51,6 +51,7 @@ __all__ = [
     "TopologyResult",
     "analyze_topology",
     "check_expectations",
+    "observed_values",
 ]
 
 INCONCLUSIVE_FACTOR = 1e3
@@ -320,6 +321,25 @@ def analyze_topology(
     )  # type: ignore[arg-type]
 
 
+def observed_values(result: TopologyResult) -> dict[str, Any]:
+    """What ``result`` says for each static key a tdoa case's ``expect`` block may name.
+
+    Parameters
+    ----------
+    result : TopologyResult
+        The verdicts of one step.
+    """
+    got = result.to_json()
+    return {
+        "observable": [a["observable"] for a in got["agents"]],
+        "heuristic_4_noncoplanar": [a["heuristic_4_noncoplanar"] for a in got["agents"]],
+        "mirror_ambiguous": [a["mirror_ambiguous"] for a in got["agents"]],
+        "network_rank": got["network_rank"],
+        "network_observable": got["network_observable"],
+        "network_detectable": got["network_detectable"],
+    }
+
+
 def check_expectations(result: TopologyResult, expect: dict[str, Any]) -> list[str]:
     """Mismatches between ``result`` and a case's ``expect`` block (per-agent keys and network).
 
@@ -337,15 +357,7 @@ def check_expectations(result: TopologyResult, expect: dict[str, Any]) -> list[s
     list of str
         One line per mismatch (empty when every expectation is met).
     """
-    got = result.to_json()
-    actual: dict[str, Any] = {
-        "observable": [a["observable"] for a in got["agents"]],
-        "heuristic_4_noncoplanar": [a["heuristic_4_noncoplanar"] for a in got["agents"]],
-        "mirror_ambiguous": [a["mirror_ambiguous"] for a in got["agents"]],
-        "network_rank": got["network_rank"],
-        "network_observable": got["network_observable"],
-        "network_detectable": got["network_detectable"],
-    }
+    actual = observed_values(result)
     return [
         f"{key}: expected {value!r}, got {actual[key]!r}"
         for key, value in expect.items()

@@ -21,6 +21,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "theory.cli.generic",
     "theory.cli.iss",
     "theory.cli.pf",
+    "theory.cli.report",
     "theory.cli.simulate",
     "theory.cli.topology",
 )

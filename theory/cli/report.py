@@ -1,0 +1,112 @@
+"""``trackcert report [CASES…] -o DIR``: every registered check on every case, as a report."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from theory.case_file import bundled_cases, load_case
+from theory.claims import all_claims
+from theory.cli.common import EXIT_FAILS, EXIT_HOLDS, console, error_console, reports_errors
+from theory.errors import CaseError
+from theory.report.canonical import dumps
+from theory.report.render import write_report
+from theory.report.runner import MODEL_CASE, run_claims, select_claims
+
+__all__ = ["register"]
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``report`` command to ``app``."""
+
+    @app.command("report")
+    @reports_errors
+    def report(
+        cases: Annotated[
+            list[str] | None,
+            typer.Argument(help="Case files or bundled case names (default: every bundled case)."),
+        ] = None,
+        out: Annotated[Path, typer.Option("-o", "--out", help="Report folder.")] = Path("report"),
+        seed: Annotated[
+            int, typer.Option("--seed", min=0, help="Seed for every randomized check.")
+        ] = 0,
+        only: Annotated[
+            list[str] | None,
+            typer.Option("--only", help="Run only claims whose id matches this pattern."),
+        ] = None,
+        errata: Annotated[
+            Path | None,
+            typer.Option("--errata", help="Errata document (default: docs/errata.md)."),
+        ] = None,
+        as_json: Annotated[
+            bool, typer.Option("--json", help="Also print report.json to stdout.")
+        ] = False,
+    ) -> None:
+        """Run every registered check on every case; write index.html, report.md, report.json.
+
+        Exit 0 when every expectation of every case is met, 1 otherwise, 2 on bad input. CASES
+        are case files or bundled names; --seed seeds every randomized check; --only keeps the
+        claims whose id matches a pattern; --errata names the errata document; --json prints
+        report.json.
+        """
+        loaded = [load_case(c) for c in (cases or list(bundled_cases()))]
+        claims = select_claims(all_claims(), only or [])
+        if only and not claims:
+            raise CaseError(
+                "--only", "a pattern matching a registered claim id", only, hint=_known_ids()
+            )
+        if errata is not None and not errata.is_file():
+            raise CaseError("--errata", "a readable Markdown file", str(errata))
+        run = _run_with_progress(loaded, claims, seed)
+        document = write_report(run, out, errata_path=errata)
+        if as_json:
+            console.file.write(dumps(document))
+        else:
+            _print_summary(document, out)
+        raise typer.Exit(EXIT_HOLDS if run.all_expectations_met else EXIT_FAILS)
+
+
+def _known_ids() -> str:
+    return "Registered claims: " + ", ".join(c.id for c in all_claims())
+
+
+def _run_with_progress(cases, claims, seed):
+    total = sum(1 for c in claims if not c.kinds) + sum(
+        1 for case in cases for c in claims if case.kind in c.kinds
+    )
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+    )
+    with Progress(*columns, console=error_console, transient=True) as progress:
+        task = progress.add_task("checking", total=total)
+
+        def advance(claim_id: str, case: str) -> None:
+            where = "model" if case == MODEL_CASE else case
+            progress.update(task, description=f"{claim_id} on {where}")
+            progress.advance(task)
+
+        return run_claims(cases, seed=seed, claims=claims, progress=advance)
+
+
+def _print_summary(document: dict, out: Path) -> None:
+    table = Table(title="trackcert report")
+    for column in ("claim", "case", "method", "status", "margin"):
+        table.add_column(column, overflow="fold")
+    for r in document["claims"]:
+        margin = "—" if r["margin"] is None else f"{r['margin']:.3g}"
+        table.add_row(r["id"], r["case"], r["method"], r["status"], margin)
+    console.print(table)
+    counts = document["summary"]["expectations"]
+    verdict = (
+        "every expectation is met"
+        if document["summary"]["all_expectations_met"]
+        else ", ".join(f"{n} {v}" for v, n in counts.items() if n) + " expectation(s)"
+    )
+    console.print(f"{verdict}; wrote {out / 'index.html'}, report.md, report.json", markup=False)

@@ -1,0 +1,174 @@
+"""Files the claims produce — figures and certificates — copied into the report folder.
+
+Claims return figures in :attr:`ClaimResult.figures` and certificates as paths in their evidence
+under ``certificate`` (one path) or ``certificates`` (a list). The report copies each file to
+``DIR/figures/<claim>/<case>/`` or ``DIR/certificates/<claim>/<case>/``, records its SHA-256 (so
+the figures' data is part of the reproducible ``report.json``), replaces the claim's path by the
+copy's path relative to ``DIR``, and re-verifies every certificate with ``trackcert check FILE
+--json`` (DESIGN.md), recording that command's verdict next to it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any
+
+import theory
+from theory.report.runner import Record
+
+__all__ = [
+    "CERTIFICATE_KEYS",
+    "Artifacts",
+    "CertificateChecker",
+    "check_with_cli",
+    "collect",
+]
+
+CERTIFICATE_KEYS = ("certificate", "certificates")
+"""Evidence keys whose values are certificate paths (a string, or a list of strings)."""
+
+CHECK_TIMEOUT = 300.0
+"""Seconds allowed to ``trackcert check`` on one certificate before it counts as inconclusive."""
+
+CertificateChecker = Callable[[Path, Path], dict[str, Any]]
+"""``checker(relative_path, report_dir) -> verdict``; see :func:`check_with_cli`."""
+
+
+@dataclass(frozen=True)
+class Artifacts:
+    """A record's files after copying: ``figures`` and ``certificates`` as report entries."""
+
+    record: Record
+    figures: tuple[dict[str, Any], ...]
+    certificates: tuple[dict[str, Any], ...]
+
+
+def collect(
+    records: tuple[Record, ...], out_dir: Path, *, checker: CertificateChecker | None = None
+) -> list[Artifacts]:
+    """Copy every record's figures and certificates into ``out_dir`` and check the certificates.
+
+    Parameters
+    ----------
+    records : tuple of Record
+        The report's records.
+    out_dir : Path
+        The report folder (created if needed).
+    checker : callable, optional
+        Verifies one certificate; defaults to :func:`check_with_cli`.
+
+    Returns
+    -------
+    list of Artifacts
+        One per record, in order; each record's evidence has the certificate paths replaced by
+        the copies' relative paths.
+    """
+    checker = check_with_cli if checker is None else checker
+    taken: set[str] = set()
+    collected = []
+    for record in records:
+        figures = tuple(_copy(Path(f), "figures", record, out_dir, taken) for f in record.figures)
+        evidence = dict(record.evidence)
+        certificates: list[dict[str, Any]] = []
+        for key in CERTIFICATE_KEYS:
+            paths = _certificate_paths(evidence.get(key))
+            if paths is None:
+                continue
+            copies = [_copy(Path(p), "certificates", record, out_dir, taken) for p in paths]
+            for copy in copies:
+                if copy["sha256"] is not None:
+                    copy["check"] = checker(Path(copy["path"]), out_dir)
+            certificates.extend(copies)
+            relative = [c["path"] for c in copies]
+            evidence[key] = relative[0] if isinstance(evidence[key], str) else relative
+        collected.append(
+            Artifacts(replace(record, evidence=evidence), figures, tuple(certificates))
+        )
+    return collected
+
+
+def _certificate_paths(value: object) -> list[str] | None:
+    if isinstance(value, str):
+        return [value]
+    if isinstance(value, list) and all(isinstance(v, str) for v in value):
+        return list(value)
+    return None
+
+
+def _copy(source: Path, folder: str, record: Record, out_dir: Path, taken: set[str]) -> dict:
+    """Copy ``source`` under ``out_dir/folder/<claim>/<case>/`` with a name not used before."""
+    base = f"{folder}/{_slug(record.id)}/{_slug(record.case)}"
+    name = f"{base}/{_slug(source.name)}"
+    index = 2
+    while name in taken:
+        name = f"{base}/{index}-{_slug(source.name)}"
+        index += 1
+    taken.add(name)
+    if not source.is_file():
+        return {"path": name, "sha256": None, "error": f"the claim's file {source.name} is missing"}
+    target = out_dir / name
+    target.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(source, target)
+    return {"path": name, "sha256": hashlib.sha256(target.read_bytes()).hexdigest()}
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9._-]+", "_", text).strip("_") or "_"
+
+
+def check_with_cli(relative: Path, out_dir: Path) -> dict[str, Any]:
+    """Run ``trackcert check RELATIVE --json`` in ``out_dir`` and record its verdict.
+
+    Parameters
+    ----------
+    relative : Path
+        The certificate's path relative to ``out_dir`` (so the verdict names no absolute path).
+    out_dir : Path
+        The report folder, used as the working directory.
+
+    Returns
+    -------
+    dict
+        ``command``, ``exit_code``, ``valid`` (``True``/``False``, or ``None`` when the checker
+        gave no verdict) and either ``checks`` (the checker's list) or ``error`` (its last line of
+        stderr, e.g. when no ``check`` command is installed).
+    """
+    command = ["check", relative.as_posix(), "--json"]
+    root = str(Path(theory.__file__).resolve().parent.parent)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
+    shown = "trackcert " + " ".join(command)
+    try:
+        done = subprocess.run(
+            [sys.executable, "-m", "theory.cli", *command],
+            cwd=out_dir,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=CHECK_TIMEOUT,
+            check=False,
+        )
+    except subprocess.TimeoutExpired:
+        return {"command": shown, "exit_code": None, "valid": None, "error": "timed out"}
+    try:
+        verdict = json.loads(done.stdout)
+    except json.JSONDecodeError:
+        lines = [line.strip(" │╭╮╰╯─") for line in (done.stderr or done.stdout).splitlines()]
+        error = " ".join(line for line in lines if line) or "no output"
+        return {"command": shown, "exit_code": done.returncode, "valid": None, "error": error}
+    valid = verdict.get("valid") if isinstance(verdict, dict) else None
+    checks = verdict.get("checks", []) if isinstance(verdict, dict) else []
+    return {
+        "command": shown,
+        "exit_code": done.returncode,
+        "valid": valid if isinstance(valid, bool) else None,
+        "checks": checks,
+    }

@@ -1,0 +1,302 @@
+"""Run every registered claim on every case, never letting one check stop the others.
+
+:func:`run_claims` is the report's engine: for each case it runs the claims registered for the
+case's kind, and it runs the model claims (``kinds=()``) once, on no case (case ``"-"``). Every
+exception a check raises, and every malformed answer it returns, becomes a :class:`Record` with
+status ``inconclusive``, method ``"none"`` and the error in its message and evidence, so the report
+always completes. A claim whose ``run`` accepts a keyword ``seed`` receives one derived from the
+report's seed, its id and the case name (:func:`derive_seed`), so reruns are identical.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import hashlib
+import inspect
+import re
+import traceback
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from theory.case_file import Case
+from theory.claims import Claim, ClaimResult, all_claims
+from theory.errors import CaseError
+from theory.report.canonical import canonical
+from theory.report.expectations import EXPECTATIONS_KEY, Expectation, evaluate
+
+__all__ = [
+    "MODEL_CASE",
+    "Record",
+    "RunResult",
+    "derive_seed",
+    "paper_of",
+    "run_claims",
+    "select_claims",
+]
+
+MODEL_CASE = "-"
+"""Case name of results about the model alone (claims registered with ``kinds=()``)."""
+
+ProgressHook = Callable[[str, str], None]
+
+
+@dataclass(frozen=True)
+class Record:
+    """One line of the report: a claim's result on a case (or the failure to get one).
+
+    Attributes ``id`` (the claim id), ``case``, ``method``, ``status``, ``message``, ``margin``,
+    ``tolerance``, ``evidence`` and ``figures`` mirror :class:`~theory.claims.ClaimResult`; beside
+    them stand the claim's ``source`` and ``statement``, the ``paper`` it belongs to (``"000"`` …
+    or ``"other"``) and the derived ``seed`` (``None`` if the claim takes none). Figure files are
+    copied into the report folder when it is written.
+    """
+
+    id: str
+    source: str
+    statement: str
+    paper: str
+    case: str
+    method: str
+    status: str
+    message: str = ""
+    margin: float | None = None
+    tolerance: dict[str, Any] = field(default_factory=dict)
+    evidence: dict[str, Any] = field(default_factory=dict)
+    figures: tuple[str, ...] = ()
+    seed: int | None = None
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """Everything the claims returned, ready to be rendered.
+
+    Attributes
+    ----------
+    records : tuple of Record
+        Sorted by paper, claim id, case order.
+    expectations : tuple of Expectation
+        One per key of every case's ``expect`` block.
+    not_applicable : tuple of (claim id, case name)
+        Claims that returned no result for a case (they do not apply to it).
+    cases : tuple of Case
+        The cases, in the order given.
+    claims : tuple of Claim
+        The claims that were run, sorted by id.
+    seed : int
+        The report's seed.
+    """
+
+    records: tuple[Record, ...]
+    expectations: tuple[Expectation, ...]
+    not_applicable: tuple[tuple[str, str], ...]
+    cases: tuple[Case, ...]
+    claims: tuple[Claim, ...]
+    seed: int
+
+    @property
+    def all_expectations_met(self) -> bool:
+        """Whether every expectation of every case is met (the report's exit code 0)."""
+        return all(e.verdict == "met" for e in self.expectations)
+
+
+def paper_of(claim_id: str, source: str) -> str:
+    """The seed paper a claim belongs to.
+
+    Parameters
+    ----------
+    claim_id : str
+        Registered id; ``seed000.…`` names paper ``000``.
+    source : str
+        The claim's source, used when the id names no paper (``"seed 003, eq. (4)"``).
+
+    Returns
+    -------
+    str
+        ``"000"``, ``"001"``, ``"002"``, ``"003"`` or ``"other"``.
+    """
+    match = re.match(r"seed(\d{3})\b", claim_id) or re.search(r"seed\s*(\d{3})", source)
+    return match.group(1) if match else "other"
+
+
+def derive_seed(seed: int, claim_id: str, case: str) -> int:
+    """The seed one claim receives on one case.
+
+    Parameters
+    ----------
+    seed : int
+        The report's seed.
+    claim_id : str
+        Registered claim id.
+    case : str
+        Case name (``"-"`` for model claims).
+
+    Returns
+    -------
+    int
+        The first 4 bytes (big-endian) of SHA-256 of ``"{seed}:{claim_id}:{case}"``: stable
+        across runs, platforms and the order in which claims run.
+    """
+    digest = hashlib.sha256(f"{seed}:{claim_id}:{case}".encode()).digest()
+    return int.from_bytes(digest[:4], "big")
+
+
+def select_claims(claims: Sequence[Claim], patterns: Sequence[str]) -> list[Claim]:
+    """The claims whose id matches one of ``patterns``.
+
+    Parameters
+    ----------
+    claims : sequence of Claim
+        Candidates.
+    patterns : sequence of str
+        Shell-style patterns (``seed000.*``); none given selects every claim.
+
+    Returns
+    -------
+    list of Claim
+    """
+    if not patterns:
+        return list(claims)
+    return [c for c in claims if any(fnmatch.fnmatchcase(c.id, p) for p in patterns)]
+
+
+def run_claims(
+    cases: Sequence[Case],
+    *,
+    seed: int = 0,
+    claims: Sequence[Claim] | None = None,
+    progress: ProgressHook | None = None,
+) -> RunResult:
+    """Run each claim on each case it applies to, and the model claims once.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+        Validated cases (their names must be distinct).
+    seed : int
+        The report's seed; each claim accepting ``seed`` gets :func:`derive_seed` of it.
+    claims : sequence of Claim, optional
+        Defaults to every registered claim (:func:`theory.claims.all_claims`).
+    progress : callable, optional
+        Called as ``progress(claim_id, case_name)`` before each run.
+
+    Returns
+    -------
+    RunResult
+    """
+    claims = sorted(all_claims() if claims is None else claims, key=lambda c: c.id)
+    _check_distinct_names(cases)
+    rows: list[tuple[int, Record]] = []
+    skipped: list[tuple[str, str]] = []
+    tasks = [(c, None) for c in claims if not c.kinds] + [
+        (c, case) for case in cases for c in claims if case.kind in c.kinds
+    ]
+    order = {MODEL_CASE: -1} | {case.name: i for i, case in enumerate(cases)}
+    for claim, case in tasks:
+        name = MODEL_CASE if case is None else case.name
+        if progress is not None:
+            progress(claim.id, name)
+        records = _run_one(claim, case, seed)
+        if not records:
+            skipped.append((claim.id, name))
+        rows.extend((order[name], r) for r in records)
+    rows.sort(key=lambda row: (row[1].paper, row[1].id, row[0]))
+    records = tuple(r for _, r in rows)
+    expectations = _expectations(cases, records)
+    return RunResult(records, expectations, tuple(skipped), tuple(cases), tuple(claims), seed)
+
+
+def _check_distinct_names(cases: Sequence[Case]) -> None:
+    names = [case.name for case in cases]
+    duplicated = sorted({n for n in names if names.count(n) > 1})
+    if duplicated:
+        raise CaseError("name", "distinct case names in one report", duplicated[0])
+
+
+def _run_one(claim: Claim, case: Case | None, seed: int) -> list[Record]:
+    name = MODEL_CASE if case is None else case.name
+    claim_seed = derive_seed(seed, claim.id, name) if _takes_seed(claim.run) else None
+    try:
+        results = claim.run(case) if claim_seed is None else claim.run(case, seed=claim_seed)
+        return [_record(claim, name, result, claim_seed) for result in _checked(results)]
+    except (Exception, SystemExit) as error:  # one failing check never stops the report
+        return [_failure(claim, name, error, claim_seed)]
+
+
+def _takes_seed(run: Callable[..., Any]) -> bool:
+    try:
+        parameters = inspect.signature(run).parameters
+    except (TypeError, ValueError):
+        return False
+    return "seed" in parameters
+
+
+def _checked(results: object) -> list[ClaimResult]:
+    if not isinstance(results, list | tuple):
+        raise TypeError(f"the check returned a {type(results).__name__}, not a list of results")
+    for result in results:
+        if not isinstance(result, ClaimResult):
+            raise TypeError(f"the check returned a {type(result).__name__}, not a ClaimResult")
+    return list(results)
+
+
+def _record(claim: Claim, case: str, result: ClaimResult, seed: int | None) -> Record:
+    evidence = canonical(result.evidence, "evidence")
+    if not isinstance(evidence, dict):
+        raise TypeError(f"evidence is a {type(result.evidence).__name__}, not a mapping")
+    return Record(
+        id=claim.id,
+        source=claim.source,
+        statement=claim.statement,
+        paper=paper_of(claim.id, claim.source),
+        case=case,
+        method=result.method,
+        status=result.status,
+        message=result.message,
+        margin=canonical(result.margin, "margin"),
+        tolerance=canonical(dict(result.tolerance), "tolerance"),
+        evidence=evidence,
+        figures=tuple(str(f) for f in result.figures),
+        seed=seed,
+    )
+
+
+def _failure(claim: Claim, case: str, error: BaseException, seed: int | None) -> Record:
+    kind = type(error).__name__
+    return Record(
+        id=claim.id,
+        source=claim.source,
+        statement=claim.statement,
+        paper=paper_of(claim.id, claim.source),
+        case=case,
+        method="none",
+        status="inconclusive",
+        message=f"the check failed to run: {kind}: {error}",
+        evidence={"error": {"type": kind, "message": str(error), "where": _where(error)}},
+        seed=seed,
+    )
+
+
+def _where(error: BaseException) -> str:
+    """``file:line in function`` of the innermost frame, the file relative to the package root."""
+    frames = traceback.extract_tb(error.__traceback__)
+    if not frames:
+        return ""
+    frame = frames[-1]
+    root = Path(__file__).resolve().parents[2]
+    path = Path(frame.filename).resolve()
+    shown = path.relative_to(root).as_posix() if path.is_relative_to(root) else path.name
+    return f"{shown}:{frame.lineno} in {frame.name}"
+
+
+def _expectations(cases: Sequence[Case], records: Sequence[Record]) -> tuple[Expectation, ...]:
+    verdicts: list[Expectation] = []
+    for case in cases:
+        observations = [
+            (r.id, r.evidence[EXPECTATIONS_KEY], r.status)
+            for r in records
+            if r.case == case.name and isinstance(r.evidence.get(EXPECTATIONS_KEY), dict)
+        ]
+        verdicts.extend(evaluate(case.name, canonical(case.expect), observations))
+    return tuple(verdicts)
