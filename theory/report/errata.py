@@ -21,13 +21,18 @@ _ENTRY_START = re.compile(r"^(?:###\s+|[-*]\s+|\d+\.\s+)")
 
 @dataclass(frozen=True)
 class ErratumEntry:
-    """One erratum: its paper (``"000"`` … or ``"other"``), title, Markdown text, claim ids."""
+    """One erratum: its paper (``"000"`` … or ``"other"``), title, Markdown text, claim ids.
+
+    ``heading`` says whether the entry is a ``###`` section (its title is then not part of its
+    text) rather than a list item (whose text starts with its title).
+    """
 
     paper: str
     section: str
     title: str
     text: str
     claims: tuple[str, ...]
+    heading: bool
 
 
 def default_errata_path() -> Path | None:
@@ -77,9 +82,13 @@ def parse_errata(text: str) -> list[ErratumEntry]:
 def _entry(paper: str, section: str, text: str) -> ErratumEntry:
     lines = text.strip().splitlines()
     title = _ENTRY_START.sub("", lines[0]).strip()
-    body = "\n".join(lines[1:]).strip() if lines[0].startswith("###") else "\n".join(lines)
+    heading = lines[0].startswith("###")
+    if heading:
+        body = "\n".join(lines[1:]).strip()
+    else:  # a list item: its text, the marker removed and continuation lines dedented
+        body = "\n".join([title, *(line.strip() for line in lines[1:])])
     claims = tuple(dict.fromkeys(_CLAIM_ID.findall(text)))
-    return ErratumEntry(paper, section, _short(title), body, claims)
+    return ErratumEntry(paper, section, _short(title), body, claims, heading)
 
 
 def _short(title: str, limit: int = 140) -> str:
