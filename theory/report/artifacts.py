@@ -144,7 +144,8 @@ def check_with_cli(relative: Path, out_dir: Path) -> dict[str, Any]:
     """
     command = ["check", relative.as_posix(), "--json"]
     root = str(Path(theory.__file__).resolve().parent.parent)
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
+    inherited = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, *inherited]))
     shown = "trackcert " + " ".join(command)
     try:
         done = subprocess.run(

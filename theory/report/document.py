@@ -128,6 +128,7 @@ def _erratum(
         "paper": entry.paper,
         "section": entry.section,
         "title": entry.title,
+        "heading": entry.heading,
         "text": entry.text,
         "claims": linked,
     }

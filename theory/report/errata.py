@@ -35,6 +35,9 @@ class ErratumEntry:
         Its Markdown text.
     claims : tuple of str
         Claim ids the text cites (their results are shown beside it).
+    heading : bool
+        Whether the entry is a ``###`` section (its title is then not part of its text) rather
+        than a list item (whose text starts with its title).
     """
 
     paper: str
@@ -42,6 +45,7 @@ class ErratumEntry:
     title: str
     text: str
     claims: tuple[str, ...]
+    heading: bool
 
 
 def default_errata_path() -> Path | None:
@@ -91,9 +95,13 @@ def parse_errata(text: str) -> list[ErratumEntry]:
 def _entry(paper: str, section: str, text: str) -> ErratumEntry:
     lines = text.strip().splitlines()
     title = _ENTRY_START.sub("", lines[0]).strip()
-    body = "\n".join(lines[1:]).strip() if lines[0].startswith("###") else "\n".join(lines)
+    heading = lines[0].startswith("###")
+    if heading:
+        body = "\n".join(lines[1:]).strip()
+    else:  # a list item: its text, the marker removed and continuation lines dedented
+        body = "\n".join([title, *(line.strip() for line in lines[1:])])
     claims = tuple(dict.fromkeys(_CLAIM_ID.findall(text)))
-    return ErratumEntry(paper, section, _short(title), body, claims)
+    return ErratumEntry(paper, section, _short(title), body, claims, heading)
 
 
 def _short(title: str, limit: int = 140) -> str:
