@@ -1,7 +1,7 @@
 """Each case's ``expect`` block checked by the analysis of its own command, for the report.
 
-One claim per case kind runs what ``trackcert topology`` / ``dkf`` / ``iss`` run and reports the
-observed value of every expected key under ``evidence["expectations"]`` — the mechanism of
+One claim per case kind runs what ``trackcert topology`` / ``dkf`` / ``iss`` / ``simulate``
+run and reports the observed value of every expected key under ``evidence["expectations"]`` — the mechanism of
 :mod:`theory.report.expectations` — so that ``trackcert report`` and the commands agree on
 whether a case's expectations are met. Its status is ``verified`` when every expected key
 matches, ``refuted`` when one does not, ``inconclusive`` when a value could not be decided.
@@ -14,7 +14,7 @@ from typing import Any
 from theory.case_file import Case
 from theory.claims import ClaimResult, register
 
-__all__ = ["dkf_observed", "pursuit_observed", "tdoa_observed"]
+__all__ = ["dkf_observed", "pursuit_observed", "tdoa_observed", "tdoa_sim_observed"]
 
 
 def tdoa_observed(case: Case) -> dict[str, Any]:
@@ -45,6 +45,20 @@ def pursuit_observed(case: Case) -> dict[str, Any]:
     from theory.cli.iss import iss_report
 
     return {e["key"]: e["actual"] for e in iss_report(case)["expectations"]}
+
+
+def tdoa_sim_observed(case: Case) -> dict[str, Any]:
+    """Observed values of ``case``'s tdoa-sim keys: one run with seed 0, as ``trackcert simulate``
+    runs it by default, judged by :func:`theory.sim.metrics.check_expectations`."""
+    import math
+
+    from theory.sim.metrics import check_expectations, summarize_runs
+    from theory.sim.runner import monte_carlo
+
+    results = monte_carlo(case.spec, runs=1, seed=0, workers=1)
+    bound = case.tolerances.get("error_bound", 10.0 * math.sqrt(case.spec.r))
+    checked = check_expectations(summarize_runs(case.spec, results), case.expect, error_bound=bound)
+    return {key: entry["got"] for key, entry in checked.items()}
 
 
 def _expectation_claim(kind: str, command: str, observe: Any) -> None:
@@ -79,3 +93,4 @@ def _expectation_claim(kind: str, command: str, observe: Any) -> None:
 _expectation_claim("tdoa", "topology", tdoa_observed)
 _expectation_claim("dkf", "dkf", dkf_observed)
 _expectation_claim("pursuit", "iss", pursuit_observed)
+_expectation_claim("tdoa-sim", "simulate", tdoa_sim_observed)
