@@ -1,10 +1,12 @@
 """Each case's ``expect`` block checked by the analysis of its own command, for the report.
 
 One claim per case kind runs what ``trackcert topology`` / ``dkf`` / ``iss`` / ``simulate``
-run and reports the observed value of every expected key under ``evidence["expectations"]`` — the mechanism of
-:mod:`theory.report.expectations` — so that ``trackcert report`` and the commands agree on
-whether a case's expectations are met. Its status is ``verified`` when every expected key
-matches, ``refuted`` when one does not, ``inconclusive`` when a value could not be decided.
+run and reports the observed value of every expected key under ``evidence["expectations"]``
+(the mechanism of :mod:`theory.report.expectations`), so that ``trackcert report`` and the
+commands agree on whether a case's expectations are met. Its status is ``verified`` when every
+expected key matches, ``refuted`` when one does not, ``inconclusive`` when a value could not be
+decided. ``kind: pf`` expectations are not bridged yet: the particle-filter claims judge them
+but do not report them under this key, so the report lists them as unchecked.
 """
 
 from __future__ import annotations
