@@ -5,8 +5,8 @@ run and reports the observed value of every expected key under ``evidence["expec
 (the mechanism of :mod:`theory.report.expectations`), so that ``trackcert report`` and the
 commands agree on whether a case's expectations are met. Its status is ``verified`` when every
 expected key matches, ``refuted`` when one does not, ``inconclusive`` when a value could not be
-decided. ``kind: pf`` expectations are not bridged yet: the particle-filter claims judge them
-but do not report them under this key, so the report lists them as unchecked.
+decided. ``kind: pf`` cases need no bridge: the claims of :mod:`theory.pf_claims`, which
+``trackcert pf`` runs, report their observations themselves.
 """
 
 from __future__ import annotations

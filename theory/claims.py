@@ -42,7 +42,7 @@ CLAIM_MODULES: tuple[str, ...] = (
     "theory.iss_claims",
     "theory.model_claims",
     "theory.observability_claims",
-    "theory.pf_experiments",
+    "theory.pf_claims",
     "theory.pf_vs_ekf",
     "theory.sim.sim_claims",
     "theory.topology_claims",

@@ -22,9 +22,13 @@ Block fields (defaults are seed 002 §3.3.1's where it gives them, ours otherwis
       uniform_max_step: 8.0       # the learner's uniform prior on step length
       learning: {min_samples: 10, gamma_max: 0.95, burn_in: 5}
 
-``expect`` keys: ``converges`` (map of filtering node id → true/false), ``consensus_helps``
-(a node id whose error the consensus step must lower), ``learned_beats_gaussian`` and
-``learned_pdfs_centre`` (node ids for the claims of §3.3.2).
+``expect`` keys (every node id a filtering node; judged by :mod:`theory.pf_claims`)::
+
+    converges: {1: true, 5: false}     # node id → whether its PF converges (Figs. 3.2–3.3)
+    consensus_helps: 4                 # the consensus step lowers this node's error (Fig. 3.4)
+    learned_beats_gaussian: 5          # learned model beats the Gaussian here (Fig. 3.5)
+    learned_pdfs_centre: 5             # the paper's Fig. 3.6: no learned parameter is biased
+    learned_biased: {5: [gamma, lambda]}   # node id → the biased parameters, in PARAM_NAMES order
 """
 
 from __future__ import annotations
@@ -49,7 +53,7 @@ from theory.validation import (
     require,
 )
 
-__all__ = ["MODELS", "PfSpec", "parse_pf"]
+__all__ = ["MODELS", "PARAM_NAMES", "PfSpec", "check_pf_expect", "parse_pf"]
 
 FIELDS = (
     "nodes",
@@ -71,7 +75,16 @@ FIELDS = (
     "uniform_max_step",
     "learning",
 )
-EXPECT_KEYS = ("converges", "consensus_helps", "learned_beats_gaussian", "learned_pdfs_centre")
+EXPECT_KEYS = (
+    "converges",
+    "consensus_helps",
+    "learned_beats_gaussian",
+    "learned_pdfs_centre",
+    "learned_biased",
+)
+NODE_KEYS = ("consensus_helps", "learned_beats_gaussian", "learned_pdfs_centre")
+PARAM_NAMES = ("mu", "gamma", "kappa", "lambda")
+"""The DCRW parameters (μ, γ, κ, λ) of seed 002 eqs. (3.1)–(3.2), in the order fits report them."""
 TOLERANCE_KEYS = ("converge_tol", "diverge_tol", "improvement_tol")
 MODELS = ("dcrw", "gaussian", "learned")
 LEARNING_FIELDS = ("min_samples", "gamma_max", "burn_in")
@@ -231,4 +244,60 @@ def _learning(raw: object) -> dict[str, float]:
     return out
 
 
-register_kind("pf", parse_pf, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+def check_pf_expect(spec: PfSpec, expect: Mapping[str, Any]) -> None:
+    """Validate the values of a pf case's ``expect`` block against ``spec``.
+
+    Node ids must be filtering nodes (1-based); ``converges`` maps them to true/false and
+    ``learned_biased`` to a list of parameter names of :data:`PARAM_NAMES`, in that order.
+
+    Parameters
+    ----------
+    spec : PfSpec
+        The validated scenario (gives the filtering nodes).
+    expect : mapping
+        The case's ``expect`` block, keys already checked.
+
+    Raises
+    ------
+    CaseError
+        Naming the ``expect`` field, the expected form and what was found.
+    """
+    filters = sorted(f + 1 for f in spec.network.filters)
+    node = f"a filtering node id (one of {filters})"
+    for key, value in expect.items():
+        field = f"expect.{key}"
+        if key in NODE_KEYS and not _filtering_node(value, filters):
+            raise CaseError(field, node, value)
+        if key in ("converges", "learned_biased"):
+            if not isinstance(value, Mapping) or not value:
+                raise CaseError(field, f"a non-empty map from {node} to a value", value)
+            for k, v in value.items():
+                _check_node_entry(f"{field}.{k}", key, k, v, filters)
+
+
+def _filtering_node(value: object, filters: list[int]) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool) and value in filters
+
+
+def _check_node_entry(field: str, key: str, node: object, value: object, filters: list) -> None:
+    if not _filtering_node(node, filters):
+        raise CaseError(field, f"a filtering node id (one of {filters}) as the key", node)
+    if key == "converges" and not isinstance(value, bool):
+        raise CaseError(field, "true or false", value)
+    if key == "learned_biased" and not (
+        isinstance(value, list)
+        and all(v in PARAM_NAMES for v in value)
+        and list(value) == [p for p in PARAM_NAMES if p in value]
+    ):
+        raise CaseError(
+            field, f"a list of distinct names of {list(PARAM_NAMES)}, in that order", value
+        )
+
+
+register_kind(
+    "pf",
+    parse_pf,
+    expect_keys=EXPECT_KEYS,
+    tolerance_keys=TOLERANCE_KEYS,
+    check_expect=check_pf_expect,
+)

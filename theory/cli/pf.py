@@ -1,8 +1,10 @@
 """``trackcert pf CASE``: Monte Carlo runs of the distributed TDOA particle filter (seed 002 §3.3).
 
 Prints the per-node error summary and the verdicts of every registered claim for ``kind: pf``
-cases; with ``-o DIR`` writes ``DIR/pf.json`` and the figures. Exit code 0 when every claim the
-case expects is verified, 1 when one is refuted, 3 when one is inconclusive.
+cases, and each key of the case's ``expect`` block with the value the claims observed (the
+verdicts of :mod:`theory.report.expectations`, as ``trackcert report`` gives them); with
+``-o DIR`` writes ``DIR/pf.json`` and the figures. Exit code 0 when every expectation is met, 1
+when one is unmet, 3 when one is inconclusive.
 """
 
 from __future__ import annotations
@@ -67,7 +69,7 @@ def run_pf_case(
     Returns
     -------
     int
-        1 when a claim is refuted, 3 when one is inconclusive, 0 otherwise.
+        1 when an expectation is unmet, 3 when one is inconclusive, 0 otherwise.
     """
     from theory.pf_experiments import monte_carlo, node_summary, shared_monte_carlo
 
@@ -102,6 +104,7 @@ def run_pf_case(
         "config": to_jsonable(vars(spec.config)),
         "agents": node_summary(mc, spec),
         "claims": [result.to_json(source) for source, result in claims],
+        "expectations": _expectations(case, [result for _, result in claims]),
         "figures": figures,
     }
     if folder is not None:
@@ -110,12 +113,24 @@ def run_pf_case(
         print_json(report)
     else:
         _print(report)
-    statuses = {result.status for _, result in claims}
-    if "refuted" in statuses:
+    verdicts = {e["verdict"] for e in report["expectations"]}
+    if "unmet" in verdicts:
         return EXIT_FAILS
-    if "inconclusive" in statuses:
+    if verdicts - {"met"}:
         return EXIT_INCONCLUSIVE
     return EXIT_HOLDS
+
+
+def _expectations(case: Case, results: list) -> list[dict]:
+    from theory.report.canonical import canonical
+    from theory.report.expectations import EXPECTATIONS_KEY, evaluate
+
+    observed = [
+        (r.claim, canonical(r.evidence[EXPECTATIONS_KEY]), r.status)
+        for r in results
+        if EXPECTATIONS_KEY in r.evidence
+    ]
+    return [e.to_json() for e in evaluate(case.name, canonical(case.expect), observed)]
 
 
 def _print(report: dict) -> None:
@@ -144,5 +159,11 @@ def _print(report: dict) -> None:
     console.print(table)
     for claim in report["claims"]:
         console.print(f"{claim['id']}: {claim['status']} — {claim['message']}", markup=False)
+    for e in report["expectations"]:
+        found = ", ".join(json.dumps(o["value"]) for o in e["observations"]) or "nothing"
+        console.print(
+            f"expect {e['key']} = {json.dumps(e['expected'])}: {e['verdict']} (observed {found})",
+            markup=False,
+        )
     for figure in report["figures"]:
         console.print(f"figure: {figure}", markup=False)
