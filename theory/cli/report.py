@@ -17,7 +17,11 @@ from theory.report.canonical import dumps
 from theory.report.render import write_report
 from theory.report.runner import MODEL_CASE, run_claims, select_claims
 
-__all__ = ["register"]
+__all__ = ["DEFAULT_TIME_LIMIT", "register"]
+
+DEFAULT_TIME_LIMIT = 300.0
+"""Seconds one check (a claim on a case) may take by default: the slowest bundled one takes about
+20 s on two cores, so only a runaway check meets it."""
 
 
 def register(app: typer.Typer) -> None:
@@ -42,6 +46,15 @@ def register(app: typer.Typer) -> None:
             Path | None,
             typer.Option("--errata", help="Errata document (default: docs/errata.md)."),
         ] = None,
+        time_limit: Annotated[
+            float,
+            typer.Option(
+                "--time-limit",
+                min=0,
+                help="Seconds each check may run before it is recorded as inconclusive "
+                "(0: no limit).",
+            ),
+        ] = DEFAULT_TIME_LIMIT,
         as_json: Annotated[
             bool, typer.Option("--json", help="Also print report.json to stdout.")
         ] = False,
@@ -50,8 +63,8 @@ def register(app: typer.Typer) -> None:
 
         Exit 0 when every expectation of every case is met, 1 otherwise, 2 on bad input. CASES
         are case files or bundled names; --seed seeds every randomized check; --only keeps the
-        claims whose id matches a pattern; --errata names the errata document; --json prints
-        report.json.
+        claims whose id matches a pattern; --errata names the errata document; --time-limit
+        bounds each check's wall time; --json prints report.json.
         """
         loaded = [load_case(c) for c in (cases or list(bundled_cases()))]
         claims = select_claims(all_claims(), only or [])
@@ -61,7 +74,7 @@ def register(app: typer.Typer) -> None:
             )
         if errata is not None and not errata.is_file():
             raise CaseError("--errata", "a readable Markdown file", str(errata))
-        run = _run_with_progress(loaded, claims, seed)
+        run = _run_with_progress(loaded, claims, seed, time_limit or None)
         document = write_report(run, out, errata_path=errata)
         if as_json:
             console.file.write(dumps(document))
@@ -74,7 +87,7 @@ def _known_ids() -> str:
     return "Registered claims: " + ", ".join(c.id for c in all_claims())
 
 
-def _run_with_progress(cases, claims, seed):
+def _run_with_progress(cases, claims, seed, seconds):
     total = sum(1 for c in claims if not c.kinds) + sum(
         1 for case in cases for c in claims if case.kind in c.kinds
     )
@@ -92,7 +105,7 @@ def _run_with_progress(cases, claims, seed):
             progress.update(task, description=f"{claim_id} on {where}")
             progress.advance(task)
 
-        return run_claims(cases, seed=seed, claims=claims, progress=advance)
+        return run_claims(cases, seed=seed, claims=claims, progress=advance, seconds=seconds)
 
 
 def _print_summary(document: dict, out: Path) -> None:

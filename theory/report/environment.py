@@ -18,6 +18,7 @@ import theory
 from theory.case_file import Case, bundled_case_dir
 from theory.claims import CLAIM_MODULES, all_claims
 from theory.report.runner import Record
+from theory.report.time_limit import enforceable
 
 __all__ = ["PACKAGES", "SEED_RULE", "environment"]
 
@@ -36,13 +37,19 @@ PACKAGES = (
     "matplotlib",
     "jinja2",
     "pyyaml",
+    "hypothesis",
 )
 """Distributions whose versions the report records (trackcert's runtime dependencies)."""
 
 SEED_RULE = 'claim seed = first 4 bytes (big-endian) of SHA-256("{seed}:{claim id}:{case}")'
 
 
-def environment(seed: int, cases: Sequence[Case], records: Sequence[Record]) -> dict[str, Any]:
+def environment(
+    seed: int,
+    cases: Sequence[Case],
+    records: Sequence[Record],
+    time_limit: float | None = None,
+) -> dict[str, Any]:
     """The environment section of ``report.json``.
 
     Parameters
@@ -53,6 +60,8 @@ def environment(seed: int, cases: Sequence[Case], records: Sequence[Record]) -> 
         The cases reported on.
     records : sequence of Record
         The results (their tolerances are summarised).
+    time_limit : float or None
+        Seconds allowed to each check (``None``: no limit).
 
     Returns
     -------
@@ -61,7 +70,8 @@ def environment(seed: int, cases: Sequence[Case], records: Sequence[Record]) -> 
         ``"not installed"``), ``trackcert`` (version and source revision), ``seed``,
         ``seed_rule``, ``cases`` (name, kind, file, SHA-256, tolerance overrides),
         ``claim_modules``, ``claims_registered`` and ``tolerances`` (name → the distinct
-        values used by the claims).
+        values used by the claims), ``time_limit`` (seconds or ``None``) and
+        ``time_limit_enforced`` (whether this platform can interrupt a check).
     """
     return {
         "python": platform.python_version(),
@@ -75,6 +85,8 @@ def environment(seed: int, cases: Sequence[Case], records: Sequence[Record]) -> 
         "claim_modules": list(CLAIM_MODULES),
         "claims_registered": len(all_claims()),
         "tolerances": _tolerances(records),
+        "time_limit": time_limit,
+        "time_limit_enforced": time_limit is not None and enforceable(),
     }
 
 

@@ -74,7 +74,7 @@ def write_report(
     except OSError as error:
         raise CaseError("-o", "a folder that can be created", str(out), hint=str(error)) from None
     artifacts = collect(run.records, out, checker=checker)
-    env = environment(run.seed, run.cases, run.records)
+    env = environment(run.seed, run.cases, run.records, run.time_limit)
     text = dumps(build_document(run, artifacts, env, errata))
     document = json.loads(text)
     files = {

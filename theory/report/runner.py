@@ -5,7 +5,9 @@ case's kind, and it runs the model claims (``kinds=()``) once, on no case (case 
 exception a check raises, and every malformed answer it returns, becomes a :class:`Record` with
 status ``inconclusive``, method ``"none"`` and the error in its message and evidence, so the report
 always completes. A claim whose ``run`` accepts a keyword ``seed`` receives one derived from the
-report's seed, its id and the case name (:func:`derive_seed`), so reruns are identical.
+report's seed, its id and the case name (:func:`derive_seed`), so reruns are identical. With a
+time limit (:mod:`theory.report.time_limit`), a check still running when it expires becomes an
+``inconclusive`` record saying so, and the report goes on with the next one.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from theory.claims import Claim, ClaimResult, all_claims
 from theory.errors import CaseError
 from theory.report.canonical import canonical
 from theory.report.expectations import EXPECTATIONS_KEY, Expectation, evaluate
+from theory.report.time_limit import TimeLimitExceeded, time_limit
 
 __all__ = [
     "MODEL_CASE",
@@ -86,6 +89,8 @@ class RunResult:
         The claims that were run, sorted by id.
     seed : int
         The report's seed.
+    time_limit : float or None
+        Seconds allowed to each check (``None``: no limit).
     """
 
     records: tuple[Record, ...]
@@ -94,6 +99,7 @@ class RunResult:
     cases: tuple[Case, ...]
     claims: tuple[Claim, ...]
     seed: int
+    time_limit: float | None = None
 
     @property
     def all_expectations_met(self) -> bool:
@@ -167,6 +173,7 @@ def run_claims(
     seed: int = 0,
     claims: Sequence[Claim] | None = None,
     progress: ProgressHook | None = None,
+    seconds: float | None = None,
 ) -> RunResult:
     """Run each claim on each case it applies to, and the model claims once.
 
@@ -180,6 +187,8 @@ def run_claims(
         Defaults to every registered claim (:func:`theory.claims.all_claims`).
     progress : callable, optional
         Called as ``progress(claim_id, case_name)`` before each run.
+    seconds : float, optional
+        Time limit of each check (one claim on one case); ``None``: none.
 
     Returns
     -------
@@ -197,14 +206,16 @@ def run_claims(
         name = MODEL_CASE if case is None else case.name
         if progress is not None:
             progress(claim.id, name)
-        records = _run_one(claim, case, seed)
+        records = _run_one(claim, case, seed, seconds)
         if not records:
             skipped.append((claim.id, name))
         rows.extend((order[name], r) for r in records)
     rows.sort(key=lambda row: (row[1].paper, row[1].id, row[0]))
     records = tuple(r for _, r in rows)
     expectations = _expectations(cases, records)
-    return RunResult(records, expectations, tuple(skipped), tuple(cases), tuple(claims), seed)
+    return RunResult(
+        records, expectations, tuple(skipped), tuple(cases), tuple(claims), seed, seconds
+    )
 
 
 def _check_distinct_names(cases: Sequence[Case]) -> None:
@@ -214,13 +225,14 @@ def _check_distinct_names(cases: Sequence[Case]) -> None:
         raise CaseError("name", "distinct case names in one report", duplicated[0])
 
 
-def _run_one(claim: Claim, case: Case | None, seed: int) -> list[Record]:
+def _run_one(claim: Claim, case: Case | None, seed: int, seconds: float | None) -> list[Record]:
     name = MODEL_CASE if case is None else case.name
     claim_seed = derive_seed(seed, claim.id, name) if _takes_seed(claim.run) else None
     try:
-        results = claim.run(case) if claim_seed is None else claim.run(case, seed=claim_seed)
+        with time_limit(seconds):
+            results = claim.run(case) if claim_seed is None else claim.run(case, seed=claim_seed)
         return [_record(claim, name, result, claim_seed) for result in _checked(results)]
-    except (Exception, SystemExit) as error:  # one failing check never stops the report
+    except (Exception, SystemExit, TimeLimitExceeded) as error:  # one check never stops the report
         return [_failure(claim, name, error, claim_seed)]
 
 
@@ -272,7 +284,9 @@ def _failure(claim: Claim, case: str, error: BaseException, seed: int | None) ->
         case=case,
         method="none",
         status="inconclusive",
-        message=f"the check failed to run: {kind}: {error}",
+        message=str(error)
+        if isinstance(error, TimeLimitExceeded)
+        else f"the check failed to run: {kind}: {error}",
         evidence={"error": {"type": kind, "message": str(error), "where": _where(error)}},
         seed=seed,
     )
