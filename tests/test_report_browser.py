@@ -53,6 +53,7 @@ class _Page(HTMLParser):
         super().__init__()
         self.body: dict[str, str | None] = {}
         self.rows: list[tuple[str | None, str | None]] = []
+        self.hidden: list[bool] = []
         self._in_summary = False
 
     def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
@@ -63,6 +64,7 @@ class _Page(HTMLParser):
             self._in_summary = attributes.get("id") == "summary-table"
         elif tag == "tr" and self._in_summary and "data-claim" in attributes:
             self.rows.append((attributes["data-claim"], attributes.get("data-case")))
+            self.hidden.append("hidden" in attributes)
 
     def handle_endtag(self, tag: str) -> None:
         if tag == "table":
@@ -86,23 +88,7 @@ def test_index_html_renders_in_chromium(monkeypatch, tmp_path) -> None:
     cases = [load_case(write_case(tmp_path, "case-a")), load_case(write_case(tmp_path, "case-b"))]
     document = write_report(run_claims(cases, seed=0), out)
     screenshot = out / "screenshot.png"
-    done = subprocess.run(
-        [
-            CHROMIUM,
-            *FLAGS,
-            f"--user-data-dir={tmp_path / 'profile'}",
-            f"--screenshot={screenshot}",
-            "--dump-dom",
-            (out / "index.html").as_uri(),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=180,
-        check=False,
-    )
-    assert done.returncode == 0, done.stderr[-2000:]
-    page = _Page()
-    page.feed(done.stdout)
+    done, page = _render(out / "index.html", tmp_path, f"--screenshot={screenshot}")
     assert page.body.get("data-loaded") == "yes", "the page's load event never ran"
     assert page.body.get("data-broken-images") == "0", "an embedded figure did not decode"
     assert "Uncaught" not in done.stderr, done.stderr[-2000:]
@@ -114,3 +100,40 @@ def test_index_html_renders_in_chromium(monkeypatch, tmp_path) -> None:
     if os.environ.get("TRACKCERT_SCREENSHOT"):
         shutil.copyfile(screenshot, os.environ["TRACKCERT_SCREENSHOT"])
     assert json.loads((out / "report.json").read_text()) == document
+    assert not any(page.hidden), "the summary filter hides rows by default"
+
+
+def test_summary_filter_presets_from_the_address(monkeypatch, tmp_path) -> None:
+    """``#status=inconclusive&text=case-b`` shows exactly the inconclusive rows of case-b."""
+    register = fake_registry(monkeypatch)
+    register_standard_fakes(register, crash=True)
+    out = tmp_path / "report"
+    cases = [load_case(write_case(tmp_path, "case-a")), load_case(write_case(tmp_path, "case-b"))]
+    document = write_report(run_claims(cases, seed=0), out)
+    url = (out / "index.html").as_uri() + "#status=inconclusive&text=case-b"
+    _, page = _render(url, tmp_path)
+    shown = [row for row, hidden in zip(page.rows, page.hidden, strict=True) if not hidden]
+    expected = [
+        (c["id"], c["case"])
+        for c in document["claims"]
+        if c["status"] == "inconclusive" and c["case"] == "case-b"
+    ]
+    assert shown == expected and len(expected) == 1
+
+
+def _render(
+    target: Path | str, tmp_path: Path, *extra: str
+) -> tuple[subprocess.CompletedProcess, _Page]:
+    """Load ``target`` (a file or an address) in headless Chromium; the run and the parsed DOM."""
+    url = target.as_uri() if isinstance(target, Path) else target
+    done = subprocess.run(
+        [CHROMIUM, *FLAGS, f"--user-data-dir={tmp_path / 'profile'}", *extra, "--dump-dom", url],
+        capture_output=True,
+        text=True,
+        timeout=180,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    page = _Page()
+    page.feed(done.stdout)
+    return done, page
