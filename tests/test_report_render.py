@@ -93,6 +93,24 @@ def test_html_and_markdown_show_every_result(monkeypatch, tmp_path) -> None:
     assert "<style>" in page and "<link" not in page  # self-contained
 
 
+def test_each_result_shows_the_seed_it_used(monkeypatch, tmp_path) -> None:
+    """The derived seed where the check takes one, else the seed its evidence names."""
+    register = fake_registry(monkeypatch)
+    register_standard_fakes(register)
+
+    @register("seed002.fake.own-seed", source="s", statement="t", kinds=("tdoa",))
+    def own_seed(case):
+        return [result(case, claim="seed002.fake.own-seed", evidence={"seed": 2})]
+
+    files = _report(tmp_path, "out", seed=4)
+    document = json.loads(files["report.json"])
+    derived = next(c["seed"] for c in document["claims"] if c["id"] == "seed003.fake.random")
+    text = files["report.md"].decode()
+    assert f"seed {derived})" in text
+    assert "seed 2 (the check's own; not derived from --seed))" in text
+    assert "seed —)" in text  # the model claim uses no randomness
+
+
 def test_errata_are_linked_to_their_claims_and_escaped(monkeypatch, tmp_path) -> None:
     register = fake_registry(monkeypatch)
     register_standard_fakes(register)

@@ -149,6 +149,7 @@ def _environment(*, autoescape: bool) -> jinja2.Environment:
     )
     env.filters["num"] = _number
     env.filters["pretty"] = _pretty
+    env.filters["seed"] = _seed
     env.filters["image"] = lambda path: Path(path).suffix.lower() in _IMAGE_TYPES
     return env
 
@@ -190,6 +191,15 @@ def _number(value: Any) -> str:
     if isinstance(value, float):
         return f"{value:.3g}"
     return str(value)
+
+
+def _seed(record: dict[str, Any]) -> str:
+    """The seed a result used: the report's derived one, else the one its evidence names (a
+    case's own Monte Carlo seed, a command's fixed default), else none."""
+    if record["seed"] is not None:
+        return str(record["seed"])
+    own = record["evidence"].get("seed")
+    return "—" if own is None else f"{own} (the check's own; not derived from --seed)"
 
 
 def _pretty(value: Any) -> str:
