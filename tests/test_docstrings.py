@@ -23,48 +23,6 @@ import theory
 SKIP_PARAMS = {"self", "cls", "draw"}
 
 
-SUMMARY_STYLE = frozenset(
-    {
-        "theory.case_file.parse_case",
-        "theory.case_file.register_kind",
-        "theory.claims.register",
-        "theory.network.adjacency_from_edges",
-        "theory.network.adjacency_from_range",
-        "theory.observability.observability_matrix",
-        "theory.observability.unobservable_eigenvalues",
-        "theory.pf_experiments.build_motion",
-        "theory.pf_experiments.compare_variants",
-        "theory.pf_experiments.shared_monte_carlo",
-        "theory.sim.agents.steering_dynamics",
-        "theory.sim.formation.crown_vertices",
-        "theory.sim.metrics.run_metrics",
-        "theory.sim.runner.run_seeds",
-        "theory.strategies.digraph_laplacians",
-        "theory.strategies.dkf_problems",
-        "theory.strategies.is_connected",
-        "theory.strategies.networks",
-        "theory.strategies.tdoa_scenes",
-        "theory.strategies.weight_matrices",
-        "theory.tdoa.cv_discrete",
-        "theory.tdoa.cv_discrete_symbolic",
-        "theory.tdoa.tdoa_jacobian",
-        "theory.tdoa.tdoa_measurement",
-        "theory.tdoa.unit_directions",
-        "theory.validation.check_keys",
-        "theory.validation.finite_array",
-        "theory.validation.finite_matrix",
-        "theory.validation.finite_vector",
-        "theory.validation.one_of",
-        "theory.validation.positive_definite",
-        "theory.validation.positive_int",
-        "theory.validation.positive_number",
-        "theory.validation.require",
-    }
-)
-"""Functions of several parameters still documented in prose (each parameter named in the text)
-rather than in a ``Parameters`` section; no new name may join this list."""
-
-
 def theory_modules() -> list[str]:
     """Every module under ``theory/`` except ``__main__`` scripts (importing one runs the CLI)."""
     return [
@@ -157,8 +115,7 @@ def test_public_callable_is_documented(name: str, obj) -> None:
     parameters = [] if inspect.isclass(obj) else _own_parameters(obj)
     documented = documented_parameters("\n" + doc)
     if documented is None:
-        exempt = name in SUMMARY_STYLE
-        assert len(parameters) < 2 or exempt, (
+        assert len(parameters) < 2, (
             f"{name}: {len(parameters)} parameters but no numpydoc Parameters section"
         )
         return
@@ -219,11 +176,6 @@ def test_walk_reaches_every_module() -> None:
     walked = set(theory_modules())
     assert on_disk == walked
     assert {"theory.sim.pursuit_sim", "theory.cli.simulate", "theory.cli.common"} <= walked
-
-
-def test_summary_style_names_are_public_functions() -> None:
-    functions = {n for n, obj in CALLABLES if inspect.isfunction(obj)}
-    assert SUMMARY_STYLE <= functions, sorted(SUMMARY_STYLE - functions)
 
 
 def test_parameters_rules_catch_offenders() -> None:

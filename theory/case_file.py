@@ -105,9 +105,20 @@ def register_kind(
 ) -> None:
     """Register the parser of ``kind`` (called by the kind's module at import time).
 
-    ``parse`` validates the kind's block and returns its spec; ``expect_keys`` and
-    ``tolerance_keys`` are the keys the case's ``expect`` and ``tolerances`` blocks may use;
-    ``check_expect(spec, expect)``, when given, validates the expected values themselves.
+    The other arguments are stored, under ``kind``, as a :class:`KindSpec`.
+
+    Parameters
+    ----------
+    kind : str
+        The kind's name, also the name of its block in a case file (e.g. ``tdoa``).
+    parse : callable
+        ``parse(block)`` validates the kind's block and returns its spec.
+    expect_keys : tuple of str
+        Keys the case's ``expect`` block may use.
+    tolerance_keys : tuple of str
+        Keys the case's ``tolerances`` block may use.
+    check_expect : callable, optional
+        ``check_expect(spec, expect)``, when given, validates the expected values themselves.
     """
     _KINDS[kind] = KindSpec(parse, tuple(expect_keys), tuple(tolerance_keys), check_expect)
 
@@ -121,6 +132,17 @@ def known_kinds() -> dict[str, KindSpec]:
 
 def parse_case(data: object, *, file: str = "<data>") -> Case:
     """Validate a case given as plain data (the parsed YAML).
+
+    Parameters
+    ----------
+    data : object
+        The parsed YAML: a mapping with the header fields and the kind's block.
+    file : str
+        Where ``data`` came from, named in errors (``<data>`` for in-memory cases).
+
+    Returns
+    -------
+    Case
 
     Raises
     ------

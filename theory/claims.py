@@ -140,7 +140,27 @@ def register(
 ) -> Callable[[Callable[[Any], list[ClaimResult]]], Callable[[Any], list[ClaimResult]]]:
     """Decorator registering ``run`` as the check for ``claim_id`` (ids must be unique).
 
-    ``source``, ``statement`` and ``kinds`` are stored on the :class:`Claim`.
+    Parameters
+    ----------
+    claim_id : str
+        Stable id, e.g. ``seed000.eq4.20``.
+    source : str
+        Where the claim comes from, e.g. ``seed 000 eq. (4.20)``.
+    statement : str
+        The claim in one line.
+    kinds : tuple of str
+        Case kinds it applies to; empty for claims about the model alone.
+
+    Returns
+    -------
+    callable
+        The decorator; it stores a :class:`Claim` with these fields and returns ``run``
+        unchanged.
+
+    Raises
+    ------
+    ValueError
+        From the decorator, if ``claim_id`` is already registered.
     """
 
     def decorate(run: Callable[[Any], list[ClaimResult]]) -> Callable[[Any], list[ClaimResult]]:

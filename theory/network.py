@@ -25,8 +25,19 @@ def adjacency_from_edges(n: int, edges: np.ndarray, *, directed: bool = False) -
 
     ``A[r, s]`` means "agent r receives from agent s".
 
-    Undirected edges are symmetrised; a directed edge ``(s, r)`` means information flows from
-    sender ``s`` to receiver ``r``, so row ``r`` of a consensus matrix ``W`` has ``w_rs > 0``.
+    Parameters
+    ----------
+    n : int
+        Number of agents.
+    edges : ndarray of int, shape (m, 2)
+        0-based pairs ``(s, r)``. A directed edge ``(s, r)`` means information flows from sender
+        ``s`` to receiver ``r``, so row ``r`` of a consensus matrix ``W`` has ``w_rs > 0``.
+    directed : bool
+        Whether ``edges`` are directed; undirected edges are symmetrised.
+
+    Returns
+    -------
+    ndarray of bool, shape (n, n)
     """
     adjacency = np.zeros((n, n), dtype=bool)
     for s, r in np.asarray(edges, dtype=int).reshape(-1, 2):
@@ -40,6 +51,18 @@ def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray
     """Undirected adjacency of agents at ``positions`` closer than ``comm_range``.
 
     The rule is strict (``<``), as in seed 000 §4.4.
+
+    Parameters
+    ----------
+    positions : ndarray, shape (N, d)
+        Agent positions, one per row.
+    comm_range : float
+        Communication range: agents ``i ≠ j`` are linked iff ``‖p_i − p_j‖ < comm_range``.
+
+    Returns
+    -------
+    ndarray of bool, shape (N, N)
+        Symmetric, with a false diagonal.
     """
     diff = positions[:, None, :] - positions[None, :, :]
     distance = np.sqrt((diff**2).sum(axis=-1))

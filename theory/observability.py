@@ -80,7 +80,21 @@ def numeric_rank(matrix: np.ndarray, *, rank_tol: float = RANK_TOL) -> RankResul
 
 
 def observability_matrix(A: np.ndarray, C: np.ndarray, steps: int | None = None) -> np.ndarray:
-    """``O = [C; C A; …; C A^{steps−1}]`` (seed 000 eq. (4.18)); ``steps`` defaults to ``n``."""
+    """``O = [C; C A; …; C A^{steps−1}]`` (seed 000 eq. (4.18)).
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        State matrix.
+    C : ndarray
+        Output matrix, reshaped to ``(-1, n)``.
+    steps : int, optional
+        Number of blocks ``C A^k``; defaults to ``n``.
+
+    Returns
+    -------
+    ndarray, shape (steps · p, n)
+    """
     n = A.shape[0]
     blocks, block = [], np.asarray(C, dtype=float).reshape(-1, n)
     for _ in range(n if steps is None else steps):
@@ -94,9 +108,20 @@ def unobservable_eigenvalues(
 ) -> list[complex]:
     """Eigenvalues λ of ``A`` failing the PBH test ``rank [A − λI; C] = n``.
 
-    Ranks use the relative tolerance ``rank_tol``. Repeated eigenvalues are listed once per
-    lost rank (geometric defect), so the list's length is ``n − rank O`` when ``A`` is
-    diagonalisable.
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        State matrix.
+    C : ndarray
+        Output matrix, reshaped to ``(-1, n)``.
+    rank_tol : float
+        Relative tolerance of the ranks (see :func:`numeric_rank`).
+
+    Returns
+    -------
+    list of complex
+        Repeated eigenvalues are listed once per lost rank (geometric defect), so the list's
+        length is ``n − rank O`` when ``A`` is diagonalisable.
     """
     n = A.shape[0]
     distinct = _distinct(np.linalg.eigvals(A), scale=max(1.0, float(np.abs(A).max(initial=0.0))))

@@ -84,7 +84,26 @@ class MonteCarlo:
 
 
 def build_motion(spec: PfSpec, model: str) -> Any:
-    """The propagation model ``model`` (``dcrw`` | ``gaussian`` | ``learned``) for ``spec``."""
+    """The propagation model ``model`` (``dcrw`` | ``gaussian`` | ``learned``) for ``spec``.
+
+    Parameters
+    ----------
+    spec : PfSpec
+        The scenario: gives the DCRW target parameters, the uniform proposal's maximum step and
+        the learning settings.
+    model : str
+        ``dcrw`` (the true target model), ``gaussian`` or ``learned`` (an online learner over a
+        uniform proposal).
+
+    Returns
+    -------
+    DcrwMotion or GaussianMotion or OnlineLearner
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``model``.
+    """
     if model == "dcrw":
         return DcrwMotion(spec.target)
     if model == "gaussian":
@@ -261,10 +280,31 @@ def compare_variants(
 ) -> dict[str, Any]:
     """Paired comparison at filter ``column``: is ``better``'s error lower than ``worse``'s?
 
-    ``metric`` is ``"tail"`` (mean error over the second half of the steps) or ``"cumulative"``
-    (``Σ_k E_i(k)``, the quantity of seed 002 Fig. 3.5). Returns the mean difference
-    (worse − better), its standard error, ``z`` = ratio and the verdict ``"lower"``
-    (z ≥ improvement_tol), ``"not lower"`` (z ≤ 0) or ``"inconclusive"``.
+    Parameters
+    ----------
+    better : MonteCarlo
+        The variant expected to have the lower error.
+    worse : MonteCarlo
+        The variant it is compared with (same runs, paired by run).
+    column : int
+        Index of the filtering node (the last axis of ``errors``).
+    improvement_tol : float
+        Number of standard errors ``z`` must reach for the verdict ``"lower"``.
+    metric : str
+        ``"tail"`` (mean error over the second half of the steps) or ``"cumulative"``
+        (``Σ_k E_i(k)``, the quantity of seed 002 Fig. 3.5).
+
+    Returns
+    -------
+    dict
+        ``mean_difference`` (worse − better), its ``standard_error``, ``z`` = their ratio and the
+        ``verdict``: ``"lower"`` (z ≥ improvement_tol), ``"not lower"`` (z ≤ 0) or
+        ``"inconclusive"``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``metric``.
     """
     if metric not in ("tail", "cumulative"):
         raise ValueError(f"metric must be 'tail' or 'cumulative', got {metric!r}")
@@ -284,8 +324,23 @@ def compare_variants(
 def shared_monte_carlo(
     spec: PfSpec, *, model: str | None = None, share: int | None = None
 ) -> MonteCarlo:
-    """:func:`monte_carlo` memoised per ``spec`` object, model and ``m``, so that the claims run
-    on one loaded case (the report, ``trackcert pf``) share their runs instead of repeating them.
+    """:func:`monte_carlo` memoised per ``spec`` object, model and ``m``.
+
+    Thus the claims run on one loaded case (the report, ``trackcert pf``) share their runs
+    instead of repeating them.
+
+    Parameters
+    ----------
+    spec : PfSpec
+        The scenario (memoised by object identity).
+    model : str, optional
+        Override the propagation model (default: the case's).
+    share : int, optional
+        Override ``m`` (0 disables consensus; default: the case's).
+
+    Returns
+    -------
+    MonteCarlo
     """
     model = spec.model if model is None else model
     return _memoised(spec, model, spec.config.share if share is None else share)

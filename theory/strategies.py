@@ -200,8 +200,25 @@ def networks(
 ) -> np.ndarray:
     """Boolean "hears" matrices ``H[r, s]`` (no self-loops) of ``min_agents`` to ``max_agents``.
 
-    ``connected=True`` gives (strongly, when directed) connected graphs, ``False`` gives graphs
-    with at least two (weak) components, ``None`` either.
+    Parameters
+    ----------
+    min_agents, max_agents : int
+        Bounds on the number of agents (``1 ≤ min_agents ≤ max_agents``).
+    connected : bool or None
+        ``True`` gives (strongly, when directed) connected graphs, ``False`` gives graphs with at
+        least two (weak) components (so at least 2 agents; needs ``max_agents ≥ 2``), ``None``
+        either.
+    directed : bool
+        Whether ``H`` may be asymmetric; undirected graphs give symmetric ``H``.
+
+    Returns
+    -------
+    SearchStrategy of ndarray of bool, shape (N, N)
+
+    Raises
+    ------
+    InvalidArgument
+        For impossible bounds.
     """
     _check_range("min_agents", min_agents, "max_agents", max_agents, 1)
     if connected is False and max_agents < 2:
@@ -240,9 +257,24 @@ def digraph_laplacians(
 ) -> np.ndarray:
     """Integer Laplacians ``L = D_in − A`` of strongly connected digraphs (seed 003 §II-B).
 
-    A random Hamiltonian cycle (so the digraph is strongly connected) plus up to
-    ``max_extra_edges`` (default ``2n``) random edges, on ``min_agents`` to ``max_agents``
-    nodes; ``a_ij = 1`` means i receives from j.
+    The digraph is a random Hamiltonian cycle (so it is strongly connected) plus random edges;
+    ``a_ij = 1`` means i receives from j.
+
+    Parameters
+    ----------
+    min_agents, max_agents : int
+        Bounds on the number of nodes ``n`` (``2 ≤ min_agents ≤ max_agents``).
+    max_extra_edges : int, optional
+        At most this many random edges beyond the cycle (default ``2n``; ``≥ 0``).
+
+    Returns
+    -------
+    SearchStrategy of ndarray of int, shape (n, n)
+
+    Raises
+    ------
+    InvalidArgument
+        For impossible bounds.
     """
     _check_range("min_agents", min_agents, "max_agents", max_agents, 2)
     if max_extra_edges is not None and max_extra_edges < 0:
@@ -272,12 +304,31 @@ def weight_matrices(
 ) -> np.ndarray:
     """Row-stochastic ``W`` with positive diagonal on a drawn network.
 
-    The network has ``min_agents`` to ``max_agents`` agents and is drawn by :func:`networks`
-    with ``directed`` and ``connected``.
+    The network is drawn by :func:`networks` with ``min_agents``, ``max_agents``, ``directed``
+    and ``connected``.
 
-    ``kind`` is ``metropolis`` (symmetric, doubly stochastic; undirected only), ``uniform``,
-    ``random`` (positive random weights on the support), or ``singular`` (uniform weights on a
-    complete graph with an even count of agents — singular on purpose: W = J/N has rank 1).
+    Parameters
+    ----------
+    min_agents, max_agents : int
+        Bounds on the number of agents.
+    kind : str
+        One of :data:`WEIGHT_KINDS`: ``metropolis`` (symmetric, doubly stochastic; undirected
+        only), ``uniform``, ``random`` (positive random weights on the support), or ``singular``
+        (uniform weights on a complete graph — singular on purpose: W = J/N has rank 1; needs
+        ``min_agents ≥ 2``, and ``directed`` and ``connected`` are ignored).
+    directed : bool
+        Draw a directed network (not with ``metropolis``).
+    connected : bool or None
+        As for :func:`networks`.
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (N, N)
+
+    Raises
+    ------
+    InvalidArgument
+        For an unknown ``kind``, ``metropolis`` with ``directed``, or impossible bounds.
     """
     if kind not in WEIGHT_KINDS:
         raise InvalidArgument(f"kind={kind!r}; expected one of {WEIGHT_KINDS}")
@@ -321,11 +372,33 @@ def dkf_problems(
 ) -> st.SearchStrategy[DkfProblem]:
     """Consensus-filter problems built from one drawn seed (a failing example is its seed).
 
-    ``n`` in ``[min_states, max_states]``, ``N`` in ``[min_agents, max_agents]``; entries of
-    ``A`` bounded by ``a_bound``; each ``C_i`` has 0 to ``max_rows`` rows; ``W`` is
-    row-stochastic with a random directed support and weights ≥ 0.1 before normalisation;
-    gains bounded by ``gain_bound``. With ``integer_data`` the entries of ``A`` are multiples of
-    ``a_bound/2`` and those of ``C_i`` are in {−1, 0, 1} (exact arithmetic stays small).
+    ``W`` is row-stochastic with a random directed support and weights ≥ 0.1 before
+    normalisation.
+
+    Parameters
+    ----------
+    min_states, max_states : int
+        Bounds on the state dimension ``n`` (``1 ≤ min_states ≤ max_states``).
+    min_agents, max_agents : int
+        Bounds on the number of agents ``N`` (``1 ≤ min_agents ≤ max_agents``).
+    max_rows : int
+        Each ``C_i`` has 0 to ``max_rows`` rows (``≥ 0``).
+    a_bound : float
+        Bound on the magnitude of the entries of ``A`` (``> 0``).
+    gain_bound : float
+        Bound on the magnitude of the entries of the gains ``L_i`` (``≥ 0``).
+    integer_data : bool
+        Make the entries of ``A`` multiples of ``a_bound/2`` and those of ``C_i`` lie in
+        {−1, 0, 1} (exact arithmetic stays small).
+
+    Returns
+    -------
+    SearchStrategy of DkfProblem
+
+    Raises
+    ------
+    InvalidArgument
+        At call time, for impossible bounds.
     """
     _check_range("min_states", min_states, "max_states", max_states, 1)
     _check_range("min_agents", min_agents, "max_agents", max_agents, 1)
@@ -366,12 +439,34 @@ def tdoa_scenes(
 ) -> TdoaScene:
     """TDOA scenes in ``dim`` dimensions with ``min_agents`` to ``max_agents`` receivers.
 
-    ``family`` is one of ``general`` (random points, receivers at least
-    ``min_separation·scale`` from the target and from each other), ``coplanar`` (3D:
-    receivers in a plane, target off it),
-    ``cone`` (3D: receivers on a circular cone with apex at the target — the stacked TDOA
-    Jacobian loses rank there), ``target-in-plane`` (3D: receivers and target in one plane).
     The degenerate families are exact up to floating-point rounding of the coordinates.
+
+    Parameters
+    ----------
+    dim : int
+        2 or 3.
+    min_agents, max_agents : int
+        Bounds on the number of receivers (``2 ≤ min_agents ≤ max_agents``).
+    family : str
+        One of :data:`SCENE_FAMILIES`: ``general`` (random points, receivers at least
+        ``min_separation·scale`` from the target), ``coplanar`` (3D: receivers in a plane,
+        target off it), ``cone`` (3D: receivers on a circular cone with apex at the target — the
+        stacked TDOA Jacobian loses rank there), ``target-in-plane`` (3D: receivers and target in
+        one plane).
+    scale : float
+        Length scale (``> 0``): the target is drawn in ``[−scale, scale]^dim`` and the receivers'
+        offsets from it (in-plane offsets, for the planar families) are shorter than ``scale``.
+    min_separation : float
+        Those offsets are at least ``min_separation·scale`` long (``0 < min_separation < 1``).
+
+    Returns
+    -------
+    SearchStrategy of TdoaScene
+
+    Raises
+    ------
+    InvalidArgument
+        For an unknown ``dim`` or ``family``, a 3D family with ``dim=2``, or impossible bounds.
     """
     if dim not in (2, 3):
         raise InvalidArgument(f"dim={dim}; expected 2 or 3")
@@ -613,6 +708,18 @@ def tracker_states(draw: st.DrawFn, *, spec: PursuitSpec, bound: float = 10.0) -
 
 
 def is_connected(hears: np.ndarray, *, strongly: bool = False) -> bool:
-    """Whether the "hears" graph is (strongly) connected — used to test :func:`networks`."""
+    """Whether the "hears" graph is (strongly) connected — used to test :func:`networks`.
+
+    Parameters
+    ----------
+    hears : ndarray of bool, shape (N, N)
+        ``hears[r, s]``: agent ``r`` receives from agent ``s``.
+    strongly : bool
+        Ask for strong connectivity; otherwise weak connectivity is enough.
+
+    Returns
+    -------
+    bool
+    """
     graph = nx.from_numpy_array(hears.T.astype(int), create_using=nx.DiGraph)
     return nx.is_strongly_connected(graph) if strongly else nx.is_weakly_connected(graph)

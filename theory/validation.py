@@ -29,14 +29,54 @@ __all__ = [
 
 
 def require(block: Mapping, key: str, prefix: str) -> object:
-    """Return ``block[key]`` or raise naming the missing field ``prefix.key``."""
+    """Return ``block[key]`` or raise naming the missing field ``prefix.key``.
+
+    Parameters
+    ----------
+    block : Mapping
+        The parsed block that should hold ``key``.
+    key : str
+        The required field.
+    prefix : str
+        Dotted name of ``block`` (empty at the top level, when the field is named ``key``).
+
+    Returns
+    -------
+    object
+        ``block[key]``, unchecked.
+
+    Raises
+    ------
+    CaseError
+        If ``key`` is not in ``block``.
+    """
     if key not in block:
         raise CaseError(_join(prefix, key), "a value (the field is required)", "nothing")
     return block[key]
 
 
 def check_keys(block: object, allowed: Sequence[str], prefix: str) -> Mapping:
-    """Ensure ``block`` is a mapping whose keys are all in ``allowed`` (``prefix`` names it)."""
+    """Ensure ``block`` is a mapping whose keys are all in ``allowed``.
+
+    Parameters
+    ----------
+    block : object
+        The raw value of the block.
+    allowed : Sequence of str
+        The known field names; any other key is refused rather than ignored.
+    prefix : str
+        Dotted name of ``block`` in error messages (empty at the top level).
+
+    Returns
+    -------
+    Mapping
+        ``block`` itself.
+
+    Raises
+    ------
+    CaseError
+        If ``block`` is not a mapping, or naming the first unknown field (sorted) otherwise.
+    """
     if not isinstance(block, Mapping):
         raise CaseError(prefix or "<top level>", "a mapping of fields", block)
     unknown = sorted(str(k) for k in block if k not in allowed)
@@ -51,14 +91,53 @@ def check_keys(block: object, allowed: Sequence[str], prefix: str) -> Mapping:
 
 
 def one_of(value: object, choices: Sequence[str], field: str) -> str:
-    """Return ``value`` if it is one of ``choices`` (errors name ``field``)."""
+    """Return ``value`` if it is one of ``choices``.
+
+    Parameters
+    ----------
+    value : object
+        The raw value.
+    choices : Sequence of str
+        The accepted strings.
+    field : str
+        Dotted field name for messages.
+
+    Returns
+    -------
+    str
+        ``value``.
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a string among ``choices``.
+    """
     if not isinstance(value, str) or value not in choices:
         raise CaseError(field, f"one of {list(choices)}", value)
     return value
 
 
 def positive_number(value: object, field: str, *, allow_zero: bool = False) -> float:
-    """``value`` (named ``field``) as a finite real number > 0 (or ≥ 0 with ``allow_zero``)."""
+    """``value`` as a finite real number > 0 (or ≥ 0 with ``allow_zero``).
+
+    Parameters
+    ----------
+    value : object
+        The raw value; an ``int`` or ``float`` (``bool`` is refused).
+    field : str
+        Dotted field name for messages.
+    allow_zero : bool
+        Accept 0 as well (the bound becomes ≥ 0).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a number, or is not finite, or is out of bounds.
+    """
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise CaseError(field, "a number", value)
     number = float(value)
@@ -69,7 +148,27 @@ def positive_number(value: object, field: str, *, allow_zero: bool = False) -> f
 
 
 def positive_int(value: object, field: str, *, minimum: int = 1) -> int:
-    """``value`` (named ``field``) as an integer ≥ ``minimum``."""
+    """``value`` as an integer ≥ ``minimum``.
+
+    Parameters
+    ----------
+    value : object
+        The raw value; an ``int`` (``bool`` is refused).
+    field : str
+        Dotted field name for messages.
+    minimum : int
+        The least accepted value.
+
+    Returns
+    -------
+    int
+        ``value``.
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not an integer or is below ``minimum``.
+    """
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
         raise CaseError(field, f"an integer ≥ {minimum}", value)
     return value
@@ -83,10 +182,29 @@ def finite_matrix(
     cols: int | None = None,
     allow_empty_rows: bool = False,
 ) -> np.ndarray:
-    """``value`` (named ``field``) as a 2-D array of finite reals.
+    """``value`` as a 2-D array of finite reals.
 
-    ``rows`` and ``cols`` fix the shape when given; ``allow_empty_rows`` accepts ``[]`` as a
-    ``0 × cols`` matrix.
+    Parameters
+    ----------
+    value : object
+        The raw value: a list of equal-length rows of numbers.
+    field : str
+        Dotted field name for messages.
+    rows : int, optional
+        Required number of rows; any when not given.
+    cols : int, optional
+        Required number of columns; any when not given.
+    allow_empty_rows : bool
+        Accept ``[]`` as a ``0 × cols`` matrix (only when ``cols`` is given).
+
+    Returns
+    -------
+    ndarray of float, shape (rows, cols)
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a matrix of finite numbers, or has the wrong shape.
     """
     array = _numeric_array(value, field, "a matrix (list of equal-length rows of numbers)")
     if array.ndim == 1 and array.size == 0 and allow_empty_rows and cols is not None:
@@ -106,7 +224,27 @@ def finite_matrix(
 def finite_array(value: object, field: str, expected: str, *, ndims: tuple[int, ...]) -> np.ndarray:
     """``value`` as a rectangular array of finite reals with a number of axes in ``ndims``.
 
-    Errors name ``field`` and say ``expected``.
+    Parameters
+    ----------
+    value : object
+        The raw value: nested lists of numbers.
+    field : str
+        Dotted field name for messages.
+    expected : str
+        What a valid value looks like, as said in messages.
+    ndims : tuple of int
+        The accepted numbers of axes.
+
+    Returns
+    -------
+    ndarray of float
+        Non-empty, with ``ndim`` in ``ndims``.
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a rectangular array of finite numbers, is empty, or has a number of
+        axes not in ``ndims``.
     """
     array = _numeric_array(value, field, expected)
     if array.ndim not in ndims or array.size == 0:
@@ -115,7 +253,26 @@ def finite_array(value: object, field: str, expected: str, *, ndims: tuple[int, 
 
 
 def finite_vector(value: object, field: str, *, length: int | None = None) -> np.ndarray:
-    """``value`` (named ``field``) as a 1-D array of finite reals, of ``length`` if given."""
+    """``value`` as a 1-D array of finite reals, of ``length`` if given.
+
+    Parameters
+    ----------
+    value : object
+        The raw value: a list of numbers.
+    field : str
+        Dotted field name for messages.
+    length : int, optional
+        Required number of entries; any when not given.
+
+    Returns
+    -------
+    ndarray of float, shape (length,)
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a list of finite numbers, or has the wrong length.
+    """
     array = _numeric_array(value, field, "a list of numbers")
     if array.ndim != 1:
         raise CaseError(field, "a list of numbers", value)
@@ -175,9 +332,27 @@ def row_stochastic(
 
 
 def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12) -> np.ndarray:
-    """Check that ``matrix`` (named ``field``) is symmetric positive definite.
+    """Check that ``matrix`` is symmetric positive definite.
 
-    Scale-aware: λ_min must exceed ``rel_tol · max|m_ij|``.
+    Parameters
+    ----------
+    matrix : ndarray
+        Candidate matrix ``M``.
+    field : str
+        Dotted field name for messages.
+    rel_tol : float
+        Relative tolerance, scale-aware: λ_min must exceed ``rel_tol · max|m_ij|`` (the scale
+        ``max|m_ij|`` is taken as at least 1); symmetry is checked to ``10³`` times that.
+
+    Returns
+    -------
+    ndarray
+        ``matrix`` itself.
+
+    Raises
+    ------
+    CaseError
+        If ``matrix`` is not square, not symmetric or not positive definite.
     """
     n = matrix.shape[0]
     if matrix.shape != (n, n):

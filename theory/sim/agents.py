@@ -47,7 +47,20 @@ def rest_states(positions: np.ndarray) -> np.ndarray:
 
 
 def steering_dynamics(r: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """``ṙ = f(r) + g(r) u`` of eqs. (4.44), (B.2), (B.4)–(B.6) for a stack of agents (N, 9)."""
+    """``ṙ = f(r) + g(r) u`` of eqs. (4.44), (B.2), (B.4)–(B.6) for a stack of agents (N, 9).
+
+    Parameters
+    ----------
+    r : ndarray, shape (N, 9)
+        Agent states ``[p_x, p_y, p_z, v, φ, γ, a, ω_φ, ω_γ]``, one per row.
+    u : ndarray, shape (N, 3)
+        Inputs ``[u₁, u₂, u₃]`` (``ȧ``, ``ω̇_φ``, ``ω̇_γ``), one per row.
+
+    Returns
+    -------
+    ndarray, shape (N, 9)
+        ``ṙ``, row by row.
+    """
     v, phi, gamma = r[:, 3], r[:, 4], r[:, 5]
     out = np.empty_like(r)
     out[:, 0] = v * np.cos(phi) * np.cos(gamma)

@@ -30,7 +30,21 @@ def cube_vertices(radius: float) -> np.ndarray:
 
 
 def crown_vertices(n: int, radius: float, height: float) -> np.ndarray:
-    """``n`` points on a circle of ``radius`` at heights alternating ``±height``, shape (n, 3)."""
+    """``n`` points on a circle of ``radius`` at heights alternating ``±height``, shape (n, 3).
+
+    Parameters
+    ----------
+    n : int
+        Number of points, at angles ``2πk/n`` (``k = 0, …, n−1``) around the vertical axis.
+    radius : float
+        Radius ``ρ`` of the horizontal circle.
+    height : float
+        ``h``: point ``k`` is at height ``+h`` for even ``k`` and ``−h`` for odd ``k``.
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+    """
     angles = 2.0 * np.pi * np.arange(n) / n
     z = height * np.where(np.arange(n) % 2 == 0, 1.0, -1.0)
     return np.column_stack([radius * np.cos(angles), radius * np.sin(angles), z])

@@ -50,10 +50,21 @@ def run_pcrb(spec: TdoaSimSpec, run: TdoaRun) -> np.ndarray:
 def run_metrics(run: TdoaRun, pcrb: np.ndarray) -> dict[str, np.ndarray]:
     """Per-agent metrics of one run, each an array of shape (N,).
 
-    ``mse_to_pcrb`` is the mean over the second half of the pings (past the initial transient)
-    of ``‖p̄_i(k) − p(k)‖²`` divided by the mean there of the position PCRB trace ``pcrb``
-    (≥ 1 on average over runs for any unbiased estimator; the centralized EKF should come
-    closest).
+    Parameters
+    ----------
+    run : TdoaRun
+        The run.
+    pcrb : ndarray, shape (K+1,)
+        Trace of the position block of the posterior CRB at each ping (see :func:`run_pcrb`).
+
+    Returns
+    -------
+    dict of str to ndarray
+        ``final_localization_error``, ``mean_localization_error``, ``final_cov_norm``,
+        ``mean_cov_norm`` and ``distance`` (see the module docstring), and ``mse_to_pcrb``: the
+        mean over the second half of the pings (past the initial transient) of
+        ``‖p̄_i(k) − p(k)‖²`` divided by the mean there of ``pcrb`` (≥ 1 on average over runs for
+        any unbiased estimator; the centralized EKF should come closest).
     """
     errors = run.localization_errors
     late = errors.shape[0] // 2

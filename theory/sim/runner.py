@@ -24,7 +24,20 @@ def default_workers() -> int:
 
 
 def run_seeds(seed: int, runs: int) -> list[np.random.SeedSequence]:
-    """The seed sequences of runs ``0 … runs−1`` (children of ``SeedSequence(seed)``)."""
+    """The seed sequences of runs ``0 … runs−1`` (children of ``SeedSequence(seed)``).
+
+    Parameters
+    ----------
+    seed : int
+        Base seed of the Monte Carlo.
+    runs : int
+        Number of runs.
+
+    Returns
+    -------
+    list of numpy.random.SeedSequence
+        Item ``i`` seeds run ``i``.
+    """
     return np.random.SeedSequence(seed).spawn(runs)
 
 
