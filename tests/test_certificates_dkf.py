@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pytest
 from hypothesis import assume, given, settings
 from typer.testing import CliRunner
 
@@ -13,6 +14,7 @@ from proofs_check import check_certificate
 from theory.case_certificates import dkf_certificate_claim, primal_lyapunov
 from theory.case_file import load_case
 from theory.certificates import s_detectability_certificate
+from theory.claims import NotApplicable
 from theory.cli import app
 from theory.s_detectability import s_detectability_witness
 from theory.strategies import dkf_problems
@@ -56,7 +58,7 @@ def test_agents_without_measurements_get_a_zero_row() -> None:
 
 def test_paper_example_1_certified_only_below_the_self_weight_bound(tmp_path: Path) -> None:
     """Seed 000 §5.3.1: W_g (w_ii = 0.24) is certified S-detectable; for W_c (0.25) and W_b
-    (0.26) no certificate exists and nothing is written (exit 3)."""
+    (0.26) are decided not S-detectable, so nothing is written (exit 1, as ``trackcert dkf``)."""
     out = tmp_path / "wg.json"
     assert runner.invoke(app, ["certify", "ch5-example-1-wg", "-o", str(out)]).exit_code == 0
     assert runner.invoke(app, ["check", str(out)]).exit_code == 0
@@ -65,7 +67,9 @@ def test_paper_example_1_certified_only_below_the_self_weight_bound(tmp_path: Pa
     for name in ("ch5-example-1-wc", "ch5-example-1-wb"):
         bad = tmp_path / f"{name}.json"
         result = runner.invoke(app, ["certify", name, "-o", str(bad)])
-        assert result.exit_code == 3
+        assert result.exit_code == 1
+        assert "not S-detectable" in result.stderr and "nothing to certify" in result.stderr
+        assert runner.invoke(app, ["dkf", name]).exit_code == 1
         assert not bad.exists()
 
 
@@ -73,5 +77,5 @@ def test_dkf_certificate_claim_results() -> None:
     good = dkf_certificate_claim(load_case("ch5-example-2-wg"))
     assert [r.status for r in good] == ["verified"]
     assert good[0].method == "exact"
-    bad = dkf_certificate_claim(load_case("ch5-example-2-wb"))
-    assert [r.status for r in bad] == ["inconclusive"]
+    with pytest.raises(NotApplicable, match="not S-detectable"):
+        dkf_certificate_claim(load_case("ch5-example-2-wb"))

@@ -19,6 +19,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from theory.case_file import load_case, parse_case
+from theory.errors import PropertyFails
 from theory.iss import (
     coordination_iss,
     generalized_algebraic_connectivity,
@@ -216,7 +217,7 @@ def test_certificate_random_cases(data) -> None:
 
 def test_certificate_refused_when_conditions_fail() -> None:
     for name in ("pursuit-not-strongly-connected", "pursuit-singular-epsilon"):
-        with pytest.raises(ValueError, match="conditions"):
+        with pytest.raises(PropertyFails, match="conditions"):
             iss_certificate_data(load_case(name).spec)
 
 

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 from report_fakes import fake_registry, register_standard_fakes, result, write_case
 
 from theory.case_file import load_case
+from theory.claims import NotApplicable
 from theory.errors import CaseError
 from theory.report.artifacts import check_with_cli
 from theory.report.canonical import canonical, dumps
@@ -109,6 +110,27 @@ def test_each_result_shows_the_seed_it_used(monkeypatch, tmp_path) -> None:
     assert f"seed {derived})" in text
     assert "seed 2 (the check's own; not derived from --seed))" in text
     assert "seed —)" in text  # the model claim uses no randomness
+
+
+def test_not_applicable_pairs_are_listed_with_their_reason(monkeypatch, tmp_path) -> None:
+    register = fake_registry(monkeypatch)
+    register_standard_fakes(register)
+
+    @register("seed002.fake.lemma", source="s", statement="if H then P", kinds=("tdoa",))
+    def lemma(case):
+        raise NotApplicable("hypothesis H <fails> here")
+
+    files = _report(tmp_path, "out", seed=0)
+    document = json.loads(files["report.json"])
+    assert document["not_applicable"] == [
+        {"id": "seed002.fake.lemma", "case": "case-a", "reason": "hypothesis H <fails> here"}
+    ]
+    assert "hypothesis H &lt;fails&gt; here" in files["index.html"].decode()
+    assert (
+        "| `seed002.fake.lemma` | case-a | hypothesis H <fails> here |"
+        in files["report.md"].decode()
+    )
+    assert all(c["id"] != "seed002.fake.lemma" for c in document["claims"])
 
 
 def test_errata_are_linked_to_their_claims_and_escaped(monkeypatch, tmp_path) -> None:

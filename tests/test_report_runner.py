@@ -7,7 +7,7 @@ import pytest
 from report_fakes import fake_registry, register_standard_fakes, result, write_case
 
 from theory.case_file import load_case
-from theory.claims import all_claims
+from theory.claims import NotApplicable, all_claims, applicable_results
 from theory.errors import CaseError
 from theory.report.runner import MODEL_CASE, derive_seed, paper_of, run_claims, select_claims
 
@@ -80,7 +80,22 @@ def test_an_empty_answer_means_not_applicable(monkeypatch, tmp_path) -> None:
     register = fake_registry(monkeypatch)
     register("seed000.never", source="s", statement="t", kinds=("tdoa",))(lambda case: [])
     run = run_claims([load_case(write_case(tmp_path))], seed=0)
-    assert run.records == () and run.not_applicable == (("seed000.never", "four-path"),)
+    assert run.records == () and run.not_applicable == (("seed000.never", "four-path", ""),)
+
+
+def test_not_applicable_carries_its_reason(monkeypatch, tmp_path) -> None:
+    register = fake_registry(monkeypatch)
+
+    @register("seed000.lemma", source="s", statement="if H then P", kinds=("tdoa",))
+    def lemma(case):
+        raise NotApplicable("hypothesis H fails on this case")
+
+    run = run_claims([load_case(write_case(tmp_path))], seed=0, seconds=5.0)
+    assert run.records == ()
+    assert run.not_applicable == (
+        ("seed000.lemma", "four-path", "hypothesis H fails on this case"),
+    )
+    assert applicable_results(all_claims()[0], None) == []
 
 
 def test_claims_of_other_kinds_do_not_run(monkeypatch, tmp_path) -> None:

@@ -6,11 +6,14 @@
 * ``tdoa``: ``generic-rank`` of the network observability matrix and of each agent's block
   column (:mod:`theory.tdoa_rank_certificates`);
 * ``dkf``: ``s-detectability`` with the gains of the LMI witness
-  (:func:`theory.s_detectability.s_detectability_witness`), and, when the case fixes gains, with
+  (:func:`theory.s_detectability.witness_from_decision`), and, when the case fixes gains, with
   those gains. The witness used is the primal Lyapunov tuple of the filter's order; the dual
   tuple is the fallback.
-
 * ``pursuit``: ``iss`` (:mod:`theory.iss_certificates`), when the case's conditions hold.
+
+A case whose property is decided false (not S-detectable, a condition of the ISS analysis
+failing) raises :class:`~theory.errors.PropertyFails`: ``trackcert certify`` exits 1 and the
+claims here do not apply to it (:class:`~theory.claims.NotApplicable`).
 """
 
 from __future__ import annotations
@@ -22,17 +25,17 @@ import numpy as np
 
 from theory.case_file import Case
 from theory.certificates import s_detectability_certificate
-from theory.claims import ClaimResult, register
+from theory.claims import ClaimResult, NotApplicable, register
 from theory.consensus_operators import (
     closed_loop,
     covariance_operator_matrix,
     unvec_tuple,
     vec_tuple,
 )
-from theory.errors import InconclusiveError
+from theory.errors import InconclusiveError, PropertyFails
 from theory.iss_certificates import pursuit_certificates
 from theory.rationalize import RationalizationError
-from theory.s_detectability import s_detectability_witness
+from theory.s_detectability import decide_s_detectability, witness_from_decision
 from theory.tdoa_rank_certificates import generic_rank_certificates
 
 __all__ = [
@@ -121,7 +124,13 @@ def _dkf(case: Case, seed: int) -> Certified:
     del seed
     spec = case.spec
     certs, reasons = [], []
-    witness = s_detectability_witness(spec.A, spec.C, spec.W, order=spec.order)
+    decision = decide_s_detectability(spec.A, spec.C, spec.W, order=spec.order)
+    if decision.verdict is False:
+        raise PropertyFails(
+            f"{case.name} is not S-detectable ({decision.reason}; seed000.def5.2.4, trackcert "
+            "dkf): there is nothing to certify"
+        )
+    witness = witness_from_decision(decision, spec.order)
     if witness is None:
         reasons.append("the LMI found no verified S-detectability witness (see trackcert dkf)")
     else:
@@ -162,6 +171,8 @@ def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:
     InconclusiveError
         If the case's kind has no certificate kinds yet, or no certificate could be made (the
         message gives every reason, e.g. a witness that cannot be rationalized).
+    PropertyFails
+        If the property to certify is decided false for this case.
     """
     if case.kind not in CERTIFIERS:
         raise InconclusiveError(
@@ -179,6 +190,8 @@ def _results(claim_id: str, case: Case, evidence: Callable[[dict], dict]) -> lis
         certs = case_certificates(case)
     except InconclusiveError as error:
         return [ClaimResult(claim_id, case.name, "exact", "inconclusive", message=str(error))]
+    except PropertyFails as error:
+        raise NotApplicable(str(error)) from error
     return [
         ClaimResult(
             claim_id,

@@ -22,7 +22,9 @@ __all__ = [
     "STATUSES",
     "Claim",
     "ClaimResult",
+    "NotApplicable",
     "all_claims",
+    "applicable_results",
     "get_claim",
     "register",
 ]
@@ -50,6 +52,16 @@ CLAIM_MODULES: tuple[str, ...] = (
 """Modules that register claims; each feature appends its module here."""
 
 _REGISTRY: dict[str, Claim] = {}
+
+
+class NotApplicable(Exception):  # noqa: N818 (a verdict, not a failure)
+    """Raised by a check whose claim says nothing about the case, with the reason as message.
+
+    For example a lemma whose hypothesis the case does not meet, or a certificate of a property
+    another claim has decided false. The report lists the pair under ``not_applicable`` with the
+    reason; :func:`applicable_results` reads it as "no result". A check that merely returns an
+    empty list says the same without a reason (the claim's kind fits, its subject is absent).
+    """
 
 
 @dataclass(frozen=True)
@@ -170,6 +182,26 @@ def register(
         return run
 
     return decorate
+
+
+def applicable_results(claim: Claim, case: Any) -> list[ClaimResult]:
+    """``claim.run(case)``, with :class:`NotApplicable` read as no result.
+
+    Parameters
+    ----------
+    claim : Claim
+        A registered claim.
+    case : Case or None
+        The case (``None`` for a claim about the model alone).
+
+    Returns
+    -------
+    list of ClaimResult
+    """
+    try:
+        return claim.run(case)
+    except NotApplicable:
+        return []
 
 
 def all_claims() -> list[Claim]:

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from theory.case_file import Case, load_case
-from theory.claims import ClaimResult, register
+from theory.claims import ClaimResult, NotApplicable, register
 from theory.consensus_operators import (
     B_matrix,
     J_matrix,
@@ -41,6 +41,9 @@ __all__ = ["DkfAnalysis", "analyze_dkf", "printed_match"]
 
 WEIGHT_TOL = 1e-4
 """Bracket width of the self-weight bisection in :func:`analyze_dkf`."""
+
+HYPOTHESIS_TOL = 1e-9
+"""Distance of ``r_σ(J)`` from 1 within which Lemma A.2.1's hypothesis counts as undecided."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -434,11 +437,30 @@ def _claim_lemma_523(case: Case) -> list[ClaimResult]:
 def _claim_lemma_a21(case: Case) -> list[ClaimResult]:
     analysis = analyze_dkf(case, search_self_weight=False)
     spec = case.spec
+    radius = analysis.radius_J
+    if radius is None:
+        raise NotApplicable("no gains: the case fixes none and the LMI found no witness")
+    if radius >= 1 + HYPOTHESIS_TOL:
+        raise NotApplicable(
+            f"hypothesis r_σ(J) < 1 fails with the {analysis.gains_source} gains "
+            f"(r_σ(J) = {radius:.6g})"
+        )
+    if radius >= 1 - HYPOTHESIS_TOL:
+        message = f"r_σ(J) = {radius!r} is within {HYPOTHESIS_TOL:g} of 1: hypothesis undecided"
+        evidence = {"gains_source": analysis.gains_source, "spectral_radius_J": radius}
+        tolerance = {"hypothesis_tol": HYPOTHESIS_TOL}
+        return [
+            _result(
+                "seed000.lemA.2.1",
+                case,
+                "numeric",
+                None,
+                evidence,
+                tolerance=tolerance,
+                message=message,
+            )
+        ]
     M = closed_loop(spec.A, spec.C, analysis.gains)
-    if not (analysis.radius_J is not None and analysis.radius_J < 1 - 1e-9):
-        message = "hypothesis not met with these gains (r_σ(J) ≥ 1): nothing to check"
-        evidence = {"gains_source": analysis.gains_source, "spectral_radius_J": analysis.radius_J}
-        return [_result("seed000.lemA.2.1", case, "numeric", None, evidence, message=message)]
     n, N = spec.n, spec.n_agents
     dim = N * n * n
     X = unvec_tuple(

@@ -1,8 +1,9 @@
 """One exception tree for the whole library (STYLE.md, *Adopt* 4).
 
 Every class derives from :class:`TrackcertError` and from the builtin it refines, so callers may
-catch either. The CLI turns any :class:`TrackcertError` into exit code 2 (bad input) or 3
-(inconclusive) with its message and never a traceback.
+catch either. The CLI turns any :class:`TrackcertError` into exit code 2 (bad input), 1 (the
+property does not hold: :class:`PropertyFails`) or 3 (inconclusive) with its message and never a
+traceback.
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ from __future__ import annotations
 __all__ = [
     "CaseError",
     "InconclusiveError",
+    "PropertyFails",
     "SolverError",
     "TrackcertError",
 ]
@@ -68,6 +70,14 @@ class SolverError(TrackcertError, RuntimeError):
 
 class InconclusiveError(TrackcertError, ArithmeticError):
     """A verdict lies inside its tolerance: deciding it would be a guess (CLI exit code 3)."""
+
+
+class PropertyFails(TrackcertError):  # noqa: N818 (a verdict, not a malfunction)
+    """The property asked for is decided false, so there is nothing to certify (CLI exit code 1).
+
+    For example ``trackcert certify`` on a case whose S-detectability an exact alternative
+    certificate refutes. The message says which check decided it.
+    """
 
 
 def _brief(value: object, limit: int = 120) -> str:

@@ -40,6 +40,7 @@ import numpy as np
 import scipy.linalg
 import sympy as sp
 
+from theory.errors import InconclusiveError, PropertyFails
 from theory.pursuit_case import PursuitSpec, TrackerPath
 
 __all__ = [
@@ -729,16 +730,24 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
 
     Raises
     ------
-    ValueError
-        If a condition of the analysis fails or is inconclusive (no certificate for this case).
+    PropertyFails
+        If a condition of the analysis fails (the corrected Theorem 2 does not apply).
+    InconclusiveError
+        If a condition lies inside its tolerance.
 
     References
     ----------
     seed 003, Lemma 1, Definition 1, eqs. (66), (71)–(78); DESIGN.md *Certificates*.
     """
-    failing = [c.name for c in iss_conditions(spec) if c.status in ("fails", "inconclusive")]
+    conditions = iss_conditions(spec)
+    failing = [c.name for c in conditions if c.status == "fails"]
     if failing:
-        raise ValueError(f"no ISS certificate: conditions {failing} do not hold")
+        raise PropertyFails(
+            f"no ISS certificate: conditions {failing} do not hold (see trackcert iss)"
+        )
+    undecided = [c.name for c in conditions if c.status == "inconclusive"]
+    if undecided:
+        raise InconclusiveError(f"no ISS certificate: conditions {undecided} are inconclusive")
     pursuit = pursuit_iss(spec)
     data: dict[str, Any] = {
         "dim": spec.dim,

@@ -16,7 +16,8 @@ from typing import Any
 
 import proofs_check
 from theory.case_file import Case
-from theory.claims import ClaimResult, register
+from theory.claims import ClaimResult, NotApplicable, register
+from theory.errors import InconclusiveError, PropertyFails
 from theory.iss import iss_certificate_data
 from theory.pursuit_case import PursuitSpec
 
@@ -56,8 +57,10 @@ def iss_certificate(spec: PursuitSpec, *, case: str | None = None) -> dict[str, 
 
     Raises
     ------
-    ValueError
-        If a condition of the analysis fails or is inconclusive (the message names it).
+    PropertyFails
+        If a condition of the analysis fails (the message names it).
+    InconclusiveError
+        If a condition lies inside its tolerance.
     RuntimeError
         If ``proofs_check`` rejects the certificate (a bug: theory's own check accepted it).
 
@@ -109,11 +112,16 @@ def pursuit_certificates(case: Case, seed: int) -> tuple[list[dict[str, Any]], l
     -------
     (list of dict, list of str)
         The certificates and the reasons for missing ones.
+
+    Raises
+    ------
+    PropertyFails
+        If a condition of the analysis fails: there is no ISS estimate to certify.
     """
     del seed
     try:
         return [iss_certificate(case.spec, case=case.name)], []
-    except ValueError as error:
+    except InconclusiveError as error:
         return [], [str(error)]
 
 
@@ -135,14 +143,22 @@ def iss_certificate_claim(case: Case) -> list[ClaimResult]:
     Returns
     -------
     list of ClaimResult
-        ``verified`` with the certified constants as evidence, or ``inconclusive`` with the
-        failing conditions (then ``trackcert iss`` reports the refutation).
+        ``verified`` with the certified constants as evidence, or ``inconclusive`` naming the
+        conditions inside their tolerance.
+
+    Raises
+    ------
+    NotApplicable
+        If a condition fails: the corrected Theorem 2 says nothing about the case (``trackcert
+        iss`` and claim ``seed003.thm2`` report the failure).
     """
     claim_id = "seed003.thm2.certified"
     try:
         cert = iss_certificate(case.spec, case=case.name)
-    except ValueError as error:
+    except InconclusiveError as error:
         return [ClaimResult(claim_id, case.name, "exact", "inconclusive", message=str(error))]
+    except PropertyFails as error:
+        raise NotApplicable(str(error)) from error
     witness = cert["witness"]
     keys = [k for k in ("lambda", "alpha", "kappa", "g_e", "g_xi", "gain") if k in witness]
     evidence = {k: witness[k] for k in keys} | {

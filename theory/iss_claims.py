@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from theory.claims import ClaimResult, get_claim, register
+from theory.claims import ClaimResult, applicable_results, get_claim, register
 from theory.iss import (
     DEFAULT_MARGIN_TOL,
     coordination_iss,
@@ -392,9 +392,9 @@ def check_theorem2(case: Any) -> list[ClaimResult]:
 
 def run_model_claims() -> list[ClaimResult]:
     """Run every model-level seed 003 claim."""
-    return [r for claim in MODEL_CLAIMS for r in get_claim(claim).run(None)]
+    return [r for claim in MODEL_CLAIMS for r in applicable_results(get_claim(claim), None)]
 
 
 def run_case_claims(case: Any) -> list[ClaimResult]:
     """Run every case-level seed 003 claim on ``case``."""
-    return [r for claim in CASE_CLAIMS for r in get_claim(claim).run(case)]
+    return [r for claim in CASE_CLAIMS for r in applicable_results(get_claim(claim), case)]

@@ -67,6 +67,7 @@ __all__ = [
     "alternative_residual",
     "decide_s_detectability",
     "s_detectability_witness",
+    "witness_from_decision",
     "witness_margin",
 ]
 
@@ -324,6 +325,24 @@ def s_detectability_witness(
     docs/theory/s-detectability.md, section "Witness format".
     """
     result = decide_s_detectability(A, C, W, order=order, solver=solver, lmi_margin=lmi_margin)
+    return witness_from_decision(result, order)
+
+
+def witness_from_decision(result: SDetectability, order: str) -> dict[str, Any] | None:
+    """The witness of :func:`s_detectability_witness` from a decision already made.
+
+    Parameters
+    ----------
+    result : SDetectability
+        From :func:`decide_s_detectability` with the same ``order``.
+    order : str
+        ``consensus-then-filter`` or ``filter-then-consensus``.
+
+    Returns
+    -------
+    dict or None
+        As :func:`s_detectability_witness`: None unless ``result.verdict`` is True.
+    """
     if result.verdict is not True:
         return None
     return {

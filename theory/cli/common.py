@@ -12,7 +12,13 @@ import numpy as np
 import typer
 from rich.console import Console
 
-from theory.errors import CaseError, InconclusiveError, SolverError, TrackcertError
+from theory.errors import (
+    CaseError,
+    InconclusiveError,
+    PropertyFails,
+    SolverError,
+    TrackcertError,
+)
 
 __all__ = [
     "EXIT_BAD_INPUT",
@@ -49,6 +55,8 @@ def reports_errors(command: F) -> F:
             _fail(f"error: {error}", EXIT_BAD_INPUT)
         except (InconclusiveError, SolverError) as error:
             _fail(f"inconclusive: {error}", EXIT_INCONCLUSIVE)
+        except PropertyFails as error:
+            _fail(f"does not hold: {error}", EXIT_FAILS)
         except TrackcertError as error:
             _fail(f"error: {error}", EXIT_BAD_INPUT)
 

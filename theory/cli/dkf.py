@@ -10,7 +10,7 @@ import typer
 from rich.table import Table
 
 from theory.case_file import load_case
-from theory.claims import all_claims
+from theory.claims import all_claims, applicable_results
 from theory.cli.common import (
     case_argument,
     console,
@@ -51,7 +51,7 @@ def register(app: typer.Typer) -> None:
             result.to_json(claim.source)
             for claim in all_claims()
             if "dkf" in claim.kinds
-            for result in claim.run(loaded)
+            for result in applicable_results(claim, loaded)
         ]
         code = verdict_exit_code(data["s_detectable"])
         finish(data, code, as_json=as_json, show=lambda: _print_table(data))

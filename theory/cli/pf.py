@@ -17,7 +17,7 @@ import typer
 from rich.table import Table
 
 from theory.case_file import Case, load_case
-from theory.claims import all_claims
+from theory.claims import all_claims, applicable_results
 from theory.cli.common import (
     EXIT_FAILS,
     EXIT_HOLDS,
@@ -87,7 +87,7 @@ def run_pf_case(
         (claim.source, result)
         for claim in all_claims()
         if "pf" in claim.kinds
-        for result in claim.run(case)
+        for result in applicable_results(claim, case)
     ]
     figures = []
     if folder is not None:

@@ -86,7 +86,7 @@ def build_document(
             for c in run.claims
         ],
         "expectations": [e.to_json() for e in run.expectations],
-        "not_applicable": [{"id": i, "case": c} for i, c in run.not_applicable],
+        "not_applicable": [{"id": i, "case": c, "reason": r} for i, c, r in run.not_applicable],
         "errata": None if errata is None else [_erratum(e, claims, known) for e in errata],
         "environment": environment,
     }

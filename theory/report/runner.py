@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from theory.case_file import Case
-from theory.claims import Claim, ClaimResult, all_claims
+from theory.claims import Claim, ClaimResult, NotApplicable, all_claims
 from theory.errors import CaseError
 from theory.report.canonical import canonical
 from theory.report.expectations import EXPECTATIONS_KEY, Expectation, evaluate
@@ -81,8 +81,10 @@ class RunResult:
         Sorted by paper, claim id, case order.
     expectations : tuple of Expectation
         One per key of every case's ``expect`` block.
-    not_applicable : tuple of (claim id, case name)
-        Claims that returned no result for a case (they do not apply to it).
+    not_applicable : tuple of (claim id, case name, reason)
+        Claims that returned no result for a case (they do not apply to it); ``reason`` is the
+        message of the :class:`~theory.claims.NotApplicable` the check raised, or ``""`` when it
+        returned an empty list.
     cases : tuple of Case
         The cases, in the order given.
     claims : tuple of Claim
@@ -95,7 +97,7 @@ class RunResult:
 
     records: tuple[Record, ...]
     expectations: tuple[Expectation, ...]
-    not_applicable: tuple[tuple[str, str], ...]
+    not_applicable: tuple[tuple[str, str, str], ...]
     cases: tuple[Case, ...]
     claims: tuple[Claim, ...]
     seed: int
@@ -197,7 +199,7 @@ def run_claims(
     claims = sorted(all_claims() if claims is None else claims, key=lambda c: c.id)
     _check_distinct_names(cases)
     rows: list[tuple[int, Record]] = []
-    skipped: list[tuple[str, str]] = []
+    skipped: list[tuple[str, str, str]] = []
     tasks = [(c, None) for c in claims if not c.kinds] + [
         (c, case) for case in cases for c in claims if case.kind in c.kinds
     ]
@@ -206,9 +208,14 @@ def run_claims(
         name = MODEL_CASE if case is None else case.name
         if progress is not None:
             progress(claim.id, name)
-        records = _run_one(claim, case, seed, seconds)
-        if not records:
-            skipped.append((claim.id, name))
+        try:
+            records = _run_one(claim, case, seed, seconds)
+        except NotApplicable as reason:
+            records = []
+            skipped.append((claim.id, name, str(reason)))
+        else:
+            if not records:
+                skipped.append((claim.id, name, ""))
         rows.extend((order[name], r) for r in records)
     rows.sort(key=lambda row: (row[1].paper, row[1].id, row[0]))
     records = tuple(r for _, r in rows)
@@ -232,6 +239,8 @@ def _run_one(claim: Claim, case: Case | None, seed: int, seconds: float | None) 
         with time_limit(seconds):
             results = claim.run(case) if claim_seed is None else claim.run(case, seed=claim_seed)
         return [_record(claim, name, result, claim_seed) for result in _checked(results)]
+    except NotApplicable:
+        raise
     except (Exception, SystemExit, TimeLimitExceeded) as error:  # one check never stops the report
         return [_failure(claim, name, error, claim_seed)]
 

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.claims import ClaimResult, register
+from theory.claims import ClaimResult, NotApplicable, register
 from theory.sim.appendix_a import lemma_a12_along
 from theory.sim.consensus_kf import ORDERS, ch5_examples, simulate_consensus_kf
 from theory.sim.crb import crb_trace, optimal_crb_trace, platonic_solids
@@ -253,7 +253,7 @@ def check_iss_along_runs(case: Any) -> list[ClaimResult]:
     try:
         check_pursuit_case(case.spec)
     except CaseError as error:
-        return result("inconclusive", f"not simulated: {error}")
+        raise NotApplicable(f"nothing to simulate: {error.field} is not {error.expected}") from None
     checks = []
     for seed in ISS_SEEDS:
         run = run_pursuit_case(case.spec, np.random.default_rng(seed), steps=ISS_STEPS)
