@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import dataclasses
 import json
 from fractions import Fraction
 from pathlib import Path
@@ -22,6 +23,7 @@ from theory.tdoa_rank_certificates import (
     generic_rank_certificates,
     neighbour_lists,
     network_observability,
+    network_steps,
 )
 
 CASE = Path(__file__).resolve().parent.parent / "cases" / "fig43-case-d.yaml"
@@ -79,10 +81,39 @@ def test_exact_weights_are_the_design_rules() -> None:
 def test_fig43_case_d_is_generically_observable() -> None:
     """Seed 000 Fig. 4.3 (d): a path of 4 agents; O (24 columns) has generic rank 24 and every
     agent's block column generic rank 6."""
-    results = generic_rank_claim(load_case(CASE))
-    ranks = {r.evidence["agent"]: r.evidence["rank_at_least"] for r in results}
-    assert ranks == {0: 24, 1: 6, 2: 6, 3: 6, 4: 6}
-    assert {r.status for r in results} == {"verified"}
+    (result,) = generic_rank_claim(load_case(CASE))
+    assert result.evidence["ranks_at_least"] == {0: 24, 1: 6, 2: 6, 3: 6, 4: 6}
+    assert result.status == "verified" and result.evidence["steps"] == [1]
+    assert "at least 24 of 24" in result.message and "at least 6, 6, 6, 6" in result.message
+
+
+def test_a_time_varying_scene_is_certified_once_per_network() -> None:
+    """Seed 000 Cor. 4.2.4: each distinct network along the trajectory gets its certificates;
+    together they cover every step, and each checks exactly."""
+    spec = load_case("topology-distance-rule-split").spec
+    groups = network_steps(spec)
+    assert sorted(k for steps in groups for k in steps) == list(range(spec.steps))
+    certs = generic_rank_certificates(spec)
+    covered = {tuple(c["produced_by"]["steps"]) for c in certs}
+    assert covered == {tuple(k + 1 for k in steps) for steps in groups}
+    assert all(check_certificate(json.loads(json.dumps(c))).valid for c in certs)
+    results = generic_rank_claim(load_case("topology-distance-rule-split"))
+    assert len(results) == len(groups) and {r.status for r in results} == {"verified"}
+    for result, steps in zip(results, groups, strict=True):
+        assert result.evidence["steps"] == [k + 1 for k in steps]
+        assert "of the trajectory" in result.message
+
+
+def test_network_steps_group_equal_networks() -> None:
+    spec = load_case(CASE).spec
+    repeated = dataclasses.replace(
+        spec,
+        agents=np.concatenate([spec.agents, spec.agents + 1.0, spec.agents]),
+        target=np.concatenate([spec.target] * 3),
+        hears=np.concatenate([spec.hears, ~spec.hears & ~np.eye(4, dtype=bool)[None], spec.hears]),
+        weights=np.concatenate([spec.weights, spec.weights, spec.weights]),
+    )
+    assert network_steps(repeated) == [(0, 2), (1,)]
 
 
 def _leaves(value, path=()):
@@ -131,12 +162,24 @@ def test_rational_unit_vectors_are_exactly_unit_and_close() -> None:
         assert np.allclose(np.array(q, dtype=float), u, atol=1e-8)
 
 
-def test_time_varying_scene_gets_no_certificate() -> None:
+def test_moving_agents_on_one_network_share_one_certificate_set() -> None:
     block = {
         "agents": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 1], [1, 0, 1], [0, 1, 1]]],
         "target": [5, 5, 5],
         "edges": [[1, 2], [2, 3]],
     }
     spec = parse_case({"name": "moving", "kind": "tdoa", "tdoa": block}).spec
-    with pytest.raises(RationalizationError, match="static"):
+    static = parse_case(
+        {"name": "still", "kind": "tdoa", "tdoa": {**block, "agents": block["agents"][0]}}
+    ).spec
+    moving, still = generic_rank_certificates(spec), generic_rank_certificates(static)
+    assert [c["produced_by"]["steps"] for c in moving] == [[1, 2]] * len(still)
+    assert [c["witness"] for c in moving] == [c["witness"] for c in still]
+    assert all(c["claim"]["statement"].endswith("at steps 1–2 of the trajectory") for c in moving)
+
+
+def test_a_scene_without_tdoa_rows_gets_no_certificate() -> None:
+    block = {"agents": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "target": [5, 5, 5], "edges": []}
+    spec = parse_case({"name": "mute", "kind": "tdoa", "tdoa": block}).spec
+    with pytest.raises(RationalizationError, match="no TDOA rows"):
         generic_rank_certificates(spec)

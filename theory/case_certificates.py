@@ -185,13 +185,20 @@ def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:
     return certs
 
 
-def _results(claim_id: str, case: Case, evidence: Callable[[dict], dict]) -> list[ClaimResult]:
+def _certified(claim_id: str, case: Case) -> list[dict] | ClaimResult:
+    """The case's certificates, or the ``inconclusive`` result saying why there are none."""
     try:
-        certs = case_certificates(case)
+        return case_certificates(case)
     except InconclusiveError as error:
-        return [ClaimResult(claim_id, case.name, "exact", "inconclusive", message=str(error))]
+        return ClaimResult(claim_id, case.name, "exact", "inconclusive", message=str(error))
     except PropertyFails as error:
         raise NotApplicable(str(error)) from error
+
+
+def _results(claim_id: str, case: Case, evidence: Callable[[dict], dict]) -> list[ClaimResult]:
+    certs = _certified(claim_id, case)
+    if isinstance(certs, ClaimResult):
+        return [certs]
     return [
         ClaimResult(
             claim_id,
@@ -223,20 +230,55 @@ def generic_rank_claim(case: Case) -> list[ClaimResult]:
     Returns
     -------
     list of ClaimResult
-        One per certificate (``verified``), or one ``inconclusive`` result saying why none.
+        One ``verified`` result per distinct network of the scene (one for a static scene),
+        with the certified ranks of ``O`` (agent 0) and of each ``O_i`` and the steps the network
+        holds; or one ``inconclusive`` result saying why there is none.
     """
-    return _results(
-        "seed000.eq4.36.certified",
-        case,
-        lambda cert: {
-            "agent": cert["claim"]["agent"],
-            "rank_at_least": cert["claim"]["rank_at_least"],
-            "rows": cert["witness"]["rows"],
-            "cols": cert["witness"]["cols"],
-            "minor": cert["witness"]["minor"],
-            "seed": cert["produced_by"]["seed"],
-        },
-    )
+    claim_id = "seed000.eq4.36.certified"
+    certs = _certified(claim_id, case)
+    if isinstance(certs, ClaimResult):
+        return [certs]
+    networks: dict[tuple[int, ...], list[dict]] = {}
+    for cert in certs:
+        networks.setdefault(tuple(cert["produced_by"].get("steps", [1])), []).append(cert)
+    return [
+        ClaimResult(
+            claim_id,
+            case.name,
+            "exact",
+            "verified",
+            evidence=_rank_evidence(steps, group),
+            message=_rank_message(group),
+        )
+        for steps, group in networks.items()
+    ]
+
+
+def _rank_evidence(steps: tuple[int, ...], group: list[dict]) -> dict[str, Any]:
+    return {
+        "steps": list(steps),
+        "ranks_at_least": {c["claim"]["agent"]: c["claim"]["rank_at_least"] for c in group},
+        "certificates": [
+            {
+                "agent": c["claim"]["agent"],
+                "rank_at_least": c["claim"]["rank_at_least"],
+                "rows": c["witness"]["rows"],
+                "cols": c["witness"]["cols"],
+                "minor": c["witness"]["minor"],
+            }
+            for c in group
+        ],
+        "seed": group[0]["produced_by"]["seed"],
+    }
+
+
+def _rank_message(group: list[dict]) -> str:
+    """The statement of the certificate of ``O``, then the certified ranks of each ``O_i``."""
+    ranks = {c["claim"]["agent"]: c["claim"]["rank_at_least"] for c in group}
+    whole = [c["claim"]["statement"] for c in group if c["claim"]["agent"] == 0]
+    agents = len(group[0]["data"]["neighbours"])
+    blocks = ", ".join(str(ranks.get(i, 0)) for i in range(1, agents + 1))
+    return "; ".join([*whole, f"block columns O_1 … O_{agents} have rank at least {blocks}"])
 
 
 @register(

@@ -14,10 +14,16 @@ Certified: the whole ``O`` (``agent = 0``) and each agent's block column ``O_i``
 
 The weights are taken exactly: Metropolis and uniform weights are rational by definition
 (DESIGN.md); an explicit matrix is read as the decimals it was written with.
+
+The certified quantity depends on the network (who hears whom, ``W``) and ``T`` only, not on
+where the agents are: a time-varying scene (seed 000 Cor. 4.2.4) gets one set of certificates per
+distinct network along its trajectory, each naming the steps it covers
+(:func:`network_steps`).
 """
 
 from __future__ import annotations
 
+import dataclasses
 from fractions import Fraction
 
 import flint
@@ -42,6 +48,7 @@ __all__ = [
     "generic_rank_certificates",
     "neighbour_lists",
     "network_observability",
+    "network_steps",
 ]
 
 POINT_BITS = (4, 8, 16, 32)
@@ -187,7 +194,9 @@ def generic_rank_certificates(
     Parameters
     ----------
     spec : TdoaSpec
-        A static scene (one time step).
+        A scene; a time-varying one is certified once per distinct network
+        (:func:`network_steps`), each certificate's statement and ``produced_by.steps`` naming
+        the (1-based) steps it covers.
     seed : int
         Seed of the random rational evaluation point (recorded in the certificates).
     rank_tol : float
@@ -198,20 +207,75 @@ def generic_rank_certificates(
     Returns
     -------
     list of dict
-        One certificate for ``agent = 0`` (all of ``O``) and one per agent with a non-zero block.
+        Per network, one certificate for ``agent = 0`` (all of ``O``) and one per agent with a
+        non-zero block.
 
     Raises
     ------
     RationalizationError
-        For a time-varying scene, a network without TDOA rows, or when no exact non-zero minor
-        of the proposed order is found.
+        For a network without TDOA rows, or when no exact non-zero minor of the proposed order is
+        found.
 
     References
     ----------
-    seed 000, eqs. (4.7)–(4.10), (4.36), (4.37).
+    seed 000, eqs. (4.7)–(4.10), (4.36), (4.37); Cor. 4.2.4 (time-varying networks).
     """
-    if spec.steps != 1:
-        raise RationalizationError("generic-rank certificates need a static scene (one step)")
+    if spec.steps == 1:
+        return _static_certificates(spec, seed, rank_tol, case)
+    certs = []
+    for steps in network_steps(spec):
+        shown = [k + 1 for k in steps]
+        for cert in _static_certificates(_at_step(spec, steps[0]), seed, rank_tol, case):
+            where = "step" if len(shown) == 1 else "steps"
+            cert["claim"]["statement"] += f", at {where} {_ranges(shown)} of the trajectory"
+            cert["produced_by"]["steps"] = shown
+            certs.append(cert)
+    return certs
+
+
+def network_steps(spec: TdoaSpec) -> list[tuple[int, ...]]:
+    """The 0-based steps of a scene grouped by network (``hears`` and ``W`` equal), in order.
+
+    Parameters
+    ----------
+    spec : TdoaSpec
+        A scene.
+
+    Returns
+    -------
+    list of tuple of int
+        One tuple per distinct network, in the order the networks first appear.
+    """
+    groups: dict[bytes, list[int]] = {}
+    for k in range(spec.steps):
+        key = np.asarray(spec.hears[k], bool).tobytes() + np.asarray(spec.weights[k]).tobytes()
+        groups.setdefault(key, []).append(k)
+    return [tuple(steps) for steps in groups.values()]
+
+
+def _at_step(spec: TdoaSpec, k: int) -> TdoaSpec:
+    """The static scene of step ``k``."""
+    return dataclasses.replace(
+        spec,
+        agents=spec.agents[k : k + 1],
+        target=spec.target[k : k + 1],
+        hears=spec.hears[k : k + 1],
+        weights=spec.weights[k : k + 1],
+    )
+
+
+def _ranges(steps: list[int]) -> str:
+    """``[1, 2, 3, 5]`` → ``"1–3, 5"``."""
+    runs: list[list[int]] = []
+    for k in steps:
+        if runs and k == runs[-1][-1] + 1:
+            runs[-1].append(k)
+        else:
+            runs.append([k])
+    return ", ".join(f"{r[0]}–{r[-1]}" if len(r) > 1 else f"{r[0]}" for r in runs)
+
+
+def _static_certificates(spec: TdoaSpec, seed: int, rank_tol: float, case: str | None) -> list:
     neighbours = neighbour_lists(spec.hears[0])
     if not any(neighbours):
         raise RationalizationError("no agent has a neighbour: the scene has no TDOA rows")
