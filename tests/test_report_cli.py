@@ -36,6 +36,9 @@ def test_unmet_expectation_exits_1(monkeypatch, tmp_path) -> None:
     (expectation,) = json.loads((tmp_path / "out" / "report.json").read_text())["expectations"]
     assert expectation["verdict"] == "unmet"
     assert expectation["observations"][0]["matches"] is False
+    shown = " ".join(done.stdout.split())
+    assert "unmet: four-path expect.observable" in shown
+    assert "seed001.fake.observable │ 1" in shown  # one row per claim, results counted
 
 
 def test_crashing_check_is_reported_and_exits_1(monkeypatch, tmp_path) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections import Counter
 from pathlib import Path
 from typing import Annotated
 
@@ -109,13 +110,21 @@ def _run_with_progress(cases, claims, seed, seconds):
 
 
 def _print_summary(document: dict, out: Path) -> None:
-    table = Table(title="trackcert report")
-    for column in ("claim", "case", "method", "status", "margin"):
-        table.add_column(column, overflow="fold")
+    """One row per claim with its results counted by status (every result is in the files)."""
+    statuses = ("verified", "corrected", "refuted", "inconclusive")
+    table = Table(title=f"trackcert report: {document['summary']['results']} results")
+    table.add_column("claim", overflow="fold")
+    for status in statuses:
+        table.add_column(status, justify="right")
+    counts: dict[str, Counter] = {}
     for r in document["claims"]:
-        margin = "—" if r["margin"] is None else f"{r['margin']:.3g}"
-        table.add_row(r["id"], r["case"], r["method"], r["status"], margin)
+        counts.setdefault(r["id"], Counter())[r["status"]] += 1
+    for claim, seen in counts.items():
+        table.add_row(claim, *(str(seen[s]) if seen[s] else "" for s in statuses))
     console.print(table)
+    unmet = [e for e in document["expectations"] if e["verdict"] != "met"]
+    for e in unmet:
+        console.print(f"{e['verdict']}: {e['case']} expect.{e['key']}", markup=False)
     counts = document["summary"]["expectations"]
     verdict = (
         "every expectation is met"
