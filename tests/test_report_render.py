@@ -133,6 +133,21 @@ def test_not_applicable_pairs_are_listed_with_their_reason(monkeypatch, tmp_path
     assert all(c["id"] != "seed002.fake.lemma" for c in document["claims"])
 
 
+def test_a_paper_section_lists_the_claims_that_cite_it(monkeypatch, tmp_path) -> None:
+    register = fake_registry(monkeypatch)
+    register_standard_fakes(register)
+
+    @register("seed000.fake.cross", source="seed 000 Lemma 1; seed 002 Lemma 9", statement="t")
+    def cross(case):
+        return [result(case, claim="seed000.fake.cross", status="corrected")]
+
+    text = _report(tmp_path, "out", seed=0)["report.md"].decode()
+    seed002 = text[text.index("## Seed 002") : text.index("## Seed 003")]
+    assert "| `seed000.fake.cross` | seed 000 Lemma 1; seed 002 Lemma 9 | 1 corrected |" in seed002
+    seed001 = text[text.index("## Seed 001") : text.index("## Seed 002")]
+    assert "seed000.fake.cross" not in seed001
+
+
 def test_errata_are_linked_to_their_claims_and_escaped(monkeypatch, tmp_path) -> None:
     register = fake_registry(monkeypatch)
     register_standard_fakes(register)

@@ -11,6 +11,8 @@ from __future__ import annotations
 import base64
 import json
 import os
+import re
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -168,14 +170,29 @@ def _views(document: dict[str, Any]) -> dict[str, Any]:
             if claim["paper"] == paper
         ]
         title = document["papers"].get(paper, "Other checks (no seed paper cited)")
+        cited = [
+            {**claim, "statuses": _status_counts(by_id.get(claim["id"], []))}
+            for claim in document["registered"]
+            if claim["paper"] != paper and _cites(claim["source"], paper)
+        ]
         if claims or paper != "other":
-            sections.append({"paper": paper, "title": title, "claims": claims})
+            sections.append({"paper": paper, "title": title, "claims": claims, "cited": cited})
     errata = document["errata"] or []
     return {
         "sections": sections,
         "errata_sections": _errata_sections(errata),
         "status_order": STATUSES,
     }
+
+
+def _cites(source: str, paper: str) -> bool:
+    """Whether a claim's source names seed ``paper`` (``"seed 000 Thm 4.2.3; seed 001 Thm 1"``)."""
+    return paper != "other" and re.search(rf"\bseed\s*{paper}\b", source) is not None
+
+
+def _status_counts(results: list[dict[str, Any]]) -> str:
+    counts = Counter(r["status"] for r in results)
+    return ", ".join(f"{n} {s}" for s, n in sorted(counts.items())) or "no result"
 
 
 def _errata_sections(errata: list[dict[str, Any]]) -> list[dict[str, Any]]:
