@@ -44,6 +44,7 @@ CLAIM_MODULES: tuple[str, ...] = (
     "theory.iss_claims",
     "theory.model_claims",
     "theory.observability_claims",
+    "theory.path_lemma",
     "theory.pf_claims",
     "theory.pf_vs_ekf",
     "theory.sim.sim_claims",
