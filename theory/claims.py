@@ -49,6 +49,7 @@ CLAIM_MODULES: tuple[str, ...] = (
     "theory.pf_vs_ekf",
     "theory.sim.sim_claims",
     "theory.topology_claims",
+    "theory.window_observability",
 )
 """Modules that register claims; each feature appends its module here."""
 
