@@ -41,6 +41,7 @@ CLAIM_MODULES: tuple[str, ...] = (
     "theory.case_expectations",
     "theory.dcrw_claims",
     "theory.dkf_claims",
+    "theory.formation_optimality",
     "theory.iss_claims",
     "theory.model_claims",
     "theory.observability_claims",
