@@ -46,6 +46,7 @@ CLAIM_MODULES: tuple[str, ...] = (
     "theory.model_claims",
     "theory.observability_claims",
     "theory.path_lemma",
+    "theory.pursuit_observability",
     "theory.pf_claims",
     "theory.pf_vs_ekf",
     "theory.sim.sim_claims",

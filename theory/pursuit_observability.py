@@ -575,29 +575,9 @@ def check_helix(case: None = None, *, rank_tol: float = RANK_TOL) -> list[ClaimR
         "mirror_tol": MIRROR_TOL,
     }
     margin = float(min(margins))
-    if not (conclusive and agree and wronskian_ok):
-        status = "inconclusive"
-        message = (
-            "a rank decision is within the tolerance band, or the symbolic and numeric verdicts "
-            "disagree; see per_c"
-        )
-    elif any(degenerate[c] for c in others):
-        status = "refuted"
-        bad = [str(c) for c in others if degenerate[c]]
-        message = f"c = {', '.join(bad)} (allowed by (15)) gives a planar orbit and FIM rank < 6"
-    elif degenerate[Fraction(-1)] and mirrors_ok:
-        status = "corrected"
-        message = (
-            "c = −1 is as degenerate as the excluded c = 1: the orbit lies in a plane through "
-            "the target (Wronskian ∝ 1 − 1/c²), the FIM has rank 4 of 6 and mirror-image "
-            "states give identical ranges; c = ±2, ±1/2 give rank 6. Exclude c ∈ {0, 1, −1}"
-        )
-    elif not degenerate[Fraction(-1)]:
-        status = "verified"
-        message = "c = −1 is not degenerate; every c ≠ 0, 1 checked gives FIM rank 6"
-    else:
-        status = "inconclusive"
-        message = "c = −1 is planar but the mirror pair's ranges differ beyond mirror_tol"
+    status, message = _helix_verdict(
+        degenerate, conclusive and agree and wronskian_ok, mirrors_ok, others
+    )
     return [
         ClaimResult(
             claim="seed003.eq15.helix",
@@ -610,6 +590,34 @@ def check_helix(case: None = None, *, rank_tol: float = RANK_TOL) -> list[ClaimR
             message=message,
         )
     ]
+
+
+def _helix_verdict(
+    degenerate: dict[Fraction, bool], decided: bool, mirrors_ok: bool, others: list[Fraction]
+) -> tuple[str, str]:
+    """Status and message of ``seed003.eq15.helix`` from the per-c degeneracy decisions."""
+    if not decided:
+        return "inconclusive", (
+            "a rank decision is within the tolerance band, or the symbolic and numeric verdicts "
+            "disagree; see per_c"
+        )
+    bad = [str(c) for c in others if degenerate[c]]
+    if bad:
+        return "refuted", (
+            f"c = {', '.join(bad)} (allowed by (15)) gives a planar orbit and FIM rank < 6"
+        )
+    if not degenerate[Fraction(-1)]:
+        return "verified", "c = −1 is not degenerate; every c ≠ 0, 1 checked gives FIM rank 6"
+    if not mirrors_ok:
+        return (
+            "inconclusive",
+            "c = −1 is planar but the mirror pair's ranges differ beyond mirror_tol",
+        )
+    return "corrected", (
+        "c = −1 is as degenerate as the excluded c = 1: the orbit lies in a plane through "
+        "the target (Wronskian ∝ 1 − 1/c²), the FIM has rank 4 of 6 and mirror-image "
+        "states give identical ranges; c = ±2, ±1/2 give rank 6. Exclude c ∈ {0, 1, −1}"
+    )
 
 
 # ---------------------------------------------------------------------------------------------
