@@ -50,6 +50,8 @@ CLAIM_MODULES: tuple[str, ...] = (
     "theory.pf_claims",
     "theory.pf_vs_ekf",
     "theory.sim.sim_claims",
+    "theory.stochastic_stability",
+    "theory.suboptimal_gains",
     "theory.topology_claims",
     "theory.window_observability",
 )
