@@ -151,18 +151,8 @@ def corrected_bound(
 
     Parameters
     ----------
-    k : int
-        Time step, ``k ≥ 0``.
-    v_min : Fraction
-        ``v̲`` of (A.9).
-    v_max : Fraction
-        ``v̄`` of (A.9).
-    mu : Fraction
-        ``μ`` of (A.10).
-    alpha : Fraction
-        ``α`` of (A.10), ``0 < α ≤ 1``.
-    mean_square_0 : Fraction
-        ``E‖ζ_0‖²``.
+    k, v_min, v_max, mu, alpha, mean_square_0 :
+        As in :func:`printed_bound`.
 
     Returns
     -------

@@ -201,18 +201,8 @@ def corrected_gap(
 
     Parameters
     ----------
-    A : fmpq_mat, n × n
-        State matrix.
-    C : fmpq_mat, p × n
-        Output matrix ``C_i``.
-    R : fmpq_mat, p × p
-        Measurement noise covariance ``R_i``.
-    L : fmpq_mat, n × p
-        The arbitrary gain ``L_i``.
-    Pi : fmpq_mat, n × n
-        ``Π = E_i(P(k))``.
-    Pi_star : fmpq_mat, n × n
-        ``Π* = E_i(P*(k))``.
+    A, C, R, L, Pi, Pi_star : fmpq_mat
+        As in :func:`printed_gap`.
 
     Returns
     -------
@@ -244,18 +234,8 @@ def printed_discrepancy(
 
     Parameters
     ----------
-    A : fmpq_mat, n × n
-        State matrix.
-    C : fmpq_mat, p × n
-        Output matrix ``C_i``.
-    R : fmpq_mat, p × p
-        Measurement noise covariance ``R_i``.
-    L : fmpq_mat, n × p
-        The arbitrary gain ``L_i``.
-    Pi : fmpq_mat, n × n
-        ``Π = E_i(P(k))``.
-    Pi_star : fmpq_mat, n × n
-        ``Π* = E_i(P*(k))``.
+    A, C, R, L, Pi, Pi_star : fmpq_mat
+        As in :func:`printed_gap`.
 
     Returns
     -------
