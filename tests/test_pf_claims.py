@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from theory.case_file import bundled_cases, load_case, parse_case
-from theory.claims import all_claims
+from theory.claims import all_claims, get_claim
 from theory.cli import app
 from theory.errors import CaseError
 from theory.pf_case import PARAM_NAMES
@@ -154,3 +154,10 @@ def test_cli_pf_exit_code_follows_the_expectations(tmp_path):
     assert result.exit_code == code
     (claim,) = [c for c in report["claims"] if c["id"] == "seed002.fig3.6"]
     assert (entry["verdict"] == "met") == (claim["status"] == "verified")
+
+
+def test_the_convergence_claim_draws_the_error_curves(tmp_path):
+    case = _small("pf-topology-a", runs=2)
+    (result,) = get_claim("seed002.sec3.convergence").run(case, figure_dir=tmp_path)
+    assert result.figures == (str(tmp_path / "errors.png"),)
+    assert (tmp_path / "errors.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

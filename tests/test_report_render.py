@@ -219,7 +219,7 @@ def test_cli_checker_never_validates_a_bogus_certificate(tmp_path) -> None:
     (tmp_path / "bogus.json").write_text('{"format": "trackcert-certificate/1"}')
     verdict = check_with_cli(Path("bogus.json"), tmp_path)
     assert verdict["valid"] is not True
-    assert verdict["command"] == "trackcert check bogus.json --json"
+    assert verdict["command"] == "python -m proofs_check bogus.json --json"
 
 
 def test_unwritable_output_is_bad_input(monkeypatch, tmp_path) -> None:

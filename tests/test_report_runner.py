@@ -152,3 +152,25 @@ def test_paper_of() -> None:
     assert paper_of("seed002.eq3.1", "") == "002"
     assert paper_of("network.metropolis", "see seed 003, eq. (4)") == "003"
     assert paper_of("design.rule", "DESIGN.md") == "other"
+
+
+def test_claims_that_draw_get_their_own_figure_folder(monkeypatch, tmp_path) -> None:
+    register = fake_registry(monkeypatch)
+    seen = []
+
+    @register("seed002.fake.draws", source="s", statement="t", kinds=("tdoa",))
+    def draws(case, *, figure_dir=None):
+        seen.append(figure_dir)
+        if figure_dir is None:
+            return [result(case, claim="seed002.fake.draws")]
+        (figure_dir / "plot.png").write_bytes(b"png")
+        return [result(case, claim="seed002.fake.draws", figures=(str(figure_dir / "plot.png"),))]
+
+    case = load_case(write_case(tmp_path, "a b"))
+    run_claims([case], seed=0)
+    run = run_claims([case], seed=0, figure_dir=tmp_path / "figures")
+    assert seen == [None, tmp_path / "figures" / "seed002.fake.draws" / "a_b"]
+    (record,) = run.records
+    assert record.figures == (
+        str(tmp_path / "figures" / "seed002.fake.draws" / "a_b" / "plot.png"),
+    )

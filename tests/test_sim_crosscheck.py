@@ -9,6 +9,8 @@ static agents (``b = ∞``) and a nearly static target.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 from hypothesis import assume, given
 from hypothesis import strategies as st
@@ -152,3 +154,11 @@ def test_four_connected_agents_localize_three_do_not() -> None:
     three = run_tdoa_scenario(_spec(positions, target, [[1, 2], [2, 3]]), np.random.default_rng(0))
     assert np.linalg.norm(four.covariances[-1], 2, axis=(1, 2)).max() < P0
     assert np.linalg.norm(three.covariances[-1, :3], 2, axis=(1, 2)).min() > P0
+
+
+def test_the_ch5_examples_claim_draws_its_figure(tmp_path):
+    from theory.claims import get_claim
+
+    (result,) = get_claim("seed000.sec5.3.sim-examples").run(None, steps=40, figure_dir=tmp_path)
+    (figure,) = result.figures
+    assert figure.endswith("covariance-norms.png") and Path(figure).stat().st_size > 10_000

@@ -24,8 +24,8 @@ from typing import Any
 import numpy as np
 
 from theory.case_file import Case
-from theory.certificates import s_detectability_certificate
-from theory.claims import ClaimResult, NotApplicable, register
+from theory.certificates import bundle, s_detectability_certificate
+from theory.claims import DOCUMENT_KEY, ClaimResult, NotApplicable, register
 from theory.consensus_operators import (
     closed_loop,
     covariance_operator_matrix,
@@ -205,7 +205,7 @@ def _results(claim_id: str, case: Case, evidence: Callable[[dict], dict]) -> lis
             case.name,
             "exact",
             "verified",
-            evidence=evidence(cert),
+            evidence={**evidence(cert), DOCUMENT_KEY: cert},
             message=cert["claim"]["statement"],
         )
         for cert in certs
@@ -247,7 +247,7 @@ def generic_rank_claim(case: Case) -> list[ClaimResult]:
             case.name,
             "exact",
             "verified",
-            evidence=_rank_evidence(steps, group),
+            evidence={**_rank_evidence(steps, group), DOCUMENT_KEY: bundle(group, case=case.name)},
             message=_rank_message(group),
         )
         for steps, group in networks.items()

@@ -18,6 +18,7 @@ from typing import Any
 
 __all__ = [
     "CLAIM_MODULES",
+    "DOCUMENT_KEY",
     "METHODS",
     "STATUSES",
     "Claim",
@@ -35,6 +36,10 @@ corrected: the paper's wording fails but the corrected statement in the evidence
 inconclusive: a margin lies inside tolerance or a solver failed (the evidence says which)."""
 
 METHODS = ("symbolic", "exact-random", "numeric", "lmi", "simulation", "exact")
+
+DOCUMENT_KEY = "certificate_document"
+"""Evidence key of a certificate a result carries as a JSON object; the report writes it as a file
+and re-checks it with ``proofs_check`` (:mod:`theory.report.artifacts`)."""
 
 CLAIM_MODULES: tuple[str, ...] = (
     "theory.case_certificates",

@@ -16,7 +16,7 @@ from typing import Any
 
 import proofs_check
 from theory.case_file import Case
-from theory.claims import ClaimResult, NotApplicable, register
+from theory.claims import DOCUMENT_KEY, ClaimResult, NotApplicable, register
 from theory.errors import InconclusiveError, PropertyFails
 from theory.iss import iss_certificate_data
 from theory.pursuit_case import PursuitSpec
@@ -164,4 +164,5 @@ def iss_certificate_claim(case: Case) -> list[ClaimResult]:
     evidence = {k: witness[k] for k in keys} | {
         f"{k}_approx": float(Fraction(witness[k])) for k in keys
     }
+    evidence[DOCUMENT_KEY] = cert
     return [ClaimResult(claim_id, case.name, "exact", "verified", evidence, message=STATEMENT)]

@@ -11,6 +11,7 @@ key that names a node (``consensus_helps: 4``) is that node when the claim holds
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -25,6 +26,7 @@ from theory.pf_experiments import (
     node_summary,
     shared_monte_carlo,
 )
+from theory.pf_figures import plot_errors
 
 __all__ = ["learned_bias"]
 
@@ -54,11 +56,18 @@ def _node_observed(node: int, status: str) -> int | bool | None:
     ),
     kinds=("pf",),
 )
-def check_convergence(case: Any) -> list[ClaimResult]:
+def check_convergence(case: Any, *, figure_dir: Path | None = None) -> list[ClaimResult]:
     """Compare each expected convergence verdict with the Monte Carlo one (seed 002 eq. (3.20)).
 
     Observes ``converges``: node id → true / false / null (median tail error inside the
     ``converge_tol`` … ``diverge_tol`` band).
+
+    Parameters
+    ----------
+    case : Case
+        A ``kind: pf`` case.
+    figure_dir : Path, optional
+        Folder for ``errors.png`` (each node's mean error with its 10–90 % band, Figs. 3.2–3.3).
     """
     expected = case.expect.get("converges")
     if not expected:
@@ -100,6 +109,9 @@ def check_convergence(case: Any) -> list[ClaimResult]:
             ),
             tolerance={k: tol[k] for k in ("converge_tol", "diverge_tol")},
             message=f"convergence per node {got} (expected {wanted})",
+            figures=()
+            if figure_dir is None
+            else (str(plot_errors(mc, case.spec, figure_dir / "errors.png")),),
         )
     ]
 

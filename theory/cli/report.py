@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import tempfile
 from collections import Counter
 from pathlib import Path
 from typing import Annotated
@@ -75,8 +76,9 @@ def register(app: typer.Typer) -> None:
             )
         if errata is not None and not errata.is_file():
             raise CaseError("--errata", "a readable Markdown file", str(errata))
-        run = _run_with_progress(loaded, claims, seed, time_limit or None)
-        document = write_report(run, out, errata_path=errata)
+        with tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures:
+            run = _run_with_progress(loaded, claims, seed, time_limit or None, Path(figures))
+            document = write_report(run, out, errata_path=errata)
         if as_json:
             console.file.write(dumps(document))
         else:
@@ -88,7 +90,7 @@ def _known_ids() -> str:
     return "Registered claims: " + ", ".join(c.id for c in all_claims())
 
 
-def _run_with_progress(cases, claims, seed, seconds):
+def _run_with_progress(cases, claims, seed, seconds, figure_dir):
     total = sum(1 for c in claims if not c.kinds) + sum(
         1 for case in cases for c in claims if case.kind in c.kinds
     )
@@ -106,7 +108,14 @@ def _run_with_progress(cases, claims, seed, seconds):
             progress.update(task, description=f"{claim_id} on {where}")
             progress.advance(task)
 
-        return run_claims(cases, seed=seed, claims=claims, progress=advance, seconds=seconds)
+        return run_claims(
+            cases,
+            seed=seed,
+            claims=claims,
+            progress=advance,
+            seconds=seconds,
+            figure_dir=figure_dir,
+        )
 
 
 def _print_summary(document: dict, out: Path) -> None:

@@ -1,11 +1,14 @@
 """Files the claims produce — figures and certificates — copied into the report folder.
 
-Claims return figures in :attr:`ClaimResult.figures` and certificates as paths in their evidence
-under ``certificate`` (one path) or ``certificates`` (a list). The report copies each file to
-``DIR/figures/<claim>/<case>/`` or ``DIR/certificates/<claim>/<case>/``, records its SHA-256 (so
-the figures' data is part of the reproducible ``report.json``), replaces the claim's path by the
-copy's path relative to ``DIR``, and re-verifies every certificate with ``trackcert check FILE
---json`` (DESIGN.md), recording that command's verdict next to it.
+Claims return figures in :attr:`ClaimResult.figures` and certificates either as paths in their
+evidence under ``certificate`` (one path) or ``certificates`` (a list), or as the certificate
+itself under ``certificate_document`` (a JSON object: the claim then writes no file). The report
+copies each file (or writes each document) to ``DIR/figures/<claim>/<case>/`` or
+``DIR/certificates/<claim>/<case>/``, records its SHA-256 (so the figures' data is part of the
+reproducible ``report.json``), puts the copy's path relative to ``DIR`` in the evidence (a
+document is replaced by its file's path under ``certificate``), and re-verifies every
+certificate with the independent checker, ``python -m proofs_check FILE --json`` (what
+``trackcert check`` runs, DESIGN.md), recording that command's verdict next to it.
 """
 
 from __future__ import annotations
@@ -13,7 +16,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -23,7 +25,8 @@ from pathlib import Path
 from typing import Any
 
 import theory
-from theory.report.runner import Record
+from theory.claims import DOCUMENT_KEY
+from theory.report.runner import Record, slug
 
 __all__ = [
     "CERTIFICATE_KEYS",
@@ -36,8 +39,9 @@ __all__ = [
 CERTIFICATE_KEYS = ("certificate", "certificates")
 """Evidence keys whose values are certificate paths (a string, or a list of strings)."""
 
+
 CHECK_TIMEOUT = 300.0
-"""Seconds allowed to ``trackcert check`` on one certificate before it counts as inconclusive."""
+"""Seconds allowed to the checker on one certificate before it counts as inconclusive."""
 
 CertificateChecker = Callable[[Path, Path], dict[str, Any]]
 """``checker(relative_path, report_dir) -> verdict``; see :func:`check_with_cli`."""
@@ -79,6 +83,12 @@ def collect(
         figures = tuple(_copy(Path(f), "figures", record, out_dir, taken) for f in record.figures)
         evidence = dict(record.evidence)
         certificates: list[dict[str, Any]] = []
+        document = evidence.pop(DOCUMENT_KEY, None)
+        if isinstance(document, dict):
+            written = _write(document, record, out_dir, taken)
+            written["check"] = checker(Path(written["path"]), out_dir)
+            certificates.append(written)
+            evidence["certificate"] = written["path"]
         for key in CERTIFICATE_KEYS:
             paths = _certificate_paths(evidence.get(key))
             if paths is None:
@@ -106,13 +116,7 @@ def _certificate_paths(value: object) -> list[str] | None:
 
 def _copy(source: Path, folder: str, record: Record, out_dir: Path, taken: set[str]) -> dict:
     """Copy ``source`` under ``out_dir/folder/<claim>/<case>/`` with a name not used before."""
-    base = f"{folder}/{_slug(record.id)}/{_slug(record.case)}"
-    name = f"{base}/{_slug(source.name)}"
-    index = 2
-    while name in taken:
-        name = f"{base}/{index}-{_slug(source.name)}"
-        index += 1
-    taken.add(name)
+    name = _reserve(folder, record, slug(source.name), taken)
     if not source.is_file():
         return {"path": name, "sha256": None, "error": f"the claim's file {source.name} is missing"}
     target = out_dir / name
@@ -121,12 +125,31 @@ def _copy(source: Path, folder: str, record: Record, out_dir: Path, taken: set[s
     return {"path": name, "sha256": hashlib.sha256(target.read_bytes()).hexdigest()}
 
 
-def _slug(text: str) -> str:
-    return re.sub(r"[^A-Za-z0-9._-]+", "_", text).strip("_") or "_"
+def _write(document: dict, record: Record, out_dir: Path, taken: set[str]) -> dict:
+    """Write a certificate ``document`` as ``DIR/certificates/<claim>/<case>/<kind>.json``."""
+    name = f"{slug(str(document.get('kind', 'certificate')))}.json"
+    path = _reserve("certificates", record, name, taken)
+    target = out_dir / path
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_text(json.dumps(document, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+    return {"path": path, "sha256": hashlib.sha256(target.read_bytes()).hexdigest()}
+
+
+def _reserve(folder: str, record: Record, name: str, taken: set[str]) -> str:
+    """``folder/<claim>/<case>/name``, prefixed ``2-``, ``3-`` … until unused; marks it used."""
+    base = f"{folder}/{slug(record.id)}/{slug(record.case)}"
+    path, index = f"{base}/{name}", 2
+    while path in taken:
+        path, index = f"{base}/{index}-{name}", index + 1
+    taken.add(path)
+    return path
 
 
 def check_with_cli(relative: Path, out_dir: Path) -> dict[str, Any]:
-    """Run ``trackcert check RELATIVE --json`` in ``out_dir`` and record its verdict.
+    """Run the independent checker, ``python -m proofs_check RELATIVE --json``, in ``out_dir``.
+
+    It is what ``trackcert check`` runs, without the library's start-up (about 0.05 s a
+    certificate instead of 1 s).
 
     Parameters
     ----------
@@ -140,16 +163,16 @@ def check_with_cli(relative: Path, out_dir: Path) -> dict[str, Any]:
     dict
         ``command``, ``exit_code``, ``valid`` (``True``/``False``, or ``None`` when the checker
         gave no verdict) and either ``checks`` (the checker's list) or ``error`` (its last line of
-        stderr, e.g. when no ``check`` command is installed).
+        stderr, e.g. when the checker cannot be found).
     """
-    command = ["check", relative.as_posix(), "--json"]
+    command = [relative.as_posix(), "--json"]
     root = str(Path(theory.__file__).resolve().parent.parent)
     inherited = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, *inherited]))
-    shown = "trackcert " + " ".join(command)
+    shown = "python -m proofs_check " + " ".join(command)
     try:
         done = subprocess.run(
-            [sys.executable, "-m", "theory.cli", *command],
+            [sys.executable, "-m", "proofs_check", *command],
             cwd=out_dir,
             env=env,
             capture_output=True,

@@ -5,7 +5,10 @@ case's kind, and it runs the model claims (``kinds=()``) once, on no case (case 
 exception a check raises, and every malformed answer it returns, becomes a :class:`Record` with
 status ``inconclusive``, method ``"none"`` and the error in its message and evidence, so the report
 always completes. A claim whose ``run`` accepts a keyword ``seed`` receives one derived from the
-report's seed, its id and the case name (:func:`derive_seed`), so reruns are identical. With a
+report's seed, its id and the case name (:func:`derive_seed`), so reruns are identical. A claim
+whose ``run`` accepts a keyword ``figure_dir`` receives, when the caller gives a figure folder,
+a fresh sub-folder ``<claim>/<case>`` of it to draw its figures in (it returns their paths in
+``figures``); without one it draws nothing. With a
 time limit (:mod:`theory.report.time_limit`), a check still running when it expires becomes an
 ``inconclusive`` record saying so, and the report goes on with the next one.
 """
@@ -37,6 +40,7 @@ __all__ = [
     "paper_of",
     "run_claims",
     "select_claims",
+    "slug",
 ]
 
 MODEL_CASE = "-"
@@ -176,6 +180,7 @@ def run_claims(
     claims: Sequence[Claim] | None = None,
     progress: ProgressHook | None = None,
     seconds: float | None = None,
+    figure_dir: Path | None = None,
 ) -> RunResult:
     """Run each claim on each case it applies to, and the model claims once.
 
@@ -191,6 +196,8 @@ def run_claims(
         Called as ``progress(claim_id, case_name)`` before each run.
     seconds : float, optional
         Time limit of each check (one claim on one case); ``None``: none.
+    figure_dir : Path, optional
+        Folder under which claims accepting ``figure_dir`` draw (``None``: no figures).
 
     Returns
     -------
@@ -209,7 +216,7 @@ def run_claims(
         if progress is not None:
             progress(claim.id, name)
         try:
-            records = _run_one(claim, case, seed, seconds)
+            records = _run_one(claim, case, seed, seconds, figure_dir)
         except NotApplicable as reason:
             records = []
             skipped.append((claim.id, name, str(reason)))
@@ -232,12 +239,18 @@ def _check_distinct_names(cases: Sequence[Case]) -> None:
         raise CaseError("name", "distinct case names in one report", duplicated[0])
 
 
-def _run_one(claim: Claim, case: Case | None, seed: int, seconds: float | None) -> list[Record]:
+def _run_one(
+    claim: Claim, case: Case | None, seed: int, seconds: float | None, figure_dir: Path | None
+) -> list[Record]:
     name = MODEL_CASE if case is None else case.name
-    claim_seed = derive_seed(seed, claim.id, name) if _takes_seed(claim.run) else None
+    claim_seed = derive_seed(seed, claim.id, name) if _takes(claim.run, "seed") else None
+    options: dict[str, Any] = {} if claim_seed is None else {"seed": claim_seed}
+    if figure_dir is not None and _takes(claim.run, "figure_dir"):
+        options["figure_dir"] = figure_dir / slug(claim.id) / slug(name)
+        options["figure_dir"].mkdir(parents=True, exist_ok=True)
     try:
         with time_limit(seconds):
-            results = claim.run(case) if claim_seed is None else claim.run(case, seed=claim_seed)
+            results = claim.run(case, **options)
         return [_record(claim, name, result, claim_seed) for result in _checked(results)]
     except NotApplicable:
         raise
@@ -245,12 +258,27 @@ def _run_one(claim: Claim, case: Case | None, seed: int, seconds: float | None) 
         return [_failure(claim, name, error, claim_seed)]
 
 
-def _takes_seed(run: Callable[..., Any]) -> bool:
+def _takes(run: Callable[..., Any], keyword: str) -> bool:
     try:
         parameters = inspect.signature(run).parameters
     except (TypeError, ValueError):
         return False
-    return "seed" in parameters
+    return keyword in parameters
+
+
+def slug(text: str) -> str:
+    """``text`` as one safe path component (runs of other characters become ``_``).
+
+    Parameters
+    ----------
+    text : str
+        A claim id or case name.
+
+    Returns
+    -------
+    str
+    """
+    return re.sub(r"[^A-Za-z0-9._-]+", "_", text).strip("_") or "_"
 
 
 def _checked(results: object) -> list[ClaimResult]:

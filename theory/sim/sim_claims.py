@@ -12,14 +12,20 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+from pathlib import Path
 from typing import Any
 
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
 import numpy as np
 
 from theory.claims import ClaimResult, NotApplicable, register
 from theory.sim.appendix_a import lemma_a12_along
 from theory.sim.consensus_kf import ORDERS, ch5_examples, simulate_consensus_kf
 from theory.sim.crb import crb_trace, optimal_crb_trace, platonic_solids
+from theory.sim.figures import save_figure
 from theory.sim.scenario import run_tdoa_scenario
 
 __all__ = [
@@ -92,8 +98,16 @@ def check_platonic(case: Any = None) -> list[ClaimResult]:
     statement="As b increases, total distance travelled decreases and covariance norms increase.",
     kinds=("tdoa-sim",),
 )
-def check_b_tradeoff(case: Any) -> list[ClaimResult]:
-    """Sweep ``b`` over :data:`B_SWEEP` with the case's other settings; means over 3 seeds."""
+def check_b_tradeoff(case: Any, *, figure_dir: Path | None = None) -> list[ClaimResult]:
+    """Sweep ``b`` over :data:`B_SWEEP` with the case's other settings; means over 3 seeds.
+
+    Parameters
+    ----------
+    case : Case
+        A ``tdoa-sim`` case.
+    figure_dir : Path, optional
+        Folder for ``b-tradeoff.png`` (distance against covariance norm, one point per ``b``).
+    """
     steps = min(case.spec.steps, SWEEP_MAX_STEPS)
     distance, norms = [], []
     for b in B_SWEEP:
@@ -103,6 +117,7 @@ def check_b_tradeoff(case: Any) -> list[ClaimResult]:
         norms.append(float(np.mean([r.cov_norms[steps // 5 :].mean() for r in runs])))
     falls = all(a > b for a, b in itertools.pairwise(distance))
     grows = all(a < b for a, b in itertools.pairwise(norms))
+    figures = () if figure_dir is None else (_tradeoff_figure(distance, norms, figure_dir),)
     return [
         ClaimResult(
             claim="seed000.sec4.4.b-tradeoff",
@@ -117,8 +132,20 @@ def check_b_tradeoff(case: Any) -> list[ClaimResult]:
                 "steps": steps,
             },
             message="mean over seeded runs; single runs may break the distance ordering",
+            figures=figures,
         )
     ]
+
+
+def _tradeoff_figure(distance: list[float], norms: list[float], folder: Path) -> str:
+    """Seed 000 Figs 4.9–4.10 in one plot: total distance against mean ‖P̄ᵢ‖, one point per b."""
+    fig, ax = plt.subplots(figsize=(5, 3.5))
+    ax.plot(norms, distance, "o-")
+    for b, x, y in zip(B_SWEEP, norms, distance, strict=True):
+        ax.annotate(f"b = {b:g}", (x, y), textcoords="offset points", xytext=(5, 5), fontsize=8)
+    ax.set(xlabel="mean covariance norm ‖P̄ᵢ‖", ylabel="total distance travelled (m)", xscale="log")
+    ax.grid(True, alpha=0.3)
+    return str(save_figure(fig, folder / "b-tradeoff.png"))
 
 
 @register(
@@ -126,7 +153,9 @@ def check_b_tradeoff(case: Any) -> list[ClaimResult]:
     source="seed 000, §5.3, Figs 5.2-5.3",
     statement="Covariances stay bounded for W_g and grow unbounded for W_b (both filter orders).",
 )
-def check_ch5_examples(case: Any = None, *, steps: int = 400) -> list[ClaimResult]:
+def check_ch5_examples(
+    case: Any = None, *, steps: int = 400, figure_dir: Path | None = None
+) -> list[ClaimResult]:
     """Simulate both examples, both orders; compare ``‖P_i‖`` at ``K/2`` and ``K``.
 
     Parameters
@@ -135,8 +164,12 @@ def check_ch5_examples(case: Any = None, *, steps: int = 400) -> list[ClaimResul
         Model claim (no case).
     steps : int
         Horizon ``K``.
+    figure_dir : Path, optional
+        Folder for ``covariance-norms.png`` (Figs 5.2–5.3: ``‖P_i(k)‖`` of the agents that cannot
+        estimate alone, for ``W_g`` and ``W_b``).
     """
     evidence: dict[str, Any] = {}
+    curves: dict[str, np.ndarray] = {}
     ok = True
     for name, ex in ch5_examples().items():
         for weights in ("W_g", "W_b"):
@@ -152,6 +185,8 @@ def check_ch5_examples(case: Any = None, *, steps: int = 400) -> list[ClaimResul
                 unbounded = all(g > GROWTH for g in growth)
                 ok &= bounded if weights == "W_g" else unbounded
                 evidence[f"{name} {weights} {order}"] = {"growth_K/2_to_K": growth}
+                curves[f"{name} {weights} {order}"] = run.cov_norms[:, ex["unstable_agents"]]
+    figures = () if figure_dir is None else (_norms_figure(curves, figure_dir),)
     return [
         ClaimResult(
             claim="seed000.sec5.3.sim-examples",
@@ -161,8 +196,22 @@ def check_ch5_examples(case: Any = None, *, steps: int = 400) -> list[ClaimResul
             evidence=evidence,
             tolerance={"converged_tol": CONVERGED_TOL, "growth": GROWTH},
             message=f"norms of P_i at k = {steps // 2} and {steps}",
+            figures=figures,
         )
     ]
+
+
+def _norms_figure(curves: dict[str, np.ndarray], folder: Path) -> str:
+    """``‖P_i(k)‖`` (log scale) of each example, weights and order (seed 000 Figs 5.2–5.3)."""
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for label, norms in curves.items():
+        style = "-" if "W_g" in label else "--"
+        ax.plot(norms.max(axis=1), style, label=label, linewidth=1)
+    ax.set(xlabel="time step k", ylabel="max ‖P_i(k)‖, agents needing neighbours")
+    ax.set_yscale("log")
+    ax.legend(fontsize=6)
+    ax.grid(True, alpha=0.3)
+    return str(save_figure(fig, folder / "covariance-norms.png"))
 
 
 APPENDIX_A_MAX_STEPS = 40
