@@ -215,6 +215,28 @@ def test_certificates_are_copied_and_checked(monkeypatch, tmp_path) -> None:
     assert "invalid" in files["index.html"].decode()
 
 
+def test_certificate_documents_are_written_and_checked(monkeypatch, tmp_path) -> None:
+    """A certificate carried in the evidence becomes a file that proofs_check accepts."""
+    from theory.tdoa_rank_certificates import generic_rank_certificates
+
+    register = fake_registry(monkeypatch)
+    (document, *_) = generic_rank_certificates(load_case(write_case(tmp_path, "case-a")).spec)
+
+    @register("seed000.doc", source="s", statement="t", kinds=("tdoa",))
+    def with_document(case):
+        evidence = {"certificate_document": document, "rank": 1}
+        return [result(case, claim="seed000.doc", evidence=evidence)]
+
+    files = _report(tmp_path, "out", seed=0)
+    (record,) = json.loads(files["report.json"])["claims"]
+    path = "certificates/seed000.doc/case-a/generic-rank.json"
+    assert record["evidence"] == {"certificate": path, "rank": 1}
+    ((entry),) = record["certificates"]
+    assert entry["path"] == path and entry["check"]["valid"] is True
+    assert entry["check"]["command"] == f"python -m proofs_check {path} --json"
+    assert json.loads((tmp_path / "out" / path).read_text()) == document
+
+
 def test_cli_checker_never_validates_a_bogus_certificate(tmp_path) -> None:
     (tmp_path / "bogus.json").write_text('{"format": "trackcert-certificate/1"}')
     verdict = check_with_cli(Path("bogus.json"), tmp_path)

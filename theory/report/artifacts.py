@@ -84,11 +84,6 @@ def collect(
         evidence = dict(record.evidence)
         certificates: list[dict[str, Any]] = []
         document = evidence.pop(DOCUMENT_KEY, None)
-        if isinstance(document, dict):
-            written = _write(document, record, out_dir, taken)
-            written["check"] = checker(Path(written["path"]), out_dir)
-            certificates.append(written)
-            evidence["certificate"] = written["path"]
         for key in CERTIFICATE_KEYS:
             paths = _certificate_paths(evidence.get(key))
             if paths is None:
@@ -100,6 +95,11 @@ def collect(
             certificates.extend(copies)
             relative = [c["path"] for c in copies]
             evidence[key] = relative[0] if isinstance(evidence[key], str) else relative
+        if isinstance(document, dict):
+            written = _write(document, record, out_dir, taken)
+            written["check"] = checker(Path(written["path"]), out_dir)
+            certificates.append(written)
+            evidence["certificate"] = written["path"]
         collected.append(
             Artifacts(replace(record, evidence=evidence), figures, tuple(certificates))
         )
