@@ -162,12 +162,8 @@ def printed_gap(
 
     Parameters
     ----------
-    A : fmpq_mat, n × n
-        State matrix.
-    C : fmpq_mat, p × n
-        Output matrix ``C_i``.
-    R : fmpq_mat, p × p
-        Measurement noise covariance ``R_i``.
+    A, C, R : fmpq_mat
+        As in :func:`optimal_gain`.
     L : fmpq_mat, n × p
         The arbitrary gain ``L_i``.
     Pi : fmpq_mat, n × n
@@ -261,12 +257,8 @@ def riccati_form(
 
     Parameters
     ----------
-    A : fmpq_mat, n × n
-        State matrix.
-    C : fmpq_mat, p × n
-        Output matrix ``C_i``.
-    R : fmpq_mat, p × p
-        Measurement noise covariance ``R_i``.
+    A, C, R : fmpq_mat
+        As in :func:`optimal_gain`.
     Q : fmpq_mat, n × n
         Process noise covariance.
     Pi_star : fmpq_mat, n × n
