@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from theory.s_detectability import decide_s_detectability
+from theory.consensus.s_detectability import decide_s_detectability
 
 ROW = "{:7} {:>3} {:>2} {:>9} {:>8} {:>9} {:>8} {:>6}"
 

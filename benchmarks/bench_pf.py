@@ -12,11 +12,11 @@ import timeit
 
 import numpy as np
 
-from theory.dcrw import DcrwParams
-from theory.particle_filter import PfConfig, PfNetwork, initial_state, measure, pf_step
-from theory.pf_motion import DcrwMotion
-from theory.pf_vs_ekf import EkfConfig, consensus_weights, ekf_step
-from theory.tdoa import cv_discrete
+from theory.particle.dcrw import DcrwParams
+from theory.particle.filter import PfConfig, PfNetwork, initial_state, measure, pf_step
+from theory.particle.motion import DcrwMotion
+from theory.particle.pf_vs_ekf import EkfConfig, consensus_weights, ekf_step
+from theory.tdoa.model import cv_discrete
 
 TARGET_S = 5e-3
 THESIS_PF_S, THESIS_EKF_S = 2.73e-1, 2.68e-4

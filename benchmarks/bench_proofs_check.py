@@ -17,7 +17,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from proofs_check import check_certificate
-from theory.certificates import mjls_stability_certificate
+from theory.consensus.certificates import mjls_stability_certificate
 
 
 def network(N: int, n: int, rng: np.random.Generator):

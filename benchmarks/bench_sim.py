@@ -27,11 +27,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from concurrent.futures import ProcessPoolExecutor
 
-from theory.case_file import load_case
-from theory.sim.agents import linearizing_control
-from theory.sim.pursuit import DecSettings, simulate_dec
-from theory.sim.range_dekf import table_target
+from theory.core.case_file import load_case
+from theory.pursuit.closed_loop import DecSettings, simulate_dec
+from theory.pursuit.dekf import table_target
 from theory.sim.runner import monte_carlo
+from theory.tdoa.agents import linearizing_control
 
 
 def _timed(function, *args, **kwargs) -> float:

@@ -35,10 +35,10 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from theory.network import adjacency_from_range, metropolis_weights  # noqa: E402
-from theory.tdoa import cv_discrete, unit_directions  # noqa: E402
-from theory.tdoa_case import TdoaSpec  # noqa: E402
-from theory.topology import analyze_topology  # noqa: E402
+from theory.core.network import adjacency_from_range, metropolis_weights  # noqa: E402
+from theory.tdoa.case import TdoaSpec  # noqa: E402
+from theory.tdoa.model import cv_discrete, unit_directions  # noqa: E402
+from theory.tdoa.topology import analyze_topology  # noqa: E402
 
 MEAN_DEGREE = 8.0
 SIDE = 100.0

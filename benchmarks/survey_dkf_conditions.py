@@ -15,8 +15,8 @@ from collections import Counter
 
 import numpy as np
 
-from theory.dkf_conditions import necessary_conditions
-from theory.s_detectability import decide_s_detectability
+from theory.consensus.conditions import necessary_conditions
+from theory.consensus.s_detectability import decide_s_detectability
 
 
 def problem(rng: np.random.Generator):

@@ -10,19 +10,19 @@ import pytest
 import yaml
 from typer.testing import CliRunner
 
-from theory.case_file import parse_case
 from theory.cli import app
-from theory.falsifiable_dkf import jointly_detectable, strongly_connected
-from theory.falsifiable_iss import (
+from theory.consensus.properties import jointly_detectable, strongly_connected
+from theory.core.case_file import parse_case
+from theory.falsify import DEFAULT_EXAMPLES, all_properties, falsify
+from theory.pursuit.properties import (
     PursuitExample,
     coordination_terms,
     phi_terms,
     pursuit_terms,
 )
-from theory.falsifiable_networked import WeightedScene, analyze_weighted_scene
-from theory.falsifiable_tdoa import component_rank, scene_case
-from theory.falsify import DEFAULT_EXAMPLES, all_properties, falsify
 from theory.strategies import TdoaScene
+from theory.tdoa.geometry_properties import component_rank, scene_case
+from theory.tdoa.networked_properties import WeightedScene, analyze_weighted_scene
 
 runner = CliRunner()
 PROPERTIES = all_properties()

@@ -35,10 +35,10 @@ __all__ = [
 
 DEFAULT_EXAMPLES = 200
 PROPERTY_MODULES: tuple[str, ...] = (
-    "theory.falsifiable_dkf",
-    "theory.falsifiable_iss",
-    "theory.falsifiable_networked",
-    "theory.falsifiable_tdoa",
+    "theory.consensus.properties",
+    "theory.pursuit.properties",
+    "theory.tdoa.networked_properties",
+    "theory.tdoa.geometry_properties",
 )
 
 _PROPERTIES: dict[str, Property] = {}

@@ -22,10 +22,10 @@ import numpy as np
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-from theory.case_file import Case, parse_case
-from theory.network import metropolis_weights, uniform_weights
-from theory.pursuit_case import PursuitSpec
-from theory.pursuit_model import closed_loop_rates, path_numeric, rotation_numeric
+from theory.core.case_file import Case, parse_case
+from theory.core.network import metropolis_weights, uniform_weights
+from theory.pursuit.case import PursuitSpec
+from theory.pursuit.model import closed_loop_rates, path_numeric, rotation_numeric
 
 __all__ = [
     "SCENE_FAMILIES",
@@ -563,7 +563,7 @@ class TrackerState:
 
     def rates(self, spec: PursuitSpec, *, tracker: int = 0):
         """The closed-loop rates (V̇, ė_p, ė_γ, u) of tracker ``tracker`` of ``spec`` in this
-        state, from the kinematics (:func:`theory.pursuit_model.closed_loop_rates`).
+        state, from the kinematics (:func:`theory.pursuit.model.closed_loop_rates`).
 
         Parameters
         ----------

@@ -5,8 +5,8 @@ from __future__ import annotations
 import typer
 from rich.table import Table
 
-from theory.case_file import bundled_cases, load_case
 from theory.cli.common import console, print_json, reports_errors
+from theory.core.case_file import bundled_cases, load_case
 
 __all__ = ["register"]
 

@@ -14,9 +14,9 @@ import proofs_check
 import proofs_check.__main__
 import proofs_check.parse
 from proofs_check.deadline import DEFAULT_SECONDS
-from theory.case_file import load_case
 from theory.cli.common import console, print_json, reports_errors
-from theory.errors import CaseError, SolverError
+from theory.core.case_file import load_case
+from theory.core.errors import CaseError, SolverError
 
 __all__ = ["register", "write_atomically"]
 
@@ -66,8 +66,8 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Write every certificate the case supports (a bundle), re-checked exactly."""
         loaded = load_case(case)
-        from theory.case_certificates import case_certificates  # cvxpy: imported on use
-        from theory.certificates import bundle
+        from theory.certify import case_certificates  # cvxpy: imported on use
+        from theory.consensus.certificates import bundle
 
         document = bundle(case_certificates(loaded, seed=seed), case=loaded.name)
         text = json.dumps(document, indent=1, ensure_ascii=False) + "\n"

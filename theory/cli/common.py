@@ -12,7 +12,7 @@ import numpy as np
 import typer
 from rich.console import Console
 
-from theory.errors import (
+from theory.core.errors import (
     CaseError,
     InconclusiveError,
     PropertyFails,

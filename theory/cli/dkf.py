@@ -9,8 +9,6 @@ from __future__ import annotations
 import typer
 from rich.table import Table
 
-from theory.case_file import load_case
-from theory.claims import all_claims, applicable_results
 from theory.cli.common import (
     case_argument,
     console,
@@ -19,7 +17,9 @@ from theory.cli.common import (
     reports_errors,
     verdict_exit_code,
 )
-from theory.errors import CaseError
+from theory.core.case_file import load_case
+from theory.core.claims import all_claims, applicable_results
+from theory.core.errors import CaseError
 
 __all__ = ["register"]
 
@@ -43,7 +43,7 @@ def register(app: typer.Typer) -> None:
             raise CaseError("kind", "dkf", loaded.kind, file=loaded.file)
         if solver not in ("CLARABEL", "SCS"):
             raise CaseError("--solver", "CLARABEL or SCS", solver, file=loaded.file)
-        from theory.dkf_claims import analyze_dkf  # cvxpy: imported on use
+        from theory.consensus.claims import analyze_dkf  # cvxpy: imported on use
 
         analysis = analyze_dkf(loaded, search_self_weight=self_weight, solver=solver)
         data = analysis.to_json()

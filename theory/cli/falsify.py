@@ -13,7 +13,7 @@ from theory.cli.common import (
     print_json,
     reports_errors,
 )
-from theory.errors import CaseError
+from theory.core.errors import CaseError
 from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, all_properties, falsify, properties_for
 
 __all__ = ["register"]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from theory.cli.common import EXIT_FAILS, print_json, reports_errors
-from theory.errors import CaseError
+from theory.core.errors import CaseError
 
 __all__ = ["MAX_ROWS", "register"]
 
@@ -51,7 +51,7 @@ def register(app: typer.Typer) -> None:
                 rows,
                 file="<command line>",
             )
-        from theory.generic_rank import single_agent_generic_rank  # sympy: imported on use
+        from theory.tdoa.generic_rank import single_agent_generic_rank  # sympy: imported on use
 
         result = single_agent_generic_rank(dim, rows, seed=seed)
         ok = (
@@ -71,7 +71,7 @@ def register(app: typer.Typer) -> None:
 
 def _fig43(case: str, weights: str, seed: int, as_json: bool) -> None:
     """Print the Fig. 4.3 analysis: symbolic rank O_i, exact rank O, detectability."""
-    from theory.fig43 import FIG43_EDGES, fig43_analysis  # sympy: imported on use
+    from theory.tdoa.fig43 import FIG43_EDGES, fig43_analysis  # sympy: imported on use
 
     if case not in FIG43_EDGES:
         raise CaseError("--fig43", f"one of {sorted(FIG43_EDGES)}", case, file="<command line>")

@@ -13,8 +13,6 @@ import numpy as np
 import typer
 from rich.table import Table
 
-from theory.case_file import load_case
-from theory.claims import get_claim
 from theory.cli.common import (
     case_argument,
     console,
@@ -23,7 +21,9 @@ from theory.cli.common import (
     reports_errors,
     verdict_exit_code,
 )
-from theory.errors import CaseError
+from theory.core.case_file import load_case
+from theory.core.claims import get_claim
+from theory.core.errors import CaseError
 
 __all__ = ["iss_report", "register"]
 
@@ -33,7 +33,7 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
 
     Parameters
     ----------
-    case : theory.case_file.Case
+    case : theory.core.case_file.Case
         A loaded pursuit case.
     margin_tol : float, optional
         Overrides the case's ``tolerances.margin_tol`` (default 1e-9).
@@ -48,15 +48,15 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
     CaseError
         If the case is not of kind ``pursuit``.
     """
-    from theory.iss import (  # sympy/scipy: imported on use
+    from theory.pursuit.iss import (  # sympy/scipy: imported on use
         DEFAULT_MARGIN_TOL,
         coordination_iss,
         iss_bound,
         iss_conditions,
         pursuit_iss,
     )
-    from theory.iss_claims import run_case_claims
-    from theory.iss_symbolic import lyapunov_derivative_check
+    from theory.pursuit.iss_claims import run_case_claims
+    from theory.pursuit.iss_symbolic import lyapunov_derivative_check
 
     if case.kind != "pursuit":
         raise CaseError(

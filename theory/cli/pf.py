@@ -16,8 +16,6 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from theory.case_file import Case, load_case
-from theory.claims import all_claims, applicable_results
 from theory.cli.common import (
     EXIT_FAILS,
     EXIT_HOLDS,
@@ -27,7 +25,9 @@ from theory.cli.common import (
     reports_errors,
     to_jsonable,
 )
-from theory.errors import CaseError
+from theory.core.case_file import Case, load_case
+from theory.core.claims import all_claims, applicable_results
+from theory.core.errors import CaseError
 
 __all__ = ["register", "run_pf_case"]
 
@@ -71,7 +71,7 @@ def run_pf_case(
     int
         1 when an expectation is unmet, 3 when one is inconclusive, 0 otherwise.
     """
-    from theory.pf_experiments import monte_carlo, node_summary, shared_monte_carlo
+    from theory.particle.experiments import monte_carlo, node_summary, shared_monte_carlo
 
     folder = None if out is None else Path(out)
     if case.kind != "pf":
@@ -91,7 +91,7 @@ def run_pf_case(
     ]
     figures = []
     if folder is not None:
-        from theory.pf_figures import write_figures
+        from theory.particle.figures import write_figures
 
         first = monte_carlo(spec, runs=1, snapshot_steps=SNAPSHOT_STEPS)  # = run 0 of mc
         figures = write_figures(replace(mc, snapshots=first.snapshots), spec, folder, case.name)

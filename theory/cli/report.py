@@ -11,10 +11,10 @@ import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from theory.case_file import bundled_cases, load_case
-from theory.claims import all_claims
 from theory.cli.common import EXIT_FAILS, EXIT_HOLDS, console, error_console, reports_errors
-from theory.errors import CaseError
+from theory.core.case_file import bundled_cases, load_case
+from theory.core.claims import all_claims
+from theory.core.errors import CaseError
 from theory.report.canonical import dumps
 from theory.report.render import write_report
 from theory.report.runner import MODEL_CASE, run_claims, select_claims

@@ -1,8 +1,8 @@
 """``trackcert simulate CASE``: closed-loop simulation, data files and figures (DESIGN.md).
 
-Runs ``kind: tdoa-sim`` cases (seed 000 ch. 4, :mod:`theory.sim.scenario`), 2-D
-``kind: pursuit`` cases (seed 003, :mod:`theory.sim.pursuit_sim`) and ``kind: dkf`` cases
-(seed 000 ch. 5, :mod:`theory.sim.dkf_sim`); ``kind: pf`` cases (seed 002) are handed to
+Runs ``kind: tdoa-sim`` cases (seed 000 ch. 4, :mod:`theory.tdoa.scenario`), 2-D
+``kind: pursuit`` cases (seed 003, :mod:`theory.pursuit.simulation`) and ``kind: dkf`` cases
+(seed 000 ch. 5, :mod:`theory.consensus.simulation`); ``kind: pf`` cases (seed 002) are handed to
 :func:`theory.cli.pf.run_pf_case`, as ``trackcert pf`` runs them.
 """
 
@@ -18,7 +18,6 @@ from typing import Any
 import typer
 from rich.progress import Progress
 
-from theory.case_file import Case, load_case
 from theory.cli.common import (
     EXIT_FAILS,
     console,
@@ -27,7 +26,8 @@ from theory.cli.common import (
     reports_errors,
     to_jsonable,
 )
-from theory.errors import CaseError
+from theory.core.case_file import Case, load_case
+from theory.core.errors import CaseError
 
 __all__ = ["register"]
 
@@ -118,7 +118,7 @@ def register(app: typer.Typer) -> None:
 
 
 def _tdoa_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
-    from theory.sim.scenario import run_tdoa_scenario
+    from theory.tdoa.scenario import run_tdoa_scenario
 
     spec = case.spec if steps is None else dataclasses.replace(case.spec, steps=steps)
     fields = {"filter": spec.filter, "b": spec.b, "steps": spec.steps}
@@ -127,8 +127,8 @@ def _tdoa_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
 
 def _finish_tdoa(case: Case, spec: Any, results: list, folder: Path, figures: bool):
     from theory.sim.figures import write_figures
-    from theory.sim.metrics import check_expectations, summarize_runs
     from theory.sim.outputs import write_data
+    from theory.tdoa.metrics import check_expectations, summarize_runs
 
     summary = summarize_runs(spec, results)
     error_bound = case.tolerances.get("error_bound", 10.0 * math.sqrt(spec.r))
@@ -140,7 +140,7 @@ def _finish_tdoa(case: Case, spec: Any, results: list, folder: Path, figures: bo
 
 
 def _pursuit_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
-    from theory.sim.pursuit_sim import (
+    from theory.pursuit.simulation import (
         check_pursuit_case,
         default_steps,
         integration_step,
@@ -159,7 +159,7 @@ def _pursuit_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
 
 
 def _finish_pursuit(case: Case, spec: Any, results: list, folder: Path, figures: bool):
-    from theory.sim.pursuit_sim import (
+    from theory.pursuit.simulation import (
         summarize_pursuit,
         write_pursuit_data,
         write_pursuit_figures,
@@ -173,7 +173,7 @@ def _finish_pursuit(case: Case, spec: Any, results: list, folder: Path, figures:
 
 
 def _dkf_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
-    from theory.sim.dkf_sim import DEFAULT_STEPS, run_dkf_case
+    from theory.consensus.simulation import DEFAULT_STEPS, run_dkf_case
 
     steps = steps or DEFAULT_STEPS
     fields = {"order": case.spec.order, "steps": steps}
@@ -182,7 +182,7 @@ def _dkf_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
 
 
 def _finish_dkf(case: Case, spec: Any, results: list, folder: Path, figures: bool):
-    from theory.sim.dkf_sim import summarize_dkf, write_dkf_data
+    from theory.consensus.simulation import summarize_dkf, write_dkf_data
 
     summary = summarize_dkf(spec, results)
     return summary, {}, write_dkf_data(results, summary, folder)

@@ -13,7 +13,6 @@ import numpy as np
 import typer
 from rich.table import Table
 
-from theory.case_file import Case, load_case
 from theory.cli.common import (
     EXIT_HOLDS,
     EXIT_INCONCLUSIVE,
@@ -24,13 +23,14 @@ from theory.cli.common import (
     reports_errors,
     verdict_exit_code,
 )
-from theory.errors import CaseError, SolverError
-from theory.time_varying import (
+from theory.core.case_file import Case, load_case
+from theory.core.errors import CaseError, SolverError
+from theory.tdoa.time_varying import (
     TrajectoryResult,
     analyze_trajectory,
     check_trajectory_expectations,
 )
-from theory.topology import TopologyResult, check_expectations
+from theory.tdoa.topology import TopologyResult, check_expectations
 
 __all__ = ["register", "run_topology"]
 

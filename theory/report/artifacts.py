@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 import theory
-from theory.claims import DOCUMENT_KEY
+from theory.core.claims import DOCUMENT_KEY
 from theory.report.runner import Record, slug
 
 __all__ = [

@@ -10,7 +10,7 @@ from collections import Counter
 from collections.abc import Sequence
 from typing import Any
 
-from theory.claims import STATUSES
+from theory.core.claims import STATUSES
 from theory.report.artifacts import Artifacts
 from theory.report.errata import ErratumEntry
 from theory.report.expectations import VERDICTS

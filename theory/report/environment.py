@@ -15,8 +15,8 @@ from pathlib import Path
 from typing import Any
 
 import theory
-from theory.case_file import Case, bundled_case_dir
-from theory.claims import CLAIM_MODULES, all_claims
+from theory.core.case_file import Case, bundled_case_dir
+from theory.core.claims import CLAIM_MODULES, all_claims
 from theory.report.runner import Record
 from theory.report.time_limit import enforceable
 

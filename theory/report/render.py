@@ -19,8 +19,8 @@ from typing import Any
 import jinja2
 from markupsafe import Markup
 
-from theory.claims import STATUSES
-from theory.errors import CaseError
+from theory.core.claims import STATUSES
+from theory.core.errors import CaseError
 from theory.report.artifacts import CertificateChecker, collect
 from theory.report.canonical import dumps, layout
 from theory.report.document import build_document

@@ -25,9 +25,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from theory.case_file import Case
-from theory.claims import Claim, ClaimResult, NotApplicable, all_claims
-from theory.errors import CaseError
+from theory.core.case_file import Case
+from theory.core.claims import Claim, ClaimResult, NotApplicable, all_claims
+from theory.core.errors import CaseError
 from theory.report.canonical import canonical
 from theory.report.expectations import EXPECTATIONS_KEY, Expectation, evaluate
 from theory.report.time_limit import TimeLimitExceeded, time_limit
@@ -54,7 +54,8 @@ class Record:
     """One line of the report: a claim's result on a case (or the failure to get one).
 
     Attributes ``id`` (the claim id), ``case``, ``method``, ``status``, ``message``, ``margin``,
-    ``tolerance``, ``evidence`` and ``figures`` mirror :class:`~theory.claims.ClaimResult`; beside
+    ``tolerance``, ``evidence`` and ``figures`` mirror :class:`~theory.core.claims.ClaimResult`;
+    beside
     them stand the claim's ``source`` and ``statement``, the ``paper`` it belongs to (``"000"`` …
     or ``"other"``) and the derived ``seed`` (``None`` if the claim takes none). Figure files are
     copied into the report folder when it is written.
@@ -87,7 +88,8 @@ class RunResult:
         One per key of every case's ``expect`` block.
     not_applicable : tuple of (claim id, case name, reason)
         Claims that returned no result for a case (they do not apply to it); ``reason`` is the
-        message of the :class:`~theory.claims.NotApplicable` the check raised, or ``""`` when it
+        message of the :class:`~theory.core.claims.NotApplicable` the check raised, or ``""`` when
+        it
         returned an empty list.
     cases : tuple of Case
         The cases, in the order given.
@@ -191,7 +193,7 @@ def run_claims(
     seed : int
         The report's seed; each claim accepting ``seed`` gets :func:`derive_seed` of it.
     claims : sequence of Claim, optional
-        Defaults to every registered claim (:func:`theory.claims.all_claims`).
+        Defaults to every registered claim (:func:`theory.core.claims.all_claims`).
     progress : callable, optional
         Called as ``progress(claim_id, case_name)`` before each run.
     seconds : float, optional

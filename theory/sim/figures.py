@@ -1,6 +1,6 @@
 """PNG figures of closed-loop runs: 3D trajectories, error and covariance norms, distance.
 
-Built from the same :class:`~theory.sim.scenario.TdoaRun` objects the summary comes from.
+Built from the same :class:`~theory.tdoa.scenario.TdoaRun` objects the summary comes from.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from theory.sim.scenario import TdoaRun
+from theory.tdoa.scenario import TdoaRun
 
 __all__ = ["save_figure", "write_figures"]
 

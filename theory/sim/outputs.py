@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.sim.scenario import TdoaRun
+from theory.tdoa.scenario import TdoaRun
 
 __all__ = ["write_agents_csv", "write_data", "write_runs_npz", "write_timeseries_csv"]
 
@@ -27,7 +27,7 @@ def write_data(runs: Sequence[TdoaRun], summary: dict[str, Any], folder: Path) -
     runs : sequence of TdoaRun
         The runs.
     summary : dict
-        The summary from :func:`theory.sim.metrics.summarize_runs`.
+        The summary from :func:`theory.tdoa.metrics.summarize_runs`.
     folder : pathlib.Path
         Output folder (must exist).
 

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.sim.scenario import run_tdoa_scenario
+from theory.tdoa.scenario import run_tdoa_scenario
 
 __all__ = ["default_workers", "monte_carlo", "run_seeds"]
 
@@ -70,7 +70,7 @@ def monte_carlo(
         Called with the number of runs finished so far, after each run.
     simulate : callable
         ``simulate(spec, rng) -> run``, a picklable module-level function (default: the TDOA
-        closed loop :func:`~theory.sim.scenario.run_tdoa_scenario`).
+        closed loop :func:`~theory.tdoa.scenario.run_tdoa_scenario`).
 
     Returns
     -------

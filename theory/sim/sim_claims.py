@@ -1,4 +1,4 @@
-"""Claims checked by simulation and by the CRB (registered in :mod:`theory.claims`).
+"""Claims checked by simulation and by the CRB (registered in :mod:`theory.core.claims`).
 
 * ``seed000.sec4.3.1.platonic`` — Platonic solids are the optimal formations (complete network).
 * ``seed000.sec4.4.b-tradeoff`` — as ``b`` grows, distance travelled falls, covariance norms grow.
@@ -21,12 +21,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from theory.claims import ClaimResult, NotApplicable, register
-from theory.sim.appendix_a import lemma_a12_along
-from theory.sim.consensus_kf import ORDERS, ch5_examples, simulate_consensus_kf
-from theory.sim.crb import crb_trace, optimal_crb_trace, platonic_solids
+from theory.consensus.kalman_filter import ORDERS, ch5_examples, simulate_consensus_kf
+from theory.core.claims import ClaimResult, NotApplicable, register
 from theory.sim.figures import save_figure
-from theory.sim.scenario import run_tdoa_scenario
+from theory.tdoa.appendix_a import lemma_a12_along
+from theory.tdoa.crb import crb_trace, optimal_crb_trace, platonic_solids
+from theory.tdoa.scenario import run_tdoa_scenario
 
 __all__ = [
     "check_b_tradeoff",
@@ -269,7 +269,7 @@ ISS_SEEDS = (0, 1)
 
 @register(
     "seed003.thm2.sim-trajectories",
-    source="seed 003, Theorem 2 (with the corrected constants of theory.iss)",
+    source="seed 003, Theorem 2 (with the corrected constants of theory.pursuit.iss)",
     statement="Along every trajectory of the DEC, ‖μ(t)‖ ≤ β(‖μ(0)‖, t) + γ(sup‖x̃‖).",
     kinds=("pursuit",),
 )
@@ -282,9 +282,9 @@ def check_iss_along_runs(case: Any) -> list[ClaimResult]:
     case : Case
         A ``kind: pursuit`` case.
     """
-    from theory.errors import CaseError
-    from theory.sim.iss_check import iss_margin_along
-    from theory.sim.pursuit_sim import check_pursuit_case, run_pursuit_case
+    from theory.core.errors import CaseError
+    from theory.pursuit.iss_check import iss_margin_along
+    from theory.pursuit.simulation import check_pursuit_case, run_pursuit_case
 
     def result(status: str, message: str, **evidence: Any) -> list[ClaimResult]:
         return [

@@ -15,18 +15,18 @@ from pathlib import Path
 
 import numpy as np
 
-from theory.case_certificates import case_certificates
-from theory.case_file import load_case
-from theory.certificates import (
+from theory.certify import case_certificates
+from theory.consensus.certificates import (
     bundle,
     covariance_bound_certificate,
     ekf_covariance_bound_certificate,
     mjls_stability_certificate,
     s_detectability_certificate,
 )
-from theory.iss_certificates import iss_certificate
-from theory.s_detectability import s_detectability_witness
-from theory.tdoa_rank_certificates import generic_rank_certificates
+from theory.consensus.s_detectability import s_detectability_witness
+from theory.core.case_file import load_case
+from theory.pursuit.certificates import iss_certificate
+from theory.tdoa.rank_certificates import generic_rank_certificates
 
 HERE = Path(__file__).resolve().parent
 

@@ -1,0 +1,97 @@
+"""A check that runs past the report's time limit becomes inconclusive; the others still run."""
+
+from __future__ import annotations
+
+import json
+import signal
+import time
+
+import pytest
+from report_fakes import fake_registry, register_standard_fakes, result, write_case
+from typer.testing import CliRunner
+
+from theory.cli import app
+from theory.core.case_file import load_case
+from theory.report.runner import run_claims
+from theory.report.time_limit import TimeLimitExceeded, enforceable, time_limit
+
+pytestmark = pytest.mark.skipif(not enforceable(), reason="needs SIGALRM in the main thread")
+runner = CliRunner()
+
+
+def _spin(seconds: float) -> None:
+    """Busy Python code (a check that never returns in time)."""
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        pass
+
+
+def test_the_limit_interrupts_python_code_and_restores_the_timer() -> None:
+    before = signal.getsignal(signal.SIGALRM)
+    started = time.monotonic()
+    with pytest.raises(TimeLimitExceeded, match=r"0\.05 s"), time_limit(0.05):
+        _spin(5.0)
+    assert time.monotonic() - started < 2.0
+    assert signal.getsignal(signal.SIGALRM) is before
+    assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)
+
+
+def test_no_limit_and_a_check_that_finishes_in_time() -> None:
+    with time_limit(None):
+        _spin(0.01)
+    with time_limit(5.0):
+        _spin(0.01)
+    assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)
+
+
+def test_a_check_cannot_swallow_the_limit() -> None:
+    """``except Exception`` in a check (a solver failure turned into a verdict) lets it through."""
+    with pytest.raises(TimeLimitExceeded), time_limit(0.05):
+        try:
+            _spin(5.0)
+        except Exception:  # pragma: no cover - the point is that this never runs
+            pytest.fail("the time limit was caught as an Exception")
+
+
+def _register_slow(register) -> None:
+    @register("seed002.fake.slow", source="seed 002 §9", statement="slow", kinds=("tdoa",))
+    def slow(case):
+        _spin(5.0)
+        return [result(case, claim="seed002.fake.slow")]
+
+
+def test_a_slow_check_is_inconclusive_and_the_report_goes_on(monkeypatch, tmp_path) -> None:
+    register = fake_registry(monkeypatch)
+    register_standard_fakes(register)
+    _register_slow(register)
+    run = run_claims([load_case(write_case(tmp_path))], seed=0, seconds=0.2)
+    statuses = {r.id: r.status for r in run.records}
+    assert statuses == {
+        "seed000.fake.model": "verified",
+        "seed001.fake.observable": "verified",
+        "seed002.fake.slow": "inconclusive",
+        "seed003.fake.random": "verified",
+    }
+    (slow,) = [r for r in run.records if r.id == "seed002.fake.slow"]
+    assert slow.method == "none" and "time limit of 0.2 s" in slow.message
+    assert slow.evidence["error"]["type"] == "TimeLimitExceeded"
+    assert run.all_expectations_met and run.time_limit == 0.2
+
+
+def test_cli_time_limit_is_recorded(monkeypatch, tmp_path) -> None:
+    register = fake_registry(monkeypatch)
+    register_standard_fakes(register)
+    _register_slow(register)
+    out = tmp_path / "out"
+    done = runner.invoke(
+        app, ["report", str(write_case(tmp_path)), "-o", str(out), "--time-limit", "0.2"]
+    )
+    assert done.exit_code == 0, done.output
+    document = json.loads((out / "report.json").read_text())
+    assert document["environment"]["time_limit"] == 0.2
+    assert document["environment"]["time_limit_enforced"] is True
+    assert "Time limit per check: 0.2 s" in (out / "report.md").read_text()
+    done = runner.invoke(
+        app, ["report", str(write_case(tmp_path)), "-o", str(out), "--time-limit", "-1"]
+    )
+    assert done.exit_code == 2 and "Traceback" not in done.output

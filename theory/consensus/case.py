@@ -1,0 +1,170 @@
+"""``kind: dkf`` case files: a linear system watched by a network running a consensus Kalman filter.
+
+Seed 000 ch. 5, eqs. (5.1)–(5.4) and App. C.3. Block fields::
+
+    dkf:
+      A: [[2, 0], [0, 2]]                 # n × n system matrix
+      C: [[[1, 0]], [[0, 1]], [[1, 0], [0, 1]]]   # one p_i × n matrix per agent ([] = no sensor)
+      W: [[0.24, 0.76, 0], ...]           # N × N row-stochastic, w_ii > 0, directed allowed
+      Q: [[0.1, 0], [0, 0.1]]             # n × n process noise covariance, positive definite
+      R: [[[0.1]], [[0.1]], [[0.1, 0], [0, 0.1]]]  # one p_i × p_i covariance per agent, pos. def.
+      L: [[[2], [0]], ...]                # optional: one n × p_i gain per agent
+      order: consensus-then-filter        # or filter-then-consensus (App. C.3)
+
+An agent with ``C_i = []`` (zero rows) has no sensor; its ``R_i`` is ``[]`` and its gain
+``L_i`` (if given) is ``[]`` too.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from theory.core.case_file import register_kind
+from theory.core.errors import CaseError
+from theory.core.validation import (
+    check_keys,
+    finite_matrix,
+    one_of,
+    positive_definite,
+    require,
+    row_stochastic,
+)
+
+__all__ = ["ORDERS", "DkfSpec", "parse_dkf"]
+
+FIELDS = ("A", "C", "W", "Q", "R", "L", "order")
+ORDERS = ("consensus-then-filter", "filter-then-consensus")
+"""``consensus-then-filter``: eqs. (5.3)–(5.4), operator L (5.13); ``filter-then-consensus``:
+App. C.3 eq. (C.4), operator J."""
+EXPECT_KEYS = (
+    "s_detectable",
+    "spectral_radius_B",
+    "spectral_radius_L",
+    "self_weight_ok",
+    "paper_conditions_ok",
+    "blind_set_condition_ok",
+    "riccati_converges",
+)
+TOLERANCE_KEYS = ("rank_tol", "lmi_margin", "cert_tol", "value_tol")
+
+
+@dataclass(frozen=True, eq=False)
+class DkfSpec:
+    """A validated consensus Kalman filter problem.
+
+    Attributes
+    ----------
+    A : ndarray, shape (n, n)
+        System matrix, seed 000 eq. (5.1).
+    C : tuple of ndarray, shapes (p_i, n)
+        Measurement matrices, eq. (5.2); ``p_i = 0`` allowed.
+    W : ndarray, shape (N, N)
+        Row-stochastic consensus weights, eq. (5.3).
+    Q : ndarray, shape (n, n)
+        Process noise covariance.
+    R : tuple of ndarray, shapes (p_i, p_i)
+        Measurement noise covariances.
+    L : tuple of ndarray, shapes (n, p_i), or None
+        Filter gains of eq. (5.4), when the case fixes them.
+    order : str
+        One of :data:`ORDERS`.
+    """
+
+    A: np.ndarray
+    C: tuple[np.ndarray, ...]
+    W: np.ndarray
+    Q: np.ndarray
+    R: tuple[np.ndarray, ...]
+    L: tuple[np.ndarray, ...] | None
+    order: str
+
+    @property
+    def n(self) -> int:
+        """State dimension."""
+        return self.A.shape[0]
+
+    @property
+    def n_agents(self) -> int:
+        """Number of agents ``N``."""
+        return self.W.shape[0]
+
+
+def parse_dkf(block: Mapping[str, Any], *, weight_sum_tol: float = 1e-9) -> DkfSpec:
+    """Validate a ``dkf:`` block (see the module docstring for the fields).
+
+    Parameters
+    ----------
+    block : mapping
+        The parsed YAML block.
+    weight_sum_tol : float
+        Absolute tolerance on each row sum of ``W``.
+
+    Returns
+    -------
+    DkfSpec
+
+    Raises
+    ------
+    CaseError
+        For any missing, unknown or invalid field, naming it.
+    """
+    check_keys(block, FIELDS, "dkf")
+    A = finite_matrix(require(block, "A", "dkf"), "dkf.A")
+    n = A.shape[0]
+    if A.shape != (n, n) or n == 0:
+        raise CaseError("dkf.A", "a non-empty square matrix", f"shape {A.shape}")
+    W = finite_matrix(require(block, "W", "dkf"), "dkf.W")
+    row_stochastic(W, "dkf.W", tol=weight_sum_tol)
+    N = W.shape[0]
+    C = _per_agent(require(block, "C", "dkf"), "dkf.C", N, lambda c, f: _measurement(c, f, n))
+    Q = positive_definite(
+        finite_matrix(require(block, "Q", "dkf"), "dkf.Q", rows=n, cols=n), "dkf.Q"
+    )
+    R = _per_agent(
+        require(block, "R", "dkf"), "dkf.R", N, lambda r, f: _covariance(r, f, C[_index(f)])
+    )
+    L = None
+    if "L" in block:
+        L = _per_agent(block["L"], "dkf.L", N, lambda g, f: _gain(g, f, n, C[_index(f)]))
+    order = one_of(block.get("order", ORDERS[0]), ORDERS, "dkf.order")
+    return DkfSpec(A, C, W, Q, R, L, order)
+
+
+def _per_agent(raw: object, field: str, N: int, parse: Any) -> tuple[np.ndarray, ...]:
+    if not isinstance(raw, list) or len(raw) != N:
+        got = f"{len(raw)} entries" if isinstance(raw, list) else raw
+        raise CaseError(field, f"a list of {N} matrices (one per agent, as W has {N} rows)", got)
+    return tuple(parse(item, f"{field}[{i + 1}]") for i, item in enumerate(raw))
+
+
+def _index(field: str) -> int:
+    return int(field.rsplit("[", 1)[1].rstrip("]")) - 1
+
+
+def _measurement(raw: object, field: str, n: int) -> np.ndarray:
+    return finite_matrix(raw, field, cols=n, allow_empty_rows=True)
+
+
+def _covariance(raw: object, field: str, C_i: np.ndarray) -> np.ndarray:
+    p = C_i.shape[0]
+    if p == 0:
+        if raw != []:
+            raise CaseError(field, "[] (the agent has no measurement rows)", raw)
+        return np.zeros((0, 0))
+    return positive_definite(finite_matrix(raw, field, rows=p, cols=p), field)
+
+
+def _gain(raw: object, field: str, n: int, C_i: np.ndarray) -> np.ndarray:
+    p = C_i.shape[0]
+    if p == 0:
+        if raw != []:
+            raise CaseError(field, "[] (the agent has no measurement rows)", raw)
+        return np.zeros((n, 0))
+    return finite_matrix(raw, field, rows=n, cols=p)
+
+
+register_kind("dkf", parse_dkf, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)

@@ -1,0 +1,443 @@
+"""Coupled Riccati iterations of the distributed Kalman filter and Lemma 5.2.3's covariance bound.
+
+* ``consensus-then-filter`` (seed 000 eqs. (5.7)–(5.9)): ``Π_i = E_i(P)``,
+  ``L_i = A Π_i C_i' (R_i + C_i Π_i C_i')⁻¹``, ``P_i⁺ = Ric_i(Π_i)``;
+* ``filter-then-consensus`` (App. C.3, the filter of [29]): ``L_i = A P_i C_i' (R_i + C_i P_i
+  C_i')⁻¹`` and ``P_i⁺ = E_i(Ric(P))``,
+
+with ``Ric_i(Π) = A Π A' + Q − A Π C_i' (C_i Π C_i' + R_i)⁻¹ C_i Π A'``. Convergence is declared
+when ``max_i ‖P_i(k+1) − P_i(k)‖ ≤ conv_tol · max_i ‖P_i(k)‖``; divergence when the norm exceeds
+``blowup`` times its initial value. A limit is *stabilizing* (footnote 5) when its gains give
+``r_σ < 1`` for the order's operator (L or J).
+
+Lemma 5.2.3 (second part): with fixed gains, the true error covariances ``Σ_i(k)`` of (5.5) satisfy
+``Σ(k) ≤ P(k)`` where ``P_i(k+1) = L_i(P(k)) + Q + L_i R_i L_i'``. We compute ``Σ(k)`` exactly from
+the joint covariance of ``[ε_1; …; ε_N]`` (the process noise ω is common to all agents) and
+estimate it by Monte Carlo on (5.5).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+
+from theory.consensus.case import ORDERS
+from theory.consensus.operators import (
+    B_matrix,
+    E_map,
+    J_map,
+    L_map,
+    closed_loop,
+    covariance_operator_matrix,
+    spectral_radius,
+)
+
+__all__ = [
+    "AveragedBoundCheck",
+    "CovarianceBoundCheck",
+    "RiccatiRun",
+    "check_averaged_bound",
+    "check_covariance_bound",
+    "coupled_riccati",
+    "coupled_riccati_step",
+    "error_noise_covariance",
+    "riccati_gains",
+]
+
+
+def _gain(A: np.ndarray, Ci: np.ndarray, Ri: np.ndarray, Pi: np.ndarray) -> np.ndarray:
+    """``A Π C_i' (R_i + C_i Π C_i')⁻¹``, ``n × 0`` for an agent without sensor."""
+    return np.linalg.solve(Ci @ Pi @ Ci.T + Ri, Ci @ Pi @ A.T).T
+
+
+def riccati_gains(
+    A: np.ndarray, C: Sequence[np.ndarray], R: Sequence[np.ndarray], Pi: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """``L_i = A Π_i C_i' (R_i + C_i Π_i C_i')⁻¹`` (seed 000 eq. (5.8)); ``n × 0`` if no sensor.
+
+    Parameters
+    ----------
+    A, C, R : ndarray
+        System, measurement matrices, measurement noise covariances.
+    Pi : ndarray, shape (N, n, n)
+        Intermediate covariances ``Π_i``.
+    """
+    return tuple(_gain(A, Ci, R[i], Pi[i]) for i, Ci in enumerate(C))
+
+
+def coupled_riccati_step(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    Q: np.ndarray,
+    R: Sequence[np.ndarray],
+    P: np.ndarray,
+    *,
+    order: str,
+) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
+    """One step of the coupled Riccati recursion: the gains ``L_i(k)`` and ``P(k+1)``.
+
+    ``consensus-then-filter``: ``Π = E(P)``, ``L_i`` of (5.8) at ``Π_i``, ``P_i⁺ = Ric_i(Π_i)``;
+    ``filter-then-consensus``: ``L_i`` at ``P_i`` and ``P⁺ = E(Ric(P))``.
+
+    Parameters
+    ----------
+    A, C, W, Q, R : ndarray
+        Problem data (seed 000 eqs. (5.1)–(5.2)).
+    P : ndarray, shape (N, n, n)
+        ``P(k)``.
+    order : str
+        One of :data:`theory.consensus.case.ORDERS`.
+
+    Returns
+    -------
+    gains : tuple of ndarray
+        ``L_i(k)``, shapes (n, p_i).
+    P_next : ndarray, shape (N, n, n)
+        ``P(k+1)``, symmetrized.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``order``.
+
+    References
+    ----------
+    seed 000 eqs. (5.7)–(5.9), App. C.3.
+    """
+    if order not in ORDERS:
+        raise ValueError(f"order {order!r} is not one of {ORDERS}")
+    base = E_map(W, P) if order == "consensus-then-filter" else P
+    gains = riccati_gains(A, C, R, base)
+    nxt = np.stack(
+        [A @ Pi @ A.T + Q - Li @ Ci @ Pi @ A.T for Pi, Li, Ci in zip(base, gains, C, strict=True)]
+    )
+    nxt = (nxt + nxt.transpose(0, 2, 1)) / 2
+    return gains, (E_map(W, nxt) if order == "filter-then-consensus" else nxt)
+
+
+def error_noise_covariance(
+    Q: np.ndarray, R: Sequence[np.ndarray], gains: Sequence[np.ndarray]
+) -> np.ndarray:
+    """``(11' ⊗ Q) + blkdiag(L_i R_i L_i')``: the noise covariance of ``[ε_1; …; ε_N]`` in (5.5).
+
+    Parameters
+    ----------
+    Q : ndarray, shape (n, n)
+        Process noise covariance (ω is common to all agents).
+    R : sequence of ndarray
+        Measurement noise covariances ``R_i``.
+    gains : sequence of ndarray
+        Gains ``L_i``.
+
+    Returns
+    -------
+    ndarray, shape (N n, N n)
+    """
+    N = len(gains)
+    LRL = [Li @ Ri @ Li.T for Li, Ri in zip(gains, R, strict=True)]
+    return np.kron(np.ones((N, N)), Q) + sla.block_diag(*LRL)
+
+
+@dataclass(frozen=True, eq=False)
+class RiccatiRun:
+    """Outcome of :func:`coupled_riccati`.
+
+    Attributes
+    ----------
+    status : str
+        ``converged``, ``diverged`` or ``max_iter``.
+    iterations : int
+    P : ndarray, shape (N, n, n)
+        Last iterate.
+    gains : tuple of ndarray
+        Gains of the last iterate (eq. (5.8), or the reversed order's).
+    stabilizing : bool or None
+        Whether ``r_σ`` of the order's operator with those gains is < 1 (None unless converged).
+    radius : float or None
+        That spectral radius.
+    norms : ndarray
+        ``max_i ‖P_i(k)‖₂`` for each k.
+    tolerances : dict
+    """
+
+    status: str
+    iterations: int
+    P: np.ndarray
+    gains: tuple[np.ndarray, ...]
+    stabilizing: bool | None
+    radius: float | None
+    norms: np.ndarray
+    tolerances: dict
+
+
+def coupled_riccati(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    Q: np.ndarray,
+    R: Sequence[np.ndarray],
+    P0: np.ndarray,
+    *,
+    order: str = "consensus-then-filter",
+    max_iter: int = 5000,
+    conv_tol: float = 1e-10,
+    blowup: float = 1e12,
+) -> RiccatiRun:
+    """Iterate the coupled Riccati equations until convergence, divergence or ``max_iter``.
+
+    Parameters
+    ----------
+    A, C, W, Q, R : ndarray
+        Problem data (seed 000 eqs. (5.1)–(5.2)).
+    P0 : ndarray, shape (N, n, n) or (n, n)
+        Initial covariances (one matrix is used for every agent).
+    order : str
+        ``consensus-then-filter`` (5.7)–(5.9) or ``filter-then-consensus`` (App. C.3).
+    max_iter : int
+        Iteration cap.
+    conv_tol : float
+        Relative step size declaring convergence.
+    blowup : float
+        Norm growth factor declaring divergence.
+
+    Returns
+    -------
+    RiccatiRun
+
+    References
+    ----------
+    seed 000 eqs. (5.7)–(5.9), (C.3), footnote 5.
+    """
+    N, n = W.shape[0], A.shape[0]
+    P = np.broadcast_to(np.asarray(P0, dtype=float), (N, n, n)).copy()
+    start = max(float(np.max(np.linalg.norm(P, 2, axis=(1, 2)))), 1.0)
+    norms = [start]
+    status, iterations = "max_iter", 0
+    while iterations < max_iter:
+        iterations += 1
+        nxt = coupled_riccati_step(A, C, W, Q, R, P, order=order)[1]
+        step = float(np.max(np.linalg.norm(nxt - P, 2, axis=(1, 2))))
+        P = nxt
+        norms.append(float(np.max(np.linalg.norm(P, 2, axis=(1, 2)))))
+        if not np.isfinite(norms[-1]) or norms[-1] > blowup * start:
+            status = "diverged"
+            break
+        if step <= conv_tol * norms[-1]:
+            status = "converged"
+            break
+    gains = coupled_riccati_step(A, C, W, Q, R, P, order=order)[0] if status != "diverged" else ()
+    stabilizing, radius = None, None
+    if status == "converged":
+        T = covariance_operator_matrix(W, closed_loop(A, C, gains), order)
+        radius = spectral_radius(T)
+        stabilizing = radius < 1
+    tol = {"conv_tol": conv_tol, "blowup": blowup, "max_iter": max_iter}
+    return RiccatiRun(status, iterations, P, gains, stabilizing, radius, np.array(norms), tol)
+
+
+@dataclass(frozen=True, eq=False)
+class CovarianceBoundCheck:
+    """Lemma 5.2.3 on one problem with fixed gains.
+
+    Attributes
+    ----------
+    exact_gap : float
+        ``min_k min_i λ_min(P_i(k) − Σ_i(k)) / max(1, ‖P_i(k)‖)`` with the exact Σ (≥ −tol ⇒ holds).
+    holds : bool
+        ``exact_gap ≥ −psd_tol``.
+    mc_error : float
+        ``max_k max_i ‖Σ̂_i(k) − Σ_i(k)‖ / ‖Σ_i(k)‖`` (Monte Carlo vs exact, relative).
+    mc_violation : float
+        ``max_k max_i λ_max(Σ̂_i(k) − P_i(k)) / ‖P_i(k)‖`` (≤ a few ``1/√samples`` expected).
+    samples, steps, seed : int
+    psd_tol : float
+    """
+
+    exact_gap: float
+    holds: bool
+    mc_error: float
+    mc_violation: float
+    samples: int
+    steps: int
+    seed: int
+    psd_tol: float
+
+
+def check_covariance_bound(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    Q: np.ndarray,
+    R: Sequence[np.ndarray],
+    gains: Sequence[np.ndarray],
+    P0: np.ndarray,
+    *,
+    steps: int = 30,
+    samples: int = 4000,
+    seed: int = 0,
+    psd_tol: float = 1e-9,
+) -> CovarianceBoundCheck:
+    """Check ``Σ(k) ≤ P(k)`` (Lemma 5.2.3) exactly and by Monte Carlo on eq. (5.5).
+
+    The initial estimates are equal and deterministic, so ``ε_i(0) = x(0) − x̂(0)`` is the same for
+    every agent: the joint covariance starts at ``11' ⊗ P0`` and ``P(0) = Σ(0) = (P0, …, P0)``.
+
+    Parameters
+    ----------
+    A, C, W, Q, R : ndarray
+        Problem data.
+    gains : sequence of ndarray
+        Fixed ``L_i``.
+    P0 : ndarray, shape (n, n)
+        Initial error covariance.
+    steps, samples, seed : int
+        Horizon, Monte Carlo sample count, and the seed of ``numpy.random.default_rng``.
+    psd_tol : float
+        Relative tolerance of the exact comparison.
+
+    Returns
+    -------
+    CovarianceBoundCheck
+
+    References
+    ----------
+    seed 000 Lemma 5.2.3, eqs. (5.5), (5.15); App. C.1.
+    """
+    N, n = W.shape[0], A.shape[0]
+    Gamma = closed_loop(A, C, gains)
+    Bm = B_matrix(W, Gamma)
+    LRL = [Li @ Ri @ Li.T for Li, Ri in zip(gains, R, strict=True)]
+    noise = error_noise_covariance(Q, R, gains)
+    joint = np.kron(np.ones((N, N)), P0)
+    P = np.broadcast_to(P0, (N, n, n)).copy()
+    rng = np.random.default_rng(seed)
+    eps = np.tile(rng.multivariate_normal(np.zeros(n), P0, size=samples), (1, N))
+    gap, mc_error, mc_violation = np.inf, 0.0, -np.inf
+    for _ in range(steps):
+        joint = Bm @ joint @ Bm.T + noise
+        P = L_map(W, Gamma, P) + Q + np.stack(LRL)
+        eps = eps @ Bm.T + _noise_samples(rng, samples, Q, C, R, gains)
+        sample_cov = eps.T @ eps / samples
+        for i in range(N):
+            block = slice(i * n, (i + 1) * n)
+            Sigma = joint[block, block]
+            scale = max(1.0, float(np.linalg.norm(P[i], 2)))
+            gap = min(gap, float(np.linalg.eigvalsh(P[i] - Sigma)[0]) / scale)
+            hat = sample_cov[block, block]
+            mc_error = max(
+                mc_error,
+                float(np.linalg.norm(hat - Sigma, 2) / max(np.linalg.norm(Sigma, 2), 1e-300)),
+            )
+            mc_violation = max(mc_violation, float(np.linalg.eigvalsh(hat - P[i])[-1]) / scale)
+    return CovarianceBoundCheck(
+        gap, gap >= -psd_tol, mc_error, mc_violation, samples, steps, seed, psd_tol
+    )
+
+
+def _noise_samples(rng, samples, Q, C, R, gains):
+    n = Q.shape[0]
+    omega = rng.multivariate_normal(np.zeros(n), Q, size=samples)
+    parts = []
+    for Ci, Ri, Li in zip(C, R, gains, strict=True):
+        if Ci.shape[0]:
+            v = rng.multivariate_normal(np.zeros(Ci.shape[0]), Ri, size=samples)
+            parts.append(omega - v @ Li.T)
+        else:
+            parts.append(omega)
+    return np.hstack(parts)
+
+
+@dataclass(frozen=True)
+class AveragedBoundCheck:
+    """Seed 000 Lemma A.2.1 on one instance.
+
+    Attributes
+    ----------
+    r : float
+        ``max_i λ_max(X_i^{-1/2} f_1^i(M, X) X_i^{-1/2})`` (the hypothesis is ``r < 1``).
+    alpha, mu : float
+        Least constants with ``P_0 ≤ α X`` and ``U ≤ μ X``.
+    decay_ok : bool
+        ``f_k(M, P_0) ≤ α r^k X`` for every k checked (part 1, hence ``f_k → 0``).
+    bound_ok : bool
+        ``P_k ≤ (α + μ/(1 − r)) X`` for every k checked (part 2).
+    worst_ratio : float
+        ``max_k max_i λ_max(X_i^{-1/2} P_k^i X_i^{-1/2}) / (α + μ/(1 − r))`` (≤ 1 expected).
+    steps : int
+    psd_tol : float
+    """
+
+    r: float
+    alpha: float
+    mu: float
+    decay_ok: bool
+    bound_ok: bool
+    worst_ratio: float
+    steps: int
+    psd_tol: float
+
+
+def _ratio(P: np.ndarray, X: np.ndarray) -> float:
+    """``max_i λ_max(X_i^{-1/2} P_i X_i^{-1/2})``."""
+    out = -np.inf
+    for Pi, Xi in zip(P, X, strict=True):
+        w, V = np.linalg.eigh(Xi)
+        root = (V / np.sqrt(w)) @ V.T
+        out = max(out, float(np.linalg.eigvalsh(root @ Pi @ root)[-1]))
+    return out
+
+
+def check_averaged_bound(
+    W: np.ndarray,
+    M: np.ndarray,
+    X: np.ndarray,
+    P0: np.ndarray,
+    U: np.ndarray,
+    *,
+    steps: int = 200,
+    psd_tol: float = 1e-9,
+) -> AveragedBoundCheck:
+    """Check both statements of seed 000 Lemma A.2.1 along ``steps`` iterations.
+
+    ``f_1^i(M, P) = Σ_j w_ij M^j P^j M^j'`` is the operator J of App. C.3 with ``Γ_j = M^j``.
+
+    Parameters
+    ----------
+    W : ndarray, shape (N, N)
+        Consensus weights.
+    M : ndarray, shape (N, n, n)
+        The matrices ``M^j``.
+    X : ndarray, shape (N, n, n)
+        Positive definite tuple with ``X^i > f_1^i(M, X)`` (the lemma's hypothesis).
+    P0, U : ndarray, shape (N, n, n)
+        Positive semi-definite initial tuple and forcing term.
+    steps : int
+        Iterations checked.
+    psd_tol : float
+        Relative slack allowed in each matrix inequality.
+
+    Returns
+    -------
+    AveragedBoundCheck
+
+    References
+    ----------
+    seed 000 Lemma A.2.1, eqs. (A.53)–(A.54); Corollary A.2.2.
+    """
+    r = _ratio(J_map(W, M, X), X)
+    alpha, mu = _ratio(P0, X), _ratio(U, X)
+    limit = alpha + mu / (1 - r) if r < 1 else np.inf
+    decay_ok, worst = True, -np.inf
+    F, P = P0.copy(), P0.copy()
+    for k in range(1, steps + 1):
+        F = J_map(W, M, F)
+        P = J_map(W, M, P) + U
+        decay_ok &= _ratio(F, X) <= alpha * r**k * (1 + psd_tol) + psd_tol
+        worst = max(worst, _ratio(P, X) / limit)
+    return AveragedBoundCheck(
+        r, alpha, mu, bool(decay_ok), bool(worst <= 1 + psd_tol), worst, steps, psd_tol
+    )

@@ -1,0 +1,501 @@
+"""Deciding S-detectability (seed 000 Def. 5.2.4) by an LMI, with checked witnesses both ways.
+
+The paper gives only necessary conditions (Thm 5.2.10). Here the question "do gains ``L_i`` exist
+with ``r_σ(L) < ρ``" (``ρ = 1``: S-detectability) is decided as a linear matrix inequality.
+
+**The inequality.** For a positive operator, ``r_σ(L) = r_σ(L*) < ρ`` iff some ``Y ∈ ℍⁿ⁺`` has
+``ρ Y − L*(Y) ≻ 0``, where ``L*_j(Y) = Σ_i w_ij Γ_i' Y_i Γ_i`` is the adjoint of eq. (5.13),
+``Γ_i = A − L_i C_i`` (Lemma 5.2.2 applied to L*). With ``G_i = Y_i L_i`` and
+``M_i = Y_i A − G_i C_i = Y_i Γ_i`` the gains enter linearly, and with slack matrices ``Z_i``
+(``Z_i ≻ M_i' Y_i⁻¹ M_i = Γ_i' Y_i Γ_i`` by a Schur complement) the condition is the strict,
+homogeneous LMI system in ``x = (Y, G, Z)``::
+
+    F1_j(x) = Y_j − Σ_i (w_ij/ρ) Z_i ≻ 0                      j = 1..N
+    F2_i(x) = [[Z_i, M_i'], [M_i, Y_i]] ≻ 0                    i = 1..N
+
+We solve ``max μ`` subject to ``F(x) ⪰ μ I`` and ``‖x‖_F ≤ 1`` (always feasible and bounded).
+
+**Witness (feasible).** ``L_i = Y_i⁻¹ G_i`` and ``Y``; re-checked without ``Z``:
+``Y_j ≻ 0`` and ``ρ Y_j − Σ_i w_ij (A − L_i C_i)' Y_i (A − L_i C_i) ⪰ m · max_i λ_max(Y_i) · I``
+with ``m ≥ lmi_margin``, which proves ``r_σ(L) ≤ ρ (1 − m)``; the eigenvalues of the explicit
+matrix of L are computed as a cross-check, and a primal Lyapunov tuple ``X`` with
+``X − T(X) = I`` (``T`` = L or J, the operator of the filter's order) is solved for too.
+
+**Certificate (infeasible).** Theorem of alternatives for strict homogeneous LMIs: the system has
+no solution iff multipliers ``Λ_j ⪰ 0``, ``Ψ_i ⪰ 0``, not all zero, annihilate it:
+``F*(Λ, Ψ) = 0``, i.e. ::
+
+    R_Z_i = Ψ_i,11 − Σ_j (w_ij/ρ) Λ_j = 0
+    R_G_i = −2 Ψ_i,21 C_i'            = 0
+    R_Y_i = Λ_i + Ψ_i,22 + A Ψ_i,21' + Ψ_i,21 A' = 0
+
+(``Ψ_i,21`` is the lower-left ``n × n`` block). The solver's dual variables are such multipliers;
+we project them onto the PSD cone and compute ``ε_cert = ‖F*(Λ, Ψ)‖_F / (Σ tr Λ_j + Σ tr Ψ_i)``:
+no ``x`` with ``‖x‖_F ≤ 1`` has ``F(x) ⪰ μ I`` for ``μ > ε_cert`` (since
+``μ Σ tr ≤ ⟨(Λ, Ψ), F(x)⟩ = ⟨F*(Λ, Ψ), x⟩ ≤ ‖F*‖``). "Not S-detectable" is reported only when the
+solver reports optimality, ``ε_cert ≤ cert_tol`` and no witness survives; anything else is
+"inconclusive".
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import cvxpy as cp
+import numpy as np
+
+from theory.consensus.operators import (
+    B_matrix,
+    L_adjoint_map,
+    closed_loop,
+    covariance_operator_matrix,
+    spectral_radius,
+    unvec_tuple,
+    vec_tuple,
+)
+
+__all__ = [
+    "CERT_TOL",
+    "LMI_MARGIN",
+    "SOLVER_STATUSES",
+    "SOLVER_STATUS_TABLE",
+    "WITNESS_CONVENTION",
+    "SDetectability",
+    "alternative_residual",
+    "decide_s_detectability",
+    "s_detectability_witness",
+    "witness_from_decision",
+    "witness_margin",
+]
+
+LMI_MARGIN = 1e-8
+"""Default least relative margin ``m`` a witness must show (dimensionless)."""
+CERT_TOL = 1e-7
+"""Default largest ``ε_cert`` accepted as an infeasibility certificate (dimensionless)."""
+
+SOLVER_STATUSES = (
+    "optimal",
+    "optimal_inaccurate",
+    "infeasible",
+    "infeasible_inaccurate",
+    "unbounded",
+    "unbounded_inaccurate",
+    "solver_error",
+)
+"""Closed vocabulary of solver outcomes."""
+
+SOLVER_STATUS_TABLE: dict[str, str] = {
+    cp.OPTIMAL: "optimal",
+    cp.OPTIMAL_INACCURATE: "optimal_inaccurate",
+    cp.INFEASIBLE: "infeasible",
+    cp.INFEASIBLE_INACCURATE: "infeasible_inaccurate",
+    cp.UNBOUNDED: "unbounded",
+    cp.UNBOUNDED_INACCURATE: "unbounded_inaccurate",
+    cp.settings.INFEASIBLE_OR_UNBOUNDED: "solver_error",
+    cp.USER_LIMIT: "solver_error",
+    cp.SOLVER_ERROR: "solver_error",
+}
+"""The one table translating cvxpy's statuses (which translate each solver's native codes) into
+:data:`SOLVER_STATUSES`; anything not listed, and any solver exception, is ``solver_error``."""
+
+
+@dataclass(frozen=True, eq=False)
+class SDetectability:
+    """The decision and its evidence.
+
+    Attributes
+    ----------
+    verdict : bool or None
+        True: S-detectable (witness verified); False: not (certificate verified); None:
+        inconclusive.
+    reason : str
+        One sentence saying what decided it (or why nothing did).
+    solver : str
+        cvxpy solver name.
+    solver_status : str
+        One of :data:`SOLVER_STATUSES`.
+    rho : float
+        The radius asked about (``r_σ(L) < rho``; 1 for S-detectability).
+    mu : float or None
+        The solver's optimal margin of the normalised LMI.
+    witness_margin : float or None
+        ``m`` recomputed from ``(L_i, Y_i)`` (see the module docstring); > 0 is a valid witness.
+    radius_bound : float or None
+        ``ρ (1 − m)``, a proven upper bound on ``r_σ(L)`` when ``m > 0``.
+    cert_epsilon : float or None
+        ``ε_cert`` recomputed from the projected multipliers.
+    gains : tuple of ndarray or None
+        ``L_i`` (n × p_i) from the witness.
+    Y : ndarray or None
+        Dual Lyapunov tuple, shape (N, n, n).
+    X : ndarray or None
+        Primal Lyapunov tuple for the filter's operator: ``X − T(X) = I``.
+    radius_L, radius_J, radius_B : float or None
+        ``r_σ`` of L, J and B with the candidate gains ``Y_i⁻¹ G_i`` of the solver's solution
+        (the witness's gains when ``verdict`` is True; otherwise informative only).
+    multipliers : dict or None
+        ``{"Lambda": (N, n, n), "Psi": (N, 2n, 2n)}`` projected onto the PSD cone.
+    tolerances : dict
+        ``lmi_margin`` and ``cert_tol`` used.
+    order : str
+        Filter order the primal Lyapunov tuple ``X`` refers to.
+    """
+
+    verdict: bool | None
+    reason: str
+    solver: str
+    solver_status: str
+    rho: float
+    mu: float | None = None
+    witness_margin: float | None = None
+    radius_bound: float | None = None
+    cert_epsilon: float | None = None
+    gains: tuple[np.ndarray, ...] | None = None
+    Y: np.ndarray | None = None
+    X: np.ndarray | None = None
+    radius_L: float | None = None
+    radius_J: float | None = None
+    radius_B: float | None = None
+    multipliers: dict[str, np.ndarray] | None = None
+    tolerances: dict[str, float] = field(default_factory=dict)
+    order: str = "consensus-then-filter"
+
+    def evidence(self) -> dict[str, Any]:
+        """JSON-ready summary (no matrices)."""
+        return {
+            "verdict": self.verdict,
+            "reason": self.reason,
+            "solver": self.solver,
+            "solver_status": self.solver_status,
+            "rho": self.rho,
+            "mu": self.mu,
+            "witness_margin": self.witness_margin,
+            "radius_bound": self.radius_bound,
+            "cert_epsilon": self.cert_epsilon,
+            "candidate_radius_L": self.radius_L,
+            "candidate_radius_J": self.radius_J,
+            "candidate_radius_B": self.radius_B,
+            "tolerances": dict(self.tolerances),
+        }
+
+
+def decide_s_detectability(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    *,
+    rho: float = 1.0,
+    order: str = "consensus-then-filter",
+    solver: str = "CLARABEL",
+    lmi_margin: float = LMI_MARGIN,
+    cert_tol: float = CERT_TOL,
+) -> SDetectability:
+    """Decide whether gains ``L_i`` exist with ``r_σ(L) < rho`` (S-detectability for rho = 1).
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        System matrix, seed 000 eq. (5.1).
+    C : sequence of ndarray, shapes (p_i, n)
+        Measurement matrices (zero rows allowed), eq. (5.2).
+    W : ndarray, shape (N, N)
+        Row-stochastic consensus weights (directed allowed).
+    rho : float
+        Radius asked about; ``r_σ(J) = r_σ(L)`` so the answer holds for both orders.
+    order : str
+        Filter order for the primal Lyapunov tuple ``X`` of the witness.
+    solver : str
+        A cvxpy SDP solver name (``CLARABEL`` or ``SCS``).
+    lmi_margin : float
+        Least relative witness margin ``m`` accepted (see module docstring).
+    cert_tol : float
+        Largest ``ε_cert`` accepted as an infeasibility certificate.
+
+    Returns
+    -------
+    SDetectability
+        Never raises on solver failure: the verdict is then None (inconclusive).
+
+    References
+    ----------
+    seed 000 Def. 5.2.4, Lemma 5.2.2, App. C.3; docs/theory/s-detectability.md.
+    """
+    A = np.asarray(A, dtype=float)
+    W = np.asarray(W, dtype=float)
+    C = [np.asarray(Ci, dtype=float).reshape(-1, A.shape[0]) for Ci in C]
+    tolerances = {"lmi_margin": lmi_margin, "cert_tol": cert_tol}
+    problem, parts = _build_lmi(A, C, W, rho)
+    try:
+        with warnings.catch_warnings():  # inaccuracy is reported through the status table
+            warnings.simplefilter("ignore", UserWarning)
+            problem.solve(solver=solver)
+        status = SOLVER_STATUS_TABLE.get(problem.status, "solver_error")
+    except (cp.error.SolverError, ArithmeticError, ValueError) as error:
+        return SDetectability(
+            None, f"solver failed: {error}", solver, "solver_error", rho, tolerances=tolerances
+        )
+    common = {"solver": solver, "solver_status": status, "rho": rho, "tolerances": tolerances}
+    if status not in ("optimal", "optimal_inaccurate"):
+        reason = f"solver status {status}: the normalised LMI is always feasible and bounded"
+        return SDetectability(None, reason, order=order, **common)
+    Y = np.stack([np.asarray(v.value, dtype=float) for v in parts["Y"]])
+    try:
+        gains = tuple(
+            np.linalg.solve(Y[i], np.asarray(g.value, dtype=float).reshape(A.shape[0], -1))
+            if g is not None
+            else np.zeros((A.shape[0], 0))
+            for i, g in enumerate(parts["G"])
+        )
+        m = witness_margin(A, C, W, gains, Y, rho=rho)
+    except np.linalg.LinAlgError:  # a singular Y_i: no witness (the solution is near x = 0)
+        gains = tuple(np.zeros((A.shape[0], Ci.shape[0])) for Ci in C)
+        m = float("-inf")
+    eps = _certificate_epsilon(A, C, W, rho, parts)
+    radii = _radii(A, C, W, gains)
+    base = dict(
+        mu=float(parts["mu"].value),
+        witness_margin=m,
+        cert_epsilon=eps["epsilon"],
+        multipliers=eps["multipliers"],
+        order=order,
+        **radii,
+        **common,
+    )
+    if m >= lmi_margin:
+        X = _primal_lyapunov(W, closed_loop(A, C, gains), order)
+        reason = f"witness verified: margin m = {m:.3g} ≥ lmi_margin, r_σ(L) ≤ {rho * (1 - m):.6g}"
+        return SDetectability(
+            True, reason, radius_bound=rho * (1 - m), gains=gains, Y=Y, X=X, **base
+        )
+    if status == "optimal" and eps["epsilon"] <= cert_tol:
+        reason = (
+            f"certificate verified: ε_cert = {eps['epsilon']:.3g} ≤ cert_tol; no (Y, G, Z) with "
+            f"relative LMI margin above ε_cert"
+        )
+        return SDetectability(False, reason, **base)
+    reason = (
+        f"neither side verified (witness margin {m:.3g} < {lmi_margin:g}, ε_cert "
+        f"{eps['epsilon']:.3g} vs {cert_tol:g}, status {status}): near the boundary"
+    )
+    return SDetectability(None, reason, **base)
+
+
+def s_detectability_witness(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    *,
+    order: str = "consensus-then-filter",
+    solver: str = "CLARABEL",
+    lmi_margin: float = LMI_MARGIN,
+) -> dict[str, Any] | None:
+    """Plain-numpy witness of S-detectability for the certificate builder, or None.
+
+    Parameters
+    ----------
+    A, C, W : ndarray
+        As in :func:`decide_s_detectability`.
+    order : str
+        ``consensus-then-filter`` (operator L) or ``filter-then-consensus`` (operator J).
+    solver : str
+        cvxpy solver.
+    lmi_margin : float
+        Least relative witness margin accepted.
+
+    Returns
+    -------
+    dict or None
+        None unless a witness was found and verified. Otherwise the keys ``gains`` (list of
+        n × p_i arrays ``L_i``), ``Y`` (N × n × n, the dual Lyapunov tuple), ``X`` (N × n × n, the
+        primal Lyapunov tuple of the order's operator), ``order``, ``convention`` (a string
+        stating the inequalities, below), ``margin`` and ``radius_bound``. The inequalities, with
+        ``Γ_i = A − L_i C_i``:
+
+        * dual (both orders): ``Y_j ≻ 0`` and ``Y_j − Σ_i w_ij Γ_i' Y_i Γ_i ≻ 0`` for all j
+          (proves ``r_σ(L) = r_σ(J) < 1``);
+        * primal, ``consensus-then-filter``: ``X_i ≻ 0`` and
+          ``X_i − Γ_i (Σ_j w_ij X_j) Γ_i' ≻ 0``;
+        * primal, ``filter-then-consensus``: ``X_i ≻ 0`` and ``X_i − Σ_j w_ij Γ_j X_j Γ_j' ≻ 0``.
+
+    References
+    ----------
+    docs/theory/s-detectability.md, section "Witness format".
+    """
+    result = decide_s_detectability(A, C, W, order=order, solver=solver, lmi_margin=lmi_margin)
+    return witness_from_decision(result, order)
+
+
+def witness_from_decision(result: SDetectability, order: str) -> dict[str, Any] | None:
+    """The witness of :func:`s_detectability_witness` from a decision already made.
+
+    Parameters
+    ----------
+    result : SDetectability
+        From :func:`decide_s_detectability` with the same ``order``.
+    order : str
+        ``consensus-then-filter`` or ``filter-then-consensus``.
+
+    Returns
+    -------
+    dict or None
+        As :func:`s_detectability_witness`: None unless ``result.verdict`` is True.
+    """
+    if result.verdict is not True:
+        return None
+    return {
+        "gains": [np.array(g) for g in result.gains],
+        "Y": np.array(result.Y),
+        "X": np.array(result.X),
+        "order": order,
+        "convention": WITNESS_CONVENTION[order],
+        "margin": result.witness_margin,
+        "radius_bound": result.radius_bound,
+    }
+
+
+WITNESS_CONVENTION = {
+    "consensus-then-filter": (
+        "Gamma_i = A - L_i C_i; Y_j > 0 and Y_j - sum_i w_ij Gamma_i' Y_i Gamma_i > 0 for all j; "
+        "X_i > 0 and X_i - Gamma_i (sum_j w_ij X_j) Gamma_i' > 0 for all i (operator L, eq. 5.13)"
+    ),
+    "filter-then-consensus": (
+        "Gamma_i = A - L_i C_i; Y_j > 0 and Y_j - sum_i w_ij Gamma_i' Y_i Gamma_i > 0 for all j; "
+        "X_i > 0 and X_i - sum_j w_ij Gamma_j X_j Gamma_j' > 0 for all i (operator J, App. C.3)"
+    ),
+}
+
+
+def witness_margin(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    gains: Sequence[np.ndarray],
+    Y: np.ndarray,
+    *,
+    rho: float = 1.0,
+) -> float:
+    """``m = min_j λ_min(ρ Y_j − L*_j(Y)) / (ρ max_i λ_max(Y_i))``, or ``-inf`` if some ``Y_i ⊁ 0``.
+
+    Parameters
+    ----------
+    A, C, W : ndarray
+        The system and network.
+    gains : sequence of ndarray
+        ``L_i``.
+    Y : ndarray, shape (N, n, n)
+        Candidate dual Lyapunov tuple.
+    rho : float
+        Radius.
+
+    Returns
+    -------
+    float
+        ``m > 0`` proves ``r_σ(L) ≤ ρ (1 − m)``: ``L*(Y) ⪯ ρ Y − m ρ λ_max I ⪯ ρ (1 − m) Y``.
+    """
+    Ysym = (Y + Y.transpose(0, 2, 1)) / 2
+    low = min(float(np.linalg.eigvalsh(Yi)[0]) for Yi in Ysym)
+    if not low > 0:
+        return float("-inf")
+    top = max(float(np.linalg.eigvalsh(Yi)[-1]) for Yi in Ysym)
+    D = rho * Ysym - L_adjoint_map(W, closed_loop(A, C, gains), Ysym)
+    D = (D + D.transpose(0, 2, 1)) / 2
+    return min(float(np.linalg.eigvalsh(Dj)[0]) for Dj in D) / (rho * top)
+
+
+def _build_lmi(
+    A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float
+) -> tuple[cp.Problem, dict[str, Any]]:
+    N, n = W.shape[0], A.shape[0]
+    Ys = [cp.Variable((n, n), symmetric=True) for _ in range(N)]
+    Zs = [cp.Variable((n, n), symmetric=True) for _ in range(N)]
+    Gs = [cp.Variable((n, Ci.shape[0])) if Ci.shape[0] else None for Ci in C]
+    mu = cp.Variable()
+    eye = np.eye(n)
+    f1, f2 = [], []
+    for j in range(N):
+        coupling = sum((W[i, j] / rho) * Zs[i] for i in range(N) if W[i, j] != 0)
+        f1.append(Ys[j] - coupling - mu * eye >> 0)
+    for i in range(N):
+        M = Ys[i] @ A - (Gs[i] @ C[i] if Gs[i] is not None else 0)
+        block = cp.bmat([[Zs[i], M.T], [M, Ys[i]]])
+        f2.append((block + block.T) / 2 - mu * np.eye(2 * n) >> 0)
+    flat = [cp.vec(v, order="F") for v in (*Ys, *Zs, *(g for g in Gs if g is not None))]
+    norm = cp.norm(cp.hstack(flat), 2) <= 1
+    problem = cp.Problem(cp.Maximize(mu), [*f1, *f2, norm])
+    return problem, {"Y": Ys, "G": Gs, "Z": Zs, "mu": mu, "f1": f1, "f2": f2}
+
+
+def _psd_part(M: np.ndarray) -> np.ndarray:
+    S = (M + M.T) / 2
+    w, V = np.linalg.eigh(S)
+    return (V * np.clip(w, 0, None)) @ V.T
+
+
+def _certificate_epsilon(
+    A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float, parts: dict[str, Any]
+) -> dict[str, Any]:
+    N, n = W.shape[0], A.shape[0]
+    Lam = np.stack([_psd_part(np.asarray(c.dual_value, dtype=float)) for c in parts["f1"]])
+    Psi = np.stack([_psd_part(np.asarray(c.dual_value, dtype=float)) for c in parts["f2"]])
+    residual = alternative_residual(A, C, W, Lam, Psi, rho=rho)
+    total = float(sum(np.trace(x) for x in Lam) + sum(np.trace(x) for x in Psi))
+    norm = float(np.sqrt(sum(np.sum(r**2) for r in residual.values())))
+    epsilon = norm / total if total > 0 else float("inf")
+    return {"epsilon": epsilon, "multipliers": {"Lambda": Lam, "Psi": Psi}, "N": N, "n": n}
+
+
+def alternative_residual(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    Lam: np.ndarray,
+    Psi: np.ndarray,
+    *,
+    rho: float = 1.0,
+) -> dict[str, np.ndarray]:
+    """``F*(Λ, Ψ)``: the adjoint of the LMI map at the multipliers (zero for a certificate).
+
+    Parameters
+    ----------
+    A, C, W : ndarray
+        The system and network.
+    Lam : ndarray, shape (N, n, n)
+        Multipliers ``Λ_j`` of the blocks ``F1_j``.
+    Psi : ndarray, shape (N, 2n, 2n)
+        Multipliers ``Ψ_i`` of the blocks ``F2_i``.
+    rho : float
+        Radius.
+
+    Returns
+    -------
+    dict
+        ``{"Y": (N, n, n), "Z": (N, n, n), "G": flat concatenation of the n × p_i blocks}``.
+    """
+    n = A.shape[0]
+    P11, P21, P22 = Psi[:, :n, :n], Psi[:, n:, :n], Psi[:, n:, n:]
+    RZ = P11 - np.einsum("ij,jab->iab", W / rho, Lam)
+    RY = Lam + P22 + A @ P21.transpose(0, 2, 1) + P21 @ A.T
+    RG = [(-2 * P21[i] @ Ci.T).ravel() for i, Ci in enumerate(C)]
+    return {"Y": RY, "Z": RZ, "G": np.concatenate(RG) if RG else np.zeros(0)}
+
+
+def _radii(
+    A: np.ndarray, C: list[np.ndarray], W: np.ndarray, gains: Sequence[np.ndarray]
+) -> dict[str, float]:
+    Gamma = closed_loop(A, C, gains)
+    return {
+        "radius_L": spectral_radius(covariance_operator_matrix(W, Gamma, "consensus-then-filter")),
+        "radius_J": spectral_radius(covariance_operator_matrix(W, Gamma, "filter-then-consensus")),
+        "radius_B": spectral_radius(B_matrix(W, Gamma)),
+    }
+
+
+def _primal_lyapunov(W: np.ndarray, Gamma: np.ndarray, order: str) -> np.ndarray:
+    N, n = Gamma.shape[0], Gamma.shape[1]
+    T = covariance_operator_matrix(W, Gamma, order)
+    rhs = vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
+    X = unvec_tuple(np.linalg.solve(np.eye(T.shape[0]) - T, rhs), N, n)
+    return (X + X.transpose(0, 2, 1)) / 2

@@ -1,0 +1,239 @@
+"""Case files: loading, the shared header, dispatch to a kind's parser, bundled cases (DESIGN.md).
+
+A case file is YAML with the header ``name``, ``source``, ``kind``, optional ``description``,
+``expect`` and ``tolerances``, and one block named after the kind (``tdoa:``, ``dkf:``,
+``pursuit:``). Each kind registers a parser with :func:`register_kind`; parsers raise
+:class:`~theory.core.errors.CaseError` and this module attributes the error to the file.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from theory.core.errors import CaseError
+from theory.core.validation import check_keys, one_of, positive_number, require
+
+__all__ = [
+    "KIND_MODULES",
+    "Case",
+    "KindSpec",
+    "bundled_case_dir",
+    "bundled_cases",
+    "load_case",
+    "parse_case",
+    "register_kind",
+    "resolve_case_path",
+]
+
+HEADER_FIELDS = ("name", "source", "kind", "description", "expect", "tolerances")
+
+KIND_MODULES: tuple[str, ...] = (
+    "theory.consensus.case",
+    "theory.particle.case",
+    "theory.pursuit.case",
+    "theory.tdoa.sim_case",
+    "theory.tdoa.case",
+)
+"""Modules that register case kinds (imported on first use)."""
+
+
+@dataclass(frozen=True)
+class KindSpec:
+    """How one case kind is parsed.
+
+    Attributes
+    ----------
+    parse : callable
+        Validates the kind's block and returns its spec.
+    expect_keys, tolerance_keys : tuple of str
+        Keys the ``expect`` and ``tolerances`` blocks may use.
+    check_expect : callable or None
+        ``check_expect(spec, expect)`` validates the expected values against the spec (types,
+        one entry per agent, …), raising :class:`~theory.core.errors.CaseError`.
+    """
+
+    parse: Callable[[Mapping[str, Any]], Any]
+    expect_keys: tuple[str, ...]
+    tolerance_keys: tuple[str, ...] = ()
+    check_expect: Callable[[Any, Mapping[str, Any]], None] | None = None
+
+
+_KINDS: dict[str, KindSpec] = {}
+
+
+@dataclass(frozen=True, eq=False)
+class Case:
+    """A validated case.
+
+    Attributes
+    ----------
+    name, source, kind, description : str
+        Header fields.
+    spec : object
+        The kind-specific frozen dataclass returned by the kind's parser.
+    expect : dict
+        Expected verdicts (validated keys; values as written).
+    tolerances : dict
+        Named tolerances overriding the defaults (e.g. ``rank_tol``).
+    file : str
+        Where it was loaded from (``<data>`` for in-memory cases).
+    """
+
+    name: str
+    source: str
+    kind: str
+    spec: Any
+    expect: dict[str, Any] = field(default_factory=dict)
+    tolerances: dict[str, float] = field(default_factory=dict)
+    description: str = ""
+    file: str = "<data>"
+
+
+def register_kind(
+    kind: str,
+    parse: Callable[[Mapping[str, Any]], Any],
+    *,
+    expect_keys: tuple[str, ...],
+    tolerance_keys: tuple[str, ...] = (),
+    check_expect: Callable[[Any, Mapping[str, Any]], None] | None = None,
+) -> None:
+    """Register the parser of ``kind`` (called by the kind's module at import time).
+
+    The other arguments are stored, under ``kind``, as a :class:`KindSpec`.
+
+    Parameters
+    ----------
+    kind : str
+        The kind's name, also the name of its block in a case file (e.g. ``tdoa``).
+    parse : callable
+        ``parse(block)`` validates the kind's block and returns its spec.
+    expect_keys : tuple of str
+        Keys the case's ``expect`` block may use.
+    tolerance_keys : tuple of str
+        Keys the case's ``tolerances`` block may use.
+    check_expect : callable, optional
+        ``check_expect(spec, expect)``, when given, validates the expected values themselves.
+    """
+    _KINDS[kind] = KindSpec(parse, tuple(expect_keys), tuple(tolerance_keys), check_expect)
+
+
+def known_kinds() -> dict[str, KindSpec]:
+    """All registered kinds (imports :data:`KIND_MODULES` first)."""
+    for module in KIND_MODULES:
+        importlib.import_module(module)
+    return dict(_KINDS)
+
+
+def parse_case(data: object, *, file: str = "<data>") -> Case:
+    """Validate a case given as plain data (the parsed YAML).
+
+    Parameters
+    ----------
+    data : object
+        The parsed YAML: a mapping with the header fields and the kind's block.
+    file : str
+        Where ``data`` came from, named in errors (``<data>`` for in-memory cases).
+
+    Returns
+    -------
+    Case
+
+    Raises
+    ------
+    CaseError
+        Naming ``file``, the field, the expected form and what was found.
+    """
+    try:
+        return _parse(data, file)
+    except CaseError as error:
+        raise error.in_file(file) from None
+
+
+def load_case(path: str | Path) -> Case:
+    """Load and validate a case file (``path``) or a bundled case (by name).
+
+    Raises
+    ------
+    CaseError
+        If the file cannot be read, is not YAML, or fails validation.
+    """
+    resolved = resolve_case_path(path)
+    try:
+        text = resolved.read_text(encoding="utf-8")
+    except OSError as error:
+        raise CaseError("<file>", "a readable YAML file", error.strerror, file=str(path)) from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown place"
+        raise CaseError(
+            "<yaml>", "valid YAML", f"a syntax error at {where}", file=str(resolved)
+        ) from None
+    return parse_case(data, file=str(resolved))
+
+
+def bundled_case_dir() -> Path:
+    """The folder of bundled cases (inside the installed package, or ``cases/`` in a checkout)."""
+    package = Path(__file__).resolve().parents[1]
+    packaged = package / "bundled_cases"
+    return packaged if packaged.is_dir() else package.parent / "cases"
+
+
+def bundled_cases() -> dict[str, Path]:
+    """Bundled cases by name (file stem), sorted."""
+    folder = bundled_case_dir()
+    paths = folder.glob("*.yaml") if folder.is_dir() else []
+    return dict(sorted((p.stem, p) for p in paths))
+
+
+def resolve_case_path(name_or_path: str | Path) -> Path:
+    """``name_or_path`` as a path if that file exists, otherwise the bundled case of that name."""
+    path = Path(name_or_path)
+    if path.is_file():
+        return path
+    bundled = bundled_cases()
+    if str(name_or_path) in bundled:
+        return bundled[str(name_or_path)]
+    raise CaseError(
+        "<case>",
+        "a path to a YAML case file or the name of a bundled case",
+        str(name_or_path),
+        file=str(name_or_path),
+        hint="'trackcert cases' lists the bundled cases.",
+    )
+
+
+def _parse(data: object, file: str) -> Case:
+    kinds = known_kinds()
+    if not isinstance(data, Mapping):
+        raise CaseError("<top level>", "a mapping with name, kind and a kind block", data)
+    kind = one_of(require(data, "kind", ""), sorted(kinds), "kind")
+    check_keys(data, (*HEADER_FIELDS, kind), "")
+    name = require(data, "name", "")
+    if not isinstance(name, str) or not name.strip():
+        raise CaseError("name", "a non-empty string", name)
+    source = data.get("source", "")
+    if not isinstance(source, str):
+        raise CaseError("source", "a string citing where the case comes from", source)
+    spec_info = kinds[kind]
+    spec = spec_info.parse(require(data, kind, ""))
+    expect = dict(check_keys(data.get("expect") or {}, spec_info.expect_keys, "expect"))
+    if spec_info.check_expect is not None:
+        spec_info.check_expect(spec, expect)
+    tolerances = {
+        key: positive_number(value, f"tolerances.{key}")
+        for key, value in check_keys(
+            data.get("tolerances") or {}, spec_info.tolerance_keys, "tolerances"
+        ).items()
+    }
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        raise CaseError("description", "a string", description)
+    return Case(name, source, kind, spec, expect, tolerances, description, file)

@@ -1,0 +1,309 @@
+"""From floating-point witnesses to exact rational ones (Peyrl–Parrilo style).
+
+A numerical solver returns a witness (Lyapunov matrices, gains, evaluation points) that satisfies
+strict inequalities only up to rounding. To prove the inequalities we
+
+1. project onto the equality constraints that must hold exactly — symmetry ``P = Pᵀ``
+   (orthogonal projection: ``(P + Pᵀ)/2``), unit norm ``‖u‖ = 1`` (through the rational
+   parametrisation of the sphere by inverse stereographic projection) and, for the data, the
+   row sums ``Σ_j w_ij = 1`` of consensus weights (exact orthogonal projection onto the affine
+   set, :func:`project_affine`);
+2. round it to dyadic rationals with a chosen number of significant bits;
+3. re-check every strict inequality exactly (``proofs_check``); when the float witness was
+   strictly feasible with margin ``μ``, a rounding error well below ``μ`` keeps it feasible.
+
+Precision grows until the exact check passes; if it never does, :class:`RationalizationError`
+says so and no certificate is produced — never a weaker one.
+
+References
+----------
+H. Peyrl and P. A. Parrilo, "Computing sum of squares decompositions with rational
+coefficients", Theoretical Computer Science 409 (2008) 269–281.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+from fractions import Fraction
+from typing import Any, TypeVar
+
+import numpy as np
+
+from theory.core.errors import InconclusiveError
+
+__all__ = [
+    "PRECISIONS",
+    "RationalizationError",
+    "dyadic",
+    "dyadic_matrix",
+    "exact_decimal",
+    "exact_matrix",
+    "first_success",
+    "fraction_strings",
+    "project_affine",
+    "rational_unit_vector",
+    "stochastic_matrix",
+    "symmetric_projection",
+]
+
+PRECISIONS = (20, 32, 44, 56)
+"""Significant bits tried in turn when rounding a witness."""
+
+T = TypeVar("T")
+
+
+class RationalizationError(InconclusiveError):
+    """No valid exact certificate could be produced (the CLI reports it as inconclusive, exit 3)."""
+
+
+def dyadic(x: float, exponent: int) -> Fraction:
+    """``x`` rounded to the nearest multiple of ``2**exponent`` (exactly).
+
+    Parameters
+    ----------
+    x : float
+        A finite number.
+    exponent : int
+        The grid is ``2**exponent``.
+
+    Returns
+    -------
+    Fraction
+
+    Raises
+    ------
+    RationalizationError
+        If ``x`` is not finite.
+    """
+    if not np.isfinite(x):
+        raise RationalizationError(f"cannot round the non-finite value {x!r} to a rational")
+    scaled = round(Fraction(float(x)) / Fraction(2) ** exponent)
+    return Fraction(scaled) * Fraction(2) ** exponent
+
+
+def dyadic_matrix(matrix: np.ndarray, bits: int) -> list[list[Fraction]]:
+    """Round every entry to ``bits`` significant bits relative to the largest entry.
+
+    Parameters
+    ----------
+    matrix : ndarray
+        A real matrix (2-d) or vector (1-d, returned as a single row).
+    bits : int
+        Significant bits kept for the largest entry; smaller entries share its grid.
+
+    Returns
+    -------
+    list of list of Fraction
+    """
+    array = np.atleast_2d(np.asarray(matrix, dtype=float))
+    top = float(np.abs(array).max(initial=0.0))
+    exponent = (int(np.floor(np.log2(top))) if top > 0 else 0) - bits
+    return [[dyadic(float(x), exponent) for x in row] for row in array]
+
+
+def symmetric_projection(matrix: np.ndarray) -> np.ndarray:
+    """Orthogonal projection onto symmetric matrices, ``(M + Mᵀ)/2``.
+
+    Float addition is commutative, so the result is exactly symmetric and stays so after
+    entrywise rounding.
+
+    Parameters
+    ----------
+    matrix : ndarray
+        A square matrix.
+
+    Returns
+    -------
+    ndarray
+    """
+    array = np.asarray(matrix, dtype=float)
+    return (array + array.T) / 2
+
+
+def exact_decimal(x: float) -> Fraction:
+    """The rational a user meant by a float: its shortest round-trip decimal (0.24 → 6/25).
+
+    Parameters
+    ----------
+    x : float
+        A finite number.
+
+    Returns
+    -------
+    Fraction
+
+    Raises
+    ------
+    RationalizationError
+        If ``x`` is not finite.
+    """
+    if not np.isfinite(x):
+        raise RationalizationError(f"data value {x!r} is not finite")
+    return Fraction(repr(float(x)))
+
+
+def exact_matrix(matrix: Any) -> list[list[Fraction]]:
+    """A matrix of exact rationals: ``Fraction`` entries kept, floats read as decimals.
+
+    Parameters
+    ----------
+    matrix : array_like or list of lists
+        Real entries (floats, ints or Fractions); a vector becomes one row.
+
+    Returns
+    -------
+    list of list of Fraction
+    """
+    rows = matrix if isinstance(matrix, list) else np.atleast_2d(np.asarray(matrix)).tolist()
+    return [
+        [x if isinstance(x, Fraction) else exact_decimal(float(x)) for x in np.atleast_1d(row)]
+        for row in rows
+    ]
+
+
+def project_affine(x: Sequence[Fraction], a: Sequence[Fraction], b: Fraction) -> list[Fraction]:
+    """Exact orthogonal projection of ``x`` onto the hyperplane ``{y : a·y = b}``.
+
+    .. math:: y = x + \\frac{b - a \\cdot x}{a \\cdot a}\\, a
+
+    Parameters
+    ----------
+    x : sequence of Fraction
+        The point.
+    a : sequence of Fraction
+        The constraint's normal vector.
+    b : Fraction
+        The constraint's value.
+
+    Returns
+    -------
+    list of Fraction
+
+    Raises
+    ------
+    ValueError
+        If ``a = 0``.
+    """
+    norm2 = sum(Fraction(v) * v for v in a)
+    if norm2 == 0:
+        raise ValueError("the constraint vector a is zero")
+    step = (Fraction(b) - sum(Fraction(v) * u for v, u in zip(a, x, strict=True))) / norm2
+    return [Fraction(u) + step * v for u, v in zip(x, a, strict=True)]
+
+
+def stochastic_matrix(W: Any) -> list[list[Fraction]]:
+    """Consensus weights as exact rationals whose rows sum to exactly one.
+
+    Entries are read as decimals (:func:`exact_matrix`); each row is then projected onto
+    ``Σ_j w_ij = 1`` within its support (zeros stay zero), moving each entry by at most the
+    row's rounding error divided by its support size. Rows already summing to one are unchanged.
+
+    Parameters
+    ----------
+    W : array_like
+        Consensus weights (floats read as decimals, or Fractions).
+
+    Returns
+    -------
+    list of list of Fraction
+
+    Raises
+    ------
+    RationalizationError
+        If a row has a negative entry, is zero, or needs a change larger than ``1e-9``.
+    """
+    out = []
+    for i, row in enumerate(exact_matrix(W)):
+        support = [Fraction(int(x != 0)) for x in row]
+        if any(x < 0 for x in row) or not any(support):
+            raise RationalizationError(f"weights row {i + 1} is not non-negative and non-zero")
+        projected = project_affine(row, support, Fraction(1))
+        if max(abs(p - x) for p, x in zip(projected, row, strict=True)) > Fraction(1, 10**9):
+            raise RationalizationError(f"weights row {i + 1} sums to {float(sum(row))}, not 1")
+        out.append(projected)
+    return out
+
+
+def fraction_strings(value: Any) -> Any:
+    """Nested lists of Fractions as nested lists of exact strings ``"p/q"``.
+
+    Parameters
+    ----------
+    value : Fraction or nested iterables of Fraction
+
+    Returns
+    -------
+    str or nested lists of str
+
+    Raises
+    ------
+    TypeError
+        For anything other than Fractions.
+    """
+    if isinstance(value, Fraction):
+        return str(value)
+    if isinstance(value, Iterable) and not isinstance(value, str):
+        return [fraction_strings(v) for v in value]
+    raise TypeError(f"expected Fractions, got {type(value).__name__}")
+
+
+def rational_unit_vector(u: Sequence[float], bits: int) -> list[Fraction]:
+    """A rational point exactly on the unit sphere near the unit vector ``u``.
+
+    Inverse stereographic projection from the pole ``±e_d`` farther from ``u`` maps rational
+    ``s ∈ Q^{d−1}`` to ``(2s, ±(1 − |s|²)) / (1 + |s|²)``, a rational unit vector; ``s`` is
+    ``u``'s projection rounded to ``bits`` bits, so the result is within ``~2^{−bits}`` of ``u``.
+
+    Parameters
+    ----------
+    u : sequence of float
+        A non-zero vector of length ``d ≥ 2`` (normalised first).
+    bits : int
+        Grid ``2^{−bits}`` of the stereographic coordinates.
+
+    Returns
+    -------
+    list of Fraction
+        ``d`` rationals whose squares sum to exactly one.
+    """
+    vector = np.asarray(u, dtype=float)
+    vector = vector / np.linalg.norm(vector)
+    sign = 1.0 if vector[-1] >= 0 else -1.0
+    s = [dyadic(x, -bits) for x in vector[:-1] / (1.0 + sign * vector[-1])]
+    norm2 = sum(x * x for x in s)
+    last = (1 - norm2) / (1 + norm2) * int(sign)
+    return [2 * x / (1 + norm2) for x in s] + [last]
+
+
+def first_success(
+    attempt: Callable[[int], T | None], *, precisions: Sequence[int] = PRECISIONS, what: str
+) -> tuple[T, int]:
+    """Call ``attempt(bits)`` for each precision until it returns a result.
+
+    Parameters
+    ----------
+    attempt : callable
+        ``attempt(bits)`` returns a result, or ``None`` when that precision fails.
+    precisions : sequence of int
+        Precisions tried in order.
+    what : str
+        Names the witness in the error message.
+
+    Returns
+    -------
+    (result, bits)
+
+    Raises
+    ------
+    RationalizationError
+        If every precision fails (``what`` names the witness in the message).
+    """
+    for bits in precisions:
+        result = attempt(bits)
+        if result is not None:
+            return result, bits
+    raise RationalizationError(
+        f"{what}: no rounding to {', '.join(map(str, precisions))} significant bits passes the "
+        "exact check; the float witness is not strictly feasible with enough margin, so no "
+        "certificate is produced"
+    )

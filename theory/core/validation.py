@@ -1,0 +1,391 @@
+"""Validation of plain data from case files, in one place (STYLE.md, *Adopt* 5).
+
+Each function takes the raw value and its dotted ``field`` name and either returns clean data
+(numpy arrays of ``float``, plain Python scalars) or raises :class:`~theory.core.errors.CaseError`
+naming the field, the expected form and what was found.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from theory.core.errors import CaseError
+
+__all__ = [
+    "check_keys",
+    "finite_array",
+    "finite_matrix",
+    "finite_vector",
+    "one_of",
+    "positive_definite",
+    "positive_int",
+    "positive_number",
+    "require",
+    "row_stochastic",
+]
+
+
+def require(block: Mapping, key: str, prefix: str) -> object:
+    """Return ``block[key]`` or raise naming the missing field ``prefix.key``.
+
+    Parameters
+    ----------
+    block : Mapping
+        The parsed block that should hold ``key``.
+    key : str
+        The required field.
+    prefix : str
+        Dotted name of ``block`` (empty at the top level, when the field is named ``key``).
+
+    Returns
+    -------
+    object
+        ``block[key]``, unchecked.
+
+    Raises
+    ------
+    CaseError
+        If ``key`` is not in ``block``.
+    """
+    if key not in block:
+        raise CaseError(_join(prefix, key), "a value (the field is required)", "nothing")
+    return block[key]
+
+
+def check_keys(block: object, allowed: Sequence[str], prefix: str) -> Mapping:
+    """Ensure ``block`` is a mapping whose keys are all in ``allowed``.
+
+    Parameters
+    ----------
+    block : object
+        The raw value of the block.
+    allowed : Sequence of str
+        The known field names; any other key is refused rather than ignored.
+    prefix : str
+        Dotted name of ``block`` in error messages (empty at the top level).
+
+    Returns
+    -------
+    Mapping
+        ``block`` itself.
+
+    Raises
+    ------
+    CaseError
+        If ``block`` is not a mapping, or naming the first unknown field (sorted) otherwise.
+    """
+    if not isinstance(block, Mapping):
+        raise CaseError(prefix or "<top level>", "a mapping of fields", block)
+    unknown = sorted(str(k) for k in block if k not in allowed)
+    if unknown:
+        raise CaseError(
+            _join(prefix, unknown[0]),
+            f"one of the known fields {sorted(allowed)}",
+            f"unknown field {unknown[0]!r}",
+            hint="Check the spelling; unknown fields are refused rather than ignored.",
+        )
+    return block
+
+
+def one_of(value: object, choices: Sequence[str], field: str) -> str:
+    """Return ``value`` if it is one of ``choices``.
+
+    Parameters
+    ----------
+    value : object
+        The raw value.
+    choices : Sequence of str
+        The accepted strings.
+    field : str
+        Dotted field name for messages.
+
+    Returns
+    -------
+    str
+        ``value``.
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a string among ``choices``.
+    """
+    if not isinstance(value, str) or value not in choices:
+        raise CaseError(field, f"one of {list(choices)}", value)
+    return value
+
+
+def positive_number(value: object, field: str, *, allow_zero: bool = False) -> float:
+    """``value`` as a finite real number > 0 (or ≥ 0 with ``allow_zero``).
+
+    Parameters
+    ----------
+    value : object
+        The raw value; an ``int`` or ``float`` (``bool`` is refused).
+    field : str
+        Dotted field name for messages.
+    allow_zero : bool
+        Accept 0 as well (the bound becomes ≥ 0).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a number, or is not finite, or is out of bounds.
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise CaseError(field, "a number", value)
+    number = float(value)
+    if not math.isfinite(number) or number < 0 or (number == 0 and not allow_zero):
+        bound = "≥ 0" if allow_zero else "> 0"
+        raise CaseError(field, f"a finite number {bound}", value)
+    return number
+
+
+def positive_int(value: object, field: str, *, minimum: int = 1) -> int:
+    """``value`` as an integer ≥ ``minimum``.
+
+    Parameters
+    ----------
+    value : object
+        The raw value; an ``int`` (``bool`` is refused).
+    field : str
+        Dotted field name for messages.
+    minimum : int
+        The least accepted value.
+
+    Returns
+    -------
+    int
+        ``value``.
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not an integer or is below ``minimum``.
+    """
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        raise CaseError(field, f"an integer ≥ {minimum}", value)
+    return value
+
+
+def finite_matrix(
+    value: object,
+    field: str,
+    *,
+    rows: int | None = None,
+    cols: int | None = None,
+    allow_empty_rows: bool = False,
+) -> np.ndarray:
+    """``value`` as a 2-D array of finite reals.
+
+    Parameters
+    ----------
+    value : object
+        The raw value: a list of equal-length rows of numbers.
+    field : str
+        Dotted field name for messages.
+    rows : int, optional
+        Required number of rows; any when not given.
+    cols : int, optional
+        Required number of columns; any when not given.
+    allow_empty_rows : bool
+        Accept ``[]`` as a ``0 × cols`` matrix (only when ``cols`` is given).
+
+    Returns
+    -------
+    ndarray of float, shape (rows, cols)
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a matrix of finite numbers, or has the wrong shape.
+    """
+    array = _numeric_array(value, field, "a matrix (list of equal-length rows of numbers)")
+    if array.ndim == 1 and array.size == 0 and allow_empty_rows and cols is not None:
+        array = array.reshape(0, cols)
+    if array.ndim != 2:
+        raise CaseError(field, "a matrix (list of equal-length rows of numbers)", value)
+    expected_shape = (
+        f"shape ({rows if rows is not None else 'n'}, {cols if cols is not None else 'm'})"
+    )
+    if (rows is not None and array.shape[0] != rows) or (
+        cols is not None and array.shape[1] != cols
+    ):
+        raise CaseError(field, f"a matrix of {expected_shape}", f"shape {array.shape}")
+    return array
+
+
+def finite_array(value: object, field: str, expected: str, *, ndims: tuple[int, ...]) -> np.ndarray:
+    """``value`` as a rectangular array of finite reals with a number of axes in ``ndims``.
+
+    Parameters
+    ----------
+    value : object
+        The raw value: nested lists of numbers.
+    field : str
+        Dotted field name for messages.
+    expected : str
+        What a valid value looks like, as said in messages.
+    ndims : tuple of int
+        The accepted numbers of axes.
+
+    Returns
+    -------
+    ndarray of float
+        Non-empty, with ``ndim`` in ``ndims``.
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a rectangular array of finite numbers, is empty, or has a number of
+        axes not in ``ndims``.
+    """
+    array = _numeric_array(value, field, expected)
+    if array.ndim not in ndims or array.size == 0:
+        raise CaseError(field, expected, value)
+    return array
+
+
+def finite_vector(value: object, field: str, *, length: int | None = None) -> np.ndarray:
+    """``value`` as a 1-D array of finite reals, of ``length`` if given.
+
+    Parameters
+    ----------
+    value : object
+        The raw value: a list of numbers.
+    field : str
+        Dotted field name for messages.
+    length : int, optional
+        Required number of entries; any when not given.
+
+    Returns
+    -------
+    ndarray of float, shape (length,)
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a list of finite numbers, or has the wrong length.
+    """
+    array = _numeric_array(value, field, "a list of numbers")
+    if array.ndim != 1:
+        raise CaseError(field, "a list of numbers", value)
+    if length is not None and array.shape[0] != length:
+        raise CaseError(field, f"a list of {length} numbers", f"{array.shape[0]} numbers")
+    return array
+
+
+def row_stochastic(
+    matrix: np.ndarray, field: str, *, tol: float = 1e-9, support: np.ndarray | None = None
+) -> np.ndarray:
+    """Check a square, non-negative, row-stochastic matrix with positive diagonal.
+
+    Parameters
+    ----------
+    matrix : ndarray
+        Candidate weight matrix ``W``.
+    field : str
+        Field name for messages.
+    tol : float
+        Absolute tolerance on each row sum (rows of ``W`` sum to 1 up to ``tol``).
+    support : ndarray of bool, optional
+        If given, the off-diagonal sparsity that ``W`` must have exactly (``w_ij > 0`` iff
+        ``support[i, j]``), e.g. the adjacency of the case's ``edges``.
+    """
+    n = matrix.shape[0]
+    if matrix.shape != (n, n):
+        raise CaseError(field, "a square matrix", f"shape {matrix.shape}")
+    negative = np.argwhere(matrix < 0)
+    if negative.size:
+        i, j = negative[0]
+        raise CaseError(f"{field}[{i + 1}][{j + 1}]", "a non-negative weight", matrix[i, j])
+    sums = matrix.sum(axis=1)
+    bad = np.flatnonzero(np.abs(sums - 1.0) > tol)
+    if bad.size:
+        i = bad[0]
+        raise CaseError(
+            f"{field}[{i + 1}]", f"a row summing to 1 (tolerance {tol:g})", f"sum {sums[i]!r}"
+        )
+    zero_diag = np.flatnonzero(np.diag(matrix) <= 0)
+    if zero_diag.size:
+        i = zero_diag[0]
+        raise CaseError(f"{field}[{i + 1}][{i + 1}]", "a positive self-weight w_ii > 0", 0.0)
+    if support is not None:
+        off = ~np.eye(n, dtype=bool)
+        mismatch = np.argwhere(off & ((matrix > 0) != support))
+        if mismatch.size:
+            i, j = mismatch[0]
+            want = "w_ij > 0 (i and j are neighbours)" if support[i, j] else "w_ij = 0 (no edge)"
+            raise CaseError(
+                f"{field}[{i + 1}][{j + 1}]",
+                want,
+                matrix[i, j],
+                hint="The weights' sparsity must match the communication edges.",
+            )
+    return matrix
+
+
+def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12) -> np.ndarray:
+    """Check that ``matrix`` is symmetric positive definite.
+
+    Parameters
+    ----------
+    matrix : ndarray
+        Candidate matrix ``M``.
+    field : str
+        Dotted field name for messages.
+    rel_tol : float
+        Relative tolerance, scale-aware: λ_min must exceed ``rel_tol · max|m_ij|`` (the scale
+        ``max|m_ij|`` is taken as at least 1); symmetry is checked to ``10³`` times that.
+
+    Returns
+    -------
+    ndarray
+        ``matrix`` itself.
+
+    Raises
+    ------
+    CaseError
+        If ``matrix`` is not square, not symmetric or not positive definite.
+    """
+    n = matrix.shape[0]
+    if matrix.shape != (n, n):
+        raise CaseError(field, "a square matrix", f"shape {matrix.shape}")
+    scale = max(float(np.max(np.abs(matrix))), 1.0) if matrix.size else 1.0
+    if not np.allclose(matrix, matrix.T, rtol=0, atol=rel_tol * scale * 1e3):
+        raise CaseError(field, "a symmetric matrix", matrix.tolist())
+    if n and float(np.linalg.eigvalsh(matrix).min()) <= rel_tol * scale:
+        raise CaseError(field, "a positive-definite matrix", matrix.tolist())
+    return matrix
+
+
+def _numeric_array(value: object, field: str, expected: str) -> np.ndarray:
+    if isinstance(value, str | bytes | Mapping) or not _is_nested_numbers(value):
+        raise CaseError(field, expected, value)
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise CaseError(field, expected, value) from None
+    if not np.all(np.isfinite(array)):
+        raise CaseError(field, "finite numbers (no NaN or inf)", value)
+    return array
+
+
+def _is_nested_numbers(value: object) -> bool:
+    if isinstance(value, bool):
+        return False
+    if isinstance(value, int | float):
+        return True
+    if isinstance(value, list | tuple):
+        return all(_is_nested_numbers(v) for v in value)
+    return False
+
+
+def _join(prefix: str, key: str) -> str:
+    return f"{prefix}.{key}" if prefix else key

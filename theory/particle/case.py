@@ -1,0 +1,303 @@
+"""``kind: pf`` case files: a distributed TDOA particle-filter scenario (seed 002 §3.3).
+
+Block fields (defaults are seed 002 §3.3.1's where it gives them, ours otherwise)::
+
+    pf:
+      nodes: [[x, y], ...]        # stationary node positions (the thesis gives none: state yours)
+      edges: [[1, 2], ...]        # undirected, 1-based (N_i = neighbours of i)
+      filters: [1, 4, 5]          # nodes running the PF (default: all)
+      workspace: [[-60, 60], [-60, 60]]   # initial particles and target start, uniform
+      particles: 100              # P
+      share: 10                   # m (0: no consensus step)
+      steps: 100                  # target moves (estimates at k = 0..steps)
+      runs: 50                    # Monte Carlo runs
+      seed: 2                     # base seed (run r uses seeds [seed, r, ·])
+      noise_sigma: 1.0            # true TDOA noise std (m)
+      filter_sigma: 1.0           # σ assumed in eq. (3.11) (default noise_sigma)
+      target: {mu: 0, gamma: 0.7, kappa: 2, lambda: 3}   # the true DCRW
+      model: dcrw                 # propagation: dcrw (true) | gaussian | learned
+      exchange_weights: sender    # sender | local
+      exchange_rounds: 1
+      received_heading: sender    # sender | uniform
+      uniform_max_step: 8.0       # the learner's uniform prior on step length
+      learning: {min_samples: 10, gamma_max: 0.95, burn_in: 5}
+
+``expect`` keys (every node id a filtering node; judged by :mod:`theory.particle.claims`)::
+
+    converges: {1: true, 5: false}     # node id → whether its PF converges (Figs. 3.2–3.3)
+    consensus_helps: 4                 # the consensus step lowers this node's error (Fig. 3.4)
+    learned_beats_gaussian: 5          # learned model beats the Gaussian here (Fig. 3.5)
+    learned_pdfs_centre: 5             # the paper's Fig. 3.6: no learned parameter is biased
+    learned_biased: {5: [gamma, lambda]}   # node id → the biased parameters, in PARAM_NAMES order
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from theory.core.case_file import register_kind
+from theory.core.errors import CaseError
+from theory.core.network import adjacency_from_edges
+from theory.core.validation import (
+    check_keys,
+    finite_matrix,
+    one_of,
+    positive_int,
+    positive_number,
+    require,
+)
+from theory.particle.dcrw import DcrwParams
+from theory.particle.filter import EXCHANGE_WEIGHTS, RECEIVED_HEADINGS, PfConfig, PfNetwork
+
+__all__ = ["MODELS", "PARAM_NAMES", "PfSpec", "check_pf_expect", "parse_pf"]
+
+FIELDS = (
+    "nodes",
+    "edges",
+    "filters",
+    "workspace",
+    "particles",
+    "share",
+    "steps",
+    "runs",
+    "seed",
+    "noise_sigma",
+    "filter_sigma",
+    "target",
+    "model",
+    "exchange_weights",
+    "exchange_rounds",
+    "received_heading",
+    "uniform_max_step",
+    "learning",
+)
+EXPECT_KEYS = (
+    "converges",
+    "consensus_helps",
+    "learned_beats_gaussian",
+    "learned_pdfs_centre",
+    "learned_biased",
+)
+NODE_KEYS = ("consensus_helps", "learned_beats_gaussian", "learned_pdfs_centre")
+PARAM_NAMES = ("mu", "gamma", "kappa", "lambda")
+"""The DCRW parameters (μ, γ, κ, λ) of seed 002 eqs. (3.1)–(3.2), in the order fits report them."""
+TOLERANCE_KEYS = ("converge_tol", "diverge_tol", "improvement_tol")
+MODELS = ("dcrw", "gaussian", "learned")
+LEARNING_FIELDS = ("min_samples", "gamma_max", "burn_in")
+
+
+@dataclass(frozen=True, eq=False)
+class PfSpec:
+    """A validated PF scenario (see the module docstring for the fields).
+
+    Attributes
+    ----------
+    network : PfNetwork
+        Nodes, links and filtering nodes.
+    config : PfConfig
+        The filter's parameters.
+    workspace : ndarray, shape (2, 2)
+        Box of the initial particles and of the target's start.
+    steps, runs, seed : int
+        Target moves, Monte Carlo runs, base seed.
+    noise_sigma : float
+        True TDOA noise standard deviation (m).
+    target : DcrwParams
+        The true DCRW.
+    model : str
+        Propagation model: ``dcrw``, ``gaussian`` or ``learned``.
+    uniform_max_step : float
+        Step range of the learner's uniform prior.
+    learning : dict
+        Overrides of :class:`~theory.particle.learning.OnlineLearner`'s guards.
+    """
+
+    network: PfNetwork
+    config: PfConfig
+    workspace: np.ndarray
+    steps: int
+    runs: int
+    seed: int
+    noise_sigma: float
+    target: DcrwParams
+    model: str
+    uniform_max_step: float
+    learning: dict[str, float]
+
+
+def parse_pf(block: Mapping[str, Any]) -> PfSpec:
+    """Validate a ``pf:`` block.
+
+    Raises
+    ------
+    CaseError
+        For any missing, unknown or invalid field, naming it.
+    """
+    check_keys(block, FIELDS, "pf")
+    nodes = finite_matrix(require(block, "nodes", "pf"), "pf.nodes", cols=2)
+    n = nodes.shape[0]
+    if n < 2:
+        raise CaseError("pf.nodes", "at least 2 nodes [x, y]", n)
+    hears = adjacency_from_edges(n, _edges(block.get("edges", []), n))
+    filters = _ids(block.get("filters", list(range(1, n + 1))), n, "pf.filters")
+    workspace = finite_matrix(
+        block.get("workspace", [[-60, 60], [-60, 60]]), "pf.workspace", rows=2, cols=2
+    )
+    if np.any(workspace[:, 1] <= workspace[:, 0]):
+        raise CaseError(
+            "pf.workspace", "[[xmin, xmax], [ymin, ymax]] with min < max", workspace.tolist()
+        )
+    noise = positive_number(block.get("noise_sigma", 1.0), "pf.noise_sigma")
+    config = _config(block, noise, hears, filters)
+    return PfSpec(
+        network=PfNetwork(nodes, hears, filters),
+        config=config,
+        workspace=workspace,
+        steps=positive_int(block.get("steps", 100), "pf.steps"),
+        runs=positive_int(block.get("runs", 50), "pf.runs"),
+        seed=positive_int(block.get("seed", 0), "pf.seed", minimum=0),
+        noise_sigma=noise,
+        target=_target(block.get("target", {"mu": 0, "gamma": 0.7, "kappa": 2, "lambda": 3})),
+        model=one_of(block.get("model", "dcrw"), MODELS, "pf.model"),
+        uniform_max_step=positive_number(block.get("uniform_max_step", 8.0), "pf.uniform_max_step"),
+        learning=_learning(block.get("learning", {})),
+    )
+
+
+def _config(block: Mapping[str, Any], noise: float, hears: np.ndarray, filters: tuple) -> PfConfig:
+    particles = positive_int(block.get("particles", 100), "pf.particles", minimum=2)
+    share = positive_int(block.get("share", 10), "pf.share", minimum=0)
+    degree = max((int(hears[i, list(filters)].sum()) for i in filters), default=0)
+    if share * degree >= particles:
+        raise CaseError(
+            "pf.share",
+            f"m with m·(max filter degree {degree}) < P = {particles}",
+            share,
+            hint="seed 002 §3.2.1 asks m < P/N.",
+        )
+    return PfConfig(
+        particles=particles,
+        share=share,
+        sigma=positive_number(block.get("filter_sigma", noise), "pf.filter_sigma"),
+        exchange_weights=one_of(
+            block.get("exchange_weights", "sender"), EXCHANGE_WEIGHTS, "pf.exchange_weights"
+        ),
+        exchange_rounds=positive_int(block.get("exchange_rounds", 1), "pf.exchange_rounds"),
+        received_heading=one_of(
+            block.get("received_heading", "sender"), RECEIVED_HEADINGS, "pf.received_heading"
+        ),
+    )
+
+
+def _edges(raw: object, n: int) -> np.ndarray:
+    if not isinstance(raw, list) or not all(isinstance(e, list) and len(e) == 2 for e in raw):
+        raise CaseError("pf.edges", "a list of pairs [i, j] of 1-based node ids", raw)
+    pairs = [_ids(e, n, f"pf.edges[{k + 1}]") for k, e in enumerate(raw)]
+    for k, (i, j) in enumerate(pairs):
+        if i == j:
+            raise CaseError(f"pf.edges[{k + 1}]", "two different nodes", [i + 1, j + 1])
+    return np.asarray(pairs, dtype=int).reshape(-1, 2)
+
+
+def _ids(raw: object, n: int, field: str) -> tuple[int, ...]:
+    if not isinstance(raw, list) or not raw:
+        raise CaseError(field, f"a non-empty list of node ids between 1 and {n}", raw)
+    for value in raw:
+        if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= n:
+            raise CaseError(field, f"node ids between 1 and {n}", raw)
+    if field == "pf.filters" and len(set(raw)) != len(raw):
+        raise CaseError(field, "distinct node ids", raw)
+    return tuple(v - 1 for v in raw)
+
+
+def _target(raw: object) -> DcrwParams:
+    block = check_keys(raw, ("mu", "gamma", "kappa", "lambda"), "pf.target")
+    mu = require(block, "mu", "pf.target")
+    if isinstance(mu, bool) or not isinstance(mu, int | float) or not np.isfinite(mu):
+        raise CaseError("pf.target.mu", "a finite angle (rad)", mu)
+    gamma = positive_number(
+        require(block, "gamma", "pf.target"), "pf.target.gamma", allow_zero=True
+    )
+    if gamma >= 1:
+        raise CaseError("pf.target.gamma", "0 ≤ γ < 1", gamma)
+    kappa = positive_number(require(block, "kappa", "pf.target"), "pf.target.kappa")
+    lam = positive_number(require(block, "lambda", "pf.target"), "pf.target.lambda")
+    return DcrwParams(float(mu), gamma, kappa, lam)
+
+
+def _learning(raw: object) -> dict[str, float]:
+    block = check_keys(raw, LEARNING_FIELDS, "pf.learning")
+    out: dict[str, float] = {}
+    if "min_samples" in block:
+        out["min_samples"] = positive_int(block["min_samples"], "pf.learning.min_samples")
+    if "burn_in" in block:
+        out["burn_in"] = positive_int(block["burn_in"], "pf.learning.burn_in", minimum=0)
+    if "gamma_max" in block:
+        gamma_max = positive_number(block["gamma_max"], "pf.learning.gamma_max")
+        if gamma_max >= 1:
+            raise CaseError("pf.learning.gamma_max", "a clamp 0 < γ_max < 1", gamma_max)
+        out["gamma_max"] = gamma_max
+    return out
+
+
+def check_pf_expect(spec: PfSpec, expect: Mapping[str, Any]) -> None:
+    """Validate the values of a pf case's ``expect`` block against ``spec``.
+
+    Node ids must be filtering nodes (1-based); ``converges`` maps them to true/false and
+    ``learned_biased`` to a list of parameter names of :data:`PARAM_NAMES`, in that order.
+
+    Parameters
+    ----------
+    spec : PfSpec
+        The validated scenario (gives the filtering nodes).
+    expect : mapping
+        The case's ``expect`` block, keys already checked.
+
+    Raises
+    ------
+    CaseError
+        Naming the ``expect`` field, the expected form and what was found.
+    """
+    filters = sorted(f + 1 for f in spec.network.filters)
+    node = f"a filtering node id (one of {filters})"
+    for key, value in expect.items():
+        field = f"expect.{key}"
+        if key in NODE_KEYS and not _filtering_node(value, filters):
+            raise CaseError(field, node, value)
+        if key in ("converges", "learned_biased"):
+            if not isinstance(value, Mapping) or not value:
+                raise CaseError(field, f"a non-empty map from {node} to a value", value)
+            for k, v in value.items():
+                _check_node_entry(f"{field}.{k}", key, k, v, filters)
+
+
+def _filtering_node(value: object, filters: list[int]) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool) and value in filters
+
+
+def _check_node_entry(field: str, key: str, node: object, value: object, filters: list) -> None:
+    if not _filtering_node(node, filters):
+        raise CaseError(field, f"a filtering node id (one of {filters}) as the key", node)
+    if key == "converges" and not isinstance(value, bool):
+        raise CaseError(field, "true or false", value)
+    if key == "learned_biased" and not (
+        isinstance(value, list)
+        and all(v in PARAM_NAMES for v in value)
+        and list(value) == [p for p in PARAM_NAMES if p in value]
+    ):
+        raise CaseError(
+            field, f"a list of distinct names of {list(PARAM_NAMES)}, in that order", value
+        )
+
+
+register_kind(
+    "pf",
+    parse_pf,
+    expect_keys=EXPECT_KEYS,
+    tolerance_keys=TOLERANCE_KEYS,
+    check_expect=check_pf_expect,
+)

@@ -1,0 +1,399 @@
+"""``kind: pursuit`` case files: trackers, S-T curves, gains and network (seed 003 §IV–VI).
+
+Block fields::
+
+    pursuit:
+      dim: 2                        # 2 or 3
+      controller: II                # I (eq. 49) or II (eq. 50)
+      omega_bar: 0.05               # ω̄ (rad/s), eq. (18), (46)
+      epsilon: [-0.5, 0]            # ε of eq. (19), dim numbers
+      K_p: [0.4, 0.2]               # diagonal of K_p, or a dim × dim symmetric PD matrix
+      k_gamma: 500                  # k_γ > 0, eq. (50b); required for controller II
+      k_c: 0.2                      # k_c > 0, eq. (45); required when N > 1
+      trackers:                     # one entry per tracker: path (15)/(16) parameters
+        - {r_x: 30, r_y: 30, gamma0: 0}              # 3D also r_z > 0 and c ∉ {0, 1}
+        - {r_x: 30, r_y: 30, gamma0: 2.0943951, initial: {position: [..], euler: [..], gamma: 0}}
+      edges: [[2, 1], [3, 2], [1, 3]]   # directed, 1-based [s, r]: tracker s sends to tracker r
+      target:                       # optional, see TargetMotion
+        offset: [0, 0]
+        velocity: [0, 0.3]
+        amplitude: [20, 0]
+        frequency: [0.01, 0]
+        phase: [3.14159265, 0]
+      dekf:                         # optional, for the simulation (Algorithm 2)
+        Ts: 2                       # sampling period (s)
+        sigma: 0.5                  # range noise standard deviation (m), eq. (10)
+        V: 10                       # inverse measurement-noise weight V^[i]
+        Q: [[...]]                  # 2·dim × 2·dim positive-definite process-noise weight
+        weights: uniform            # or N × N row-stochastic fusion weights π^[i,j] (in-edges)
+        x0: [[...], ...]            # optional initial estimates, N × 2·dim
+        P0: [[...]]                 # optional initial covariance, 2·dim × 2·dim (or N of them)
+
+The graph convention is the paper's: a_ij = 1 when tracker i receives from tracker j, and the
+Laplacian is L = D_in − A (seed 003 §II-B). Conditions that decide the analysis (Δ of full row
+rank, strong connectivity) are *not* refused here: ``trackcert iss`` reports them as failing
+conditions (exit 1). Only malformed data is refused (:class:`~theory.core.errors.CaseError`, exit
+2).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from theory.core.case_file import register_kind
+from theory.core.errors import CaseError
+from theory.core.network import adjacency_from_edges, uniform_weights
+from theory.core.validation import (
+    check_keys,
+    finite_matrix,
+    finite_vector,
+    one_of,
+    positive_definite,
+    positive_number,
+    require,
+    row_stochastic,
+)
+
+__all__ = ["DekfSettings", "PursuitSpec", "TargetMotion", "TrackerPath", "parse_pursuit"]
+
+FIELDS = (
+    "dim",
+    "controller",
+    "omega_bar",
+    "epsilon",
+    "K_p",
+    "k_gamma",
+    "k_c",
+    "trackers",
+    "edges",
+    "target",
+    "dekf",
+)
+TRACKER_FIELDS_2D = ("r_x", "r_y", "gamma0", "initial")
+TRACKER_FIELDS_3D = ("r_x", "r_y", "r_z", "c", "gamma0", "initial")
+INITIAL_FIELDS = ("position", "euler", "gamma", "gamma_dot")
+TARGET_FIELDS = ("offset", "velocity", "amplitude", "frequency", "phase")
+DEKF_FIELDS = ("Ts", "sigma", "V", "Q", "weights", "x0", "P0")
+EXPECT_KEYS = ("iss", "delta_full_rank", "strongly_connected")
+TOLERANCE_KEYS = ("margin_tol", "weight_sum_tol")
+
+
+@dataclass(frozen=True)
+class TrackerPath:
+    """The spatial path r(γ) of one tracker, seed 003 eqs. (15)–(16), and its initial state.
+
+    Attributes
+    ----------
+    r_x, r_y : float
+        Semi-axes (> 0).
+    r_z : float or None
+        Vertical amplitude (3D only, > 0).
+    c : float or None
+        Vertical frequency divisor (3D only, c ∉ {0, 1}).
+    gamma0 : float
+        Phase γ₀.
+    initial : dict
+        Optional initial state for the simulation: ``position`` (dim), ``euler`` (1 yaw angle in 2D,
+        roll-pitch-yaw in 3D), ``gamma`` and ``gamma_dot`` (numbers); missing keys are absent.
+    """
+
+    r_x: float
+    r_y: float
+    r_z: float | None
+    c: float | None
+    gamma0: float
+    initial: dict[str, Any]
+
+
+@dataclass(frozen=True)
+class TargetMotion:
+    """q_k(t) = offset_k + velocity_k·t + amplitude_k·sin(frequency_k·t + phase_k) (Tables I–II).
+
+    Each attribute is an ndarray of shape (dim,), one entry per coordinate ``k``; a key missing
+    from the case file is zero.
+
+    Attributes
+    ----------
+    offset : ndarray
+        Position at ``t = 0`` apart from the sinusoid (m).
+    velocity : ndarray
+        Constant drift velocity (m/s).
+    amplitude : ndarray
+        Amplitude of the sinusoidal term (m).
+    frequency : ndarray
+        Angular frequency of the sinusoidal term (rad/s).
+    phase : ndarray
+        Phase of the sinusoidal term (rad).
+    """
+
+    offset: np.ndarray
+    velocity: np.ndarray
+    amplitude: np.ndarray
+    frequency: np.ndarray
+    phase: np.ndarray
+
+    def position(self, t: float) -> np.ndarray:
+        """q(t)."""
+        return (
+            self.offset
+            + self.velocity * t
+            + self.amplitude * np.sin(self.frequency * t + self.phase)
+        )
+
+    def velocity_at(self, t: float) -> np.ndarray:
+        """q̇(t)."""
+        return self.velocity + self.amplitude * self.frequency * np.cos(
+            self.frequency * t + self.phase
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class DekfSettings:
+    """Settings of the distributed EKF (seed 003 Algorithm 2), validated for the simulation.
+
+    Attributes
+    ----------
+    Ts : float
+        Sampling period (s), > 0.
+    sigma : float
+        Standard deviation of the range noise (m), eq. (10), > 0.
+    V : float
+        Inverse measurement-noise weight ``V^[i]``, > 0.
+    Q : ndarray, shape (2·dim, 2·dim)
+        Positive-definite process-noise weight.
+    weights : ndarray, shape (N, N)
+        Row-stochastic fusion weights ``π^[i,j]`` supported on the in-edges (uniform by default).
+    x0 : ndarray, shape (N, 2·dim), or None
+        Initial estimates, one row per tracker; ``None``: the simulation's default
+        (:mod:`theory.pursuit.simulation`).
+    P0 : ndarray, shape (N, 2·dim, 2·dim), or None
+        Positive-definite initial covariance of each tracker (one matrix given in the case file
+        is repeated); ``None``: the simulation's default.
+    """
+
+    Ts: float
+    sigma: float
+    V: float
+    Q: np.ndarray
+    weights: np.ndarray
+    x0: np.ndarray | None
+    P0: np.ndarray | None
+
+
+@dataclass(frozen=True, eq=False)
+class PursuitSpec:
+    """A validated cooperative-pursuit case (seed 003).
+
+    Attributes
+    ----------
+    dim : int
+        2 or 3.
+    controller : str
+        ``"I"`` or ``"II"``.
+    omega_bar : float
+        Nominal path-parameter speed ω̄.
+    epsilon : ndarray, shape (dim,)
+        Offset ε of eq. (19).
+    K_p : ndarray, shape (dim, dim)
+        Symmetric positive-definite position gain.
+    k_gamma : float or None
+        k_γ (controller II).
+    k_c : float or None
+        Coordination gain (N > 1).
+    trackers : tuple of TrackerPath
+        One per tracker.
+    adjacency : ndarray of bool, shape (N, N)
+        ``adjacency[i, j]``: tracker i receives from tracker j (a_ij = 1).
+    target : TargetMotion or None
+    dekf : DekfSettings or None
+    """
+
+    dim: int
+    controller: str
+    omega_bar: float
+    epsilon: np.ndarray
+    K_p: np.ndarray
+    k_gamma: float | None
+    k_c: float | None
+    trackers: tuple[TrackerPath, ...]
+    adjacency: np.ndarray
+    target: TargetMotion | None
+    dekf: DekfSettings | None
+
+    @property
+    def n_trackers(self) -> int:
+        """Number of trackers N."""
+        return len(self.trackers)
+
+    @property
+    def laplacian(self) -> np.ndarray:
+        """L = D_in − A (seed 003 §II-B), integer entries."""
+        a = self.adjacency.astype(int)
+        return np.diag(a.sum(axis=1)) - a
+
+
+def parse_pursuit(block: Mapping[str, Any]) -> PursuitSpec:
+    """Validate a ``pursuit:`` block (see the module docstring for the fields).
+
+    Raises
+    ------
+    CaseError
+        For any missing, unknown or invalid field, naming it.
+    """
+    check_keys(block, FIELDS, "pursuit")
+    dim = require(block, "dim", "pursuit")
+    if dim not in (2, 3) or isinstance(dim, bool):
+        raise CaseError("pursuit.dim", "2 or 3", dim)
+    controller = one_of(
+        str(require(block, "controller", "pursuit")), ("I", "II"), "pursuit.controller"
+    )
+    omega_bar = _real(require(block, "omega_bar", "pursuit"), "pursuit.omega_bar")
+    epsilon = finite_vector(require(block, "epsilon", "pursuit"), "pursuit.epsilon", length=dim)
+    K_p = _gain_matrix(require(block, "K_p", "pursuit"), dim)
+    trackers = _trackers(require(block, "trackers", "pursuit"), dim)
+    n = len(trackers)
+    k_gamma = _optional_gain(block, "k_gamma", required=controller == "II", why="controller II")
+    k_c = _optional_gain(block, "k_c", required=n > 1, why="more than one tracker")
+    adjacency = _adjacency(block.get("edges", []), n)
+    target = _target(block["target"], dim) if "target" in block else None
+    dekf = _dekf(block["dekf"], dim, adjacency) if "dekf" in block else None
+    return PursuitSpec(
+        dim, controller, omega_bar, epsilon, K_p, k_gamma, k_c, trackers, adjacency, target, dekf
+    )
+
+
+def _real(value: object, field: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
+        raise CaseError(field, "a finite number", value)
+    return float(value)
+
+
+def _gain_matrix(raw: object, dim: int) -> np.ndarray:
+    field = "pursuit.K_p"
+    if isinstance(raw, list) and raw and not isinstance(raw[0], list):
+        diagonal = finite_vector(raw, field, length=dim)
+        if np.any(diagonal <= 0):
+            raise CaseError(field, "positive diagonal entries (K_p ≻ 0)", raw)
+        return np.diag(diagonal)
+    matrix = finite_matrix(raw, field, rows=dim, cols=dim)
+    return positive_definite(matrix, field)
+
+
+def _optional_gain(block: Mapping[str, Any], key: str, *, required: bool, why: str) -> float | None:
+    if key not in block:
+        if required:
+            raise CaseError(f"pursuit.{key}", f"a number > 0 (required with {why})", "nothing")
+        return None
+    return positive_number(block[key], f"pursuit.{key}")
+
+
+def _trackers(raw: object, dim: int) -> tuple[TrackerPath, ...]:
+    if not isinstance(raw, list) or not raw:
+        raise CaseError("pursuit.trackers", "a non-empty list of tracker path parameters", raw)
+    allowed = TRACKER_FIELDS_3D if dim == 3 else TRACKER_FIELDS_2D
+    paths = []
+    for index, entry in enumerate(raw):
+        prefix = f"pursuit.trackers[{index + 1}]"
+        check_keys(entry, allowed, prefix)
+        r_x = positive_number(require(entry, "r_x", prefix), f"{prefix}.r_x")
+        r_y = positive_number(require(entry, "r_y", prefix), f"{prefix}.r_y")
+        r_z = c = None
+        if dim == 3:
+            r_z = positive_number(require(entry, "r_z", prefix), f"{prefix}.r_z")
+            c = _real(require(entry, "c", prefix), f"{prefix}.c")
+            if c in (0.0, 1.0):
+                raise CaseError(f"{prefix}.c", "a real number other than 0 and 1 (eq. 15)", c)
+        gamma0 = _real(entry.get("gamma0", 0.0), f"{prefix}.gamma0")
+        initial = _initial(entry.get("initial", {}), dim, f"{prefix}.initial")
+        paths.append(TrackerPath(r_x, r_y, r_z, c, gamma0, initial))
+    return tuple(paths)
+
+
+def _initial(raw: object, dim: int, prefix: str) -> dict[str, Any]:
+    check_keys(raw, INITIAL_FIELDS, prefix)
+    initial: dict[str, Any] = {}
+    if "position" in raw:
+        initial["position"] = finite_vector(raw["position"], f"{prefix}.position", length=dim)
+    if "euler" in raw:
+        length = 1 if dim == 2 else 3
+        initial["euler"] = finite_vector(raw["euler"], f"{prefix}.euler", length=length)
+    for key in ("gamma", "gamma_dot"):
+        if key in raw:
+            initial[key] = _real(raw[key], f"{prefix}.{key}")
+    return initial
+
+
+def _adjacency(raw: object, n: int) -> np.ndarray:
+    field = "pursuit.edges"
+    if not isinstance(raw, list) or not all(isinstance(e, list) and len(e) == 2 for e in raw):
+        raise CaseError(field, "a list of directed pairs [s, r] of 1-based tracker ids", raw)
+    for index, (s, r) in enumerate(raw):
+        for agent in (s, r):
+            if isinstance(agent, bool) or not isinstance(agent, int) or not 1 <= agent <= n:
+                raise CaseError(f"{field}[{index + 1}]", f"tracker ids between 1 and {n}", [s, r])
+        if s == r:
+            raise CaseError(
+                f"{field}[{index + 1}]", "two different trackers (no self-loops)", [s, r]
+            )
+    if len({tuple(e) for e in raw}) != len(raw):
+        raise CaseError(field, "each directed edge listed once", raw)
+    edges = np.asarray(raw, dtype=int).reshape(-1, 2) - 1
+    return adjacency_from_edges(n, edges, directed=True)
+
+
+def _target(raw: object, dim: int) -> TargetMotion:
+    check_keys(raw, TARGET_FIELDS, "pursuit.target")
+    values = {
+        key: finite_vector(raw[key], f"pursuit.target.{key}", length=dim)
+        if key in raw
+        else np.zeros(dim)
+        for key in TARGET_FIELDS
+    }
+    return TargetMotion(**values)
+
+
+def _dekf(raw: object, dim: int, adjacency: np.ndarray) -> DekfSettings:
+    prefix = "pursuit.dekf"
+    check_keys(raw, DEKF_FIELDS, prefix)
+    n, size = adjacency.shape[0], 2 * dim
+    Ts = positive_number(require(raw, "Ts", prefix), f"{prefix}.Ts")
+    sigma = positive_number(require(raw, "sigma", prefix), f"{prefix}.sigma")
+    V = positive_number(require(raw, "V", prefix), f"{prefix}.V")
+    Q = positive_definite(
+        finite_matrix(require(raw, "Q", prefix), f"{prefix}.Q", rows=size, cols=size), f"{prefix}.Q"
+    )
+    weights_raw = raw.get("weights", "uniform")
+    if weights_raw == "uniform":
+        weights = uniform_weights(adjacency)
+    else:
+        weights = finite_matrix(weights_raw, f"{prefix}.weights", rows=n, cols=n)
+        row_stochastic(weights, f"{prefix}.weights", support=adjacency)
+    x0 = None
+    if "x0" in raw:
+        x0 = finite_matrix(raw["x0"], f"{prefix}.x0", rows=n, cols=size)
+    P0 = _initial_covariances(raw["P0"], n, size, f"{prefix}.P0") if "P0" in raw else None
+    return DekfSettings(Ts, sigma, V, Q, weights, x0, P0)
+
+
+def _initial_covariances(raw: object, n: int, size: int, field: str) -> np.ndarray:
+    stacked = isinstance(raw, list) and raw and isinstance(raw[0], list) and raw[0]
+    if stacked and isinstance(raw[0][0], list):
+        if len(raw) != n:
+            raise CaseError(field, f"one {size} × {size} matrix or a list of {n} of them", raw)
+        return np.stack(
+            [
+                positive_definite(
+                    finite_matrix(m, f"{field}[{i + 1}]", rows=size, cols=size), f"{field}[{i + 1}]"
+                )
+                for i, m in enumerate(raw)
+            ]
+        )
+    matrix = positive_definite(finite_matrix(raw, field, rows=size, cols=size), field)
+    return np.broadcast_to(matrix, (n, size, size)).copy()
+
+
+register_kind("pursuit", parse_pursuit, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)

@@ -1,0 +1,540 @@
+"""Falsifiable wordings of seed 003's ISS inequalities (71), (72), (74), (75) and Theorem 1's
+dissipation bound (for ``trackcert falsify``).
+
+Pursuit loop (Appendix B): ‖Φ‖² < μ‖x̃‖² (71) only holds with ≤ (checked exactly, in rational
+arithmetic, on 2D paths and rotations with rational sines and cosines); the region of (72),
+‖e‖ ≥ c‖x̃‖/θ, lacks the factor 1/λ_min(K) that (78) has; V̇ ≤ −λ_min(K)‖e‖² + c‖e‖‖x̃‖ holds with
+the paper's c = √μ + ‖K‖ and with the sharper c♯ (Theorem 1). V̇ is evaluated from the kinematics
+(:meth:`theory.strategies.TrackerState.rates`) on cases and states drawn by
+:func:`theory.strategies.pursuit_cases` and :func:`theory.strategies.tracker_states`.
+
+Coordination loop (Appendix C):
+
+With ξ = (I − 1rᵀ)γ, V_c = ξᵀRξ/2 (eq. (73)) and γ̇ = ω̄1 − k_c Lγ + e_γ (eqs. (45)–(47)), the
+paper prints V̇_c ≤ −k_c r_min‖ξ‖² + ‖ξ‖‖RW‖‖e_γ‖ (eq. (74)); what the proof supports is
+V̇_c ≤ −k_c a(L) ξᵀRξ + ‖ξ‖_R b ‖e_γ‖ with a(L) of Definition 1 and b = √λ_max(WᵀRW)
+(``docs/theory/pursuit-iss.md``). Examples are strongly connected digraphs with integer states.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+from hypothesis import strategies as st
+
+from theory.core.case_file import Case
+from theory.falsify import Property, register_property
+from theory.pursuit.case import PursuitSpec
+from theory.pursuit.iss import generalized_algebraic_connectivity, left_eigenvector, pursuit_iss
+from theory.strategies import TrackerState, digraph_laplacians, pursuit_cases, tracker_states
+
+__all__ = [
+    "CoordinationExample",
+    "PhiExample",
+    "PursuitExample",
+    "coordination_case",
+    "coordination_examples",
+    "coordination_terms",
+    "phi_case",
+    "phi_examples",
+    "phi_terms",
+    "pursuit_example_case",
+    "pursuit_examples",
+    "pursuit_terms",
+]
+
+REL_TOL = 1e-9
+"""Relative tolerance on the coordination inequalities (scale: the magnitude of their terms)."""
+KINEMATICS_REL_TOL = 1e-6
+"""Relative tolerance on the pursuit inequalities, whose V̇ goes through rotations, path
+evaluations and the controller (scale: the magnitude of their terms)."""
+TABLE_I = {"omega_bar": 0.05, "epsilon": [-0.5, 0], "K_p": [0.4, 0.2], "k_gamma": 500}
+"""Seed 003 Table I gains, used for case fields an example does not determine."""
+
+
+# ---------------------------------------------------------------------------------------------
+# (71): ‖Φ‖² < μ‖x̃‖², exactly
+
+
+@dataclass(frozen=True)
+class PhiExample:
+    """A 2D path, a path angle, an attitude and estimation errors, all rational.
+
+    The path angle φ = γ + γ₀ and the attitude angle ψ are given by t = tan(φ/2) and
+    s = tan(ψ/2), so that cos and sin are rational: cos φ = (1 − t²)/(1 + t²),
+    sin φ = 2t/(1 + t²).
+
+    Attributes
+    ----------
+    r_x, r_y : int
+        Semi-axes of path (15).
+    t : Fraction
+        tan(φ/2), φ = γ + γ₀.
+    s : Fraction
+        tan(ψ/2) of the attitude R(ψ).
+    q_err, v_err : tuple of Fraction or int
+        Estimation errors q̃, ṽ.
+    """
+
+    r_x: int
+    r_y: int
+    t: Fraction
+    s: Fraction
+    q_err: tuple[Fraction | int, Fraction | int]
+    v_err: tuple[Fraction | int, Fraction | int]
+
+
+def _cos_sin(t: Fraction) -> tuple[Fraction, Fraction]:
+    return (1 - t * t) / (1 + t * t), 2 * t / (1 + t * t)
+
+
+def _r_prime(r_x: int, r_y: int, t: Fraction) -> tuple[Fraction, Fraction]:
+    """r′(γ) = (−r_x sin φ, r_y cos φ) of path (15), φ = γ + γ₀ = 2 atan t."""
+    cos_phi, sin_phi = _cos_sin(t)
+    return -r_x * sin_phi, r_y * cos_phi
+
+
+@st.composite
+def phi_examples(draw: st.DrawFn) -> PhiExample:
+    """Semi-axes in 1–30 (r_y = r_x, a circle as in Tables I–II, half of the time), t and s in
+    {a/b : |a| ≤ 3, 1 ≤ b ≤ 3}, ṽ with entries in −5…5 (or 0), q̃ with entries in −5…5 or a
+    multiple −3…3 of r′(γ) (the direction where Cauchy–Schwarz in (71) is tight)."""
+    halves = st.builds(Fraction, st.integers(-3, 3), st.integers(1, 3))
+    pair = st.tuples(st.integers(-5, 5), st.integers(-5, 5))
+    r_x = draw(st.integers(1, 30))
+    r_y = draw(st.one_of(st.just(r_x), st.integers(1, 30)))
+    t = draw(halves)
+    along = st.integers(-3, 3).map(lambda m: tuple(m * x for x in _r_prime(r_x, r_y, t)))
+    q_err = draw(st.one_of(pair, along))
+    v_err = draw(st.one_of(st.just((0, 0)), pair))
+    return PhiExample(r_x, r_y, t, draw(halves), q_err, v_err)
+
+
+def phi_terms(example: PhiExample) -> dict[str, Fraction]:
+    """‖Φ‖², μ‖x̃‖² and ‖x̃‖² of (71) for ``example``, exactly.
+
+    Φ = col(Rᵀṽ, −q̃ᵀr′(γ)), r′(γ) = (−r_x sin φ, r_y cos φ) (eq. (15)) and μ = max(1, r_x², r_y²)
+    (the supremum of ‖r′‖², :func:`theory.pursuit.iss.path_mu`).
+    """
+    r_prime = _r_prime(example.r_x, example.r_y, example.t)
+    cos_psi, sin_psi = _cos_sin(example.s)
+    v1, v2 = example.v_err
+    rotated = (cos_psi * v1 + sin_psi * v2, -sin_psi * v1 + cos_psi * v2)
+    q_dot_r = sum(q * r for q, r in zip(example.q_err, r_prime, strict=True))
+    x_sq = Fraction(sum(q * q for q in example.q_err) + v1 * v1 + v2 * v2)
+    mu = max(Fraction(1), max(example.r_x, example.r_y) ** 2)
+    return {
+        "phi_sq": rotated[0] ** 2 + rotated[1] ** 2 + q_dot_r**2,
+        "mu_x_sq": mu * x_sq,
+        "x_sq": x_sq,
+    }
+
+
+def phi_case(example: PhiExample) -> dict[str, Any]:
+    """A ``kind: pursuit`` case with the example's path (γ₀ = φ, so the state is at γ = 0);
+    the attitude and the estimation errors go into ``description`` (Table I gains)."""
+    terms = phi_terms(example)
+    return {
+        "name": "falsify-eq71-phi-bound",
+        "source": "trackcert falsify (shrunk counterexample to seed 003 eq. (71))",
+        "description": f"State of the counterexample: gamma = 0, gamma0 = 2 atan({example.t}), "
+        f"attitude psi = 2 atan({example.s}), q_tilde = {[str(q) for q in example.q_err]}, "
+        f"v_tilde = {list(example.v_err)}; exactly ‖Φ‖² = {terms['phi_sq']} and "
+        f"μ‖x̃‖² = {terms['mu_x_sq']}.",
+        "kind": "pursuit",
+        "pursuit": {
+            "dim": 2,
+            "controller": "II",
+            **TABLE_I,
+            "trackers": [
+                {"r_x": example.r_x, "r_y": example.r_y, "gamma0": 2 * math.atan(example.t)}
+            ],
+        },
+    }
+
+
+def _phi_paper(example: PhiExample) -> bool:
+    terms = phi_terms(example)
+    return terms["x_sq"] == 0 or terms["phi_sq"] < terms["mu_x_sq"]
+
+
+def _phi_corrected(example: PhiExample) -> bool:
+    terms = phi_terms(example)
+    return terms["phi_sq"] <= terms["mu_x_sq"]
+
+
+# ---------------------------------------------------------------------------------------------
+# (72) and Theorem 1: V̇ along the kinematics
+
+
+@dataclass(frozen=True, eq=False)
+class PursuitExample:
+    """A one-tracker pursuit case, a state of its tracker and θ ∈ (0, 1) of eqs. (72)/(78).
+
+    Attributes
+    ----------
+    case : Case
+        A validated ``kind: pursuit`` case with one tracker.
+    state : TrackerState
+        The tracker's state and estimation errors.
+    theta : float
+        θ of eqs. (72)/(78).
+    """
+
+    case: Case
+    state: TrackerState
+    theta: float
+
+
+def _norms(spec: PursuitSpec, state: TrackerState) -> tuple[float, float]:
+    e_sq = float(state.e_p @ state.e_p) + (state.e_gamma**2 if spec.controller == "II" else 0.0)
+    x_sq = float(state.q_err @ state.q_err + state.v_err @ state.v_err)
+    return math.sqrt(e_sq), math.sqrt(x_sq)
+
+
+@st.composite
+def pursuit_examples(draw: st.DrawFn, *, region: str | None = None) -> PursuitExample:
+    """Cases from :func:`~theory.strategies.pursuit_cases` (half of them with small gains and
+    paths, where λ_min(K) < 1), states from :func:`~theory.strategies.tracker_states` (in half
+    of them q̃ = 0 and ṽ = Re_p, the direction that maximises the cross term of (70)), and
+    θ ∈ {0.1, …, 0.9}.
+
+    With ``region`` = ``paper`` or ``corrected`` the estimation error x̃ = (q̃, ṽ) is rescaled to a
+    drawn fraction (0.1 to 1) of the edge of that region: ‖x̃‖ ≤ θ‖e‖/c (72) or
+    ‖x̃‖ ≤ θλ_min(K)‖e‖/c (78), c = √μ + ‖K‖.
+    """
+    cases = st.one_of(pursuit_cases(), pursuit_cases(gains=(0.05, 0.5), path_sizes=(0.5, 2.0)))
+    case = draw(cases)
+    state = draw(tracker_states(spec=case.spec))
+    theta = draw(st.integers(1, 9)) / 10
+    if draw(st.booleans()):  # the worst direction of ṽ for the cross term e_pᵀRᵀṽ of (70)
+        state = replace(state, q_err=0 * state.q_err, v_err=state.rotation @ state.e_p)
+    if region is not None:
+        pursuit = pursuit_iss(case.spec)
+        e_norm, x_norm = _norms(case.spec, state)
+        edge = theta * e_norm / pursuit.cross_gain
+        edge *= pursuit.lambda_min if region == "corrected" else 1.0
+        fraction = draw(st.integers(1, 10)) / 10
+        if x_norm > 0:
+            factor = fraction * edge / x_norm
+            state = replace(state, q_err=state.q_err * factor, v_err=state.v_err * factor)
+    return PursuitExample(case, state, theta)
+
+
+def pursuit_terms(example: PursuitExample) -> dict[str, float]:
+    """V̇ (from the kinematics), ‖e‖, ‖x̃‖, λ_min(K), the paper's c and c♯, and the scale of
+    the terms, for ``example``."""
+    spec, state = example.case.spec, example.state
+    rates = state.rates(spec)
+    pursuit = pursuit_iss(spec)
+    e_sq = float(rates.e_p @ rates.e_p) + (rates.e_gamma**2 if spec.controller == "II" else 0.0)
+    e_norm, x_norm = math.sqrt(e_sq), _norms(spec, state)[1]
+    c, c_sharp = pursuit.cross_gain, pursuit.sharp_cross_gain
+    return {
+        "v_dot": float(rates.v_dot),
+        "e_norm": e_norm,
+        "x_norm": x_norm,
+        "lambda_min": pursuit.lambda_min,
+        "c": c,
+        "c_sharp": c_sharp,
+        "scale": pursuit.norm_K * e_sq + max(c, c_sharp) * e_norm * x_norm + 1.0,
+    }
+
+
+def _vector(values: np.ndarray) -> list[float]:
+    return [float(v) for v in np.ravel(values)]
+
+
+def _pursuit_block(spec: PursuitSpec) -> dict[str, Any]:
+    trackers = []
+    for path in spec.trackers:
+        entry = {"r_x": path.r_x, "r_y": path.r_y, "gamma0": path.gamma0}
+        if spec.dim == 3:
+            entry |= {"r_z": path.r_z, "c": path.c}
+        trackers.append(entry)
+    block = {
+        "dim": spec.dim,
+        "controller": spec.controller,
+        "omega_bar": spec.omega_bar,
+        "epsilon": _vector(spec.epsilon),
+        "K_p": [_vector(row) for row in spec.K_p],
+        "trackers": trackers,
+    }
+    if spec.k_gamma is not None:
+        block["k_gamma"] = spec.k_gamma
+    return block
+
+
+def pursuit_example_case(example: PursuitExample) -> dict[str, Any]:
+    """A ``kind: pursuit`` case with the example's gains and path; the state (not a case field)
+    goes into ``description``."""
+    state = example.state
+    fields = ("e_p", "e_gamma", "rotation", "gamma", "q_err", "v_err", "omega_d", "omega_d_dot")
+    described = ", ".join(
+        f"{name} = {np.asarray(getattr(state, name)).tolist()}"
+        for name in (*fields, "target", "target_v")
+    )
+    return {
+        "name": f"falsify-pursuit-{example.case.spec.dim}d-type-{example.case.spec.controller}",
+        "source": "trackcert falsify (shrunk counterexample to seed 003 Appendix B)",
+        "description": f"State of the counterexample (tracker 1): {described}, "
+        f"theta = {example.theta}.",
+        "kind": "pursuit",
+        "pursuit": _pursuit_block(example.case.spec),
+    }
+
+
+def _region_holds(wording: str):
+    def holds(example: PursuitExample) -> bool:
+        terms = pursuit_terms(example)
+        lam, theta = terms["lambda_min"], example.theta
+        edge = terms["c"] * terms["x_norm"] / theta / (lam if wording == "corrected" else 1.0)
+        if terms["e_norm"] < edge:
+            return True
+        bound = -(1 - theta) * lam * terms["e_norm"] ** 2
+        return terms["v_dot"] <= bound + KINEMATICS_REL_TOL * terms["scale"]
+
+    return holds
+
+
+def _dissipation_holds(gain: str):
+    def holds(example: PursuitExample) -> bool:
+        terms = pursuit_terms(example)
+        e_norm = terms["e_norm"]
+        bound = -terms["lambda_min"] * e_norm**2 + terms[gain] * e_norm * terms["x_norm"]
+        return terms["v_dot"] <= bound + KINEMATICS_REL_TOL * terms["scale"]
+
+    return holds
+
+
+# ---------------------------------------------------------------------------------------------
+# (74), (75): coordination
+
+
+@dataclass(frozen=True, eq=False)
+class CoordinationExample:
+    """A digraph Laplacian, a coordination gain, path parameters γ and their errors e_γ.
+
+    Attributes
+    ----------
+    laplacian : ndarray, shape (N, N)
+        Laplacian ``L = D_in − A`` of a strongly connected digraph (seed 003 §II-B).
+    k_c : float
+        Coordination gain k_c > 0, eq. (45).
+    gamma : ndarray, shape (N,)
+        Path parameters γ of the trackers.
+    e_gamma : ndarray, shape (N,)
+        Errors e_γ entering γ̇, eq. (47) (the pursuit error e with e_p = 0, in (75)).
+    theta : float
+        θ ∈ (0, 1) of eq. (75).
+    omega_bar : float
+        Nominal path-parameter speed ω̄, eq. (46).
+    """
+
+    laplacian: np.ndarray
+    k_c: float
+    gamma: np.ndarray
+    e_gamma: np.ndarray
+    theta: float = 0.5
+    omega_bar: float = 0.05
+
+
+@st.composite
+def coordination_examples(draw: st.DrawFn, *, inside_region: bool = False) -> CoordinationExample:
+    """Strongly connected digraphs (2–8 trackers, a ring plus at most two edges), small integer
+    γ and e_γ (often e_γ = 0), k_c ∈ {1/5, …, 2} and θ ∈ {0.1, …, 0.9}.
+
+    With ``inside_region`` e_γ is rescaled to a drawn fraction (0.1 to 1) of the edge of the
+    corrected region of (75), ‖e_γ‖ ≤ θk_c a(L)‖ξ‖_R / b.
+    """
+    laplacian = draw(digraph_laplacians(min_agents=2, max_agents=8, max_extra_edges=2))
+    n = laplacian.shape[0]
+    integers = st.lists(st.integers(-5, 5), min_size=n, max_size=n).map(np.array)
+    k_c = draw(st.integers(1, 10)) / 5
+    gamma, e_gamma = draw(integers).astype(float), draw(integers).astype(float)
+    theta = draw(st.integers(1, 9)) / 10
+    example = CoordinationExample(laplacian, k_c, gamma, e_gamma, theta)
+    e_norm = float(np.linalg.norm(e_gamma))
+    if inside_region and e_norm > 0:
+        terms = coordination_terms(example)
+        edge = theta * k_c * terms["a"] * terms["xi_r"] / terms["b"]
+        fraction = draw(st.integers(1, 10)) / 10
+        example = replace(example, e_gamma=e_gamma * (fraction * edge / e_norm))
+    return example
+
+
+def coordination_terms(example: CoordinationExample) -> dict[str, float]:
+    """V̇_c and the right-hand sides of (74) and (75), printed and corrected, for ``example``
+    (with a(L), b, ‖ξ‖_R and the scale of the terms)."""
+    L = example.laplacian.astype(float)
+    n = L.shape[0]
+    r = np.array([float(x) for x in left_eigenvector(example.laplacian)])
+    W = np.eye(n) - np.outer(np.ones(n), r)
+    R = np.diag(r)
+    xi = W @ example.gamma
+    gamma_dot = example.omega_bar * np.ones(n) - example.k_c * L @ example.gamma + example.e_gamma
+    v_dot = float(xi @ R @ (W @ gamma_dot))
+    xi_norm, e_norm = float(np.linalg.norm(xi)), float(np.linalg.norm(example.e_gamma))
+    xi_r = math.sqrt(float(xi @ R @ xi))
+    a = generalized_algebraic_connectivity(L, r)
+    b = math.sqrt(float(np.linalg.eigvalsh(W.T @ R @ W)[-1]))
+    decay = -example.k_c * r.min() * xi_norm**2
+    norm_rw = float(np.linalg.norm(R @ W, 2))
+    return {
+        "v_dot": v_dot,
+        "paper": float(decay + xi_norm * norm_rw * e_norm),
+        "corrected": -example.k_c * a * xi_r**2 + xi_r * b * e_norm,
+        "paper75": float(decay + norm_rw * e_norm),
+        "corrected75": -(1 - example.theta) * example.k_c * a * xi_r**2,
+        "a": a,
+        "b": b,
+        "xi_r": xi_r,
+        "e_norm": e_norm,
+        "scale": example.k_c * float(np.abs(L).max()) * xi_norm**2 + xi_norm * e_norm + 1.0,
+    }
+
+
+def coordination_case(example: CoordinationExample) -> dict[str, Any]:
+    """A ``kind: pursuit`` case with the example's graph, k_c and γ (as ``gamma0``)."""
+    n = example.laplacian.shape[0]
+    receives = (example.laplacian < 0).nonzero()
+    edges = [[int(j) + 1, int(i) + 1] for i, j in zip(*receives, strict=True)]
+    return {
+        "name": f"falsify-coordination-{n}-trackers",
+        "source": "trackcert falsify (shrunk counterexample to seed 003 eqs. (74)/(75))",
+        "description": f"State of the counterexample: gamma = {example.gamma.tolist()}, "
+        f"e_gamma = {example.e_gamma.tolist()}, omega_bar = {example.omega_bar}, "
+        f"theta = {example.theta}.",
+        "kind": "pursuit",
+        "pursuit": {
+            "dim": 2,
+            "controller": "II",
+            **TABLE_I,
+            "omega_bar": example.omega_bar,
+            "k_c": example.k_c,
+            "trackers": [{"r_x": 30, "r_y": 30, "gamma0": float(g)} for g in example.gamma],
+            "edges": edges,
+        },
+    }
+
+
+def _coordination_holds(bound: str):
+    def holds(example: CoordinationExample) -> bool:
+        terms = coordination_terms(example)
+        return terms["v_dot"] <= terms[bound] + REL_TOL * terms["scale"]
+
+    return holds
+
+
+def _eq75_corrected(example: CoordinationExample) -> bool:
+    terms = coordination_terms(example)
+    edge = terms["b"] * terms["e_norm"] / (example.theta * example.k_c * terms["a"])
+    if terms["xi_r"] < edge * (1 + REL_TOL):
+        return True
+    return terms["v_dot"] <= terms["corrected75"] + REL_TOL * terms["scale"]
+
+
+# ---------------------------------------------------------------------------------------------
+# registry
+
+WORDINGS = (
+    (
+        "seed003.eq71/paper",
+        "‖Φ‖² < μ‖x̃‖² for x̃ ≠ 0, μ = max_γ{1, ‖r′(γ)‖²} (seed 003 eq. (71) as printed).",
+        phi_examples(),
+        _phi_paper,
+        phi_case,
+        False,
+    ),
+    (
+        "seed003.eq71/corrected",
+        "‖Φ‖² ≤ μ‖x̃‖² (equality is attained).",
+        phi_examples(),
+        _phi_corrected,
+        phi_case,
+        True,
+    ),
+    (
+        "seed003.eq72/paper",
+        "V̇ ≤ −(1−θ)λ_min(K)‖e‖² whenever ‖e‖ ≥ (√μ + ‖K‖)‖x̃‖/θ (seed 003 eq. (72) as printed).",
+        pursuit_examples(region="paper"),
+        _region_holds("paper"),
+        pursuit_example_case,
+        False,
+    ),
+    (
+        "seed003.eq72/corrected",
+        "V̇ ≤ −(1−θ)λ_min(K)‖e‖² whenever ‖e‖ ≥ (√μ + ‖K‖)‖x̃‖/(θλ_min(K)) (the region of (78)).",
+        pursuit_examples(region="corrected"),
+        _region_holds("corrected"),
+        pursuit_example_case,
+        True,
+    ),
+    (
+        "seed003.thm1/paper",
+        "V̇ ≤ −λ_min(K)‖e‖² + (√μ + ‖K‖)‖e‖‖x̃‖ (first line of (72), behind Theorem 1).",
+        pursuit_examples(),
+        _dissipation_holds("c"),
+        pursuit_example_case,
+        True,
+    ),
+    (
+        "seed003.thm1/corrected",
+        "V̇ ≤ −λ_min(K)‖e‖² + c♯‖e‖‖x̃‖, c♯ = √(‖K_p‖² + 1 + μ_r) (Type II) or √(‖K_p‖² + 1) "
+        "(Type I): the ISS gain c♯/λ_min(K) of Theorem 1, corrected.",
+        pursuit_examples(),
+        _dissipation_holds("c_sharp"),
+        pursuit_example_case,
+        True,
+    ),
+    (
+        "seed003.eq74/paper",
+        "V̇_c ≤ −k_c r_min‖ξ‖² + ‖ξ‖‖RW‖‖e_γ‖ (seed 003 eq. (74) as printed).",
+        coordination_examples(),
+        _coordination_holds("paper"),
+        coordination_case,
+        False,
+    ),
+    (
+        "seed003.eq74/corrected",
+        "V̇_c ≤ −k_c a(L) ξᵀRξ + ‖ξ‖_R b‖e_γ‖, a(L) of Definition 1.",
+        coordination_examples(),
+        _coordination_holds("corrected"),
+        coordination_case,
+        True,
+    ),
+    (
+        "seed003.eq75/paper",
+        "V̇_c ≤ −k_c r_min‖ξ‖² + ‖RW‖‖e‖ (seed 003 eq. (75), first line, with e = e_γ).",
+        coordination_examples(),
+        _coordination_holds("paper75"),
+        coordination_case,
+        False,
+    ),
+    (
+        "seed003.eq75/corrected",
+        "V̇_c ≤ −(1−θ)k_c a(L) ξᵀRξ whenever ‖ξ‖_R ≥ b‖e_γ‖/(θ k_c a(L)).",
+        coordination_examples(inside_region=True),
+        _eq75_corrected,
+        coordination_case,
+        True,
+    ),
+)
+
+for _id, _statement, _examples, _holds, _to_case, _expected in WORDINGS:
+    register_property(
+        Property(
+            id=_id,
+            claim=_id.split("/")[0],
+            wording=_id.split("/")[1],
+            statement=_statement,
+            examples=_examples,
+            holds=_holds,
+            to_case=_to_case,
+            expected_to_hold=_expected,
+        )
+    )

@@ -1,0 +1,654 @@
+"""Observability and detectability of the networked pair ``(W ⊗ A, D_H)`` (seed 000 §4.2.2).
+
+The distributed TDOA filter of seed 000 eqs. (4.26)–(4.31) has the network-wide error dynamics
+``x̃(k+1) = (W ⊗ A)(I − K D_H) x̃(k) + η(k)`` with ``D_H = blkdiag(H_1, …, H_N)`` (eq. 4.21). Its
+observability matrix is eq. (4.36),
+
+.. math:: O = [D_H;\\ D_H (W ⊗ A);\\ …;\\ D_H (W ⊗ A)^{nN-1}] = [O_1\\ …\\ O_N],
+
+where the block column of agent ``i`` stacks ``[W^l]_{mi} H_m A^l`` over powers ``l`` and agents
+``m`` (eq. 4.37). The paper asserts ``rank O = Σ_i rank O_i``; this module computes both and
+reports whether they agree (they do not when ``W`` is singular or has eigenvectors supported on
+agents that cannot localize the target: see ``docs/errata.md``).
+
+What is true (proved in ``docs/theory/tdoa-observability.md``): the modes of ``W ⊗ A`` are the
+eigenvalues of ``W`` (``A`` is unipotent). A mode is unobservable iff some eigenvector ``z ⊗ x``
+of it is annihilated by every ``H_m`` with ``z_m ≠ 0``. For a row-stochastic ``W`` with positive
+diagonal, the only modes on the unit circle are at 1 and they are observable iff each closed
+communication class's stacked Jacobian has full column rank in position; all other modes are
+stable. Hence the pair is *detectable* under exactly the geometric condition of Thm 4.2.3, but it
+is *observable* only if moreover ``W`` is non-singular and no other eigenvector of ``W`` hides a
+direction, which fails e.g. for uniform weights on a complete graph. Detectability is what a
+(centralised-gain) estimator of eq. (4.25) needs; observability is not.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from math import lcm
+
+import numpy as np
+
+from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
+from theory.tdoa.generic_rank import exact_rank
+
+__all__ = [
+    "UNIT_CIRCLE_TOL",
+    "NetworkGenericRank",
+    "NetworkObservability",
+    "agent_observability_blocks",
+    "analyze_network",
+    "exact_network_matrix",
+    "exact_weights",
+    "network_generic_rank",
+    "network_observability_matrix",
+    "networked_pair",
+    "unobservable_subspace",
+]
+
+UNIT_CIRCLE_TOL = 1e-6
+"""Default tolerance: a mode with ``||μ| − 1| ≤ UNIT_CIRCLE_TOL`` counts as on the unit circle."""
+
+
+@dataclass(frozen=True)
+class NetworkObservability:
+    """Verdicts on the networked pair ``(W ⊗ A, D_H)`` with the evidence that decided them.
+
+    Attributes
+    ----------
+    network_rank : int
+        ``rank O`` of eq. (4.36), i.e. ``n_states − dim`` of the unobservable subspace.
+    n_states : int
+        ``n·N``.
+    observable : bool
+        ``network_rank == n_states``.
+    detectable : bool
+        Every unobservable mode satisfies ``|μ| < 1 − unit_circle_tol``.
+    unobservable_eigenvalues : list of complex
+        Eigenvalues of ``W ⊗ A`` restricted to the unobservable subspace (with algebraic
+        multiplicity), snapped to the nearest product ``λ(W)·λ(A)``.
+    agent_ranks : list of int
+        ``rank O_i`` for each agent (eq. 4.36, block columns).
+    rank_sum : int
+        ``Σ_i rank O_i``.
+    rank_sum_claim_holds : bool
+        Whether the paper's ``rank O = Σ rank O_i`` holds for this ``W`` and these Jacobians.
+    rank_tol : float
+        Relative rank tolerance used for every rank decision.
+    margin : float
+        Smallest factor by which a rank decision cleared its threshold (∞ if none was needed).
+    unit_circle_tol : float
+        Tolerance on ``|μ| − 1`` used for detectability.
+    unit_circle_margin : float
+        Smallest ``max(d/tol, tol/d)`` over unobservable modes, ``d = ||μ| − 1|`` (∞ if none).
+    conclusive : bool
+        ``margin ≥ inconclusive_factor`` and ``unit_circle_margin ≥ unit_circle_factor``.
+    rank_method : str
+        Which computation of ``rank O`` decided (``"staircase"`` or ``"svd"``, the one with the
+        larger margin when both agree; otherwise a note of the disagreement, and inconclusive).
+    """
+
+    network_rank: int
+    n_states: int
+    observable: bool
+    detectable: bool
+    unobservable_eigenvalues: list[complex]
+    agent_ranks: list[int]
+    rank_sum: int
+    rank_sum_claim_holds: bool
+    rank_tol: float
+    margin: float
+    unit_circle_tol: float
+    unit_circle_margin: float
+    conclusive: bool
+    rank_method: str = "staircase"
+
+    def to_json(self) -> dict:
+        """Plain JSON types (complex numbers as ``{"re", "im"}``)."""
+        data = dict(self.__dict__)
+        data["unobservable_eigenvalues"] = [
+            {"re": float(z.real), "im": float(z.imag)} for z in self.unobservable_eigenvalues
+        ]
+        return data
+
+
+def networked_pair(
+    A: np.ndarray, W: np.ndarray, H_blocks: Sequence[np.ndarray]
+) -> tuple[np.ndarray, np.ndarray]:
+    """The pair ``(W ⊗ A, D_H)`` of seed 000 eqs. (4.21) and (4.24).
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        Target dynamics (eq. 4.6 for the constant-velocity model).
+    W : ndarray, shape (N, N)
+        Consensus weights.
+    H_blocks : sequence of ndarray
+        Agent ``i``'s Jacobian ``H_i`` of shape ``(m_i, n)``; ``m_i = 0`` is allowed.
+
+    Returns
+    -------
+    WA : ndarray, shape (nN, nN)
+        ``W ⊗ A``.
+    D_H : ndarray, shape (Σ m_i, nN)
+        ``blkdiag(H_1, …, H_N)``.
+
+    Raises
+    ------
+    ValueError
+        If the shapes do not match.
+
+    References
+    ----------
+    seed 000, eqs. (4.21), (4.24).
+    """
+    A, W, blocks = _checked(A, W, H_blocks)
+    n, N = A.shape[0], W.shape[0]
+    D_H = np.zeros((sum(b.shape[0] for b in blocks), n * N))
+    row = 0
+    for i, block in enumerate(blocks):
+        D_H[row : row + block.shape[0], i * n : (i + 1) * n] = block
+        row += block.shape[0]
+    return np.kron(W, A), D_H
+
+
+def agent_observability_blocks(
+    A: np.ndarray, W: np.ndarray, H_blocks: Sequence[np.ndarray], *, steps: int | None = None
+) -> list[np.ndarray]:
+    """Block columns ``O_i`` of the networked observability matrix (seed 000 eqs. (4.36)–(4.37)).
+
+    ``O_i`` stacks ``[W^l]_{mi} H_m A^l`` for ``l = 0, …, steps − 1`` (outer) and agents ``m``
+    (inner), the same row order as ``O = [D_H; D_H (W⊗A); …]``, so ``O = [O_1 … O_N]``.
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        Target dynamics.
+    W : ndarray, shape (N, N)
+        Consensus weights.
+    H_blocks : sequence of ndarray
+        Per-agent Jacobians ``H_m`` of shape ``(m_m, n)`` (zero rows allowed).
+    steps : int, optional
+        Number of powers; default ``n·N`` (``p = nN − 1`` in eq. 4.36).
+
+    Returns
+    -------
+    list of ndarray
+        ``O_i`` of shape ``(steps·Σ m, n)`` for each agent.
+
+    Raises
+    ------
+    ValueError
+        If the shapes do not match.
+
+    References
+    ----------
+    seed 000, eqs. (4.36), (4.37).
+    """
+    A, W, blocks = _checked(A, W, H_blocks)
+    n, N = A.shape[0], W.shape[0]
+    steps = n * N if steps is None else steps
+    H = np.vstack(blocks)
+    owner = np.concatenate([np.full(b.shape[0], m) for m, b in enumerate(blocks)]).astype(int)
+    columns: list[list[np.ndarray]] = [[] for _ in range(N)]
+    W_power, A_power = np.eye(N), np.eye(n)
+    for _ in range(steps):
+        HA = H @ A_power
+        for i in range(N):
+            columns[i].append(W_power[owner, i][:, None] * HA)
+        W_power, A_power = W_power @ W, A_power @ A
+    return [np.vstack(parts) if parts else np.zeros((0, n)) for parts in columns]
+
+
+def network_observability_matrix(
+    A: np.ndarray, W: np.ndarray, H_blocks: Sequence[np.ndarray]
+) -> np.ndarray:
+    """The whole ``O`` of seed 000 eq. (4.36): ``[O_1 … O_N]``, shape ``(nN·Σ m, nN)``.
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        Target dynamics.
+    W : ndarray, shape (N, N)
+        Consensus weights.
+    H_blocks : sequence of ndarray
+        Per-agent Jacobians.
+
+    Returns
+    -------
+    ndarray
+
+    References
+    ----------
+    seed 000, eq. (4.36).
+    """
+    return np.hstack(agent_observability_blocks(A, W, H_blocks))
+
+
+def unobservable_subspace(
+    F: np.ndarray, C: np.ndarray, *, rank_tol: float = RANK_TOL
+) -> tuple[np.ndarray, float]:
+    """Orthonormal basis of the unobservable subspace ``∩_k ker(C F^k)`` by an orthogonal staircase.
+
+    Starting from ``U_0 = ker C``, each step keeps ``U_{k+1} = {x ∈ U_k : F x ∈ U_k}`` until the
+    dimension stops falling. Every null space is read from an SVD against the scale-aware
+    threshold ``rank_tol · ‖M‖₂`` (with ``M`` the matrix whose kernel is taken); the Krylov matrix
+    ``[C; CF; …]`` is never formed, so no power of ``F`` spoils the conditioning.
+
+    Parameters
+    ----------
+    F : ndarray, shape (n, n)
+        State matrix.
+    C : ndarray, shape (m, n)
+        Output matrix (``m = 0`` allowed).
+    rank_tol : float
+        Relative rank tolerance.
+
+    Returns
+    -------
+    basis : ndarray, shape (n, r)
+        Orthonormal columns spanning the unobservable subspace (``r = n − rank O``).
+    margin : float
+        Smallest factor by which a singular value cleared the threshold (∞ if none decided).
+    """
+    n = F.shape[0]
+    scale_F = max(float(np.linalg.norm(F, 2)), 1.0) if n else 1.0
+    basis, margin = _null_space(C.reshape(-1, n), rank_tol, scale=None)
+    while basis.shape[1]:
+        leak = F @ basis - basis @ (basis.T @ (F @ basis))
+        keep, step_margin = _null_space(leak, rank_tol, scale=scale_F)
+        margin = min(margin, step_margin)
+        if keep.shape[1] == basis.shape[1]:
+            break
+        basis = basis @ keep
+        basis, _ = np.linalg.qr(basis)
+    return basis, margin
+
+
+def analyze_network(
+    A: np.ndarray,
+    W: np.ndarray,
+    H_blocks: Sequence[np.ndarray],
+    *,
+    rank_tol: float = RANK_TOL,
+    unit_circle_tol: float = UNIT_CIRCLE_TOL,
+    inconclusive_factor: float = 1e3,
+    unit_circle_factor: float = 10.0,
+) -> NetworkObservability:
+    """Observability, detectability and the paper's rank-sum claim for ``(W ⊗ A, D_H)``.
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        Target dynamics (eq. 4.6).
+    W : ndarray, shape (N, N)
+        Consensus weights.
+    H_blocks : sequence of ndarray
+        Per-agent Jacobians ``H_i`` of shape ``(m_i, n)`` (zero rows allowed).
+    rank_tol : float
+        Relative rank tolerance for every rank decision (threshold ``rank_tol · σ_max``).
+    unit_circle_tol : float
+        A mode with ``||μ| − 1| ≤ unit_circle_tol`` counts as on the unit circle (not stable).
+    inconclusive_factor : float
+        A rank decision clearing its threshold by less than this factor is inconclusive.
+    unit_circle_factor : float
+        A mode whose ``||μ| − 1|`` lies within this factor of ``unit_circle_tol`` (either side)
+        makes the detectability verdict inconclusive.
+
+    Returns
+    -------
+    NetworkObservability
+
+    Raises
+    ------
+    ValueError
+        If the shapes do not match.
+
+    References
+    ----------
+    seed 000, §4.2.2, eqs. (4.24), (4.31), (4.36) and Thm 4.2.3.
+    """
+    A, W, blocks = _checked(A, W, H_blocks)
+    WA, D_H = networked_pair(A, W, blocks)
+    basis, margin, method = _unobservable_basis(WA, D_H, rank_tol)
+    n_states = WA.shape[0]
+    network_rank = n_states - basis.shape[1]
+    eigenvalues = _snap(np.linalg.eigvals(basis.T @ WA @ basis), _mode_candidates(A, W))
+    agent = [
+        numeric_rank(block, rank_tol=rank_tol) for block in agent_observability_blocks(A, W, blocks)
+    ]
+    agent_ranks = [r.rank for r in agent]
+    margin = min([margin, *(r.margin for r in agent)])
+    distances = [abs(abs(z) - 1.0) for z in eigenvalues]
+    unit_margin = min(
+        (max(d / unit_circle_tol, unit_circle_tol / d) if d > 0 else np.inf for d in distances),
+        default=np.inf,
+    )
+    return NetworkObservability(
+        network_rank=network_rank,
+        n_states=n_states,
+        observable=network_rank == n_states,
+        detectable=all(abs(z) < 1.0 - unit_circle_tol for z in eigenvalues),
+        unobservable_eigenvalues=eigenvalues,
+        agent_ranks=agent_ranks,
+        rank_sum=sum(agent_ranks),
+        rank_sum_claim_holds=sum(agent_ranks) == network_rank,
+        rank_tol=rank_tol,
+        margin=float(margin),
+        unit_circle_tol=unit_circle_tol,
+        unit_circle_margin=float(unit_margin),
+        conclusive=bool(margin >= inconclusive_factor and unit_margin >= unit_circle_factor),
+        rank_method=method,
+    )
+
+
+def _unobservable_basis(
+    WA: np.ndarray, D_H: np.ndarray, rank_tol: float
+) -> tuple[np.ndarray, float, str]:
+    """Kernel of ``O`` two ways: the staircase and the SVD of the whole ``O`` (eq. 4.36).
+
+    ``A`` has all eigenvalues 1 and ``W`` none outside the unit disc, so the rows of ``O`` grow
+    at most linearly and its SVD is usually well conditioned; the staircase never forms ``O``.
+    When both find the same rank, the one with the larger margin supplies the basis and the
+    margin; when they disagree the verdict is inconclusive (margin 0).
+    """
+    staircase, staircase_margin = unobservable_subspace(WA, D_H, rank_tol=rank_tol)
+    whole, whole_margin = _null_space(observability_matrix(WA, D_H), rank_tol, scale=None)
+    if staircase.shape[1] != whole.shape[1]:
+        return staircase, 0.0, "disagreement: staircase vs SVD of O"
+    if whole_margin > staircase_margin:
+        return whole, whole_margin, "svd"
+    return staircase, staircase_margin, "staircase"
+
+
+def _checked(
+    A: np.ndarray, W: np.ndarray, H_blocks: Sequence[np.ndarray]
+) -> tuple[np.ndarray, np.ndarray, list[np.ndarray]]:
+    A, W = np.asarray(A, dtype=float), np.asarray(W, dtype=float)
+    n = A.shape[0]
+    if A.shape != (n, n) or W.ndim != 2 or W.shape[0] != W.shape[1]:
+        raise ValueError(f"A and W must be square; got shapes {A.shape} and {W.shape}")
+    if len(H_blocks) != W.shape[0]:
+        raise ValueError(f"need one Jacobian per agent ({W.shape[0]}); got {len(H_blocks)}")
+    blocks = [np.asarray(h, dtype=float).reshape(-1, n) for h in H_blocks]
+    return A, W, blocks
+
+
+def _null_space(
+    matrix: np.ndarray, rank_tol: float, *, scale: float | None
+) -> tuple[np.ndarray, float]:
+    cols = matrix.shape[1]
+    if matrix.shape[0] == 0:
+        return np.eye(cols), np.inf
+    # Tall matrices: the thin SVD already carries every right singular vector (and the full U of
+    # a tall O would cost O(rows²)); wide ones need the full V for their kernel.
+    _, sv, vh = np.linalg.svd(matrix, full_matrices=matrix.shape[0] < cols)
+    top = float(sv[0]) if sv.size else 0.0
+    reference = max(top, scale) if scale is not None else top
+    threshold = rank_tol * reference if reference > 0 else rank_tol
+    rank = int(np.sum(sv > threshold))
+    above = sv[rank - 1] / threshold if rank > 0 else np.inf
+    below = threshold / sv[rank] if rank < sv.size and sv[rank] > 0 else np.inf
+    return vh[rank:].T.copy(), float(min(above, below))
+
+
+def _mode_candidates(A: np.ndarray, W: np.ndarray, *, zero_tol: float = 1e-12) -> np.ndarray:
+    products = np.outer(np.linalg.eigvals(W), np.linalg.eigvals(A)).ravel()
+    scale = max(1.0, float(np.abs(W).max(initial=0.0)) * float(np.abs(A).max(initial=0.0)))
+    return np.where(np.abs(products) <= zero_tol * scale, 0.0, products)
+
+
+def _snap(values: np.ndarray, candidates: np.ndarray, *, rel: float = 1e-4) -> list[complex]:
+    """Replace each computed eigenvalue by the nearest exact-structure candidate if close.
+
+    Eigenvalues of a restriction with Jordan blocks are perturbed by ~ε^{1/k}; the candidates
+    ``λ(W)·λ(A)`` are computed from the (well-conditioned) factors separately.
+    """
+    out = []
+    for value in values:
+        nearest = candidates[np.argmin(np.abs(candidates - value))] if candidates.size else value
+        close = abs(nearest - value) <= rel * max(1.0, abs(value))
+        out.append(complex(nearest if close else value))
+    return sorted(out, key=lambda z: (abs(z), z.real, z.imag))
+
+
+@dataclass(frozen=True)
+class NetworkGenericRank:
+    """Exact ranks of the networked ``O`` and its block columns at one random point.
+
+    Attributes
+    ----------
+    network_rank : int
+        Exact rank of ``O`` (eq. 4.36) at the point; a lower bound on the generic rank.
+    agent_ranks : list of int
+        Exact ``rank O_i``.
+    rank_sum : int
+        ``Σ rank O_i``.
+    rank_sum_claim_holds : bool
+        ``rank_sum == network_rank``.
+    n_states : int
+        ``n·N``.
+    parametrization : str
+        ``"geometry"`` (unit vectors ``u_i`` on the sphere, rational by inverse stereographic
+        projection; rows ``u_r − u_s``) or ``"edges"`` (App. B's shared ``λ`` per undirected edge,
+        ``+λ`` for the lower-numbered agent, ``−λ`` for the other).
+    T : Fraction or None
+        The sampling period used (``None``: drawn at random as a free parameter).
+    field : str
+        ``"rationals"`` or ``"prime"``.
+    seed : int
+        Seed of the ``numpy.random.Generator``.
+    sample_size : int
+        Free parameters are uniform on ``[0, sample_size)`` (``T`` on ``[1, sample_size)``).
+    degree_bound : int
+        Degree of any minor of ``O`` in the free parameters, at most ``c · nN`` with ``c`` the
+        entry degree (geometry 4, edges 1; +1 with random ``T``).
+    error_bound : float
+        ``degree_bound / sample_size``: probability that a rank found here is below the generic
+        rank (a wrong "rank-deficient" verdict). Ranks found full are certain.
+    """
+
+    network_rank: int
+    agent_ranks: list[int]
+    rank_sum: int
+    rank_sum_claim_holds: bool
+    n_states: int
+    parametrization: str
+    T: Fraction | None
+    field: str
+    seed: int
+    sample_size: int
+    degree_bound: int
+    error_bound: float
+
+
+def exact_weights(adjacency: np.ndarray, rule: str) -> list[list[Fraction]]:
+    """Metropolis or uniform weights (DESIGN.md) in exact rational arithmetic.
+
+    Parameters
+    ----------
+    adjacency : ndarray of bool, shape (N, N)
+        ``adjacency[r, s]``: ``r`` hears ``s`` (symmetric for ``metropolis``).
+    rule : {"metropolis", "uniform"}
+        The weight rule.
+
+    Returns
+    -------
+    list of list of Fraction
+    """
+    n = adjacency.shape[0]
+    degree = adjacency.sum(axis=1)
+    W = [[Fraction(0)] * n for _ in range(n)]
+    for r in range(n):
+        for s in np.flatnonzero(adjacency[r]):
+            if rule == "metropolis":
+                W[r][s] = Fraction(1, 1 + int(max(degree[r], degree[s])))
+            elif rule == "uniform":
+                W[r][s] = Fraction(1, 1 + int(degree[r]))
+            else:
+                raise ValueError(f"rule must be 'metropolis' or 'uniform'; got {rule!r}")
+        W[r][r] = 1 - sum(W[r])
+    return W
+
+
+def network_generic_rank(
+    adjacency: np.ndarray,
+    W: Sequence[Sequence[Fraction | int]],
+    *,
+    dim: int = 3,
+    parametrization: str = "geometry",
+    T: Fraction | None = None,
+    seed: int = 0,
+    field: str = "rationals",
+    sample_bits: int = 40,
+) -> NetworkGenericRank:
+    """Generic ranks of ``O`` and the ``O_i`` for a fixed ``W``, exactly at a random point.
+
+    The Jacobians are drawn at random from the chosen parametrization (``W`` and, if given,
+    ``T`` stay fixed); the matrix of eq. (4.36) is built over the integers (each block row scaled
+    by a common denominator, which leaves ranks unchanged) and its rank computed exactly with
+    python-flint. Schwartz–Zippel bounds the chance that the rank found is below the generic one.
+
+    Parameters
+    ----------
+    adjacency : ndarray of bool, shape (N, N)
+        ``adjacency[r, s]``: agent ``r`` measures the TDOA against ``s``.
+    W : sequence of sequences of Fraction
+        The actual consensus weights, exactly (see :func:`exact_weights`).
+    dim : int
+        2 or 3.
+    parametrization : {"geometry", "edges"}
+        See :class:`NetworkGenericRank`.
+    T : Fraction, optional
+        Fixed sampling period; random when omitted.
+    seed : int
+        Seed of ``numpy.random.default_rng``.
+    field : {"rationals", "prime"}
+        Exact rank over ℚ or modulo :data:`theory.tdoa.generic_rank.MERSENNE_PRIME`.
+    sample_bits : int
+        Sample set ``[0, 2**sample_bits)``.
+
+    Returns
+    -------
+    NetworkGenericRank
+
+    Raises
+    ------
+    ValueError
+        For an unknown parametrization or shapes that do not match.
+
+    References
+    ----------
+    seed 000, eqs. (4.36)–(4.37), App. B.1; Schwartz (1980), Zippel (1979).
+    """
+    n_agents = adjacency.shape[0]
+    if len(W) != n_agents:
+        raise ValueError(f"W has {len(W)} rows for {n_agents} agents")
+    rng = np.random.default_rng(seed)
+    sample = 2**sample_bits
+    rows = _random_rows(adjacency, dim, parametrization, rng, sample)
+    period = Fraction(T) if T is not None else Fraction(1 + int(rng.integers(0, sample - 1)))
+    O = exact_network_matrix(rows, [[Fraction(x) for x in r] for r in W], dim, period)
+    n = 2 * dim
+    network_rank = exact_rank(O, field=field)
+    agent_ranks = [
+        exact_rank([row[i * n : (i + 1) * n] for row in O], field=field) for i in range(n_agents)
+    ]
+    entry_degree = (4 if parametrization == "geometry" else 1) + (1 if T is None else 0)
+    degree = entry_degree * n * n_agents
+    return NetworkGenericRank(
+        network_rank=network_rank,
+        agent_ranks=agent_ranks,
+        rank_sum=sum(agent_ranks),
+        rank_sum_claim_holds=sum(agent_ranks) == network_rank,
+        n_states=n * n_agents,
+        parametrization=parametrization,
+        T=Fraction(T) if T is not None else None,
+        field=field,
+        seed=seed,
+        sample_size=sample,
+        degree_bound=degree,
+        error_bound=degree / sample,
+    )
+
+
+def _random_rows(
+    adjacency: np.ndarray, dim: int, parametrization: str, rng: np.random.Generator, sample: int
+) -> list[list[list[int]]]:
+    """Integer TDOA rows per agent (each row scaled by a positive constant)."""
+    n_agents = adjacency.shape[0]
+
+    def draw() -> int:
+        return int(rng.integers(0, sample))
+
+    if parametrization == "geometry":
+        points = []
+        for _ in range(n_agents):
+            params = [draw() for _ in range(dim - 1)]
+            square = sum(t * t for t in params)
+            points.append(([2 * t for t in params] + [square - 1], square + 1))
+        return [
+            [
+                [
+                    points[s][1] * a - points[r][1] * b
+                    for a, b in zip(points[r][0], points[s][0], strict=True)
+                ]
+                for s in np.flatnonzero(adjacency[r])
+            ]
+            for r in range(n_agents)
+        ]
+    if parametrization == "edges":
+        lam: dict[tuple[int, int], list[int]] = {}
+        rows = []
+        for r in range(n_agents):
+            agent_rows = []
+            for s in np.flatnonzero(adjacency[r]):
+                key = (min(r, int(s)), max(r, int(s)))
+                vector = lam.setdefault(key, [draw() for _ in range(dim)])
+                agent_rows.append(vector if r < s else [-x for x in vector])
+            rows.append(agent_rows)
+        return rows
+    raise ValueError(f"parametrization must be 'geometry' or 'edges'; got {parametrization!r}")
+
+
+def exact_network_matrix(
+    rows: list[list[list[int]]], W: list[list[Fraction]], dim: int, T: Fraction
+) -> list[list[int]]:
+    """Eq. (4.36) over the integers (each block row ``l`` scaled by its denominators' lcm).
+
+    Parameters
+    ----------
+    rows : list of list of list of int
+        Per agent, its TDOA rows' position part (velocity part zero), integers.
+    W : list of list of Fraction
+        Exact consensus weights.
+    dim : int
+        2 or 3.
+    T : Fraction
+        Sampling period.
+
+    Returns
+    -------
+    list of list of int
+        ``O`` with the row order of :func:`agent_observability_blocks` (rows scaled by positive
+        integers, so every rank, of ``O`` and of each block column, is that of eq. (4.36)).
+    """
+    N, n = len(W), 2 * dim
+    out: list[list[int]] = []
+    power = [[Fraction(int(i == j)) for j in range(N)] for i in range(N)]
+    for step in range(n * N):
+        shift = step * T
+        block = []
+        for m, agent_rows in enumerate(rows):
+            for row in agent_rows:
+                line = []
+                for i in range(N):
+                    w = power[m][i]
+                    line += [w * x for x in row] + [w * shift * x for x in row]
+                block.append(line)
+        scale = lcm(*(x.denominator for line in block for x in line)) if block else 1
+        out += [[int(x * scale) for x in line] for line in block]
+        power = [[sum(power[i][k] * W[k][j] for k in range(N)) for j in range(N)] for i in range(N)]
+    return out

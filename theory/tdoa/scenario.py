@@ -1,0 +1,256 @@
+"""One closed-loop run of the §4.4 scenario: target, TDOA pings, network filter, moving agents.
+
+Timeline of ping ``k`` (time ``t_k = kT``), seed 000 §4.2.2–4.4:
+
+1. every agent measures its TDOA rows with the neighbours it hears at ``t_k`` (4.2) and updates
+   its predicted estimate (4.27), (4.34);
+2. for ``j = 0, …, T/τ − 1`` (times ``t_k + jτ``): the agents average ``x̂`` and ``P`` with their
+   current neighbours (4.28), (4.35) (round ``j = 0`` is the paper's averaging; the others are the
+   fast consensus of §4.3); each agent decides to move iff ``‖P̄_i‖ > b``; then the robots move
+   for ``τ`` seconds, tracking ``ζ*`` built from ``x̂_i(t) = exp(F(t − t_k)) x̄_i`` (B.14–B.18);
+3. the estimates are predicted to the next ping (4.26), (4.33).
+
+Recorded at ping ``k``: the estimate and covariance after round 0 (eqs. (4.28), (4.35)) and the
+true state. With ``filter: decentralized`` no averaging happens (``W = I``); with ``centralized``
+one EKF uses every agent's rows.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from theory.core.network import adjacency_from_range, metropolis_weights, uniform_weights
+from theory.tdoa.agents import braking_control, linearizing_control, rest_states, rk4_step
+from theory.tdoa.averaging import average_round
+from theory.tdoa.ekf import ekf_predict
+from theory.tdoa.filters import measurement_step, shares_estimates
+from theory.tdoa.measurements import neighbour_lists, tdoa_readings
+from theory.tdoa.model import cv_discrete
+from theory.tdoa.sim_case import TdoaSimSpec
+from theory.tdoa.target import simulate_cv_target
+
+__all__ = ["TdoaRun", "covariance_norms", "hears_at", "run_tdoa_scenario", "weights_at"]
+
+
+@dataclass(frozen=True, eq=False)
+class TdoaRun:
+    """Arrays recorded along one run (ping index ``k``, fine index ``m`` every ``τ``).
+
+    Attributes
+    ----------
+    ping_times : ndarray, shape (K+1,)
+    truth : ndarray, shape (K+1, 6)
+        True target states at the pings.
+    estimates : ndarray, shape (K+1, N, 6)
+        ``x̄_i(k)`` after the averaging (4.28).
+    covariances : ndarray, shape (K+1, N, 6, 6)
+        ``P̄_i(k)`` after (4.35).
+    cov_norms : ndarray, shape (K+1, N)
+        ``‖P̄_i(k)‖`` in the spec's norm.
+    degrees : ndarray of int, shape (K+1, N)
+        Number of TDOA rows (neighbours heard) of each agent at each ping.
+    fine_times : ndarray, shape (M+1,)
+    paths : ndarray, shape (M+1, N, 3)
+        Agent positions every ``τ``.
+    distance : ndarray, shape (M+1, N)
+        Cumulative distance travelled by each agent.
+    moving : ndarray of bool, shape (M, N)
+        Whether each agent tracked (``‖P̄_i‖ > b``) during each ``τ`` interval.
+    """
+
+    ping_times: np.ndarray
+    truth: np.ndarray
+    estimates: np.ndarray
+    covariances: np.ndarray
+    cov_norms: np.ndarray
+    degrees: np.ndarray
+    fine_times: np.ndarray
+    paths: np.ndarray
+    distance: np.ndarray
+    moving: np.ndarray
+
+    @property
+    def localization_errors(self) -> np.ndarray:
+        """``‖p̄_i(k) − p(k)‖``, shape (K+1, N)."""
+        return np.linalg.norm(self.estimates[:, :, :3] - self.truth[:, None, :3], axis=-1)
+
+
+def covariance_norms(P: np.ndarray, norm: str) -> np.ndarray:
+    """``‖P_i‖`` of a stack of covariances.
+
+    Parameters
+    ----------
+    P : ndarray, shape (..., n, n)
+        Symmetric positive semi-definite matrices.
+    norm : {"spectral", "frobenius"}
+        Spectral: the largest eigenvalue.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
+    if norm == "spectral":
+        return np.linalg.eigvalsh(P)[..., -1]
+    return np.sqrt(np.einsum("...ij,...ij->...", P, P))
+
+
+def run_tdoa_scenario(spec: TdoaSimSpec, rng: np.random.Generator) -> TdoaRun:
+    """Simulate the closed loop of seed 000 §4.3–4.4 once.
+
+    Parameters
+    ----------
+    spec : TdoaSimSpec
+        The scenario.
+    rng : numpy.random.Generator
+        Source of the target's process noise and the measurement noise.
+
+    Returns
+    -------
+    TdoaRun
+
+    References
+    ----------
+    seed 000, eqs. (4.1)–(4.10), (4.26)–(4.35), (4.44)–(4.48), §4.3, App. B.2.
+    """
+    n, K, m = spec.n_agents, spec.steps, spec.rounds
+    A, B = cv_discrete(spec.T, 3)
+    BQB = B @ spec.Q @ B.T
+    truth = simulate_cv_target(spec.target, spec.Q, spec.T, K, rng)
+    x = np.tile(spec.x0, (n, 1))
+    P = np.tile(spec.P0, (n, 1, 1))
+    states = rest_states(spec.agents)
+    record = _Recorder(n, K, m)
+    record.fine(0, states, np.zeros(n))
+    travelled = np.zeros(n)
+    for k in range(K + 1):
+        positions = states[:, :3]
+        neighbours = neighbour_lists(hears_at(spec, positions))
+        readings = tdoa_readings(truth[k, :3], positions, neighbours, spec.r, rng)
+        at = truth[k, :3] if spec.linearize == "truth" else None
+        x, P = measurement_step(
+            spec.filter, x, P, readings, positions, neighbours, spec.r, linearize_at=at
+        )
+        for j in range(m):
+            if shares_estimates(spec.filter):
+                x, P = average_round(weights_at(spec, states[:, :3]), x, P)
+            norms = covariance_norms(P, spec.cov_norm)
+            if j == 0:
+                record.ping(k, x, P, norms, [len(nb) for nb in neighbours])
+            if k == K:
+                break
+            moving = norms > spec.b
+            states, travelled = _move(spec, states, x, moving, j * spec.tau, travelled)
+            record.fine(k * m + j + 1, states, travelled, moving)
+        x, P = ekf_predict(x, P, A, BQB)
+    return record.result(spec, truth)
+
+
+def hears_at(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
+    """``hears[i, j]`` for agents at ``positions`` (fixed edges, or the range rule).
+
+    Parameters
+    ----------
+    spec : TdoaSimSpec
+    positions : ndarray, shape (N, 3)
+
+    Returns
+    -------
+    ndarray of bool, shape (N, N)
+    """
+    if spec.hears is not None:
+        return spec.hears
+    return adjacency_from_range(positions, spec.comm_range)
+
+
+def weights_at(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
+    """The consensus matrix ``W`` for agents at ``positions``.
+
+    Parameters
+    ----------
+    spec, positions : TdoaSimSpec, ndarray
+        As in :func:`hears_at`.
+
+    Returns
+    -------
+    ndarray, shape (N, N)
+    """
+    if isinstance(spec.weights, np.ndarray):
+        return spec.weights
+    hears = hears_at(spec, positions)
+    return metropolis_weights(hears) if spec.weights == "metropolis" else uniform_weights(hears)
+
+
+def _move(
+    spec: TdoaSimSpec,
+    states: np.ndarray,
+    estimates: np.ndarray,
+    moving: np.ndarray,
+    since_ping: float,
+    travelled: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Integrate the robots over one ``τ`` (tracking where ``moving``, braking elsewhere)."""
+    dt = spec.tau / spec.substeps
+    for s in range(spec.substeps):
+        start = since_ping + s * dt
+
+        def control(offset: float, r: np.ndarray, start: float = start) -> np.ndarray:
+            u = braking_control(r, spec.pole)
+            if moving.any():
+                flat = np.zeros((r.shape[0], 3, 3))
+                flat[:, 0] = estimates[:, :3] + (start + offset) * estimates[:, 3:] + spec.offsets
+                flat[:, 1] = estimates[:, 3:]
+                u[moving] = linearizing_control(
+                    r[moving], flat[moving], spec.pole, max_input=spec.max_input
+                )
+            return u
+
+        new = rk4_step(states, control, dt)
+        travelled = travelled + np.linalg.norm(new[:, :3] - states[:, :3], axis=1)
+        states = new
+    return states, travelled
+
+
+class _Recorder:
+    """Preallocated arrays filled along the run."""
+
+    def __init__(self, n: int, K: int, m: int) -> None:
+        self.estimates = np.empty((K + 1, n, 6))
+        self.covariances = np.empty((K + 1, n, 6, 6))
+        self.cov_norms = np.empty((K + 1, n))
+        self.degrees = np.empty((K + 1, n), dtype=int)
+        self.paths = np.empty((K * m + 1, n, 3))
+        self.distance = np.empty((K * m + 1, n))
+        self.moving = np.zeros((K * m, n), dtype=bool)
+        self.m = m
+
+    def ping(self, k: int, x: np.ndarray, P: np.ndarray, norms: np.ndarray, deg: list) -> None:
+        self.estimates[k], self.covariances[k], self.cov_norms[k] = x, P, norms
+        self.degrees[k] = deg
+
+    def fine(
+        self,
+        index: int,
+        states: np.ndarray,
+        travelled: np.ndarray,
+        moving: np.ndarray | None = None,
+    ) -> None:
+        self.paths[index], self.distance[index] = states[:, :3], travelled
+        if moving is not None:
+            self.moving[index - 1] = moving
+
+    def result(self, spec: TdoaSimSpec, truth: np.ndarray) -> TdoaRun:
+        K = truth.shape[0] - 1
+        return TdoaRun(
+            ping_times=spec.T * np.arange(K + 1),
+            truth=truth,
+            estimates=self.estimates,
+            covariances=self.covariances,
+            cov_norms=self.cov_norms,
+            degrees=self.degrees,
+            fine_times=spec.tau * np.arange(K * self.m + 1),
+            paths=self.paths,
+            distance=self.distance,
+            moving=self.moving,
+        )

@@ -1,0 +1,759 @@
+"""Distributed TDOA observability of every agent of a network (seed 000 §4.2.2, Thm 4.2.3).
+
+For each agent ``i`` the library reports the rank of ``O_i``, the block column of the networked
+observability matrix (seed 000 eq. (4.36)) belonging to ``i``, decided *without* forming it:
+
+    rank O_i = 2 · rank G_{R(i)},
+
+where ``R(i)`` is the set of agents that receive agent ``i``'s information (``[W^l]_{ji} > 0`` for
+some ``l``: the connected component for an undirected graph, the downstream reachable set for a
+directed one) and ``G_{R(i)}`` stacks the position blocks of their TDOA Jacobians ``H_j``
+(eqs. (4.7)–(4.10)). The proof (``docs/topology.md``) needs only ``T ≠ 0``, ``W ≥ 0`` and
+``w_ii > 0``. The networked pair is detectable iff its eigenvalue 1 (the only one on the unit
+circle) passes the PBH test, which for an undirected graph means every component's ``G`` has
+rank ``d``; the full rank of ``O`` comes from the spectrum of ``W`` per component
+(:mod:`theory.tdoa.spectral_rank`) or, for weights that are not symmetrizable, from the dense
+matrix of :mod:`theory.tdoa.networked_observability`.
+
+Beside the exact verdict the paper's heuristic (a component of ≥ 4 non-coplanar agents; ≥ 3
+non-collinear in 2-D) is reported with a one-line reason wherever the two disagree; receivers in a
+common hyperplane are flagged ``mirror_ambiguous``; and a separate global-uniqueness check
+(:mod:`theory.tdoa.uniqueness`) looks for a second position with the same TDOAs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import networkx as nx
+import numpy as np
+import scipy.sparse
+import scipy.sparse.csgraph
+
+from theory.core.observability import RANK_TOL, RankResult, numeric_rank
+from theory.tdoa.case import TdoaSpec
+from theory.tdoa.model import cv_discrete, unit_directions
+from theory.tdoa.networked_observability import analyze_network
+from theory.tdoa.spectral_rank import (
+    CLUSTER_TOL,
+    eigenspace_defects,
+    spectral_network_rank,
+    symmetrizing_scale,
+)
+from theory.tdoa.uniqueness import UNIQUENESS_TOL, Uniqueness, tdoa_solutions
+
+__all__ = [
+    "DENSE_MAX_STATES",
+    "INCONCLUSIVE_FACTOR",
+    "AgentVerdict",
+    "NetworkVerdict",
+    "TopologyResult",
+    "analyze_topology",
+    "check_expectations",
+    "observed_values",
+]
+
+INCONCLUSIVE_FACTOR = 1e3
+"""A singular value within this factor of its threshold makes a verdict inconclusive."""
+
+DENSE_MAX_STATES = 240
+"""Largest component (in states 2·d·n) whose non-symmetrizable W is ranked densely."""
+
+
+@dataclass(frozen=True)
+class AgentVerdict:
+    """What one agent can localize (1-based ``id`` and ``component`` as users see them).
+
+    Attributes
+    ----------
+    id, component : int
+        Agent id and its (weakly) connected component.
+    reach : tuple of int
+        Agents whose TDOA rows enter ``O_i`` (``R(i)``), 1-based.
+    rank : int
+        ``rank O_i`` at the actual geometry (``2·d`` when observable).
+    observable : bool
+        ``rank == 2·d``.
+    sigma_min : float
+        Smallest singular value of the stacked position Jacobian ``G_{R(i)}`` (``d`` values,
+        zero-padded): the distance from losing rank.
+    margin : float
+        How many times the rank decision clears the threshold ``rank_tol · σ_max``.
+    heuristic_4_noncoplanar : bool
+        The paper's condition: component of ≥ d + 1 agents not all in one hyperplane.
+    reason : str
+        Why heuristic and exact disagree (empty when they agree).
+    mirror_ambiguous : bool
+        The receivers lie in a hyperplane that misses the target, so the target's reflection
+        through their affine hull (``mirror_point``) has the same TDOAs.
+    uniqueness : Uniqueness
+        Global uniqueness of the TDOA fix of the receivers ``R(i)`` and their neighbours.
+    localizes : bool
+        Whether the distributed filter of agent ``i`` can converge: every closed class upstream
+        of ``i`` (agents that hear only among themselves and whose information reaches ``i``)
+        has a stacked Jacobian of rank ``d``. Undirected: the same as ``observable``.
+    """
+
+    id: int
+    component: int
+    reach: tuple[int, ...]
+    rank: int
+    observable: bool
+    sigma_min: float
+    margin: float
+    heuristic_4_noncoplanar: bool
+    reason: str
+    mirror_ambiguous: bool
+    mirror_point: tuple[float, ...] | None
+    uniqueness: Uniqueness
+    localizes: bool
+
+
+@dataclass(frozen=True)
+class NetworkVerdict:
+    """The networked pair ``(W ⊗ A, D_H)`` (seed 000 eqs. (4.24), (4.36)).
+
+    ``rank``/``observable`` are ``None`` when no method applies (see ``note``).
+
+    Attributes
+    ----------
+    rank : int or None
+        Rank of the networked observability matrix ``O`` (summed over components), ``None``
+        when not computed.
+    n_states : int
+        States of the networked pair, ``2·d·N``.
+    observable : bool or None
+        ``rank == n_states``; ``None`` with ``rank``.
+    detectable : bool
+        The PBH test at the eigenvalue 1, the only one on the unit circle (always computed).
+    unobservable_eigenvalues : tuple of complex or None
+        Eigenvalues of the unobservable modes, ``None`` when the rank was not computed.
+    method : str
+        How the rank was decided: ``spectral``/``dense`` per component, or ``skipped``.
+    margin : float
+        Smallest factor by which a deciding singular value clears its threshold
+        ``rank_tol · σ_max`` (detectability and rank).
+    note : str
+        Why a rank was not computed (empty otherwise).
+    """
+
+    rank: int | None
+    n_states: int
+    observable: bool | None
+    detectable: bool
+    unobservable_eigenvalues: tuple[complex, ...] | None
+    method: str
+    margin: float
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class TopologyResult:
+    """Per-agent and network verdicts of one TDOA scene at one time step.
+
+    Attributes
+    ----------
+    step : int
+        1-based time step.
+    dim : int
+        Spatial dimension ``d``.
+    agents : tuple of AgentVerdict
+        One verdict per agent, in id order.
+    network : NetworkVerdict
+        The verdict on the whole networked pair.
+    information_flow : str
+        Whether the graph is undirected or directed, and what ``O_i`` sees in each case.
+    tolerances : dict of str to float
+        The tolerances used (``rank_tol``, ``inconclusive_factor``, ``uniqueness_tol``,
+        ``cluster_tol``), echoed in the output.
+    inconclusive : tuple of str
+        One line per decision whose singular value is within ``inconclusive_factor`` of its
+        threshold; empty when every verdict is conclusive.
+    """
+
+    step: int
+    dim: int
+    agents: tuple[AgentVerdict, ...]
+    network: NetworkVerdict
+    information_flow: str
+    tolerances: dict[str, float] = field(default_factory=dict)
+    inconclusive: tuple[str, ...] = ()
+
+    @property
+    def conclusive(self) -> bool:
+        """Whether every deciding singular value clears its tolerance."""
+        return not self.inconclusive
+
+    @property
+    def every_agent_localizes(self) -> bool:
+        """Every agent's distributed filter can converge (undirected: the pair is detectable)."""
+        return all(agent.localizes for agent in self.agents)
+
+    def to_json(self) -> dict[str, Any]:
+        """The DESIGN.md ``trackcert topology --json`` record (plus evidence fields)."""
+        net = self.network
+        return {
+            "step": self.step,
+            "dim": self.dim,
+            "agents": [_agent_json(a) for a in self.agents],
+            "network_rank": net.rank,
+            "network_states": net.n_states,
+            "network_observable": net.observable,
+            "network_detectable": net.detectable,
+            "unobservable_eigenvalues": (
+                None if net.unobservable_eigenvalues is None else list(net.unobservable_eigenvalues)
+            ),
+            "network_method": net.method,
+            "network_margin": net.margin,
+            "network_note": net.note,
+            "network_conclusive": net.margin >= self.tolerances["inconclusive_factor"],
+            "information_flow": self.information_flow,
+            "tolerances": dict(self.tolerances),
+            "conclusive": self.conclusive,
+            "inconclusive": list(self.inconclusive),
+        }
+
+
+def analyze_topology(
+    spec: TdoaSpec,
+    step: int = 0,
+    *,
+    rank_tol: float = RANK_TOL,
+    inconclusive_factor: float = INCONCLUSIVE_FACTOR,
+    uniqueness_tol: float = UNIQUENESS_TOL,
+    cluster_tol: float = CLUSTER_TOL,
+    network_rank: bool = True,
+) -> TopologyResult:
+    """Decide, for every agent, whether it can localize the target at time step ``step``.
+
+    Parameters
+    ----------
+    spec : TdoaSpec
+        The validated scene (``theory.tdoa.case``).
+    step : int
+        0-based time step of a trajectory (0 for a static scene).
+    rank_tol : float
+        Relative rank tolerance (σ counts as zero when σ ≤ rank_tol · σ_max).
+    inconclusive_factor : float
+        A deciding singular value within this factor of its threshold → inconclusive.
+    uniqueness_tol : float
+        Relative tolerance of the global-uniqueness check.
+    cluster_tol : float
+        Eigenvalue clustering tolerance of the spectral network rank.
+    network_rank : bool
+        Compute the rank of the whole networked observability matrix (an eigen-decomposition of
+        each component's ``W``, cubic in its size). The per-agent verdicts and detectability,
+        linear in ``N + E``, are always computed.
+
+    Returns
+    -------
+    TopologyResult
+
+    References
+    ----------
+    seed 000 §4.2.2, eqs. (4.24), (4.36), Thm 4.2.3; seed 001 (journal version).
+    """
+    positions, target = spec.agents[step], spec.target[step]
+    hears, W = spec.hears[step], spec.weights[step]
+    rows = _tdoa_rows(positions, target, hears)
+    parts, component_of = _components(hears)
+    symmetric = bool(np.array_equal(hears, hears.T))
+    reach_groups = [(p, p) for p in parts] if symmetric else _reach_groups(hears)
+    tol = {"rank_tol": rank_tol, "inconclusive_factor": inconclusive_factor}
+    agents: list[AgentVerdict | None] = [None] * spec.n_agents
+    doubts: list[str] = []
+    part_rows = _rows_by_part(rows, component_of, len(parts))
+    groups = []
+    for members, reach in reach_groups:
+        k = int(component_of[members[0]])
+        selected = part_rows[k] if symmetric else np.flatnonzero(np.isin(rows.agent, reach))
+        group = _group_verdict(
+            positions, target, rows, selected, reach, parts[k], tol, uniqueness_tol
+        )
+        groups.append(group)
+        if group.rank_result.margin < inconclusive_factor:
+            doubts.append(
+                f"agents {_ids(members)}: stacked Jacobian singular value within a factor "
+                f"{group.rank_result.margin:.3g} of rank_tol·σ_max"
+            )
+    if symmetric:
+        pairs = zip(reach_groups, groups, strict=True)
+        leaders = {i: [g.rank_result] for (members, _), g in pairs for i in members}
+    else:
+        leaders = _upstream_leaders(hears, rows, tol["rank_tol"], inconclusive_factor, doubts)
+    for (members, _), group in zip(reach_groups, groups, strict=True):
+        for i in members:
+            ok = all(result.rank == spec.dim for result in leaders[i])
+            agents[i] = group.for_agent(i, int(component_of[i]) + 1, ok)
+    if symmetric:
+        detectable = (
+            all(g.rank_result.rank == spec.dim for g in groups),
+            min((g.rank_result.margin for g in groups), default=float("inf")),
+        )
+    else:
+        detectable = _directed_detectable(W, rows, tol["rank_tol"])
+    if not symmetric and detectable[1] < inconclusive_factor:
+        doubts.append(f"detectability: a singular value within a factor {detectable[1]:.3g}")
+    network = (
+        _network_verdict(spec, W, rows, parts, part_rows, detectable, tol, cluster_tol)
+        if network_rank
+        else NetworkVerdict(
+            None,
+            2 * spec.dim * spec.n_agents,
+            None,
+            detectable[0],
+            None,
+            "skipped",
+            detectable[1],
+            "network rank not requested",
+        )
+    )
+    flow = (
+        "undirected: O_i sees agent i's connected component"
+        if symmetric
+        else "directed: O_i sees the agents reachable from i along information flow (j hears "
+        "… hears i); components shown are weakly connected"
+    )
+    tolerances = {**tol, "uniqueness_tol": uniqueness_tol, "cluster_tol": cluster_tol}
+    return TopologyResult(
+        step + 1, spec.dim, tuple(agents), network, flow, tolerances, tuple(doubts)
+    )  # type: ignore[arg-type]
+
+
+def observed_values(result: TopologyResult) -> dict[str, Any]:
+    """What ``result`` says for each static key a tdoa case's ``expect`` block may name.
+
+    Parameters
+    ----------
+    result : TopologyResult
+        The verdicts of one step.
+    """
+    got = result.to_json()
+    return {
+        "observable": [a["observable"] for a in got["agents"]],
+        "heuristic_4_noncoplanar": [a["heuristic_4_noncoplanar"] for a in got["agents"]],
+        "mirror_ambiguous": [a["mirror_ambiguous"] for a in got["agents"]],
+        "network_rank": got["network_rank"],
+        "network_observable": got["network_observable"],
+        "network_detectable": got["network_detectable"],
+    }
+
+
+def check_expectations(result: TopologyResult, expect: dict[str, Any]) -> list[str]:
+    """Mismatches between ``result`` and a case's ``expect`` block (per-agent keys and network).
+
+    Parameters
+    ----------
+    result : TopologyResult
+        The verdicts (of the case's first step).
+    expect : dict
+        The case's ``expect`` block. Time-series keys (``first_failure_step``,
+        ``unobservable_steps``) are checked by
+        :func:`theory.tdoa.time_varying.check_trajectory_expectations`.
+
+    Returns
+    -------
+    list of str
+        One line per mismatch (empty when every expectation is met).
+    """
+    actual = observed_values(result)
+    return [
+        f"{key}: expected {value!r}, got {actual[key]!r}"
+        for key, value in expect.items()
+        if key in actual and actual[key] != value
+    ]
+
+
+@dataclass(frozen=True)
+class _Rows:
+    """All TDOA rows of a scene: row ``k`` is ``g_{agent[k]} − g_{other[k]}``."""
+
+    agent: np.ndarray
+    other: np.ndarray
+    vectors: np.ndarray
+
+
+@dataclass(frozen=True)
+class _Group:
+    reach: tuple[int, ...]
+    rank_result: RankResult
+    sigma_min: float
+    heuristic: bool
+    mirror: np.ndarray | None
+    uniqueness: Uniqueness
+    reason: str
+    dim: int
+
+    def for_agent(self, agent: int, component: int, localizes: bool) -> AgentVerdict:
+        rank = 2 * self.rank_result.rank
+        mirror = None if self.mirror is None else tuple(float(v) for v in self.mirror)
+        return AgentVerdict(
+            agent + 1,
+            component,
+            self.reach,
+            rank,
+            rank == 2 * self.dim,
+            self.sigma_min,
+            self.rank_result.margin,
+            self.heuristic,
+            self.reason,
+            self.mirror is not None,
+            mirror,
+            self.uniqueness,
+            localizes,
+        )
+
+
+def _tdoa_rows(positions: np.ndarray, target: np.ndarray, hears: np.ndarray) -> _Rows:
+    units = unit_directions(target, positions)
+    agent, other = np.nonzero(hears)
+    return _Rows(agent, other, units[agent] - units[other])
+
+
+def _components(hears: np.ndarray) -> tuple[list[list[int]], np.ndarray]:
+    """Weakly connected components ordered by first agent, and each agent's component index.
+
+    The same partition as :func:`theory.core.network.components`, in ``O(N + E)`` via scipy.
+    """
+    count, labels = scipy.sparse.csgraph.connected_components(
+        scipy.sparse.csr_matrix(hears), directed=True, connection="weak"
+    )
+    order = np.argsort(labels, kind="stable")
+    pieces = np.split(order, np.cumsum(np.bincount(labels, minlength=count))[:-1])
+    parts = sorted((piece.tolist() for piece in pieces), key=lambda c: c[0])
+    component_of = np.empty(hears.shape[0], dtype=int)
+    for k, part in enumerate(parts):
+        component_of[part] = k
+    return parts, component_of
+
+
+def _reach_groups(hears: np.ndarray) -> list[tuple[list[int], list[int]]]:
+    """Agents of a directed network sharing one reach set ``R(i)``: strongly connected classes."""
+    flow = nx.DiGraph()
+    flow.add_nodes_from(range(hears.shape[0]))
+    flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(hears), strict=True))
+    condensed = nx.condensation(flow)
+    groups = []
+    for node in condensed.nodes:
+        members = sorted(condensed.nodes[node]["members"])
+        reach = set(members)
+        for later in nx.descendants(condensed, node):
+            reach |= condensed.nodes[later]["members"]
+        groups.append((members, sorted(reach)))
+    return sorted(groups, key=lambda g: g[0][0])
+
+
+def _group_verdict(
+    positions: np.ndarray,
+    target: np.ndarray,
+    rows: _Rows,
+    inside: np.ndarray,
+    reach: list[int],
+    part: list[int],
+    tol: dict[str, float],
+    uniqueness_tol: float,
+) -> _Group:
+    dim = positions.shape[1]
+    stacked = rows.vectors[inside]
+    rank_result = numeric_rank(stacked, rank_tol=tol["rank_tol"]) if stacked.size else _empty(dim)
+    sigma = np.zeros(dim)
+    sigma[: min(dim, len(rank_result.singular_values))] = rank_result.singular_values[:dim]
+    receivers = sorted(set(reach) | set(rows.other[inside].tolist()))
+    mirror = _affine_hull(positions[receivers], target, tol["rank_tol"])[1]
+    heuristic_rank = _affine_hull(positions[part], target, tol["rank_tol"])[0]
+    heuristic = len(part) >= dim + 1 and heuristic_rank == dim
+    uniqueness = (
+        tdoa_solutions(positions[receivers], target, rank_tol=tol["rank_tol"], tol=uniqueness_tol)
+        if rank_result.rank == dim
+        else Uniqueness(False, (), dim - rank_result.rank, "not even locally observable")
+    )
+    exact = rank_result.rank == dim
+    reason = (
+        ""
+        if exact == heuristic
+        else _disagreement(
+            exact, positions, target, receivers, part, rank_result.rank, mirror, reach
+        )
+    )
+    return _Group(
+        tuple(j + 1 for j in reach),
+        rank_result,
+        float(sigma[-1]),
+        heuristic,
+        mirror,
+        uniqueness,
+        reason,
+        dim,
+    )
+
+
+def _empty(dim: int) -> RankResult:
+    return RankResult(0, (0.0,) * dim, 0.0, RANK_TOL, float("inf"))
+
+
+def _affine_hull(
+    points: np.ndarray, target: np.ndarray, rank_tol: float
+) -> tuple[int, np.ndarray | None]:
+    """Affine dimension of ``points`` and the target's reflection through their hull (or None).
+
+    The reflection negates the target's offset orthogonal to the hull, so it keeps the distance
+    to every receiver: same ranges, same TDOAs. ``None`` when the hull is full-dimensional or
+    contains the target.
+    """
+    dim = points.shape[1]
+    centre = points.mean(axis=0)
+    scale = max(float(np.abs(points - centre).max()), float(np.abs(target - centre).max()), 1e-300)
+    if points.shape[0] < 2:
+        hull_rank, basis = 0, np.zeros((0, dim))
+    else:
+        result = numeric_rank((points - centre) / scale, rank_tol=rank_tol)
+        hull_rank = result.rank if result.singular_values[0] > rank_tol else 0
+        basis = np.linalg.svd(points - centre, full_matrices=False)[2][:hull_rank]
+    if hull_rank == dim:
+        return hull_rank, None
+    offset = target - centre
+    normal = offset - basis.T @ (basis @ offset)
+    if np.linalg.norm(normal) <= rank_tol * scale:
+        return hull_rank, None
+    return hull_rank, target - 2 * normal
+
+
+def _disagreement(
+    exact: bool,
+    positions: np.ndarray,
+    target: np.ndarray,
+    receivers: list[int],
+    part: list[int],
+    rank: int,
+    mirror: np.ndarray | None,
+    reach: list[int],
+) -> str:
+    dim = positions.shape[1]
+    flat = "coplanar" if dim == 3 else "collinear"
+    if exact:
+        return (
+            f"the agents are {flat} but the target is off their "
+            f"{'plane' if dim == 3 else 'line'}: the Jacobian has full rank (locally "
+            f"observable), yet the mirror image {_fmt(mirror)} gives the same TDOAs"
+        )
+    if set(reach) != set(part):
+        return (
+            f"directed network: only agents {_ids(reach)} receive this agent's information, "
+            f"and their TDOA rows have rank {rank} < {dim}"
+        )
+    units = unit_directions(target, positions[receivers])
+    same = _same_ray(units)
+    if same:
+        a, b = receivers[same[0]] + 1, receivers[same[1]] + 1
+        return f"agents {a} and {b} lie on one ray from the target: rank {rank} < {dim}"
+    where = "a circular cone with apex at the target" if dim == 3 else "two rays from the target"
+    return (
+        f"the agents are not {flat}, but the directions from the target to them are affinely "
+        f"dependent (the receivers lie on {where}): stacked Jacobian rank {rank} < {dim}"
+    )
+
+
+def _same_ray(units: np.ndarray, tol: float = 1e-9) -> tuple[int, int] | None:
+    gaps = np.linalg.norm(units[:, None] - units[None], axis=-1)
+    np.fill_diagonal(gaps, np.inf)
+    i, j = np.unravel_index(np.argmin(gaps), gaps.shape)
+    return (int(min(i, j)), int(max(i, j))) if gaps[i, j] <= tol else None
+
+
+def _network_verdict(
+    spec: TdoaSpec,
+    W: np.ndarray,
+    rows: _Rows,
+    parts: list[list[int]],
+    part_rows: list[np.ndarray],
+    detectable: tuple[bool, float],
+    tol: dict[str, float],
+    cluster_tol: float,
+) -> NetworkVerdict:
+    dim, n = spec.dim, spec.n_agents
+    rank, eigenvalues, methods, notes = 0, [], set(), []
+    margin = detectable[1]
+    for part, selected in zip(parts, part_rows, strict=True):
+        piece = _component_rank(spec, W, rows, part, selected, tol["rank_tol"], cluster_tol)
+        if piece is None:
+            notes.append(
+                f"component {_ids(part)}: W is not symmetrizable and has "
+                f"{2 * dim * len(part)} > {DENSE_MAX_STATES} states; rank not computed"
+            )
+            rank = None
+            continue
+        part_rank, part_eigs, method, part_margin = piece
+        methods.add(method)
+        margin = min(margin, part_margin)
+        if rank is not None:
+            rank += part_rank
+        eigenvalues += part_eigs
+    observable = None if rank is None else rank == 2 * dim * n
+    return NetworkVerdict(
+        rank,
+        2 * dim * n,
+        observable,
+        detectable[0],
+        None if rank is None else tuple(eigenvalues),
+        " + ".join(sorted(methods)) + " (per component; O is block-diagonal over components)",
+        float(margin),
+        "; ".join(notes),
+    )
+
+
+def _upstream_leaders(
+    hears: np.ndarray,
+    rows: _Rows,
+    rank_tol: float,
+    inconclusive_factor: float,
+    doubts: list[str],
+) -> dict[int, list[RankResult]]:
+    """For each agent, the stacked-Jacobian ranks of the closed classes upstream of it.
+
+    A closed class hears only its own members, so its error dynamics are autonomous and it can
+    localize iff its own stacked Jacobian has rank ``d``; every other agent's error is driven by
+    the closed classes upstream of it through ``W_TT ⊗ A``, which is stable (``ρ(W_TT) < 1``).
+    """
+    flow = nx.DiGraph()
+    flow.add_nodes_from(range(hears.shape[0]))
+    flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(hears), strict=True))
+    condensed = nx.condensation(flow)
+    ranks = {}
+    for node in condensed:
+        if condensed.in_degree(node) == 0:
+            members = sorted(condensed.nodes[node]["members"])
+            stacked = rows.vectors[np.isin(rows.agent, members)]
+            dim = rows.vectors.shape[1]
+            ranks[node] = numeric_rank(stacked, rank_tol=rank_tol) if stacked.size else _empty(dim)
+            if ranks[node].margin < inconclusive_factor:
+                doubts.append(
+                    f"closed class {_ids(members)}: rank decided with margin "
+                    f"{ranks[node].margin:.3g}"
+                )
+    mapping = condensed.graph["mapping"]
+    upstream: dict[int, list[RankResult]] = {}
+    for agent in range(hears.shape[0]):
+        node = mapping[agent]
+        above = nx.ancestors(condensed, node) | {node}
+        upstream[agent] = [ranks[c] for c in sorted(above) if c in ranks]
+    return upstream
+
+
+def _rows_by_part(rows: _Rows, component_of: np.ndarray, count: int) -> list[np.ndarray]:
+    """Row indices of each component, in one sort (linear-time grouping)."""
+    labels = component_of[rows.agent]
+    order = np.argsort(labels, kind="stable")
+    bounds = np.searchsorted(labels[order], np.arange(count + 1))
+    return [order[bounds[k] : bounds[k + 1]] for k in range(count)]
+
+
+def _directed_detectable(W: np.ndarray, rows: _Rows, rank_tol: float) -> tuple[bool, float]:
+    """PBH at the eigenvalue 1 of ``W ⊗ A`` (the only one with ``|λ| ≥ 1``).
+
+    Its eigenvectors are the absorption probabilities of the closed classes (agents that hear
+    only among themselves); for an undirected graph they are the component indicators and the
+    test reduces to "every component's stacked Jacobian has rank d".
+    """
+    basis = _unit_eigenvectors(W)
+    defects, margin = eigenspace_defects([basis], rows.agent, rows.vectors, rank_tol=rank_tol)
+    return defects[0] == 0, margin
+
+
+def _unit_eigenvectors(W: np.ndarray) -> np.ndarray:
+    """Right eigenvectors of a row-stochastic ``W`` (``w_ii > 0``) for eigenvalue 1."""
+    graph = nx.DiGraph((int(r), int(s)) for r, s in zip(*np.nonzero(W), strict=True))
+    graph.add_nodes_from(range(W.shape[0]))
+    condensed = nx.condensation(graph)
+    closed = [
+        sorted(condensed.nodes[c]["members"]) for c in condensed if condensed.out_degree(c) == 0
+    ]
+    in_closed = np.zeros(W.shape[0], dtype=bool)
+    for members in closed:
+        in_closed[members] = True
+    transient = np.flatnonzero(~in_closed)
+    basis = np.zeros((W.shape[0], len(closed)))
+    for k, members in enumerate(closed):
+        basis[members, k] = 1.0
+        if transient.size:
+            rhs = W[np.ix_(transient, members)].sum(axis=1)
+            lhs = np.eye(transient.size) - W[np.ix_(transient, transient)]
+            basis[transient, k] = np.linalg.solve(lhs, rhs)
+    return basis
+
+
+def _component_rank(
+    spec: TdoaSpec,
+    W: np.ndarray,
+    rows: _Rows,
+    part: list[int],
+    selected: np.ndarray,
+    rank_tol: float,
+    cluster_tol: float,
+) -> tuple[int, list[complex], str, float] | None:
+    local = np.full(W.shape[0], -1)
+    local[part] = np.arange(len(part))
+    W_part = W[np.ix_(part, part)]
+    scale = symmetrizing_scale(W_part)
+    if scale is not None:
+        result = spectral_network_rank(
+            W_part,
+            local[rows.agent[selected]],
+            rows.vectors[selected],
+            scale=scale,
+            rank_tol=rank_tol,
+            cluster_tol=cluster_tol,
+        )
+        eigs = [complex(v) for v in result.unobservable_eigenvalues]
+        return result.rank, eigs, "spectral", result.margin
+    if 2 * spec.dim * len(part) > DENSE_MAX_STATES:
+        return None
+    return _dense_rank(spec, W_part, rows, part, rank_tol)
+
+
+def _dense_rank(
+    spec: TdoaSpec,
+    W_part: np.ndarray,
+    rows: _Rows,
+    part: list[int],
+    rank_tol: float,
+) -> tuple[int, list[complex], str, float]:
+    A, _ = cv_discrete(spec.T, spec.dim)
+    blocks = []
+    for j in part:
+        vectors = rows.vectors[rows.agent == j]
+        blocks.append(np.hstack([vectors, np.zeros_like(vectors)]))
+    result = analyze_network(A, W_part, blocks, rank_tol=rank_tol)
+    eigs = [complex(v) for v in result.unobservable_eigenvalues]
+    return result.network_rank, eigs, "dense", float(result.margin)
+
+
+def _agent_json(agent: AgentVerdict) -> dict[str, Any]:
+    unique = agent.uniqueness
+    return {
+        "id": agent.id,
+        "component": agent.component,
+        "rank": agent.rank,
+        "observable": agent.observable,
+        "localizes": agent.localizes,
+        "heuristic_4_noncoplanar": agent.heuristic_4_noncoplanar,
+        "sigma_min": agent.sigma_min,
+        "mirror_ambiguous": agent.mirror_ambiguous,
+        "mirror_point": agent.mirror_point,
+        "reach": list(agent.reach),
+        "margin": agent.margin,
+        "agrees_with_heuristic": not agent.reason,
+        "reason": agent.reason,
+        "unique_solution": unique.unique,
+        "other_solutions": [list(p) for p in unique.solutions],
+        "uniqueness_note": unique.note,
+        "uniqueness_method": unique.method,
+    }
+
+
+def _ids(agents: list[int] | tuple[int, ...]) -> str:
+    return "{" + ", ".join(str(a + 1) for a in agents) + "}"
+
+
+def _fmt(point: np.ndarray | None) -> str:
+    return "-" if point is None else "[" + ", ".join(f"{v:.4g}" for v in point) + "]"
