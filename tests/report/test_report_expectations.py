@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.report.expectations import evaluate, matches
+from theory.core.expectations import evaluate, matches
 
 json_values = st.recursive(
     st.none()

@@ -167,4 +167,11 @@ def _gain(raw: object, field: str, n: int, C_i: np.ndarray) -> np.ndarray:
     return finite_matrix(raw, field, rows=n, cols=p)
 
 
-register_kind("dkf", parse_dkf, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+register_kind(
+    "dkf",
+    parse_dkf,
+    expect_keys=EXPECT_KEYS,
+    tolerance_keys=TOLERANCE_KEYS,
+    observe="theory.consensus.dkf_report:observe_dkf",
+    simulate="theory.consensus.dkf_report:dkf_simulator",
+)

@@ -16,7 +16,7 @@ from typing import Any
 
 import theory
 from theory.core.case_file import Case, bundled_case_dir
-from theory.core.claims import CLAIM_MODULES, all_claims
+from theory.core.claims import all_claims, claim_modules
 from theory.report.runner import Record
 from theory.report.time_limit import enforceable
 
@@ -82,7 +82,7 @@ def environment(
         "seed": seed,
         "seed_rule": SEED_RULE,
         "cases": [_case(case) for case in cases],
-        "claim_modules": list(CLAIM_MODULES),
+        "claim_modules": list(claim_modules()),
         "claims_registered": len(all_claims()),
         "tolerances": _tolerances(records),
         "time_limit": time_limit,

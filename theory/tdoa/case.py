@@ -312,4 +312,5 @@ register_kind(
     expect_keys=EXPECT_KEYS,
     tolerance_keys=TOLERANCE_KEYS,
     check_expect=check_tdoa_expect,
+    observe="theory.tdoa.topology_report:observe_topology",
 )

@@ -273,4 +273,12 @@ def _offsets(block: Mapping[str, Any], agents: np.ndarray) -> np.ndarray:
     return finite_matrix(shape, f"{KIND}.formation", rows=n, cols=3)
 
 
-register_kind(KIND, parse_tdoa_sim, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+register_kind(
+    KIND,
+    parse_tdoa_sim,
+    expect_keys=EXPECT_KEYS,
+    tolerance_keys=TOLERANCE_KEYS,
+    observe="theory.tdoa.sim_summary:observe_tdoa_sim",
+    expect_rules={"max_final_error": "at_most"},
+    simulate="theory.tdoa.sim_summary:tdoa_simulator",
+)

@@ -50,7 +50,6 @@ __all__ = [
     "NetworkVerdict",
     "TopologyResult",
     "analyze_topology",
-    "check_expectations",
     "observed_values",
 ]
 
@@ -338,31 +337,6 @@ def observed_values(result: TopologyResult) -> dict[str, Any]:
         "network_observable": got["network_observable"],
         "network_detectable": got["network_detectable"],
     }
-
-
-def check_expectations(result: TopologyResult, expect: dict[str, Any]) -> list[str]:
-    """Mismatches between ``result`` and a case's ``expect`` block (per-agent keys and network).
-
-    Parameters
-    ----------
-    result : TopologyResult
-        The verdicts (of the case's first step).
-    expect : dict
-        The case's ``expect`` block. Time-series keys (``first_failure_step``,
-        ``unobservable_steps``) are checked by
-        :func:`theory.tdoa.time_varying.check_trajectory_expectations`.
-
-    Returns
-    -------
-    list of str
-        One line per mismatch (empty when every expectation is met).
-    """
-    actual = observed_values(result)
-    return [
-        f"{key}: expected {value!r}, got {actual[key]!r}"
-        for key, value in expect.items()
-        if key in actual and actual[key] != value
-    ]
 
 
 @dataclass(frozen=True)
