@@ -174,7 +174,7 @@ def test_a_wrong_gain_makes_the_claim_refuted(monkeypatch) -> None:
     def wrong(A, C, R, Pi_star):
         return A * Pi_star * C.transpose() * R.inv()
 
-    monkeypatch.setattr(sg, "optimal_gain", wrong)
+    monkeypatch.setattr(sgc, "optimal_gain", wrong)
     (result,) = sgc.check_suboptimal_gains()
     assert result.status == "refuted"
     assert not result.evidence["random_instances"]["all_exact_checks_hold"]

@@ -130,6 +130,6 @@ def test_negative_k_raises() -> None:
 
 def test_the_printed_bound_in_place_of_the_corrected_one_is_refuted(monkeypatch) -> None:
     """Known-bad input: if the suite believed (A.11) as printed, the exact laws break it."""
-    monkeypatch.setattr(ss, "corrected_bound", ss.printed_bound)
+    monkeypatch.setattr(ssc, "corrected_bound", ss.printed_bound)
     (result,) = ssc.check_stochastic_stability()
     assert result.status == "refuted"
