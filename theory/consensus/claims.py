@@ -43,14 +43,9 @@ from theory.core.case_file import Case, load_case
 from theory.core.claims import ClaimResult, NotApplicable, register
 from theory.core.expectations import matches
 from theory.core.observability import RANK_TOL
+from theory.core.tolerances import HYPOTHESIS_TOL
 
 __all__ = ["DkfAnalysis", "analyze_dkf", "printed_match"]
-
-WEIGHT_TOL = 1e-4
-"""Bracket width of the self-weight bisection in :func:`analyze_dkf`."""
-
-HYPOTHESIS_TOL = 1e-9
-"""Distance of ``r_σ(J)`` from 1 within which Lemma A.2.1's hypothesis counts as undecided."""
 
 
 @dataclass(frozen=True, eq=False)

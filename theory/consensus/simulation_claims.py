@@ -17,12 +17,10 @@ import numpy as np
 
 from theory.consensus.kalman_filter import ORDERS, ch5_examples, simulate_consensus_kf
 from theory.core.claims import ClaimResult, register
+from theory.core.tolerances import CONVERGED_TOL, GROWTH
 from theory.sim.figures import save_figure
 
 __all__ = ["check_ch5_examples"]
-
-GROWTH = 2.0
-CONVERGED_TOL = 1e-3
 
 
 @register(

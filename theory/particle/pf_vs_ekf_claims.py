@@ -12,6 +12,7 @@ import numpy as np
 
 from theory.core.claims import ClaimResult, register
 from theory.core.observability import RANK_TOL
+from theory.core.tolerances import INCONCLUSIVE_FACTOR
 from theory.particle.experiments import DEFAULT_TOLERANCES, convergence_margin, convergence_verdicts
 from theory.particle.pf_vs_ekf import EkfConfig, compare_on_same_data, measurement_ranks
 
@@ -53,7 +54,7 @@ def check_measurements(case: Any) -> list[ClaimResult]:
         if r["component_observability_rank"] != [pooled, pooled]:
             failures.append(f"node {r['id']}: component rank {r['component_observability_rank']}")
     margin = min(r["min_margin"] for r in records)
-    inconclusive = margin < case.tolerances.get("inconclusive_factor", 1e3)
+    inconclusive = margin < INCONCLUSIVE_FACTOR
     status = "refuted" if failures else "inconclusive" if inconclusive else "verified"
     return [
         ClaimResult(
@@ -70,7 +71,7 @@ def check_measurements(case: Any) -> list[ClaimResult]:
                 "the same network (cases/pf-tdoa-*.yaml)",
             },
             margin=margin,
-            tolerance={"rank_tol": RANK_TOL, "inconclusive_factor": 1e3},
+            tolerance={"rank_tol": RANK_TOL, "inconclusive_factor": INCONCLUSIVE_FACTOR},
             message="local observability needs ≥ 2 TDOA rows; every node of a component of "
             "≥ 3 non-collinear nodes is observable when the component's rows are pooled"
             if not failures

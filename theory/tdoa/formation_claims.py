@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.claims import ClaimResult, register
+from theory.core.tolerances import BOUND_RTOL
 from theory.tdoa.crb import crb_trace, optimal_crb_trace, platonic_solids
 from theory.tdoa.formation_optimality import (
     FORMATIONS_RANGE,
@@ -25,9 +26,6 @@ from theory.tdoa.formation_optimality import (
 )
 
 __all__ = ["check_platonic", "check_range_formations", "check_tdoa_formations"]
-
-BOUND_RTOL = 1e-9
-"""Relative distance from the bound within which a formation counts as optimal."""
 
 
 def _uniform(degrees: list[float]) -> bool:

@@ -29,6 +29,7 @@ import numpy as np
 import sympy as sp
 
 from theory.core.observability import RANK_TOL, numeric_rank
+from theory.core.tolerances import INCONCLUSIVE_FACTOR
 from theory.tdoa.generic_rank import exact_rank
 from theory.tdoa.model import unit_directions
 
@@ -221,7 +222,7 @@ def analyze_geometry(
     agents: np.ndarray,
     *,
     rank_tol: float = RANK_TOL,
-    inconclusive_factor: float = 1e3,
+    inconclusive_factor: float = INCONCLUSIVE_FACTOR,
 ) -> DirectionGeometry:
     """Rank of a connected set's TDOA Jacobian at ``target``, with the paper's heuristic beside it.
 

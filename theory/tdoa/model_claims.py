@@ -17,6 +17,7 @@ import sympy as sp
 
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, register
+from theory.core.tolerances import ROUNDING_TOL
 from theory.tdoa.model import cv_continuous, cv_discrete, cv_discrete_symbolic
 
 __all__ = ["check_discretization", "check_metropolis_weights", "exact_metropolis"]
@@ -27,9 +28,6 @@ powers and halves are exact in binary floating point)."""
 
 STEPS_SHOWN = 20
 """Time steps whose exact weights the evidence lists (all steps are checked)."""
-
-ROUNDING_TOL = 8 * float(np.finfo(float).eps)
-"""Largest deviation allowed between the floating Metropolis weights and the exact ones."""
 
 
 @register(

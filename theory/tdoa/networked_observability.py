@@ -32,6 +32,7 @@ from math import lcm
 import numpy as np
 
 from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
+from theory.core.tolerances import INCONCLUSIVE_FACTOR, UNIT_CIRCLE_FACTOR, UNIT_CIRCLE_TOL
 from theory.tdoa.generic_rank import exact_rank
 
 __all__ = [
@@ -47,9 +48,6 @@ __all__ = [
     "networked_pair",
     "unobservable_subspace",
 ]
-
-UNIT_CIRCLE_TOL = 1e-6
-"""Default tolerance: a mode with ``||μ| − 1| ≤ UNIT_CIRCLE_TOL`` counts as on the unit circle."""
 
 
 @dataclass(frozen=True)
@@ -274,8 +272,8 @@ def analyze_network(
     *,
     rank_tol: float = RANK_TOL,
     unit_circle_tol: float = UNIT_CIRCLE_TOL,
-    inconclusive_factor: float = 1e3,
-    unit_circle_factor: float = 10.0,
+    inconclusive_factor: float = INCONCLUSIVE_FACTOR,
+    unit_circle_factor: float = UNIT_CIRCLE_FACTOR,
 ) -> NetworkObservability:
     """Observability, detectability and the paper's rank-sum claim for ``(W ⊗ A, D_H)``.
 

@@ -23,6 +23,7 @@ from typing import Any
 
 from theory.core.case_file import Case
 from theory.core.expectations import Observed
+from theory.core.tolerances import ERROR_BOUND_SIGMAS
 from theory.simulate import Finished, Simulator
 
 __all__ = [
@@ -32,9 +33,6 @@ __all__ = [
     "sim_observed",
     "tdoa_simulator",
 ]
-
-ERROR_BOUND_SIGMAS = 10.0
-"""Default ``error_bound`` in TDOA noise standard deviations: ``10 √r`` metres."""
 
 
 def error_bound(case: Case) -> float:

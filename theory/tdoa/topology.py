@@ -32,6 +32,7 @@ import scipy.sparse
 import scipy.sparse.csgraph
 
 from theory.core.observability import RANK_TOL, RankResult, numeric_rank
+from theory.core.tolerances import INCONCLUSIVE_FACTOR
 from theory.tdoa.case import TdoaSpec
 from theory.tdoa.model import cv_discrete, unit_directions
 from theory.tdoa.networked_observability import analyze_network
@@ -53,8 +54,6 @@ __all__ = [
     "observed_values",
 ]
 
-INCONCLUSIVE_FACTOR = 1e3
-"""A singular value within this factor of its threshold makes a verdict inconclusive."""
 
 DENSE_MAX_STATES = 240
 """Largest component (in states 2·d·n) whose non-symmetrizable W is ranked densely."""

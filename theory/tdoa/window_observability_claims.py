@@ -10,6 +10,7 @@ from typing import Any
 
 from theory.core.claims import ClaimResult, register
 from theory.core.observability import RANK_TOL, numeric_rank
+from theory.core.tolerances import INCONCLUSIVE_FACTOR
 from theory.tdoa.window_observability import (
     PERIOD,
     PINGS,
@@ -79,7 +80,7 @@ def check_window_observability(case: Any = None) -> list[ClaimResult]:
                 "cannot remove is the global mirror ambiguity in the plane of 3 receivers",
             },
             margin=min(s["rank_margin"] for s in scenes.values()),
-            tolerance={"rank_tol": RANK_TOL, "inconclusive_factor": 1e3},
+            tolerance={"rank_tol": RANK_TOL, "inconclusive_factor": INCONCLUSIVE_FACTOR},
             message="window ranks "
             + "; ".join(
                 f"{n}: {s['window_rank']} (frozen {s['frozen_pair_rank_max']})"
