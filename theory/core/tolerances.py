@@ -26,21 +26,25 @@ from dataclasses import dataclass
 from typing import Any
 
 __all__ = [
+    "BLOWUP",
     "BOUND_RTOL",
     "CERTIFICATE_MARGIN",
     "CERT_TOL",
     "CLUSTER_TOL",
     "COINCIDENCE_TOL",
     "CONVERGED_TOL",
+    "CONV_TOL",
     "EIGEN_TOL",
     "ERROR_BOUND_SIGMAS",
     "GROWTH",
     "HYPOTHESIS_TOL",
     "INCONCLUSIVE_FACTOR",
     "LMI_MARGIN",
+    "MAX_ITER",
     "MIRROR_TOL",
     "PERIOD_TOL",
     "PF_TOLERANCES",
+    "PSD_TOL",
     "RANK_TOL",
     "ROUNDING_TOL",
     "TOLERANCES",
@@ -50,6 +54,7 @@ __all__ = [
     "VALUE_TOL",
     "WEIGHT_SUM_TOL",
     "WEIGHT_TOL",
+    "Z_TOL",
     "Tolerance",
     "defaults",
     "table",
@@ -251,6 +256,45 @@ ERROR_BOUND_SIGMAS = _named(
     "a tdoa-sim run has bounded_error when every agent's final error is below "
     "error_bound = error_bound_sigmas · √r metres (unless the case sets error_bound)",
     "ten noise standard deviations",
+)
+CONV_TOL = _named(
+    "conv_tol",
+    1e-10,
+    "relative step",
+    "the coupled Riccati iteration has converged when max_i ‖P_i(k+1) − P_i(k)‖ ≤ "
+    "conv_tol · max_i ‖P_i(k)‖ (seed 000 eqs. (5.7)–(5.9))",
+    "a contraction reaches it long before max_iter; float noise sits near 1e-16",
+)
+BLOWUP = _named(
+    "blowup",
+    1e12,
+    "factor on the initial norm",
+    "the coupled Riccati iteration diverges when its norm exceeds blowup times the initial one",
+    "twelve decades above the start",
+)
+MAX_ITER = _named(
+    "max_iter",
+    5000.0,
+    "iterations",
+    "iteration budget of the coupled Riccati iteration (neither converged nor diverged: "
+    "status max_iter)",
+    "a budget, not a threshold; echoed with the tolerances it bounds",
+)
+PSD_TOL = _named(
+    "psd_tol",
+    1e-9,
+    "relative to the matrices' norm",
+    "a symmetric matrix counts as positive semidefinite when its least eigenvalue is ≥ −psd_tol "
+    "(Lemma 5.2.3, Lemma A.2.1 bounds)",
+    "far above the float error of the symmetric eigenvalue problem",
+)
+Z_TOL = _named(
+    "z_tol",
+    4.0,
+    "asymptotic standard errors",
+    "a maximum-likelihood estimate is consistent with the true parameter when within z_tol "
+    "standard errors (seed 002 eqs. (3.1)–(3.2), (3.17))",
+    "a false alarm below 1e-4 per parameter under normality",
 )
 PF_TOLERANCES = {
     "converge_tol": _named(
