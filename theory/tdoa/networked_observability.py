@@ -31,6 +31,7 @@ from math import lcm
 
 import numpy as np
 
+from theory.core.network import exact_weights
 from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
 from theory.core.tolerances import INCONCLUSIVE_FACTOR, UNIT_CIRCLE_FACTOR, UNIT_CIRCLE_TOL
 from theory.tdoa.generic_rank import exact_rank
@@ -460,35 +461,6 @@ class NetworkGenericRank:
     sample_size: int
     degree_bound: int
     error_bound: float
-
-
-def exact_weights(adjacency: np.ndarray, rule: str) -> list[list[Fraction]]:
-    """Metropolis or uniform weights (DESIGN.md) in exact rational arithmetic.
-
-    Parameters
-    ----------
-    adjacency : ndarray of bool, shape (N, N)
-        ``adjacency[r, s]``: ``r`` hears ``s`` (symmetric for ``metropolis``).
-    rule : {"metropolis", "uniform"}
-        The weight rule.
-
-    Returns
-    -------
-    list of list of Fraction
-    """
-    n = adjacency.shape[0]
-    degree = adjacency.sum(axis=1)
-    W = [[Fraction(0)] * n for _ in range(n)]
-    for r in range(n):
-        for s in np.flatnonzero(adjacency[r]):
-            if rule == "metropolis":
-                W[r][s] = Fraction(1, 1 + int(max(degree[r], degree[s])))
-            elif rule == "uniform":
-                W[r][s] = Fraction(1, 1 + int(degree[r]))
-            else:
-                raise ValueError(f"rule must be 'metropolis' or 'uniform'; got {rule!r}")
-        W[r][r] = 1 - sum(W[r])
-    return W
 
 
 def network_generic_rank(

@@ -18,12 +18,13 @@ the ``W`` of a ``dkf`` case.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from fractions import Fraction
 from typing import Any
 
 import flint
 import networkx as nx
 import numpy as np
+
+from theory.core.rationalize import exact_float
 
 __all__ = ["path_lemma_failures", "path_lengths"]
 
@@ -91,5 +92,5 @@ def path_lemma_failures(W: np.ndarray, powers: Sequence[int]) -> list[dict[str, 
 
 
 def _rational(value: float) -> flint.fmpq:
-    exact = Fraction(float(value))
+    exact = exact_float(value)  # the float in memory, not the decimal written
     return flint.fmpq(exact.numerator, exact.denominator)
