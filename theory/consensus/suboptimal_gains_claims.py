@@ -175,36 +175,56 @@ def check_suboptimal_gains(case: None = None) -> list[ClaimResult]:
     seed 000, App. C.2, eqs. (5.12), (5.15), (C.2), (C.3).
     """
     counterexample, printed_refuted, corrected_scalar, margin = _scalar_counterexample()
-
     algebra = free_algebra_residuals()
     entrywise = {f"n={n}, p={p}": entrywise_proof(n, p) for n, p in ENTRYWISE_SIZES}
-
     instances = _random_instances()
     keys = ("corrected_holds", "discrepancy_formula_holds", "C3_holds", "P_geq_P_star_next")
     random_ok = all(all(inst[k] for k in keys) for inst in instances)
-    printed_failures = sum(not inst["printed_holds"] for inst in instances)
-
     proved = (
         algebra["corrected_residual"] == "0"
         and algebra["printed_residual"] == "0"
         and all(entrywise.values())
     )
     holds = proved and corrected_scalar and random_ok
-    if not holds:
-        status = "refuted"
-    elif printed_refuted:
-        status = "corrected"
-    else:
-        status = "verified"
+    status = "refuted" if not holds else "corrected" if printed_refuted else "verified"
     evidence = {
+        **_statements(),
+        "counterexample": counterexample,
+        "free_algebra_proof": algebra,
+        "entrywise_proof": entrywise,
+        **_instances_evidence(instances, random_ok),
+    }
+    return [
+        ClaimResult(
+            claim=CLAIM,
+            case="-",
+            method="symbolic",
+            status=status,
+            evidence=evidence,
+            margin=margin,
+            message=_message(holds, counterexample, len(instances)),
+        )
+    ]
+
+
+def _statements() -> dict[str, str]:
+    """How the printed identity is read, the corrected one, and the paper's conclusion."""
+    return {
         "printed_reading": "the printed last factor (L_i − L*_i) is read as (L_i − L*_i)' (as "
         "printed the product is defined only when n = p; in the scalar counterexample both "
         "readings agree)",
-        "counterexample": counterexample,
         "corrected_statement": "P_i(k+1) − P*_i(k+1) = (A − L_i C_i) E_i(P(k) − P*(k)) "
         "(A − L_i C_i)' + (L_i − L*_i)(R_i + C_i E_i(P*(k)) C_i')(L_i − L*_i)'",
-        "free_algebra_proof": algebra,
-        "entrywise_proof": entrywise,
+        "conclusion": "P(k) ≥ P*(k) gives E_i(P(k) − P*(k)) ⪰ 0 (w_ij ≥ 0) and S* ≻ 0, so both "
+        "corrected terms are ⪰ 0 and P_i(k+1) ⪰ P*_i(k+1): the paper's conclusion stands "
+        "(checked exactly, by principal minors, on every random instance)",
+    }
+
+
+def _instances_evidence(instances: list[dict[str, Any]], random_ok: bool) -> dict[str, Any]:
+    """The random instances and how often the printed identity fails on them."""
+    printed_failures = sum(not inst["printed_holds"] for inst in instances)
+    return {
         "printed_discrepancy": "printed − true = −((L − L*) C (Π − Π*)(A − L* C)' + transpose): "
         "a rational function of the data, non-zero at the counterexample and at "
         f"{printed_failures} of {len(instances)} random instances, so the printed identity "
@@ -217,28 +237,17 @@ def check_suboptimal_gains(case: None = None) -> list[ClaimResult]:
             "printed_failures": printed_failures,
             "instances": instances,
         },
-        "conclusion": "P(k) ≥ P*(k) gives E_i(P(k) − P*(k)) ⪰ 0 (w_ij ≥ 0) and S* ≻ 0, so both "
-        "corrected terms are ⪰ 0 and P_i(k+1) ⪰ P*_i(k+1): the paper's conclusion stands "
-        "(checked exactly, by principal minors, on every random instance)",
     }
-    message = (
+
+
+def _message(holds: bool, counterexample: dict[str, str], instances: int) -> str:
+    if not holds:
+        return "the corrected identity or the paper's conclusion failed a check (see evidence)"
+    return (
         "the printed identity fails (A = C = R = 1, Q = 0, Π* = 1, Π = 2, L = 0: "
         f"P* − P = {counterexample['true_P_star_minus_P']}, printed right side "
         f"{counterexample['printed_right_side']}); P − P* = (A − L C) E_i(P − P*) (A − L C)' + "
         "(L − L*)(R + C E_i(P*) C')(L − L*)' is proved for every size in the free algebra, "
-        f"entrywise for (n, p) in {list(ENTRYWISE_SIZES)}, and exactly on {len(instances)} "
+        f"entrywise for (n, p) in {list(ENTRYWISE_SIZES)}, and exactly on {instances} "
         "random instances; P(k+1) ≥ P*(k+1) still follows"
-        if holds
-        else "the corrected identity or the paper's conclusion failed a check (see evidence)"
     )
-    return [
-        ClaimResult(
-            claim=CLAIM,
-            case="-",
-            method="symbolic",
-            status=status,
-            evidence=evidence,
-            margin=margin,
-            message=message,
-        )
-    ]

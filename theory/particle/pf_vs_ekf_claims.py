@@ -109,28 +109,16 @@ def check_pf_vs_ekf(case: Any) -> list[ClaimResult]:
     tol = {**DEFAULT_TOLERANCES, **case.tolerances}
     comparison = compare_on_same_data(case.spec)
     spec = case.spec
-    verdicts = {}
-    for name, errors in (("pf", comparison.pf_errors), ("ekf", comparison.ekf_errors)):
-        verdicts[name] = convergence_verdicts(
+    verdicts = {
+        name: convergence_verdicts(
             comparison.tail(errors),
             spec.network.filters,
             converge_tol=tol["converge_tol"],
             diverge_tol=tol["diverge_tol"],
         )
-    per_node = []
-    for f, node in enumerate(spec.network.filters):
-        row = {"id": node + 1, "measurements": int(spec.network.measurement_mask[f].sum())}
-        for name, errors in (("pf", comparison.pf_errors), ("ekf", comparison.ekf_errors)):
-            tail = comparison.tail(errors)[:, f]
-            row[name] = {
-                "mean_error": float(errors[:, :, f].mean()),
-                "tail_error_mean": float(tail.mean()),
-                "tail_error_median": float(np.median(tail)),
-                "tail_error_q90": float(np.quantile(tail, 0.9)),
-                "diverged_fraction": float(np.mean(tail >= tol["diverge_tol"])),
-                "verdict": verdicts[name][node + 1],
-            }
-        per_node.append(row)
+        for name, errors in (("pf", comparison.pf_errors), ("ekf", comparison.ekf_errors))
+    }
+    per_node = _per_node(spec, comparison, verdicts, tol["diverge_tol"])
     pf_states = set(verdicts["pf"].values())
     status = (
         "verified"
@@ -165,3 +153,24 @@ def check_pf_vs_ekf(case: Any) -> list[ClaimResult]:
             f"{[row['ekf']['diverged_fraction'] for row in per_node]}",
         )
     ]
+
+
+def _per_node(
+    spec: Any, comparison: Any, verdicts: dict[str, dict], diverge_tol: float
+) -> list[dict[str, Any]]:
+    """Per filtering node: its TDOA count and the PF's and the EKF's error statistics."""
+    rows = []
+    for f, node in enumerate(spec.network.filters):
+        row = {"id": node + 1, "measurements": int(spec.network.measurement_mask[f].sum())}
+        for name, errors in (("pf", comparison.pf_errors), ("ekf", comparison.ekf_errors)):
+            tail = comparison.tail(errors)[:, f]
+            row[name] = {
+                "mean_error": float(errors[:, :, f].mean()),
+                "tail_error_mean": float(tail.mean()),
+                "tail_error_median": float(np.median(tail)),
+                "tail_error_q90": float(np.quantile(tail, 0.9)),
+                "diverged_fraction": float(np.mean(tail >= diverge_tol)),
+                "verdict": verdicts[name][node + 1],
+            }
+        rows.append(row)
+    return rows

@@ -126,8 +126,6 @@ def check_stochastic_stability(case: None = None) -> list[ClaimResult]:
     processes = [_process_rows(*spec) for spec in PROCESSES]
     proof = symbolic_proof()
     gaussian = {f"d={d}": gaussian_drift(d) for d in GAUSSIAN_DIMENSIONS}
-    drift_ok = all(p["A10_holds_at_every_atom"] for p in processes)
-    corrected_ok = all(row["corrected_holds"] for p in processes for row in p["steps"])
     tight = [
         all(row["corrected_tight"] for row in p["steps"])
         for p, (a, _, _, alpha) in zip(processes, PROCESSES, strict=True)
@@ -139,22 +137,47 @@ def check_stochastic_stability(case: None = None) -> list[ClaimResult]:
         ]
         for p in processes
     }
+    holds = _corrected_holds(processes, proof, gaussian) and all(tight)
+    status = "refuted" if not holds else "corrected" if any(printed_fails.values()) else "verified"
+    survey = processes[0]["steps"][1]
+    evidence = {
+        **_counterexample(survey),
+        "symbolic_proof": proof,
+        "gaussian_drift": gaussian,
+        "processes": processes,
+        "printed_fails_at_k": printed_fails,
+        "tight_when_alpha_is_1_minus_a2": tight,
+        "bounded_with_probability_one": _gaussian_boundedness(),
+    }
+    return [
+        ClaimResult(
+            claim=CLAIM,
+            case="-",
+            method="exact",
+            status=status,
+            evidence=evidence,
+            margin=float(Fraction(survey["E_V"]) - Fraction(survey["printed_bound"])),
+            message=_message(holds),
+        )
+    ]
+
+
+def _corrected_holds(processes: list[dict], proof: dict, gaussian: dict) -> bool:
+    """(A.10) at every atom, the corrected bound at every k, and the proofs all succeed."""
+    drift_ok = all(p["A10_holds_at_every_atom"] for p in processes)
+    corrected_ok = all(row["corrected_holds"] for p in processes for row in p["steps"])
     proved = (
         proof["recursion_residual"] == "0"
         and proof["closed_form_residual"] == "0"
         and proof["corrected_minus_printed"] == "mu/v_min"
         and all(g["equals"] for g in gaussian.values())
     )
-    holds = drift_ok and corrected_ok and all(tight) and proved
-    if not holds:
-        status = "refuted"
-    elif any(printed_fails.values()):
-        status = "corrected"
-    else:
-        status = "verified"
-    survey = processes[0]["steps"][1]
-    margin = float(Fraction(survey["E_V"]) - Fraction(survey["printed_bound"]))
-    evidence = {
+    return drift_ok and corrected_ok and proved
+
+
+def _counterexample(survey: dict[str, Any]) -> dict[str, Any]:
+    """The survey's i.i.d. example refuting the printed (A.11), and the corrected statement."""
+    return {
         "counterexample": {
             "process": "ζ_0 = 0, ζ_k i.i.d. (k ≥ 1) with E‖ζ_k‖² = μ; V = ‖ζ‖², v̲ = v̄ = 1; "
             "E{V(ζ_{k+1}) | ζ_k} − V(ζ_k) = μ − V(ζ_k) ≤ μ − ½ V(ζ_k), so α = ½ (any α ≤ 1)",
@@ -165,31 +188,17 @@ def check_stochastic_stability(case: None = None) -> list[ClaimResult]:
         },
         "corrected_statement": "E‖ζ_k‖² ≤ (v̄/v̲) E‖ζ_0‖² (1 − α)^k + (μ/v̲) Σ_{l=0}^{k−1} "
         "(1 − α)^l = (v̄/v̲) E‖ζ_0‖² (1 − α)^k + μ (1 − (1 − α)^k)/(v̲ α); tight",
-        "symbolic_proof": proof,
-        "gaussian_drift": gaussian,
-        "processes": processes,
-        "printed_fails_at_k": printed_fails,
-        "tight_when_alpha_is_1_minus_a2": tight,
-        "bounded_with_probability_one": _gaussian_boundedness(),
     }
-    message = (
+
+
+def _message(holds: bool) -> str:
+    if not holds:
+        return "the corrected bound or its proof failed a check (see evidence)"
+    return (
         "the printed (A.11) (sum from l = 1) fails: ζ_0 = 0, ζ_k i.i.d. with E‖ζ_k‖² = μ, "
         "V = ‖ζ‖², α = ½ gives the bound 0 at k = 1 against E‖ζ_1‖² = μ; with the sum from "
         "l = 0 the bound follows from (A.10) by induction and is attained by ζ_{k+1} = a ζ_k + "
         f"w_k (exact laws, k ≤ {STEPS}); the printed one is short by μ/v̲ at every k ≥ 1. "
         "'Bounded with probability one' does not follow (i.i.d. Gaussian ζ_k are a.s. "
         "unbounded); bounded in probability does"
-        if holds
-        else "the corrected bound or its proof failed a check (see evidence)"
     )
-    return [
-        ClaimResult(
-            claim=CLAIM,
-            case="-",
-            method="exact",
-            status=status,
-            evidence=evidence,
-            margin=margin,
-            message=message,
-        )
-    ]
