@@ -37,6 +37,7 @@ __all__ = [
     "certificate_bundle",
     "certificate_results",
     "certificates_or_inconclusive",
+    "certified_result",
     "certifiers",
     "register_certifier",
 ]
@@ -212,13 +213,41 @@ def certificate_results(
     if isinstance(certs, ClaimResult):
         return [certs]
     return [
-        ClaimResult(
-            claim_id,
-            case.name,
-            "exact",
-            "verified",
-            evidence={**evidence(cert), DOCUMENT_KEY: cert},
-            message=cert["claim"]["statement"],
+        certified_result(
+            claim_id, case, evidence(cert), document=cert, message=cert["claim"]["statement"]
         )
         for cert in certs
     ]
+
+
+def certified_result(
+    claim_id: str, case: Case, evidence: dict[str, Any], *, document: dict, message: str
+) -> ClaimResult:
+    """The ``verified`` result of a certificate claim, carrying ``document`` for the report.
+
+    Parameters
+    ----------
+    claim_id : str
+        The certificate claim.
+    case : Case
+        The case certified.
+    evidence : dict
+        Shown beside the document.
+    document : dict
+        The certificate (or bundle) the report writes and re-checks with ``proofs_check``.
+    message : str
+        What it certifies, in one sentence.
+
+    Returns
+    -------
+    ClaimResult
+        Method ``exact``: the document was accepted by ``proofs_check`` when it was built.
+    """
+    return ClaimResult(
+        claim_id,
+        case.name,
+        "exact",
+        "verified",
+        evidence={**evidence, DOCUMENT_KEY: document},
+        message=message,
+    )

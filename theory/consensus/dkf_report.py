@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from theory.consensus.case import EXPECT_KEYS
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, all_claims, applicable_results, get_claim
 from theory.core.errors import CaseError
@@ -30,16 +31,6 @@ SOURCE = "trackcert dkf"
 """The observations' source in the command's verdict records."""
 
 SOLVERS = ("CLARABEL", "SCS")
-
-PRINTED_KEYS = (
-    "s_detectable",
-    "spectral_radius_B",
-    "spectral_radius_L",
-    "self_weight_ok",
-    "paper_conditions_ok",
-    "blind_set_condition_ok",
-)
-"""Expect keys observed as ``trackcert dkf --json`` prints them."""
 
 
 def dkf_observed(analysis: Any) -> Observed:
@@ -59,7 +50,7 @@ def dkf_observed(analysis: Any) -> Observed:
         ``riccati_converges`` (eqs. (5.7)–(5.9)).
     """
     data = analysis.to_json()
-    values = {key: data[key] for key in PRINTED_KEYS}
+    values = {key: data.get(key) for key in EXPECT_KEYS}
     values["riccati_converges"] = data["riccati"]["status"] == "converged"
     return Observed(values, frozenset(k for k, v in values.items() if v is None))
 

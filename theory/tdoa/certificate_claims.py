@@ -9,10 +9,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from theory.certify import certificates_or_inconclusive
+from theory.certify import certificates_or_inconclusive, certified_result
 from theory.consensus.certificates import bundle
 from theory.core.case_file import Case
-from theory.core.claims import DOCUMENT_KEY, ClaimResult, register
+from theory.core.claims import ClaimResult, register
 
 __all__ = ["generic_rank_claim"]
 
@@ -47,12 +47,11 @@ def generic_rank_claim(case: Case) -> list[ClaimResult]:
     for cert in certs:
         networks.setdefault(tuple(cert["produced_by"].get("steps", [1])), []).append(cert)
     return [
-        ClaimResult(
+        certified_result(
             claim_id,
-            case.name,
-            "exact",
-            "verified",
-            evidence={**_rank_evidence(steps, group), DOCUMENT_KEY: bundle(group, case=case.name)},
+            case,
+            _rank_evidence(steps, group),
+            document=bundle(group, case=case.name),
             message=_rank_message(group),
         )
         for steps, group in networks.items()
