@@ -100,9 +100,7 @@ def collect(
             written["check"] = checker(Path(written["path"]), out_dir)
             certificates.append(written)
             evidence["certificate"] = written["path"]
-        collected.append(
-            Artifacts(record.with_evidence(evidence), figures, tuple(certificates))
-        )
+        collected.append(Artifacts(record.with_evidence(evidence), figures, tuple(certificates)))
     return collected
 
 
