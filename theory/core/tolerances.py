@@ -40,6 +40,7 @@ __all__ = [
     "HYPOTHESIS_TOL",
     "INCONCLUSIVE_FACTOR",
     "LMI_MARGIN",
+    "MARGIN_TOL",
     "MAX_ITER",
     "MIRROR_TOL",
     "PERIOD_TOL",
@@ -52,6 +53,7 @@ __all__ = [
     "UNIT_CIRCLE_FACTOR",
     "UNIT_CIRCLE_TOL",
     "VALUE_TOL",
+    "VIOLATION_TOL",
     "WEIGHT_SUM_TOL",
     "WEIGHT_TOL",
     "Z_TOL",
@@ -295,6 +297,21 @@ Z_TOL = _named(
     "a maximum-likelihood estimate is consistent with the true parameter when within z_tol "
     "standard errors (seed 002 eqs. (3.1)–(3.2), (3.17))",
     "a false alarm below 1e-4 per parameter under normality",
+)
+MARGIN_TOL = _named(
+    "margin_tol",
+    1e-9,
+    "relative (each condition's margin is scaled, e.g. |ε₁|/‖ε‖, λ_min(K)/λ_max(K))",
+    "an ISS condition of seed 003 whose relative margin is below margin_tol is inconclusive",
+    "the conditions are exact where they can be (ΔΔᵀ, the Laplacian): the margin guards the "
+    "float ones; theory.pursuit.iss.DEFAULT_MARGIN_TOL is this value until it imports it",
+)
+VIOLATION_TOL = _named(
+    "violation_tol",
+    1e-6,
+    "absolute, on V̇",
+    "a printed inequality of seed 003 is violated at a point when it fails by more than this",
+    "far above the float error of V̇; seed003.eq72 writes this value literally until it imports it",
 )
 PF_TOLERANCES = {
     "converge_tol": _named(
