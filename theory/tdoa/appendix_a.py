@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from scipy.linalg import block_diag, eigh
 
+from theory.tdoa.ekf import kalman_gain
 from theory.tdoa.measurements import neighbour_lists, tdoa_jacobians
 from theory.tdoa.model import cv_discrete
 from theory.tdoa.scenario import TdoaRun, hears_at, weights_at
@@ -74,7 +75,10 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
         W = weights_at(spec, positions)
         neighbours = neighbour_lists(hears_at(spec, positions))
         H = tdoa_jacobians(predicted_x[k, :, :3], positions, neighbours)
-        gains_H = [_gain(predicted_P[k, i], H[i], spec.r) @ H[i] for i in range(n)]
+        gains_H = [
+            kalman_gain(predicted_P[k, i], H[i], spec.r * np.eye(H[i].shape[0])) @ H[i]
+            for i in range(n)
+        ]
         I_KH = np.eye(6 * n) - block_diag(*gains_H)
         WA = np.kron(W, A)
         P_next_inv = np.linalg.inv(block_diag(*predicted_P[k + 1]))
@@ -107,10 +111,3 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
         "bqb_rank": int(np.sum(bqb_eig > 1e-12 * bqb_eig[-1])),
         "bqb_lower_bound": float(max(bqb_eig[0], 0.0)),
     }
-
-
-def _gain(P: np.ndarray, H: np.ndarray, r: float) -> np.ndarray:
-    """``K = P Hᵀ(H P Hᵀ + rI)⁻¹`` of (A.3)/(A.17)."""
-    if H.shape[0] == 0:
-        return np.zeros((P.shape[0], 0))
-    return np.linalg.solve(H @ P @ H.T + r * np.eye(H.shape[0]), H @ P).T

@@ -50,6 +50,7 @@ def measurement_step(
     r: float,
     *,
     linearize_at: np.ndarray | None = None,
+    agents: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The measurement update of every agent at one ping.
 
@@ -73,6 +74,9 @@ def measurement_step(
         Evaluate the Jacobians here (e.g. the true target position: the *linearized* filter whose
         covariance is the Riccati recursion along the true geometry) instead of at each
         agent's prediction (the EKF).
+    agents : ndarray of int, shape (N,), optional
+        The position (row of ``positions``) of the agent holding estimate ``i``; default
+        ``0, 1, …``. With only some nodes filtering (seed 002's networks), their indices.
 
     Returns
     -------
@@ -86,15 +90,17 @@ def measurement_step(
     dim = positions.shape[1]
     if kind == "centralized":
         point = x[0, :dim]
-        h = np.concatenate(tdoa_predictions(point, positions, neighbours))
-        H = np.vstack(tdoa_jacobians(_at(point, linearize_at), positions, neighbours))
+        h = np.concatenate(tdoa_predictions(point, positions, neighbours, agents=agents))
+        H = np.vstack(
+            tdoa_jacobians(_at(point, linearize_at), positions, neighbours, agents=agents)
+        )
         y = np.concatenate(readings)
         x0, P0 = ekf_update(x[0], P[0], y - h, H, r * np.eye(y.shape[0]))
         n = x.shape[0]
         return np.tile(x0, (n, 1)), np.tile(P0, (n, 1, 1))
     points = x[:, :dim]
-    predictions = tdoa_predictions(points, positions, neighbours)
-    jacobians = tdoa_jacobians(_at(points, linearize_at), positions, neighbours)
+    predictions = tdoa_predictions(points, positions, neighbours, agents=agents)
+    jacobians = tdoa_jacobians(_at(points, linearize_at), positions, neighbours, agents=agents)
     x_new, P_new = np.empty_like(x), np.empty_like(P)
     for i, (y, h, H) in enumerate(zip(readings, predictions, jacobians, strict=True)):
         x_new[i], P_new[i] = ekf_update(x[i], P[i], y - h, H, r * np.eye(y.shape[0]))
