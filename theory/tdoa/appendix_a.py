@@ -61,16 +61,59 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
     if spec.filter != "averaged" or spec.rounds != 1:
         raise ValueError("App. A analyses the averaged EKF with one averaging per ping (tau = T)")
     A, B = cv_discrete(spec.T, 3)
-    BQB = B @ spec.Q @ B.T
+    predicted_x, predicted_P = _predictions(spec, run, A, B @ spec.Q @ B.T)
+    factors, h_norms = _step_factors(spec, run, A, predicted_x, predicted_P)
+    eig = np.linalg.eigvalsh(predicted_P[: len(factors) + 1])
+    constants = {
+        "a_bar": float(np.linalg.norm(A, 2)),
+        "delta": float(np.linalg.eigvalsh(B @ B.T)[-1]),
+        "h_bar": max(h_norms),
+        "p_low": float(eig.min()),
+        "p_high": float(eig.max()),
+        "sigma_w2": float(np.linalg.eigvalsh(spec.Q)[0]),
+        "sigma_v2": spec.r,
+    }
+    c = constants
+    gain_bound = c["p_high"] * c["h_bar"] / c["sigma_v2"]
+    one_minus_alpha = 1.0 / (
+        1.0 + c["delta"] * c["sigma_w2"] / (c["p_high"] * (1 + gain_bound) ** 2)
+    )
+    bqb_eig = np.linalg.eigvalsh(B @ spec.Q @ B.T)
+    return {
+        "constants": constants,
+        "one_minus_alpha": one_minus_alpha,
+        "factors": np.array(factors),
+        "holds": np.array(factors) <= one_minus_alpha,
+        "bqb_rank": int(np.sum(bqb_eig > 1e-12 * bqb_eig[-1])),
+        "bqb_lower_bound": float(max(bqb_eig[0], 0.0)),
+    }
+
+
+def _predictions(
+    spec: TdoaSimSpec, run: TdoaRun, A: np.ndarray, BQB: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Predicted estimates ``x̂_k^i`` and covariances ``P_k^i`` (A.1)–(A.2) at every ping, rebuilt
+    from the recorded averaged ones (and ``x_0``, ``P_0`` at ping 0)."""
     n = spec.n_agents
-    K_steps = run.truth.shape[0] - 1
     predicted_x = np.vstack([np.tile(spec.x0, (1, n, 1)), run.estimates[:-1] @ A.T])
     predicted_P = np.concatenate(
         [np.tile(spec.P0, (1, n, 1, 1)), np.einsum("ij,knjl,ml->knim", A, run.covariances, A)[:-1]]
     )
     predicted_P[1:] += BQB
+    return predicted_x, predicted_P
+
+
+def _step_factors(
+    spec: TdoaSimSpec,
+    run: TdoaRun,
+    A: np.ndarray,
+    predicted_x: np.ndarray,
+    predicted_P: np.ndarray,
+) -> tuple[list[float], list[float]]:
+    """Per ping ``k``: the smallest ``c_k`` of (A.24) (a generalized eigenvalue) and ``‖H_k‖``."""
+    n = spec.n_agents
     factors, h_norms = [], []
-    for k in range(K_steps):
+    for k in range(run.truth.shape[0] - 1):
         positions = run.paths[k * spec.rounds]
         W = weights_at(spec, positions)
         neighbours = neighbour_lists(hears_at(spec, positions))
@@ -87,27 +130,4 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
         P_inv = np.linalg.inv(block_diag(*predicted_P[k]))
         factors.append(float(eigh(lhs, 0.5 * (P_inv + P_inv.T), eigvals_only=True)[-1]))
         h_norms.append(float(np.linalg.norm(block_diag(*H), 2)) if any(h.size for h in H) else 0.0)
-    eig = np.linalg.eigvalsh(predicted_P[: K_steps + 1])
-    constants = {
-        "a_bar": float(np.linalg.norm(A, 2)),
-        "delta": float(np.linalg.eigvalsh(B @ B.T)[-1]),
-        "h_bar": max(h_norms),
-        "p_low": float(eig.min()),
-        "p_high": float(eig.max()),
-        "sigma_w2": float(np.linalg.eigvalsh(spec.Q)[0]),
-        "sigma_v2": spec.r,
-    }
-    c = constants
-    gain_bound = c["p_high"] * c["h_bar"] / c["sigma_v2"]
-    one_minus_alpha = 1.0 / (
-        1.0 + c["delta"] * c["sigma_w2"] / (c["p_high"] * (1 + gain_bound) ** 2)
-    )
-    bqb_eig = np.linalg.eigvalsh(BQB)
-    return {
-        "constants": constants,
-        "one_minus_alpha": one_minus_alpha,
-        "factors": np.array(factors),
-        "holds": np.array(factors) <= one_minus_alpha,
-        "bqb_rank": int(np.sum(bqb_eig > 1e-12 * bqb_eig[-1])),
-        "bqb_lower_bound": float(max(bqb_eig[0], 0.0)),
-    }
+    return factors, h_norms

@@ -48,7 +48,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import block_diag, eigh
+from scipy.linalg import eigh
 
 from theory.core.network import components
 from theory.core.observability import RankResult, numeric_rank
@@ -72,7 +72,8 @@ __all__ = [
 ]
 
 PSD_RTOL = 1e-9
-"""Relative tolerance of every ``A ⪯ B`` check: ``λ_max(A − B) ≤ PSD_RTOL · max(‖A‖, ‖B‖, 1)``."""
+"""Relative tolerance of every ``A ⪯ B`` check: ``λ_max(A − B) ≤ PSD_RTOL · max(‖A‖_F, ‖B‖_F,
+1)`` (:func:`psd_violation`)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -208,8 +209,8 @@ class FixedGainCertificate:
 
 
 def psd_violation(lower: np.ndarray, upper: np.ndarray) -> float:
-    """``λ_max(lower − upper)`` relative to the matrices' size: ``≤ PSD_RTOL`` means ``lower ⪯
-    upper`` holds within tolerance.
+    """``λ_max(lower − upper)`` relative to the matrices' size (the larger Frobenius norm, at
+    least 1): ``≤ PSD_RTOL`` means ``lower ⪯ upper`` holds within tolerance.
 
     Parameters
     ----------
@@ -222,10 +223,7 @@ def psd_violation(lower: np.ndarray, upper: np.ndarray) -> float:
     """
     gap = np.linalg.eigvalsh(0.5 * ((lower - upper) + np.swapaxes(lower - upper, -1, -2)))[..., -1]
     scale = np.maximum(
-        np.maximum(
-            np.linalg.norm(lower, 2, axis=(-2, -1)), np.linalg.norm(upper, 2, axis=(-2, -1))
-        ),
-        1.0,
+        np.maximum(np.linalg.norm(lower, axis=(-2, -1)), np.linalg.norm(upper, axis=(-2, -1))), 1.0
     )
     return float(np.max(gap / scale))
 
@@ -369,23 +367,34 @@ def _error_moments(
     """``Σ_ii(k)`` of the network error ``(I_N ⊗ A)``-propagated, corrected by the gains and
     averaged (eq. (A.12)), from the common initial error ``x(0) − x̂_0 ~ N(0, P_0)``.
 
-    The network second moment is kept as an ``(N, n, N, n)`` array; the process noise is common
-    to all agents (one target) and the measurement noises are independent (eq. (4.2))."""
+    The process noise is common to all agents (one target), the measurement noises are
+    independent (eq. (4.2))."""
     A, BQB = geometry.model
     N, n = len(H), A.shape[0]
-    sigma = np.einsum("ij,ab->iajb", np.ones((N, N)), geometry.p0 * np.eye(n))
+    common = np.ones((N, N))
+    sigma = np.kron(common, geometry.p0 * np.eye(n))
+    mix, predict, process = (
+        np.kron(geometry.W, np.eye(n)),
+        np.kron(np.eye(N), A),
+        np.kron(common, BQB),
+    )
     out = []
     for K in gains:
-        closed = np.array([np.eye(n) - K_i @ H_i for K_i, H_i in zip(K, H, strict=True)])
-        sigma = np.einsum("iab,ibjc,jdc->iajd", closed, sigma, closed)
-        for i, K_i in enumerate(K):
-            sigma[i, :, i, :] += geometry.r * K_i @ K_i.T
-        sigma = np.einsum("ik,kalb,jl->iajb", geometry.W, sigma, geometry.W)
-        out.append(np.array([sigma[i, :, i, :] for i in range(N)]))
-        sigma = np.einsum("ab,ibjc,dc->iajd", A, sigma, A) + np.einsum(
-            "ij,ab->iajb", np.ones((N, N)), BQB
-        )
+        closed = _block_diagonal([np.eye(n) - K_i @ H_i for K_i, H_i in zip(K, H, strict=True)])
+        noise = _block_diagonal([geometry.r * K_i @ K_i.T for K_i in K])
+        sigma = mix @ (closed @ sigma @ closed.T + noise) @ mix.T
+        out.append(np.array([sigma[i * n : (i + 1) * n, i * n : (i + 1) * n] for i in range(N)]))
+        sigma = predict @ sigma @ predict.T + process
     return np.array(out)
+
+
+def _block_diagonal(blocks: list[np.ndarray]) -> np.ndarray:
+    """``blkdiag(blocks)`` of equal square blocks."""
+    n = blocks[0].shape[0]
+    out = np.zeros((n * len(blocks), n * len(blocks)))
+    for i, block in enumerate(blocks):
+        out[i * n : (i + 1) * n, i * n : (i + 1) * n] = block
+    return out
 
 
 def _component_crb(geometry: FrozenGeometry, steps: int) -> np.ndarray:
@@ -498,7 +507,7 @@ def _fixed_gain_operator(
     closed = [np.eye(n) - gains[j] @ H[j] for j in part]
     W = geometry.W[np.ix_(part, part)]
     blocks = [np.kron(c @ A, c @ A) for c in closed]
-    operator = np.kron(W, np.eye(n * n)) @ block_diag(*blocks)
+    operator = np.kron(W, np.eye(n * n)) @ _block_diagonal(blocks)
     local = np.array(
         [
             c @ BQB @ c.T + geometry.r * gains[j] @ gains[j].T

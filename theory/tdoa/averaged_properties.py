@@ -297,15 +297,7 @@ def filter_example_case(example: FilterExample) -> dict[str, Any]:
     (rank, paper condition, certificate per component) are in its ``description``.
 
     ``trackcert topology FILE`` reproduces the rank decision the filter's behaviour follows.
-
-    Parameters
-    ----------
-    example : FilterExample
-        Scene and network.
-
-    Returns
-    -------
-    dict
+    ``example`` is a :class:`FilterExample`; returns the case as plain data.
     """
     scene = example.scene
     n = len(scene.agents)

@@ -89,15 +89,7 @@ def measurement_step(
     """
     dim = positions.shape[1]
     if kind == "centralized":
-        point = x[0, :dim]
-        h = np.concatenate(tdoa_predictions(point, positions, neighbours, agents=agents))
-        H = np.vstack(
-            tdoa_jacobians(_at(point, linearize_at), positions, neighbours, agents=agents)
-        )
-        y = np.concatenate(readings)
-        x0, P0 = ekf_update(x[0], P[0], y - h, H, r * np.eye(y.shape[0]))
-        n = x.shape[0]
-        return np.tile(x0, (n, 1)), np.tile(P0, (n, 1, 1))
+        return _centralized_step(x, P, readings, positions, neighbours, r, linearize_at, agents)
     points = x[:, :dim]
     predictions = tdoa_predictions(points, positions, neighbours, agents=agents)
     jacobians = tdoa_jacobians(_at(points, linearize_at), positions, neighbours, agents=agents)
@@ -105,6 +97,27 @@ def measurement_step(
     for i, (y, h, H) in enumerate(zip(readings, predictions, jacobians, strict=True)):
         x_new[i], P_new[i] = ekf_update(x[i], P[i], y - h, H, r * np.eye(y.shape[0]))
     return x_new, P_new
+
+
+def _centralized_step(
+    x: np.ndarray,
+    P: np.ndarray,
+    readings: list[np.ndarray],
+    positions: np.ndarray,
+    neighbours: list[np.ndarray],
+    r: float,
+    linearize_at: np.ndarray | None,
+    agents: np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """One EKF update with every agent's rows stacked (independent noises, eq. (4.2)), held by
+    every agent."""
+    point = x[0, : positions.shape[1]]
+    h = np.concatenate(tdoa_predictions(point, positions, neighbours, agents=agents))
+    H = np.vstack(tdoa_jacobians(_at(point, linearize_at), positions, neighbours, agents=agents))
+    y = np.concatenate(readings)
+    x0, P0 = ekf_update(x[0], P[0], y - h, H, r * np.eye(y.shape[0]))
+    n = x.shape[0]
+    return np.tile(x0, (n, 1)), np.tile(P0, (n, 1, 1))
 
 
 def _at(points: np.ndarray, linearize_at: np.ndarray | None) -> np.ndarray:

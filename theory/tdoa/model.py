@@ -169,12 +169,8 @@ def range_difference_gradients(
 
     Parameters
     ----------
-    points : ndarray, shape (..., d)
-        Evaluation points ``p``.
-    positions : ndarray, shape (N, d)
-        Agent positions.
-    agents : int or ndarray of int
-        The measuring agent ``a``, broadcast as in :func:`range_differences`.
+    points, positions, agents : ndarray, ndarray, int or ndarray of int
+        As in :func:`range_differences`.
 
     Returns
     -------
@@ -220,14 +216,8 @@ def tdoa_jacobian(
 
     Parameters
     ----------
-    target : ndarray, shape (..., d)
-        Target position ``p`` (leading axes broadcast as in :func:`range_differences`).
-    positions : ndarray, shape (N, d)
-        Agent positions, one per row.
-    agent : int or ndarray of int
-        The measuring agent ``i`` (index into ``positions``).
-    neighbours : Sequence of int
-        Its neighbours ``N_i`` (indices into ``positions``); one row each, in this order.
+    target, positions, agent, neighbours : ndarray, ndarray, int, sequence of int
+        As in :func:`tdoa_measurement` (one Jacobian row per neighbour, in this order).
 
     Returns
     -------

@@ -221,6 +221,17 @@ def tdoa_scenes(
     InvalidArgument
         For an unknown ``dim`` or ``family``, a 3D family with ``dim=2``, or impossible bounds.
     """
+    _check_scene_arguments(dim, min_agents, max_agents, family, scale, min_separation)
+    n = draw(st.integers(min_agents, max_agents))
+    rng = draw(generators())
+    target = rng.uniform(-scale, scale, dim)
+    offsets = _family_offsets(rng, family, n, dim, scale, min_separation)
+    return TdoaScene(target, target + offsets, family)
+
+
+def _check_scene_arguments(
+    dim: int, min_agents: int, max_agents: int, family: str, scale: float, min_separation: float
+) -> None:
     if dim not in (2, 3):
         raise InvalidArgument(f"dim={dim}; expected 2 or 3")
     if family not in SCENE_FAMILIES:
@@ -232,16 +243,20 @@ def tdoa_scenes(
         raise InvalidArgument(
             f"scale={scale} must be > 0 and min_separation={min_separation} in (0, 1)"
         )
-    n = draw(st.integers(min_agents, max_agents))
-    rng = draw(generators())
-    target = rng.uniform(-scale, scale, dim)
+
+
+def _family_offsets(
+    rng: np.random.Generator, family: str, n: int, dim: int, scale: float, min_separation: float
+) -> np.ndarray:
+    """Receivers' offsets from the target for one of :data:`SCENE_FAMILIES` (see
+    :func:`tdoa_scenes`)."""
     frame = orthonormal_matrix(rng, dim)
     radii = rng.uniform(min_separation, 1.0, n) * scale
     angles = np.sort(rng.uniform(0, 2 * np.pi, n))
     if family == "general":
         directions = rng.standard_normal((n, dim))
-        offsets = directions / np.linalg.norm(directions, axis=1, keepdims=True) * radii[:, None]
-    elif family == "cone":
+        return directions / np.linalg.norm(directions, axis=1, keepdims=True) * radii[:, None]
+    if family == "cone":
         half_angle = rng.uniform(0.2, 1.3)
         local = np.column_stack(
             [
@@ -250,14 +265,10 @@ def tdoa_scenes(
                 np.sin(half_angle) * np.sin(angles),
             ]
         )
-        offsets = (local @ frame.T) * radii[:, None]
-    else:
-        height = 0.0 if family == "target-in-plane" else rng.uniform(0.2, 1.0) * scale
-        local = np.column_stack(
-            [np.full(n, -height), radii * np.cos(angles), radii * np.sin(angles)]
-        )
-        offsets = local @ frame.T
-    return TdoaScene(target, target + offsets, family)
+        return (local @ frame.T) * radii[:, None]
+    height = 0.0 if family == "target-in-plane" else rng.uniform(0.2, 1.0) * scale
+    local = np.column_stack([np.full(n, -height), radii * np.cos(angles), radii * np.sin(angles)])
+    return local @ frame.T
 
 
 def is_connected(hears: np.ndarray, *, strongly: bool = False) -> bool:
