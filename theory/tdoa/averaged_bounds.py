@@ -46,6 +46,7 @@ false observability (``docs/simulation.md``).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.linalg import eigh
@@ -108,7 +109,7 @@ class FrozenGeometry:
         """Space dimension ``d``."""
         return self.agents.shape[1]
 
-    @property
+    @cached_property
     def jacobians(self) -> list[np.ndarray]:
         """``H_i`` of every agent over the agents it hears (eqs. (4.7)–(4.10))."""
         return [
