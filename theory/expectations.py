@@ -56,8 +56,9 @@ def tdoa_sim_observed(case: Case) -> dict[str, Any]:
 
     from theory.sim.runner import monte_carlo
     from theory.tdoa.metrics import check_expectations, summarize_runs
+    from theory.tdoa.scenario import run_tdoa_scenario
 
-    results = monte_carlo(case.spec, runs=1, seed=0, workers=1)
+    results = monte_carlo(case.spec, simulate=run_tdoa_scenario, runs=1, seed=0, workers=1)
     bound = case.tolerances.get("error_bound", 10.0 * math.sqrt(case.spec.r))
     checked = check_expectations(summarize_runs(case.spec, results), case.expect, error_bound=bound)
     return {key: entry["got"] for key, entry in checked.items()}

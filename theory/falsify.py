@@ -39,6 +39,7 @@ PROPERTY_MODULES: tuple[str, ...] = (
     "theory.pursuit.properties",
     "theory.tdoa.networked_properties",
     "theory.tdoa.geometry_properties",
+    "theory.tdoa.averaged_properties",
 )
 
 _PROPERTIES: dict[str, Property] = {}
