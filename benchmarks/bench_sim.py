@@ -32,6 +32,7 @@ from theory.pursuit.closed_loop import DecSettings, simulate_dec
 from theory.pursuit.dekf import table_target
 from theory.sim.runner import monte_carlo
 from theory.tdoa.agents import linearizing_control
+from theory.tdoa.scenario import run_tdoa_scenario
 
 
 def _timed(function, *args, **kwargs) -> float:
@@ -48,13 +49,14 @@ def main() -> None:
     spec = dataclasses.replace(load_case("sim-ch4-fixed-b0").spec, steps=args.steps)
     fine_steps = args.steps * spec.rounds * spec.substeps
 
-    one = _timed(monte_carlo, spec, runs=1, seed=0, workers=1)
+    tdoa = {"simulate": run_tdoa_scenario, "seed": 0}
+    one = _timed(monte_carlo, spec, runs=1, workers=1, **tdoa)
     print(f"§4.4 scenario, {args.steps} pings, N = {spec.n_agents}: {one:.2f} s per run")
     print(f"  {args.steps / one:.0f} pings/s, {fine_steps / one:.0f} RK4 steps/s (one worker)")
 
     cores = os.cpu_count() or 1
-    serial = _timed(monte_carlo, spec, runs=args.runs, seed=0, workers=1)
-    parallel = _timed(monte_carlo, spec, runs=args.runs, seed=0, workers=cores)
+    serial = _timed(monte_carlo, spec, runs=args.runs, workers=1, **tdoa)
+    parallel = _timed(monte_carlo, spec, runs=args.runs, workers=cores, **tdoa)
     print(
         f"Monte Carlo {args.runs} runs: {args.runs / serial:.2f} runs/s on 1 worker, "
         f"{args.runs / parallel:.2f} runs/s on {cores} workers (ratio {serial / parallel:.2f})"

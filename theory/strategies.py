@@ -1,5 +1,8 @@
 """Public hypothesis strategies for systems, networks, TDOA scenes and pursuit parameters.
 
+The TDOA scenes, networks and weights live in :mod:`theory.tdoa.strategies` and are re-exported
+here, so ``from theory.strategies import tdoa_scenes`` keeps working.
+
 Users import these in their own property tests (STYLE.md, *Adopt* 11)::
 
     from hypothesis import given
@@ -17,15 +20,23 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import networkx as nx
 import numpy as np
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from theory.core.case_file import Case, parse_case
-from theory.core.network import metropolis_weights, uniform_weights
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.model import closed_loop_rates, path_numeric, rotation_numeric
+from theory.strategy_helpers import check_range, generators, orthonormal_matrix
+from theory.tdoa.strategies import (
+    SCENE_FAMILIES,
+    WEIGHT_KINDS,
+    TdoaScene,
+    is_connected,
+    networks,
+    tdoa_scenes,
+    weight_matrices,
+)
 
 __all__ = [
     "SCENE_FAMILIES",
@@ -45,31 +56,6 @@ __all__ = [
     "tracker_states",
     "weight_matrices",
 ]
-
-SCENE_FAMILIES = ("general", "coplanar", "cone", "target-in-plane")
-"""The ``family`` values of :func:`tdoa_scenes`."""
-WEIGHT_KINDS = ("metropolis", "uniform", "random", "singular")
-"""The ``kind`` values of :func:`weight_matrices`."""
-
-
-@dataclass(frozen=True, eq=False)
-class TdoaScene:
-    """A target and receivers. ``family`` says which geometric family it was drawn from.
-
-    Attributes
-    ----------
-    target : ndarray, shape (dim,)
-        Target position.
-    agents : ndarray, shape (N, dim)
-        Receiver positions, one row per agent.
-    family : str
-        One of ``general``, ``coplanar``, ``cone``, ``target-in-plane`` (see
-        :func:`tdoa_scenes`).
-    """
-
-    target: np.ndarray
-    agents: np.ndarray
-    family: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -130,22 +116,6 @@ class PursuitParameters:
     k_c: float
 
 
-def _check_range(name_low: str, low: int, name_high: str, high: int, floor: int) -> None:
-    if low < floor:
-        raise InvalidArgument(f"{name_low}={low} must be at least {floor}")
-    if high < low:
-        raise InvalidArgument(f"{name_high}={high} must be ≥ {name_low}={low}")
-
-
-def _seeds() -> st.SearchStrategy[np.random.Generator]:
-    return st.integers(0, 2**32 - 1).map(np.random.default_rng)
-
-
-def _orthonormal(rng: np.random.Generator, n: int) -> np.ndarray:
-    q, r = np.linalg.qr(rng.standard_normal((n, n)))
-    return q * np.sign(np.diag(r))
-
-
 @st.composite
 def state_space_pairs(
     draw: st.DrawFn,
@@ -171,8 +141,8 @@ def state_space_pairs(
     max_condition : float
         Bound on the condition number of the eigenvector matrix (≥ 1).
     """
-    _check_range("min_states", min_states, "max_states", max_states, 1)
-    _check_range("min_outputs", min_outputs, "max_outputs", max_outputs, 0)
+    check_range("min_states", min_states, "max_states", max_states, 1)
+    check_range("min_outputs", min_outputs, "max_outputs", max_outputs, 0)
     low, high = spectral_radius
     if not 0 <= low <= high:
         raise InvalidArgument(f"spectral_radius={spectral_radius} must satisfy 0 ≤ low ≤ high")
@@ -180,71 +150,13 @@ def state_space_pairs(
         raise InvalidArgument(f"max_condition={max_condition} must be ≥ 1")
     n = draw(st.integers(min_states, max_states))
     m = draw(st.integers(min_outputs, max_outputs))
-    rng = draw(_seeds())
+    rng = draw(generators())
     magnitudes = rng.uniform(low, high, n) * rng.choice([-1.0, 1.0], n)
     singular = np.exp(rng.uniform(0, np.log(max_condition), n))
-    V = _orthonormal(rng, n) @ np.diag(singular / singular.max()) @ _orthonormal(rng, n)
+    V = orthonormal_matrix(rng, n) @ np.diag(singular / singular.max()) @ orthonormal_matrix(rng, n)
     A = V @ np.diag(magnitudes) @ np.linalg.inv(V)
     C = rng.standard_normal((m, n))
     return A, C
-
-
-@st.composite
-def networks(
-    draw: st.DrawFn,
-    *,
-    min_agents: int = 2,
-    max_agents: int = 8,
-    connected: bool | None = True,
-    directed: bool = False,
-) -> np.ndarray:
-    """Boolean "hears" matrices ``H[r, s]`` (no self-loops) of ``min_agents`` to ``max_agents``.
-
-    Parameters
-    ----------
-    min_agents, max_agents : int
-        Bounds on the number of agents (``1 ≤ min_agents ≤ max_agents``).
-    connected : bool or None
-        ``True`` gives (strongly, when directed) connected graphs, ``False`` gives graphs with at
-        least two (weak) components (so at least 2 agents; needs ``max_agents ≥ 2``), ``None``
-        either.
-    directed : bool
-        Whether ``H`` may be asymmetric; undirected graphs give symmetric ``H``.
-
-    Returns
-    -------
-    SearchStrategy of ndarray of bool, shape (N, N)
-
-    Raises
-    ------
-    InvalidArgument
-        For impossible bounds.
-    """
-    _check_range("min_agents", min_agents, "max_agents", max_agents, 1)
-    if connected is False and max_agents < 2:
-        raise InvalidArgument("a disconnected network needs max_agents ≥ 2")
-    low = 2 if connected is False else min_agents
-    n = draw(st.integers(max(low, min_agents), max_agents))
-    rng = draw(_seeds())
-    density = draw(st.floats(0.1, 0.9))
-    hears = rng.random((n, n)) < density
-    if not directed:
-        hears = np.triu(hears, 1)
-        hears = hears | hears.T
-    np.fill_diagonal(hears, False)
-    order = rng.permutation(n)
-    if connected:
-        ring = np.roll(order, 1)
-        hears[order, ring] = True
-        if not directed:
-            hears[ring, order] = True
-    elif connected is False:
-        cut = int(rng.integers(1, n))
-        left, right = order[:cut], order[cut:]
-        hears[np.ix_(left, right)] = False
-        hears[np.ix_(right, left)] = False
-    np.fill_diagonal(hears, False)
-    return hears
 
 
 @st.composite
@@ -276,7 +188,7 @@ def digraph_laplacians(
     InvalidArgument
         For impossible bounds.
     """
-    _check_range("min_agents", min_agents, "max_agents", max_agents, 2)
+    check_range("min_agents", min_agents, "max_agents", max_agents, 2)
     if max_extra_edges is not None and max_extra_edges < 0:
         raise InvalidArgument(f"max_extra_edges={max_extra_edges} must be ≥ 0")
     n = draw(st.integers(min_agents, max_agents))
@@ -290,66 +202,6 @@ def digraph_laplacians(
         if i != j:
             adjacency[i, j] = 1
     return np.diag(adjacency.sum(axis=1)) - adjacency
-
-
-@st.composite
-def weight_matrices(
-    draw: st.DrawFn,
-    *,
-    min_agents: int = 2,
-    max_agents: int = 6,
-    kind: str = "metropolis",
-    directed: bool = False,
-    connected: bool | None = True,
-) -> np.ndarray:
-    """Row-stochastic ``W`` with positive diagonal on a drawn network.
-
-    The network is drawn by :func:`networks` with ``min_agents``, ``max_agents``, ``directed``
-    and ``connected``.
-
-    Parameters
-    ----------
-    min_agents, max_agents : int
-        Bounds on the number of agents.
-    kind : str
-        One of :data:`WEIGHT_KINDS`: ``metropolis`` (symmetric, doubly stochastic; undirected
-        only), ``uniform``, ``random`` (positive random weights on the support), or ``singular``
-        (uniform weights on a complete graph — singular on purpose: W = J/N has rank 1; needs
-        ``min_agents ≥ 2``, and ``directed`` and ``connected`` are ignored).
-    directed : bool
-        Draw a directed network (not with ``metropolis``).
-    connected : bool or None
-        As for :func:`networks`.
-
-    Returns
-    -------
-    SearchStrategy of ndarray, shape (N, N)
-
-    Raises
-    ------
-    InvalidArgument
-        For an unknown ``kind``, ``metropolis`` with ``directed``, or impossible bounds.
-    """
-    if kind not in WEIGHT_KINDS:
-        raise InvalidArgument(f"kind={kind!r}; expected one of {WEIGHT_KINDS}")
-    if kind == "metropolis" and directed:
-        raise InvalidArgument("Metropolis weights need an undirected network (directed=False)")
-    if kind == "singular":
-        _check_range("min_agents", min_agents, "max_agents", max_agents, 2)
-        n = draw(st.integers(min_agents, max_agents))
-        return uniform_weights(~np.eye(n, dtype=bool))
-    hears = draw(
-        networks(
-            min_agents=min_agents, max_agents=max_agents, connected=connected, directed=directed
-        )
-    )
-    if kind == "metropolis":
-        return metropolis_weights(hears)
-    if kind == "uniform":
-        return uniform_weights(hears)
-    rng = draw(_seeds())
-    raw = np.where(hears | np.eye(len(hears), dtype=bool), rng.uniform(0.2, 1.0, hears.shape), 0.0)
-    return raw / raw.sum(axis=1, keepdims=True)
 
 
 def _directed_weights(rng: np.random.Generator, n: int, min_weight: float) -> np.ndarray:
@@ -400,8 +252,8 @@ def dkf_problems(
     InvalidArgument
         At call time, for impossible bounds.
     """
-    _check_range("min_states", min_states, "max_states", max_states, 1)
-    _check_range("min_agents", min_agents, "max_agents", max_agents, 1)
+    check_range("min_states", min_states, "max_states", max_states, 1)
+    check_range("min_agents", min_agents, "max_agents", max_agents, 1)
     if max_rows < 0 or not a_bound > 0 or not gain_bound >= 0:
         raise InvalidArgument(
             "need max_rows ≥ 0, a_bound > 0, gain_bound ≥ 0; "
@@ -424,87 +276,6 @@ def dkf_problems(
         return DkfProblem(seed, A, C, W, L)
 
     return st.integers(0, 2**32 - 1).map(build)
-
-
-@st.composite
-def tdoa_scenes(
-    draw: st.DrawFn,
-    *,
-    dim: int = 3,
-    min_agents: int = 4,
-    max_agents: int = 8,
-    family: str = "general",
-    scale: float = 20.0,
-    min_separation: float = 0.5,
-) -> TdoaScene:
-    """TDOA scenes in ``dim`` dimensions with ``min_agents`` to ``max_agents`` receivers.
-
-    The degenerate families are exact up to floating-point rounding of the coordinates.
-
-    Parameters
-    ----------
-    dim : int
-        2 or 3.
-    min_agents, max_agents : int
-        Bounds on the number of receivers (``2 ≤ min_agents ≤ max_agents``).
-    family : str
-        One of :data:`SCENE_FAMILIES`: ``general`` (random points, receivers at least
-        ``min_separation·scale`` from the target), ``coplanar`` (3D: receivers in a plane,
-        target off it), ``cone`` (3D: receivers on a circular cone with apex at the target — the
-        stacked TDOA Jacobian loses rank there), ``target-in-plane`` (3D: receivers and target in
-        one plane).
-    scale : float
-        Length scale (``> 0``): the target is drawn in ``[−scale, scale]^dim`` and the receivers'
-        offsets from it (in-plane offsets, for the planar families) are shorter than ``scale``.
-    min_separation : float
-        Those offsets are at least ``min_separation·scale`` long (``0 < min_separation < 1``).
-
-    Returns
-    -------
-    SearchStrategy of TdoaScene
-
-    Raises
-    ------
-    InvalidArgument
-        For an unknown ``dim`` or ``family``, a 3D family with ``dim=2``, or impossible bounds.
-    """
-    if dim not in (2, 3):
-        raise InvalidArgument(f"dim={dim}; expected 2 or 3")
-    if family not in SCENE_FAMILIES:
-        raise InvalidArgument(f"family={family!r}; expected one of {SCENE_FAMILIES}")
-    if family != "general" and dim != 3:
-        raise InvalidArgument(f"family={family!r} is a 3D family; use dim=3")
-    _check_range("min_agents", min_agents, "max_agents", max_agents, 2)
-    if not scale > 0 or not 0 < min_separation < 1:
-        raise InvalidArgument(
-            f"scale={scale} must be > 0 and min_separation={min_separation} in (0, 1)"
-        )
-    n = draw(st.integers(min_agents, max_agents))
-    rng = draw(_seeds())
-    target = rng.uniform(-scale, scale, dim)
-    frame = _orthonormal(rng, dim)
-    radii = rng.uniform(min_separation, 1.0, n) * scale
-    angles = np.sort(rng.uniform(0, 2 * np.pi, n))
-    if family == "general":
-        directions = rng.standard_normal((n, dim))
-        offsets = directions / np.linalg.norm(directions, axis=1, keepdims=True) * radii[:, None]
-    elif family == "cone":
-        half_angle = rng.uniform(0.2, 1.3)
-        local = np.column_stack(
-            [
-                np.full(n, np.cos(half_angle)),
-                np.sin(half_angle) * np.cos(angles),
-                np.sin(half_angle) * np.sin(angles),
-            ]
-        )
-        offsets = (local @ frame.T) * radii[:, None]
-    else:
-        height = 0.0 if family == "target-in-plane" else rng.uniform(0.2, 1.0) * scale
-        local = np.column_stack(
-            [np.full(n, -height), radii * np.cos(angles), radii * np.sin(angles)]
-        )
-        offsets = local @ frame.T
-    return TdoaScene(target, target + offsets, family)
 
 
 @st.composite
@@ -705,21 +476,3 @@ def tracker_states(draw: st.DrawFn, *, spec: PursuitSpec, bound: float = 10.0) -
         target=draw(_vectors(dim, bound)),
         target_v=draw(_vectors(dim, bound)),
     )
-
-
-def is_connected(hears: np.ndarray, *, strongly: bool = False) -> bool:
-    """Whether the "hears" graph is (strongly) connected — used to test :func:`networks`.
-
-    Parameters
-    ----------
-    hears : ndarray of bool, shape (N, N)
-        ``hears[r, s]``: agent ``r`` receives from agent ``s``.
-    strongly : bool
-        Ask for strong connectivity; otherwise weak connectivity is enough.
-
-    Returns
-    -------
-    bool
-    """
-    graph = nx.from_numpy_array(hears.T.astype(int), create_using=nx.DiGraph)
-    return nx.is_strongly_connected(graph) if strongly else nx.is_weakly_connected(graph)

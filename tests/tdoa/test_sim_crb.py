@@ -13,6 +13,7 @@ from theory.core.case_file import load_case
 from theory.sim.runner import monte_carlo
 from theory.tdoa.crb import crb_trace, optimal_crb_trace, platonic_solids, tdoa_fisher
 from theory.tdoa.metrics import summarize_runs
+from theory.tdoa.scenario import run_tdoa_scenario
 
 BOUND_RTOL = 1e-9
 """Relative tolerance on reaching the bound d²σ²/N² (floating point only)."""
@@ -73,7 +74,9 @@ def test_centralized_ekf_attains_the_pcrb_distributed_does_not() -> None:
     ratios = {}
     for kind in ("centralized", "averaged"):
         spec = dataclasses.replace(load_case("sim-ch4-range21-b0").spec, filter=kind, steps=40)
-        summary = summarize_runs(spec, monte_carlo(spec, runs=3, seed=2, workers=1))
+        summary = summarize_runs(
+            spec, monte_carlo(spec, simulate=run_tdoa_scenario, runs=3, seed=2, workers=1)
+        )
         ratios[kind] = [agent["mse_to_pcrb"] for agent in summary["agents"]]
     assert all(0.7 < r < 1.4 for r in ratios["centralized"]), ratios
     assert min(ratios["averaged"]) > max(ratios["centralized"]), ratios

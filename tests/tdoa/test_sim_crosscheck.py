@@ -4,7 +4,10 @@ Seed 000 Thm 4.2.3: an agent localizes iff its connected component carries enoug
 The theory side here is the rank of the observability matrix of ``(A, H_C)`` with ``H_C`` the
 stacked Jacobians of the component ``C`` at the true target (the pair the component's
 centralized filter sees, eq. (4.25)); the simulation side is the averaged EKF of §4.2.2 on
-static agents (``b = ∞``) and a nearly static target.
+static agents (``b = ∞``) and a nearly static target. The statement that holds exactly, for the
+averaged filter on the frozen geometry, is the falsifiable property
+``seed000.thm4.2.3.averaged-filter/corrected`` (``tests/tdoa/test_averaged_properties.py``);
+these tests keep the EKF-level observations beside it.
 """
 
 from __future__ import annotations

@@ -26,8 +26,8 @@ def _spec(name: str, **changes: object):
 
 def test_runs_are_deterministic_and_independent_of_workers() -> None:
     spec = _spec("sim-ch4-fixed-b0", steps=8)
-    serial = monte_carlo(spec, runs=3, seed=11, workers=1)
-    parallel = monte_carlo(spec, runs=3, seed=11, workers=2)
+    serial = monte_carlo(spec, simulate=run_tdoa_scenario, runs=3, seed=11, workers=1)
+    parallel = monte_carlo(spec, simulate=run_tdoa_scenario, runs=3, seed=11, workers=2)
     for a, b in zip(serial, parallel, strict=True):
         assert np.array_equal(a.estimates, b.estimates)
         assert np.array_equal(a.paths, b.paths)
@@ -62,7 +62,9 @@ def test_distance_rule_network_localizes_where_lone_agents_cannot() -> None:
 
 def test_summary_has_the_design_keys() -> None:
     spec = _spec("sim-ch4-fixed-b0", steps=5)
-    summary = summarize_runs(spec, monte_carlo(spec, runs=2, seed=0, workers=1))
+    summary = summarize_runs(
+        spec, monte_carlo(spec, simulate=run_tdoa_scenario, runs=2, seed=0, workers=1)
+    )
     assert len(summary["agents"]) == 8
     for agent in summary["agents"]:
         assert {"id", "final_localization_error", "mean_localization_error"} <= set(agent)

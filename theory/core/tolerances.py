@@ -39,12 +39,15 @@ __all__ = [
     "GROWTH",
     "HYPOTHESIS_TOL",
     "INCONCLUSIVE_FACTOR",
+    "KERNEL_RTOL",
     "LMI_MARGIN",
     "MARGIN_TOL",
     "MAX_ITER",
+    "MIN_CONDITIONING",
     "MIRROR_TOL",
     "PERIOD_TOL",
     "PF_TOLERANCES",
+    "PSD_RTOL",
     "PSD_TOL",
     "RANK_TOL",
     "ROUNDING_TOL",
@@ -297,6 +300,30 @@ Z_TOL = _named(
     "a maximum-likelihood estimate is consistent with the true parameter when within z_tol "
     "standard errors (seed 002 eqs. (3.1)–(3.2), (3.17))",
     "a false alarm below 1e-4 per parameter under normality",
+)
+PSD_RTOL = _named(
+    "psd_rtol",
+    1e-9,
+    "relative to max(‖A‖_F, ‖B‖_F, 1)",
+    "A ⪯ B holds when λ_max(A − B) ≤ psd_rtol · max(‖A‖_F, ‖B‖_F, 1) (averaged-filter bounds, "
+    "seed 000 App. A)",
+    "far above the float error of symmetric eigenvalues, scale-aware through the Frobenius norms",
+)
+KERNEL_RTOL = _named(
+    "kernel_rtol",
+    1e-9,
+    "relative",
+    "along ker G_C the averaged filter's covariance equals the prior's propagation within this "
+    "relative tolerance (nothing is learnt there)",
+    "the equality is exact in real arithmetic; the tolerance absorbs the recursion's rounding",
+)
+MIN_CONDITIONING = _named(
+    "min_conditioning",
+    1e-3,
+    "ratio σ_r / σ_1",
+    "a component's Jacobian counts for the averaged-filter certificate only when its smallest "
+    "non-zero singular value is at least this fraction of the largest",
+    "below it the burn-in of the certificate is too short (docs/property-based.md)",
 )
 MARGIN_TOL = _named(
     "margin_tol",

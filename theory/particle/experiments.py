@@ -25,7 +25,7 @@ import numpy as np
 from theory.core.tolerances import PF_TOLERANCES
 from theory.particle.case import PfSpec
 from theory.particle.dcrw import sample_dcrw_path
-from theory.particle.filter import run_filter, simulate_measurements
+from theory.particle.filter import PfConfig, PfRun, run_filter, simulate_measurements
 from theory.particle.learning import OnlineLearner
 from theory.particle.motion import DcrwMotion, GaussianMotion, UniformMotion
 
@@ -147,25 +147,9 @@ def monte_carlo(
     seed = spec.seed if seed is None else seed
     model = spec.model if model is None else model
     config = spec.config if share is None else replace(spec.config, share=share)
-    low, high = spec.workspace[:, 0], spec.workspace[:, 1]
     errors, estimates, paths, learned, snapshots = [], [], [], [], {}
     for r in range(runs):
-        path_rng = np.random.default_rng([seed, r, 0])
-        start = low + (high - low) * path_rng.random(2)
-        path = sample_dcrw_path(spec.target, spec.steps, path_rng, start=start)
-        measurements = simulate_measurements(
-            path, spec.network, spec.noise_sigma, np.random.default_rng([seed, r, 2])
-        )
-        run = run_filter(
-            path,
-            spec.network,
-            config,
-            build_motion(spec, model),
-            np.random.default_rng([seed, r, 1]),
-            bounds=spec.workspace,
-            measurements=measurements,
-            snapshot_steps=snapshot_steps if r == 0 else (),
-        )
+        path, run = _one_run(spec, config, model, [seed, r], snapshot_steps if r == 0 else ())
         errors.append(run.errors)
         estimates.append(run.estimates)
         paths.append(path)
@@ -182,6 +166,30 @@ def monte_carlo(
         model,
         config.share,
     )
+
+
+def _one_run(
+    spec: PfSpec, config: PfConfig, model: str, key: list[int], snapshot_steps: tuple[int, ...]
+) -> tuple[np.ndarray, PfRun]:
+    """Run ``key = [seed, r]``: DCRW path (stream 0), filter (stream 1), measurements (stream 2)."""
+    low, high = spec.workspace[:, 0], spec.workspace[:, 1]
+    path_rng = np.random.default_rng([*key, 0])
+    start = low + (high - low) * path_rng.random(2)
+    path = sample_dcrw_path(spec.target, spec.steps, path_rng, start=start)
+    measurements = simulate_measurements(
+        path, spec.network, spec.noise_sigma, np.random.default_rng([*key, 2])
+    )
+    run = run_filter(
+        path,
+        spec.network,
+        config,
+        build_motion(spec, model),
+        np.random.default_rng([*key, 1]),
+        bounds=spec.workspace,
+        measurements=measurements,
+        snapshot_steps=snapshot_steps,
+    )
+    return path, run
 
 
 def node_summary(mc: MonteCarlo, spec: PfSpec) -> list[dict[str, Any]]:

@@ -26,6 +26,10 @@ Choices the thesis leaves open (documented in ``docs/particle-filter.md``), as p
     ``"sender"`` (default): the heading travels with the particle (one extra number per message).
     ``"uniform"``: the thesis's message carries no heading; a fresh uniform heading is drawn.
 
+The TDOA model ``d_i^n`` (eq. 3.9) and the measurements (eqs. 3.6–3.8) are those of seed 000
+eqs. (4.3)–(4.4), evaluated by the one implementation in :mod:`theory.tdoa.model` (broadcast over
+filtering nodes × particles).
+
 Weights are computed in the log domain (subtracting the maximum before exponentiating), which
 equals eqs. (3.11)–(3.12) after normalisation but never underflows to ``0/0``.
 """
@@ -36,6 +40,8 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
+
+from theory.tdoa.model import range_differences
 
 __all__ = [
     "PfConfig",
@@ -211,11 +217,10 @@ def measure(
     ndarray, shape (F, N)
         Entries outside :attr:`PfNetwork.measurement_mask` are 0.
     """
-    ranges = np.linalg.norm(np.asarray(target, float)[None] - network.nodes, axis=1)
-    own = ranges[list(network.filters)]
+    clean = range_differences(target, network.nodes, np.asarray(network.filters, dtype=int))
     mask = network.measurement_mask
     noise = noise_sigma * rng.standard_normal(mask.shape)
-    return np.where(mask, own[:, None] - ranges[None, :] + noise, 0.0)
+    return np.where(mask, clean + noise, 0.0)
 
 
 def simulate_measurements(
@@ -253,9 +258,8 @@ def log_likelihood(
     -------
     ndarray, shape (F, Q)
     """
-    ranges = np.linalg.norm(positions[:, :, None, :] - network.nodes[None, None], axis=-1)
-    own = ranges[np.arange(len(network.filters)), :, list(network.filters)]
-    predicted = own[:, :, None] - ranges
+    filters = np.asarray(network.filters, dtype=int)[:, None]
+    predicted = range_differences(positions, network.nodes, filters)
     mask = network.measurement_mask[:, None, :]
     residual = np.where(mask, y[:, None, :] - predicted, 0.0)
     return -0.5 * np.sum(residual**2, axis=-1) / sigma**2

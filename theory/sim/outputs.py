@@ -1,7 +1,8 @@
 """Data files of a simulation: NPZ arrays per run and CSV tables (``trackcert simulate -o``).
 
-:func:`write_data` writes the files of a TDOA scenario; the three writers it is built from serve
-the ``pursuit`` and ``dkf`` simulations too.
+Generic writers for any simulation's runs (dataclasses of arrays) and summaries; the TDOA,
+pursuit and consensus simulations build their files from them (e.g.
+:func:`theory.tdoa.outputs.write_data`).
 """
 
 from __future__ import annotations
@@ -14,38 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.tdoa.scenario import TdoaRun
-
-__all__ = ["write_agents_csv", "write_data", "write_runs_npz", "write_timeseries_csv"]
-
-
-def write_data(runs: Sequence[TdoaRun], summary: dict[str, Any], folder: Path) -> list[Path]:
-    """Write ``runs.npz`` (every array, stacked over runs), ``agents.csv`` and ``timeseries.csv``.
-
-    Parameters
-    ----------
-    runs : sequence of TdoaRun
-        The runs.
-    summary : dict
-        The summary from :func:`theory.tdoa.metrics.summarize_runs`.
-    folder : pathlib.Path
-        Output folder (must exist).
-
-    Returns
-    -------
-    list of pathlib.Path
-    """
-    errors = np.stack([r.localization_errors for r in runs])
-    npz = write_runs_npz(runs, folder / "runs.npz", localization_errors=errors)
-    series = write_timeseries_csv(
-        folder / "timeseries.csv",
-        runs[0].ping_times,
-        {
-            "error": errors.mean(axis=0),
-            "cov_norm": np.mean([r.cov_norms for r in runs], axis=0),
-        },
-    )
-    return [npz, write_agents_csv(summary["agents"], folder / "agents.csv"), series]
+__all__ = ["write_agents_csv", "write_runs_npz", "write_timeseries_csv"]
 
 
 def write_runs_npz(runs: Sequence[Any], path: Path, **extra: np.ndarray) -> Path:

@@ -1,7 +1,10 @@
-"""Monte Carlo over local cores, deterministic by seed.
+"""Monte Carlo over local cores, deterministic by seed, for any simulation.
 
 Run ``i`` of ``runs`` uses the ``i``-th child of ``numpy.random.SeedSequence(seed)``, so its
-result does not depend on the number of worker processes nor on the order they finish.
+result does not depend on the number of worker processes nor on the order they finish. The
+engine knows no model: it calls ``simulate(spec, rng)`` — e.g. the TDOA closed loop
+:func:`theory.tdoa.scenario.run_tdoa_scenario`, the consensus filter or the pursuit loop — and
+returns what it returns.
 """
 
 from __future__ import annotations
@@ -12,8 +15,6 @@ from concurrent.futures import ProcessPoolExecutor
 from typing import Any
 
 import numpy as np
-
-from theory.tdoa.scenario import run_tdoa_scenario
 
 __all__ = ["default_workers", "monte_carlo", "run_seeds"]
 
@@ -48,18 +49,21 @@ def _one(simulate: Callable, spec: Any, sequence: np.random.SeedSequence) -> Any
 def monte_carlo(
     spec: Any,
     *,
+    simulate: Callable[[Any, np.random.Generator], Any],
     runs: int = 1,
     seed: int = 0,
     workers: int | None = None,
     progress: Callable[[int], None] | None = None,
-    simulate: Callable[[Any, np.random.Generator], Any] = run_tdoa_scenario,
 ) -> list[Any]:
-    """Run the scenario ``runs`` times, in parallel over ``workers`` processes.
+    """Run ``simulate(spec, rng)`` ``runs`` times, in parallel over ``workers`` processes.
 
     Parameters
     ----------
     spec : object
-        The scenario (e.g. a ``TdoaSimSpec``), passed to ``simulate``.
+        The scenario, passed unchanged to ``simulate`` (picklable when ``workers > 1``).
+    simulate : callable
+        ``simulate(spec, rng) -> run``: one run from a ``numpy.random.Generator``; a picklable
+        module-level function (or ``functools.partial`` of one) when ``workers > 1``.
     runs : int
         Number of independent runs (≥ 1).
     seed : int
@@ -68,9 +72,6 @@ def monte_carlo(
         Worker processes; default all local cores; 1 runs in this process.
     progress : callable, optional
         Called with the number of runs finished so far, after each run.
-    simulate : callable
-        ``simulate(spec, rng) -> run``, a picklable module-level function (default: the TDOA
-        closed loop :func:`~theory.tdoa.scenario.run_tdoa_scenario`).
 
     Returns
     -------

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from scipy.linalg import block_diag, eigh
 
+from theory.tdoa.ekf import kalman_gain
 from theory.tdoa.measurements import neighbour_lists, tdoa_jacobians
 from theory.tdoa.model import cv_discrete
 from theory.tdoa.scenario import TdoaRun, hears_at, weights_at
@@ -60,30 +61,9 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
     if spec.filter != "averaged" or spec.rounds != 1:
         raise ValueError("App. A analyses the averaged EKF with one averaging per ping (tau = T)")
     A, B = cv_discrete(spec.T, 3)
-    BQB = B @ spec.Q @ B.T
-    n = spec.n_agents
-    K_steps = run.truth.shape[0] - 1
-    predicted_x = np.vstack([np.tile(spec.x0, (1, n, 1)), run.estimates[:-1] @ A.T])
-    predicted_P = np.concatenate(
-        [np.tile(spec.P0, (1, n, 1, 1)), np.einsum("ij,knjl,ml->knim", A, run.covariances, A)[:-1]]
-    )
-    predicted_P[1:] += BQB
-    factors, h_norms = [], []
-    for k in range(K_steps):
-        positions = run.paths[k * spec.rounds]
-        W = weights_at(spec, positions)
-        neighbours = neighbour_lists(hears_at(spec, positions))
-        H = tdoa_jacobians(predicted_x[k, :, :3], positions, neighbours)
-        gains_H = [_gain(predicted_P[k, i], H[i], spec.r) @ H[i] for i in range(n)]
-        I_KH = np.eye(6 * n) - block_diag(*gains_H)
-        WA = np.kron(W, A)
-        P_next_inv = np.linalg.inv(block_diag(*predicted_P[k + 1]))
-        lhs = I_KH.T @ WA.T @ P_next_inv @ WA @ I_KH
-        lhs = 0.5 * (lhs + lhs.T)
-        P_inv = np.linalg.inv(block_diag(*predicted_P[k]))
-        factors.append(float(eigh(lhs, 0.5 * (P_inv + P_inv.T), eigvals_only=True)[-1]))
-        h_norms.append(float(np.linalg.norm(block_diag(*H), 2)) if any(h.size for h in H) else 0.0)
-    eig = np.linalg.eigvalsh(predicted_P[: K_steps + 1])
+    predicted_x, predicted_P = _predictions(spec, run, A, B @ spec.Q @ B.T)
+    factors, h_norms = _step_factors(spec, run, A, predicted_x, predicted_P)
+    eig = np.linalg.eigvalsh(predicted_P[: len(factors) + 1])
     constants = {
         "a_bar": float(np.linalg.norm(A, 2)),
         "delta": float(np.linalg.eigvalsh(B @ B.T)[-1]),
@@ -98,7 +78,7 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
     one_minus_alpha = 1.0 / (
         1.0 + c["delta"] * c["sigma_w2"] / (c["p_high"] * (1 + gain_bound) ** 2)
     )
-    bqb_eig = np.linalg.eigvalsh(BQB)
+    bqb_eig = np.linalg.eigvalsh(B @ spec.Q @ B.T)
     return {
         "constants": constants,
         "one_minus_alpha": one_minus_alpha,
@@ -109,8 +89,45 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
     }
 
 
-def _gain(P: np.ndarray, H: np.ndarray, r: float) -> np.ndarray:
-    """``K = P Hᵀ(H P Hᵀ + rI)⁻¹`` of (A.3)/(A.17)."""
-    if H.shape[0] == 0:
-        return np.zeros((P.shape[0], 0))
-    return np.linalg.solve(H @ P @ H.T + r * np.eye(H.shape[0]), H @ P).T
+def _predictions(
+    spec: TdoaSimSpec, run: TdoaRun, A: np.ndarray, BQB: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Predicted estimates ``x̂_k^i`` and covariances ``P_k^i`` (A.1)–(A.2) at every ping, rebuilt
+    from the recorded averaged ones (and ``x_0``, ``P_0`` at ping 0)."""
+    n = spec.n_agents
+    predicted_x = np.vstack([np.tile(spec.x0, (1, n, 1)), run.estimates[:-1] @ A.T])
+    predicted_P = np.concatenate(
+        [np.tile(spec.P0, (1, n, 1, 1)), np.einsum("ij,knjl,ml->knim", A, run.covariances, A)[:-1]]
+    )
+    predicted_P[1:] += BQB
+    return predicted_x, predicted_P
+
+
+def _step_factors(
+    spec: TdoaSimSpec,
+    run: TdoaRun,
+    A: np.ndarray,
+    predicted_x: np.ndarray,
+    predicted_P: np.ndarray,
+) -> tuple[list[float], list[float]]:
+    """Per ping ``k``: the smallest ``c_k`` of (A.24) (a generalized eigenvalue) and ``‖H_k‖``."""
+    n = spec.n_agents
+    factors, h_norms = [], []
+    for k in range(run.truth.shape[0] - 1):
+        positions = run.paths[k * spec.rounds]
+        W = weights_at(spec, positions)
+        neighbours = neighbour_lists(hears_at(spec, positions))
+        H = tdoa_jacobians(predicted_x[k, :, :3], positions, neighbours)
+        gains_H = [
+            kalman_gain(predicted_P[k, i], H[i], spec.r * np.eye(H[i].shape[0])) @ H[i]
+            for i in range(n)
+        ]
+        I_KH = np.eye(6 * n) - block_diag(*gains_H)
+        WA = np.kron(W, A)
+        P_next_inv = np.linalg.inv(block_diag(*predicted_P[k + 1]))
+        lhs = I_KH.T @ WA.T @ P_next_inv @ WA @ I_KH
+        lhs = 0.5 * (lhs + lhs.T)
+        P_inv = np.linalg.inv(block_diag(*predicted_P[k]))
+        factors.append(float(eigh(lhs, 0.5 * (P_inv + P_inv.T), eigvals_only=True)[-1]))
+        h_norms.append(float(np.linalg.norm(block_diag(*H), 2)) if any(h.size for h in H) else 0.0)
+    return factors, h_norms

@@ -23,6 +23,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from theory.tdoa.measurements import tdoa_jacobians
+from theory.tdoa.model import unit_directions
 
 __all__ = [
     "crb_trace",
@@ -58,8 +59,7 @@ def tdoa_fisher(
     ----------
     seed 000, eqs. (4.38)–(4.42).
     """
-    diff = np.asarray(target, float)[None, :] - np.asarray(positions, float)
-    g = diff / np.linalg.norm(diff, axis=1, keepdims=True)
+    g = unit_directions(target, positions)
     if pairs is None:
         pairs = list(itertools.combinations(range(len(positions)), 2))
     G = np.array([g[i] - g[j] for i, j in pairs]).T

@@ -8,7 +8,32 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["ekf_predict", "ekf_update"]
+__all__ = ["ekf_predict", "ekf_update", "kalman_gain"]
+
+
+def kalman_gain(P: np.ndarray, H: np.ndarray, R: np.ndarray) -> np.ndarray:
+    """The gain ``K = P H'(H P H' + R)⁻¹`` of eqs. (4.13), (4.32), (A.17).
+
+    Parameters
+    ----------
+    P : ndarray, shape (n, n)
+        Predicted covariance ``P(k|k−1)``.
+    H : ndarray, shape (m, n)
+        Jacobian (``m = 0`` allowed: the gain is ``n × 0``).
+    R : ndarray, shape (m, m)
+        Measurement noise covariance.
+
+    Returns
+    -------
+    ndarray, shape (n, m)
+
+    References
+    ----------
+    seed 000, eqs. (4.13), (4.32), (A.17).
+    """
+    if H.shape[0] == 0:
+        return np.zeros((P.shape[0], 0))
+    return np.linalg.solve(H @ P @ H.T + R, H @ P).T
 
 
 def ekf_update(
@@ -40,8 +65,7 @@ def ekf_update(
     """
     if H.shape[0] == 0:
         return x, P
-    S = H @ P @ H.T + R
-    K = np.linalg.solve(S, H @ P).T
+    K = kalman_gain(P, H, R)
     I_KH = np.eye(P.shape[0]) - K @ H
     P_new = I_KH @ P @ I_KH.T + K @ R @ K.T
     return x + K @ innovation, 0.5 * (P_new + P_new.T)

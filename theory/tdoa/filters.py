@@ -50,6 +50,7 @@ def measurement_step(
     r: float,
     *,
     linearize_at: np.ndarray | None = None,
+    agents: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The measurement update of every agent at one ping.
 
@@ -73,6 +74,9 @@ def measurement_step(
         Evaluate the Jacobians here (e.g. the true target position: the *linearized* filter whose
         covariance is the Riccati recursion along the true geometry) instead of at each
         agent's prediction (the EKF).
+    agents : ndarray of int, shape (N,), optional
+        The position (row of ``positions``) of the agent holding estimate ``i``; default
+        ``0, 1, …``. With only some nodes filtering (seed 002's networks), their indices.
 
     Returns
     -------
@@ -85,20 +89,35 @@ def measurement_step(
     """
     dim = positions.shape[1]
     if kind == "centralized":
-        point = x[0, :dim]
-        h = np.concatenate(tdoa_predictions(point, positions, neighbours))
-        H = np.vstack(tdoa_jacobians(_at(point, linearize_at), positions, neighbours))
-        y = np.concatenate(readings)
-        x0, P0 = ekf_update(x[0], P[0], y - h, H, r * np.eye(y.shape[0]))
-        n = x.shape[0]
-        return np.tile(x0, (n, 1)), np.tile(P0, (n, 1, 1))
+        return _centralized_step(x, P, readings, positions, neighbours, r, linearize_at, agents)
     points = x[:, :dim]
-    predictions = tdoa_predictions(points, positions, neighbours)
-    jacobians = tdoa_jacobians(_at(points, linearize_at), positions, neighbours)
+    predictions = tdoa_predictions(points, positions, neighbours, agents=agents)
+    jacobians = tdoa_jacobians(_at(points, linearize_at), positions, neighbours, agents=agents)
     x_new, P_new = np.empty_like(x), np.empty_like(P)
     for i, (y, h, H) in enumerate(zip(readings, predictions, jacobians, strict=True)):
         x_new[i], P_new[i] = ekf_update(x[i], P[i], y - h, H, r * np.eye(y.shape[0]))
     return x_new, P_new
+
+
+def _centralized_step(
+    x: np.ndarray,
+    P: np.ndarray,
+    readings: list[np.ndarray],
+    positions: np.ndarray,
+    neighbours: list[np.ndarray],
+    r: float,
+    linearize_at: np.ndarray | None,
+    agents: np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """One EKF update with every agent's rows stacked (independent noises, eq. (4.2)), held by
+    every agent."""
+    point = x[0, : positions.shape[1]]
+    h = np.concatenate(tdoa_predictions(point, positions, neighbours, agents=agents))
+    H = np.vstack(tdoa_jacobians(_at(point, linearize_at), positions, neighbours, agents=agents))
+    y = np.concatenate(readings)
+    x0, P0 = ekf_update(x[0], P[0], y - h, H, r * np.eye(y.shape[0]))
+    n = x.shape[0]
+    return np.tile(x0, (n, 1)), np.tile(P0, (n, 1, 1))
 
 
 def _at(points: np.ndarray, linearize_at: np.ndarray | None) -> np.ndarray:

@@ -712,60 +712,11 @@ def derivation_markdown(result: SingleAgentGenericRank) -> str:
         f"zero: {result.n_minors - result.n_nonzero}.",
     ]
     if k < d:
-        lines += [
-            "",
-            f"With {k} < {d} rows Λ has no {d}×{d} minor, so every term vanishes: all minors are "
-            f"identically zero and the agent can never observe the target alone "
-            f"(seed 000 §4.2.1{', footnote 1' if k == 1 else ''}).",
-        ]
+        lines += _too_few_rows(d, k)
     elif k == d:
-        values = ", ".join(f"{a} (×{c})" for a, c in sorted(result.alpha_counts.items()))
-        lines += [
-            "",
-            f"With {k} = {d} rows every non-zero minor is α·T^{d}·det(Λ)² "
-            f"({'eq. 4.20' if d == 3 else 'the planar analogue of eq. 4.20'}). A minor is "
-            f"non-zero iff it uses every row of Λ at exactly two powers j < j', and then "
-            f"α = ±Π_r (j'_r − j_r) (closed form confirmed: {result.closed_form_alpha}).",
-            "",
-            f"α values (count): {values}.",
-        ]
-        if result.paper_factor_matches is not None:
-            lines += [
-                "",
-                "The bracket printed in eq. (4.20) equals −det Λ; its square equals det(Λ)² "
-                f"(checked symbolically: {result.paper_factor_matches}).",
-            ]
-        lines += ["", "| rows of O (1-based) | α |", "|---|---|"]
-        lines += [f"| {list(r)} | {a} |" for r, a in result.alphas[:12]]
-        if len(result.alphas) > 12:
-            lines.append(f"| … {len(result.alphas) - 12} more (see the JSON output) | |")
-        wording = (
-            "the 4 agents being coplanar: it means they lie on one circular cone with apex at "
-            "the target"
-            if d == 3
-            else "the 3 agents being collinear: it means they lie on at most two rays from the "
-            "target"
-        )
-        lines += [
-            "",
-            "Note: det Λ = 0 means the TDOA rows (differences of unit vectors from the agents "
-            f"to the target) are linearly dependent; this is not the same as {wording} "
-            "(docs/theory/tdoa-observability.md, Theorem 2).",
-        ]
+        lines += _square(result)
     else:
-        lines += [
-            "",
-            f"With {k} > {d} rows every minor lies in the ideal of the {d}×{d} minors M_a of Λ "
-            f"(each term carries a product M_a M_b), so rank Λ < {d} ⇒ rank O < {n}. Conversely, "
-            f"for every {d}-subset a of Λ's rows there is a minor equal to α·T^{d}·M_a² with "
-            f"α ≠ 0 (witnesses below), so rank Λ = {d} and T ≠ 0 ⇒ rank O = {n} (footnote 2).",
-            "",
-            "| rows of Λ | witness rows of O | α |",
-            "|---|---|---|",
-        ]
-        lines += [
-            f"| {a} | {list(w['rows'])} | {w['alpha']} |" for a, w in result.witnesses.items()
-        ]
+        lines += _more_rows(result)
     cc, rr = result.cross_check, result.random_rank
     lines += [
         "",
@@ -777,3 +728,68 @@ def derivation_markdown(result: SingleAgentGenericRank) -> str:
         f"{rr.sample_size} = {rr.error_bound:.1e}).",
     ]
     return "\n".join(lines) + "\n"
+
+
+def _too_few_rows(d: int, k: int) -> list[str]:
+    """Lines of :func:`derivation_markdown` for ``k < d`` rows (every minor vanishes)."""
+    return [
+        "",
+        f"With {k} < {d} rows Λ has no {d}×{d} minor, so every term vanishes: all minors are "
+        f"identically zero and the agent can never observe the target alone "
+        f"(seed 000 §4.2.1{', footnote 1' if k == 1 else ''}).",
+    ]
+
+
+def _square(result: SingleAgentGenericRank) -> list[str]:
+    """Lines of :func:`derivation_markdown` for ``k = d`` rows (eq. 4.20 and its α values)."""
+    d, k = result.dim, result.rows
+    values = ", ".join(f"{a} (×{c})" for a, c in sorted(result.alpha_counts.items()))
+    lines = [
+        "",
+        f"With {k} = {d} rows every non-zero minor is α·T^{d}·det(Λ)² "
+        f"({'eq. 4.20' if d == 3 else 'the planar analogue of eq. 4.20'}). A minor is "
+        f"non-zero iff it uses every row of Λ at exactly two powers j < j', and then "
+        f"α = ±Π_r (j'_r − j_r) (closed form confirmed: {result.closed_form_alpha}).",
+        "",
+        f"α values (count): {values}.",
+    ]
+    if result.paper_factor_matches is not None:
+        lines += [
+            "",
+            "The bracket printed in eq. (4.20) equals −det Λ; its square equals det(Λ)² "
+            f"(checked symbolically: {result.paper_factor_matches}).",
+        ]
+    lines += ["", "| rows of O (1-based) | α |", "|---|---|"]
+    lines += [f"| {list(r)} | {a} |" for r, a in result.alphas[:12]]
+    if len(result.alphas) > 12:
+        lines.append(f"| … {len(result.alphas) - 12} more (see the JSON output) | |")
+    wording = (
+        "the 4 agents being coplanar: it means they lie on one circular cone with apex at "
+        "the target"
+        if d == 3
+        else "the 3 agents being collinear: it means they lie on at most two rays from the target"
+    )
+    lines += [
+        "",
+        "Note: det Λ = 0 means the TDOA rows (differences of unit vectors from the agents "
+        f"to the target) are linearly dependent; this is not the same as {wording} "
+        "(docs/theory/tdoa-observability.md, Theorem 2).",
+    ]
+    return lines
+
+
+def _more_rows(result: SingleAgentGenericRank) -> list[str]:
+    """Lines of :func:`derivation_markdown` for ``k > d`` rows (footnote 2 and its witnesses)."""
+    d, k, n = result.dim, result.rows, result.n_states
+    lines = [
+        "",
+        f"With {k} > {d} rows every minor lies in the ideal of the {d}×{d} minors M_a of Λ "
+        f"(each term carries a product M_a M_b), so rank Λ < {d} ⇒ rank O < {n}. Conversely, "
+        f"for every {d}-subset a of Λ's rows there is a minor equal to α·T^{d}·M_a² with "
+        f"α ≠ 0 (witnesses below), so rank Λ = {d} and T ≠ 0 ⇒ rank O = {n} (footnote 2).",
+        "",
+        "| rows of Λ | witness rows of O | α |",
+        "|---|---|---|",
+    ]
+    lines += [f"| {a} | {list(w['rows'])} | {w['alpha']} |" for a, w in result.witnesses.items()]
+    return lines

@@ -3,11 +3,16 @@
 Agent ``i`` with neighbours ``N_i`` measures ``y_i = h_i(p) + v_i``, ``v_i ~ N(0, r I)``, where
 ``h_{i,j} = ‖p − p_i‖ − ‖p − p_j‖``. The noise of different agents is independent, as in (4.2):
 agent ``j``'s measurement of the pair ``(j, i)`` is not the negative of agent ``i``'s.
+
+The neighbour lists are ragged (one length per agent); every value comes from the one model of
+:mod:`theory.tdoa.model`, evaluated for all agents at once and then sliced per agent.
 """
 
 from __future__ import annotations
 
 import numpy as np
+
+from theory.tdoa.model import range_difference_gradients, range_differences
 
 __all__ = ["neighbour_lists", "tdoa_jacobians", "tdoa_predictions", "tdoa_readings"]
 
@@ -18,29 +23,40 @@ def neighbour_lists(hears: np.ndarray) -> list[np.ndarray]:
 
 
 def tdoa_predictions(
-    point: np.ndarray, positions: np.ndarray, neighbours: list[np.ndarray]
+    point: np.ndarray,
+    positions: np.ndarray,
+    neighbours: list[np.ndarray],
+    *,
+    agents: np.ndarray | None = None,
 ) -> list[np.ndarray]:
-    """``h_i(point)`` for every agent (eq. (4.3)).
+    """``h_i(point)`` for every measuring agent (eq. (4.3)).
 
     Parameters
     ----------
-    point : ndarray, shape (d,) or (N, d)
-        Where to evaluate (one point, or one per agent).
+    point : ndarray, shape (d,) or (M, d)
+        Where to evaluate (one point, or one per measuring agent).
     positions : ndarray, shape (N, d)
         Agent positions.
     neighbours : list of ndarray
-        0-based neighbours of each agent.
+        0-based neighbours (indices into ``positions``) of each measuring agent; ``M`` lists.
+    agents : ndarray of int, shape (M,), optional
+        Which position each list belongs to (default ``0, 1, …, M − 1``: list ``i`` is agent
+        ``i``'s). A network where only some nodes filter (seed 002) passes its filtering nodes.
 
     Returns
     -------
     list of ndarray
     """
-    ranges = np.linalg.norm(_offsets(point, positions), axis=2)
-    return [ranges[i, i] - ranges[i, nbrs] for i, nbrs in enumerate(neighbours)]
+    full = range_differences(*_per_agent(point, positions, neighbours, agents))
+    return [full[i, nbrs] for i, nbrs in enumerate(neighbours)]
 
 
 def tdoa_jacobians(
-    point: np.ndarray, positions: np.ndarray, neighbours: list[np.ndarray]
+    point: np.ndarray,
+    positions: np.ndarray,
+    neighbours: list[np.ndarray],
+    *,
+    agents: np.ndarray | None = None,
 ) -> list[np.ndarray]:
     """``H_i`` of eqs. (4.7)–(4.10), each of shape (|N_i|, 2d).
 
@@ -48,20 +64,31 @@ def tdoa_jacobians(
     ----------
     point, positions, neighbours : ndarray, ndarray, list of ndarray
         As in :func:`tdoa_predictions`.
+    agents : ndarray of int, optional
+        As in :func:`tdoa_predictions`.
 
     Returns
     -------
     list of ndarray
     """
-    diff = _offsets(point, positions)
-    units = diff / np.linalg.norm(diff, axis=2, keepdims=True)
-    rows = [units[i, i][None, :] - units[i, nbrs] for i, nbrs in enumerate(neighbours)]
+    full = range_difference_gradients(*_per_agent(point, positions, neighbours, agents))
+    rows = [full[i, nbrs] for i, nbrs in enumerate(neighbours)]
     return [np.hstack([r, np.zeros_like(r)]) for r in rows]
 
 
-def _offsets(point: np.ndarray, positions: np.ndarray) -> np.ndarray:
-    """``point_i − p_j`` for every agent ``i`` and position ``p_j``, shape (N, N, d)."""
-    return np.broadcast_to(point, positions.shape)[:, None, :] - positions[None, :, :]
+def _per_agent(
+    point: np.ndarray,
+    positions: np.ndarray,
+    neighbours: list[np.ndarray],
+    agents: np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Arguments of the model for each measuring agent, each at its own point."""
+    count = len(neighbours)
+    agents = np.arange(count) if agents is None else np.asarray(agents, dtype=int)
+    points = np.asarray(point, dtype=float)
+    if points.ndim == 1:
+        points = np.broadcast_to(points, (count, positions.shape[1]))
+    return points[:count], positions, agents
 
 
 def tdoa_readings(

@@ -2,8 +2,8 @@
 
 :func:`tdoa_simulator` is what ``trackcert simulate`` runs (:mod:`theory.simulate`): the closed
 loop :func:`theory.tdoa.scenario.run_tdoa_scenario`, summarised by
-:func:`theory.tdoa.metrics.summarize_runs`, written by :mod:`theory.sim.outputs` and
-:mod:`theory.sim.figures`. :func:`sim_observed` reads the expect keys off a summary:
+:func:`theory.tdoa.metrics.summarize_runs`, written by :mod:`theory.tdoa.outputs` and
+:mod:`theory.tdoa.figures`. :func:`sim_observed` reads the expect keys off a summary:
 
 - ``bounded_error``: every agent's mean-over-runs final localization error is below
   ``error_bound`` (metres; default :func:`error_bound`);
@@ -114,8 +114,8 @@ def _summary(case: Case, spec: Any, results: list) -> dict[str, Any]:
 
 
 def _finish(case: Case, spec: Any, results: list, folder: Path, figures: bool) -> Finished:
-    from theory.sim.figures import write_figures
-    from theory.sim.outputs import write_data
+    from theory.tdoa.figures import write_figures
+    from theory.tdoa.outputs import write_data
 
     record = _summary(case, spec, results)
     files = write_data(results, record, folder)

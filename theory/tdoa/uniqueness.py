@@ -25,6 +25,7 @@ import numpy as np
 
 from theory.core.observability import RANK_TOL, numeric_rank
 from theory.core.tolerances import UNIQUENESS_TOL
+from theory.tdoa.model import ranges
 
 __all__ = ["METHOD", "UNIQUENESS_TOL", "Uniqueness", "tdoa_solutions"]
 
@@ -95,8 +96,8 @@ def tdoa_solutions(
     origin = receivers[0]
     scale = float(max(np.abs(receivers - origin).max(), np.abs(target - origin).max()))
     q, t = (receivers - origin) / scale, (target - origin) / scale
-    ranges = np.linalg.norm(t - q, axis=1)
-    delta = ranges[1:] - ranges[0]
+    distances = ranges(t, q)
+    delta = distances[1:] - distances[0]
     L = 2.0 * np.hstack([q[1:], delta[:, None]])
     b = (q[1:] ** 2).sum(axis=1) - delta**2
     rank = numeric_rank(L, rank_tol=rank_tol).rank
@@ -143,9 +144,8 @@ def _line_roots(u0: np.ndarray, direction: np.ndarray, tol: float) -> list[np.nd
 
 def _consistent(u: np.ndarray, q: np.ndarray, delta: np.ndarray, tol: float) -> bool:
     """Whether ``u = (x, r)`` reproduces every range difference (re-checked from scratch)."""
-    x = u[:-1]
-    ranges = np.linalg.norm(x - q, axis=1)
-    return bool(np.max(np.abs((ranges[1:] - ranges[0]) - delta), initial=0.0) <= tol)
+    distances = ranges(u[:-1], q)
+    return bool(np.max(np.abs((distances[1:] - distances[0]) - delta), initial=0.0) <= tol)
 
 
 def _distinct(points: list[np.ndarray], tol: float) -> list[np.ndarray]:

@@ -1,0 +1,60 @@
+"""Building blocks shared by the public hypothesis strategies of every domain.
+
+:mod:`theory.strategies` (systems, consensus problems, pursuit) and :mod:`theory.tdoa.strategies`
+(networks, weights, TDOA scenes) draw their randomness and check their bounds with these, so an
+impossible request is refused the same way everywhere (STYLE.md, *Adopt* 11).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import strategies as st
+from hypothesis.errors import InvalidArgument
+
+__all__ = ["check_range", "generators", "orthonormal_matrix"]
+
+
+def check_range(name_low: str, low: int, name_high: str, high: int, floor: int) -> None:
+    """Refuse a size range ``[low, high]`` with ``low < floor`` or ``high < low``.
+
+    Parameters
+    ----------
+    name_low, name_high : str
+        The keyword names of the bounds (quoted in the message).
+    low, high : int
+        The bounds asked for.
+    floor : int
+        The smallest allowed ``low``.
+
+    Raises
+    ------
+    hypothesis.errors.InvalidArgument
+        Naming the offending bound and its value.
+    """
+    if low < floor:
+        raise InvalidArgument(f"{name_low}={low} must be at least {floor}")
+    if high < low:
+        raise InvalidArgument(f"{name_high}={high} must be ≥ {name_low}={low}")
+
+
+def generators() -> st.SearchStrategy[np.random.Generator]:
+    """``numpy.random.Generator``s seeded by a drawn 32-bit integer (shrinks by its seed)."""
+    return st.integers(0, 2**32 - 1).map(np.random.default_rng)
+
+
+def orthonormal_matrix(rng: np.random.Generator, n: int) -> np.ndarray:
+    """A random ``n × n`` orthogonal matrix (QR of a Gaussian matrix, signs fixed: Haar).
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Source of randomness.
+    n : int
+        Size.
+
+    Returns
+    -------
+    ndarray, shape (n, n)
+    """
+    q, r = np.linalg.qr(rng.standard_normal((n, n)))
+    return q * np.sign(np.diag(r))

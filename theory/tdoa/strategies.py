@@ -1,0 +1,289 @@
+"""Public hypothesis strategies for TDOA scenes, networks and consensus weights (seed 000 ch. 4).
+
+Users import these in their own property tests (STYLE.md, *Adopt* 11)::
+
+    from hypothesis import given
+    from theory.tdoa.strategies import tdoa_scenes
+
+    @given(tdoa_scenes(dim=3, family="cone"))
+    def test_cone_scenes_lose_rank(scene): ...
+
+They are also re-exported by :mod:`theory.strategies`. Names are plural nouns, bounds are
+keyword-only, conditioning is bounded, and impossible arguments raise
+:class:`hypothesis.errors.InvalidArgument` with the offending value.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import networkx as nx
+import numpy as np
+from hypothesis import strategies as st
+from hypothesis.errors import InvalidArgument
+
+from theory.core.network import metropolis_weights, uniform_weights
+from theory.strategy_helpers import check_range, generators, orthonormal_matrix
+
+__all__ = [
+    "SCENE_FAMILIES",
+    "WEIGHT_KINDS",
+    "TdoaScene",
+    "is_connected",
+    "networks",
+    "tdoa_scenes",
+    "weight_matrices",
+]
+
+SCENE_FAMILIES = ("general", "coplanar", "cone", "target-in-plane")
+"""The ``family`` values of :func:`tdoa_scenes`."""
+WEIGHT_KINDS = ("metropolis", "uniform", "random", "singular")
+"""The ``kind`` values of :func:`weight_matrices`."""
+
+
+@dataclass(frozen=True, eq=False)
+class TdoaScene:
+    """A target and receivers. ``family`` says which geometric family it was drawn from.
+
+    Attributes
+    ----------
+    target : ndarray, shape (dim,)
+        Target position.
+    agents : ndarray, shape (N, dim)
+        Receiver positions, one row per agent.
+    family : str
+        One of ``general``, ``coplanar``, ``cone``, ``target-in-plane`` (see
+        :func:`tdoa_scenes`).
+    """
+
+    target: np.ndarray
+    agents: np.ndarray
+    family: str
+
+
+@st.composite
+def networks(
+    draw: st.DrawFn,
+    *,
+    min_agents: int = 2,
+    max_agents: int = 8,
+    connected: bool | None = True,
+    directed: bool = False,
+) -> np.ndarray:
+    """Boolean "hears" matrices ``H[r, s]`` (no self-loops) of ``min_agents`` to ``max_agents``.
+
+    Parameters
+    ----------
+    min_agents, max_agents : int
+        Bounds on the number of agents (``1 ≤ min_agents ≤ max_agents``).
+    connected : bool or None
+        ``True`` gives (strongly, when directed) connected graphs, ``False`` gives graphs with at
+        least two (weak) components (so at least 2 agents; needs ``max_agents ≥ 2``), ``None``
+        either.
+    directed : bool
+        Whether ``H`` may be asymmetric; undirected graphs give symmetric ``H``.
+
+    Returns
+    -------
+    SearchStrategy of ndarray of bool, shape (N, N)
+
+    Raises
+    ------
+    InvalidArgument
+        For impossible bounds.
+    """
+    check_range("min_agents", min_agents, "max_agents", max_agents, 1)
+    if connected is False and max_agents < 2:
+        raise InvalidArgument("a disconnected network needs max_agents ≥ 2")
+    low = 2 if connected is False else min_agents
+    n = draw(st.integers(max(low, min_agents), max_agents))
+    rng = draw(generators())
+    density = draw(st.floats(0.1, 0.9))
+    hears = rng.random((n, n)) < density
+    if not directed:
+        hears = np.triu(hears, 1)
+        hears = hears | hears.T
+    np.fill_diagonal(hears, False)
+    order = rng.permutation(n)
+    if connected:
+        ring = np.roll(order, 1)
+        hears[order, ring] = True
+        if not directed:
+            hears[ring, order] = True
+    elif connected is False:
+        cut = int(rng.integers(1, n))
+        left, right = order[:cut], order[cut:]
+        hears[np.ix_(left, right)] = False
+        hears[np.ix_(right, left)] = False
+    np.fill_diagonal(hears, False)
+    return hears
+
+
+@st.composite
+def weight_matrices(
+    draw: st.DrawFn,
+    *,
+    min_agents: int = 2,
+    max_agents: int = 6,
+    kind: str = "metropolis",
+    directed: bool = False,
+    connected: bool | None = True,
+) -> np.ndarray:
+    """Row-stochastic ``W`` with positive diagonal on a drawn network.
+
+    The network is drawn by :func:`networks` with ``min_agents``, ``max_agents``, ``directed``
+    and ``connected``.
+
+    Parameters
+    ----------
+    min_agents, max_agents : int
+        Bounds on the number of agents.
+    kind : str
+        One of :data:`WEIGHT_KINDS`: ``metropolis`` (symmetric, doubly stochastic; undirected
+        only), ``uniform``, ``random`` (positive random weights on the support), or ``singular``
+        (uniform weights on a complete graph — singular on purpose: W = J/N has rank 1; needs
+        ``min_agents ≥ 2``, and ``directed`` and ``connected`` are ignored).
+    directed : bool
+        Draw a directed network (not with ``metropolis``).
+    connected : bool or None
+        As for :func:`networks`.
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (N, N)
+
+    Raises
+    ------
+    InvalidArgument
+        For an unknown ``kind``, ``metropolis`` with ``directed``, or impossible bounds.
+    """
+    if kind not in WEIGHT_KINDS:
+        raise InvalidArgument(f"kind={kind!r}; expected one of {WEIGHT_KINDS}")
+    if kind == "metropolis" and directed:
+        raise InvalidArgument("Metropolis weights need an undirected network (directed=False)")
+    if kind == "singular":
+        check_range("min_agents", min_agents, "max_agents", max_agents, 2)
+        n = draw(st.integers(min_agents, max_agents))
+        return uniform_weights(~np.eye(n, dtype=bool))
+    hears = draw(
+        networks(
+            min_agents=min_agents, max_agents=max_agents, connected=connected, directed=directed
+        )
+    )
+    if kind == "metropolis":
+        return metropolis_weights(hears)
+    if kind == "uniform":
+        return uniform_weights(hears)
+    rng = draw(generators())
+    raw = np.where(hears | np.eye(len(hears), dtype=bool), rng.uniform(0.2, 1.0, hears.shape), 0.0)
+    return raw / raw.sum(axis=1, keepdims=True)
+
+
+@st.composite
+def tdoa_scenes(
+    draw: st.DrawFn,
+    *,
+    dim: int = 3,
+    min_agents: int = 4,
+    max_agents: int = 8,
+    family: str = "general",
+    scale: float = 20.0,
+    min_separation: float = 0.5,
+) -> TdoaScene:
+    """TDOA scenes in ``dim`` dimensions with ``min_agents`` to ``max_agents`` receivers.
+
+    The degenerate families are exact up to floating-point rounding of the coordinates.
+
+    Parameters
+    ----------
+    dim : int
+        2 or 3.
+    min_agents, max_agents : int
+        Bounds on the number of receivers (``2 ≤ min_agents ≤ max_agents``).
+    family : str
+        One of :data:`SCENE_FAMILIES`: ``general`` (random points, receivers at least
+        ``min_separation·scale`` from the target), ``coplanar`` (3D: receivers in a plane,
+        target off it), ``cone`` (3D: receivers on a circular cone with apex at the target — the
+        stacked TDOA Jacobian loses rank there), ``target-in-plane`` (3D: receivers and target in
+        one plane).
+    scale : float
+        Length scale (``> 0``): the target is drawn in ``[−scale, scale]^dim`` and the receivers'
+        offsets from it (in-plane offsets, for the planar families) are shorter than ``scale``.
+    min_separation : float
+        Those offsets are at least ``min_separation·scale`` long (``0 < min_separation < 1``).
+
+    Returns
+    -------
+    SearchStrategy of TdoaScene
+
+    Raises
+    ------
+    InvalidArgument
+        For an unknown ``dim`` or ``family``, a 3D family with ``dim=2``, or impossible bounds.
+    """
+    _check_scene_arguments(dim, min_agents, max_agents, family, scale, min_separation)
+    n = draw(st.integers(min_agents, max_agents))
+    rng = draw(generators())
+    target = rng.uniform(-scale, scale, dim)
+    offsets = _family_offsets(rng, family, n, dim, scale, min_separation)
+    return TdoaScene(target, target + offsets, family)
+
+
+def _check_scene_arguments(
+    dim: int, min_agents: int, max_agents: int, family: str, scale: float, min_separation: float
+) -> None:
+    if dim not in (2, 3):
+        raise InvalidArgument(f"dim={dim}; expected 2 or 3")
+    if family not in SCENE_FAMILIES:
+        raise InvalidArgument(f"family={family!r}; expected one of {SCENE_FAMILIES}")
+    if family != "general" and dim != 3:
+        raise InvalidArgument(f"family={family!r} is a 3D family; use dim=3")
+    check_range("min_agents", min_agents, "max_agents", max_agents, 2)
+    if not scale > 0 or not 0 < min_separation < 1:
+        raise InvalidArgument(
+            f"scale={scale} must be > 0 and min_separation={min_separation} in (0, 1)"
+        )
+
+
+def _family_offsets(
+    rng: np.random.Generator, family: str, n: int, dim: int, scale: float, min_separation: float
+) -> np.ndarray:
+    """Receivers' offsets from the target for one of :data:`SCENE_FAMILIES` (see
+    :func:`tdoa_scenes`)."""
+    frame = orthonormal_matrix(rng, dim)
+    radii = rng.uniform(min_separation, 1.0, n) * scale
+    angles = np.sort(rng.uniform(0, 2 * np.pi, n))
+    if family == "general":
+        directions = rng.standard_normal((n, dim))
+        return directions / np.linalg.norm(directions, axis=1, keepdims=True) * radii[:, None]
+    if family == "cone":
+        half_angle = rng.uniform(0.2, 1.3)
+        local = np.column_stack(
+            [
+                np.full(n, np.cos(half_angle)),
+                np.sin(half_angle) * np.cos(angles),
+                np.sin(half_angle) * np.sin(angles),
+            ]
+        )
+        return (local @ frame.T) * radii[:, None]
+    height = 0.0 if family == "target-in-plane" else rng.uniform(0.2, 1.0) * scale
+    local = np.column_stack([np.full(n, -height), radii * np.cos(angles), radii * np.sin(angles)])
+    return local @ frame.T
+
+
+def is_connected(hears: np.ndarray, *, strongly: bool = False) -> bool:
+    """Whether the "hears" graph is (strongly) connected — used to test :func:`networks`.
+
+    Parameters
+    ----------
+    hears : ndarray of bool, shape (N, N)
+        ``hears[r, s]``: agent ``r`` receives from agent ``s``.
+    strongly : bool
+        Ask for strong connectivity; otherwise weak connectivity is enough.
+
+    Returns
+    -------
+    bool
+    """
+    graph = nx.from_numpy_array(hears.T.astype(int), create_using=nx.DiGraph)
+    return nx.is_strongly_connected(graph) if strongly else nx.is_weakly_connected(graph)
