@@ -1,156 +1,95 @@
-"""Every certificate a case supports, and the claims that report them (DESIGN.md, *Certificates*).
+"""Every certificate a case supports, from the domain of its kind (DESIGN.md, *Certificates*).
 
-:data:`CERTIFIERS` maps a case kind to a function ``(case, seed) -> (certificates, reasons)``;
-``reasons`` says why a certificate the kind could have is missing. Supported:
+A domain offers the certificates of its case kind from a module named ``certificates.py`` or
+``*_certificates.py`` (:mod:`theory.core.discovery`), by decorating a builder
+``(case, seed) -> (certificates, reasons)`` with :func:`register_certifier`; ``reasons`` says why
+a certificate the kind could have is missing. Today:
 
 * ``tdoa``: ``generic-rank`` of the network observability matrix and of each agent's block
-  column (:mod:`theory.tdoa.rank_certificates`);
-* ``dkf``: ``s-detectability`` with the gains of the LMI witness
-  (:func:`theory.consensus.s_detectability.witness_from_decision`), and, when the case fixes gains,
-  with
-  those gains. The witness used is the primal Lyapunov tuple of the filter's order; the dual
-  tuple is the fallback.
-* ``pursuit``: ``iss`` (:mod:`theory.pursuit.certificates`), when the case's conditions hold.
+  column (:mod:`theory.tdoa.case_certificates`);
+* ``dkf``: ``s-detectability`` with the gains of the LMI witness and, when the case fixes gains,
+  with those gains (:mod:`theory.consensus.case_certificates`);
+* ``pursuit``: ``iss`` (:mod:`theory.pursuit.certificates`), wired through
+  :data:`INTERIM_CERTIFIERS` until that module registers itself.
 
-A case whose property is decided false (not S-detectable, a condition of the ISS analysis
-failing) raises :class:`~theory.core.errors.PropertyFails`: ``trackcert certify`` exits 1 and the
-claims here do not apply to it (:class:`~theory.core.claims.NotApplicable`).
+A case whose property is decided false raises :class:`~theory.core.errors.PropertyFails`:
+``trackcert certify`` exits 1 and the certificate claims do not apply to it
+(:class:`~theory.core.claims.NotApplicable`). :func:`certificate_bundle` is what
+``trackcert certify`` prints or writes: the bundle, already accepted by ``proofs_check``.
 """
 
 from __future__ import annotations
 
+import importlib
+import json
 from collections.abc import Callable
 from typing import Any
 
-import numpy as np
-
-from theory.consensus.certificates import bundle, s_detectability_certificate
-from theory.consensus.operators import (
-    closed_loop,
-    covariance_operator_matrix,
-    unvec_tuple,
-    vec_tuple,
-)
-from theory.consensus.s_detectability import decide_s_detectability, witness_from_decision
 from theory.core.case_file import Case
-from theory.core.claims import DOCUMENT_KEY, ClaimResult, NotApplicable, register
-from theory.core.errors import InconclusiveError, PropertyFails
-from theory.core.rationalize import RationalizationError
-from theory.pursuit.certificates import pursuit_certificates
-from theory.tdoa.rank_certificates import generic_rank_certificates
+from theory.core.claims import DOCUMENT_KEY, ClaimResult, NotApplicable
+from theory.core.discovery import role_modules
+from theory.core.errors import InconclusiveError, PropertyFails, SolverError
 
 __all__ = [
-    "CERTIFIERS",
+    "INTERIM_CERTIFIERS",
+    "Certified",
     "case_certificates",
-    "dkf_certificate_claim",
-    "generic_rank_claim",
-    "primal_lyapunov",
+    "certificate_bundle",
+    "certificate_results",
+    "certificates_or_inconclusive",
+    "certified_result",
+    "certifiers",
+    "register_certifier",
 ]
 
 Certified = tuple[list[dict[str, Any]], list[str]]
+"""What a certifier returns: the certificates, and why any the kind could have is missing."""
+
+Certifier = Callable[[Case, int], Certified]
+
+INTERIM_CERTIFIERS: dict[str, tuple[str, str]] = {
+    "pursuit": ("theory.pursuit.certificates", "pursuit_certificates"),
+}
+"""Kind → (module, function) of certifiers not yet registered with :func:`register_certifier`
+(interim: the pursuit engineer registers ``pursuit_certificates`` and removes this entry)."""
+
+_CERTIFIERS: dict[str, list[Certifier]] = {}
 
 
-def _tdoa(case: Case, seed: int) -> Certified:
-    try:
-        return generic_rank_certificates(case.spec, seed=seed, case=case.name), []
-    except RationalizationError as error:
-        return [], [str(error)]
-
-
-def primal_lyapunov(
-    A: np.ndarray, C: Any, W: np.ndarray, gains: Any, order: str
-) -> np.ndarray | None:
-    """The tuple ``X = Σ_k T^k(I)`` solving ``X − T(X) = I`` (``T`` of ``order``), if ``X ≻ 0``.
+def register_certifier(kind: str) -> Callable[[Certifier], Certifier]:
+    """Decorator registering a builder of the certificates of ``kind`` cases.
 
     Parameters
     ----------
-    A : ndarray, shape (n, n)
-        System matrix.
-    C : sequence of ndarray
-        Measurement matrices.
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    gains : sequence of ndarray
-        Gains ``L_i``.
-    order : str
-        ``consensus-then-filter`` (operator L) or ``filter-then-consensus`` (operator J).
+    kind : str
+        The case kind, e.g. ``tdoa``; a kind may have several certifiers (run in turn).
 
     Returns
     -------
-    ndarray of shape (N, n, n), or None
-        None when ``I − T`` is singular or the solution is not positive definite (then
-        ``r_σ(T) ≥ 1``).
+    callable
+        The decorator; it returns the builder unchanged.
     """
-    N, n = np.asarray(W).shape[0], np.asarray(A).shape[0]
-    T = covariance_operator_matrix(W, closed_loop(A, C, gains), order)
-    try:
-        x = np.linalg.solve(
-            np.eye(T.shape[0]) - T, vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
-        )
-    except np.linalg.LinAlgError:
-        return None
-    X = unvec_tuple(x, N, n)
-    X = (X + X.transpose(0, 2, 1)) / 2
-    return X if all(np.linalg.eigvalsh(Xi)[0] > 0 for Xi in X) else None
+
+    def decorate(build: Certifier) -> Certifier:
+        _CERTIFIERS.setdefault(kind, []).append(build)
+        return build
+
+    return decorate
 
 
-def _gains_certificate(case: Case, gains: Any, dual: np.ndarray | None, label: str) -> Certified:
-    spec = case.spec
-    attempts = [(primal_lyapunov(spec.A, spec.C, spec.W, gains, spec.order), False)]
-    if dual is not None:
-        attempts.append((dual, True))
-    reasons = []
-    for witness, is_dual in attempts:
-        if witness is None:
-            reasons.append(f"{label}: X − T(X) = I has no positive definite solution")
-            continue
-        try:
-            cert = s_detectability_certificate(
-                spec.A,
-                spec.C,
-                spec.W,
-                spec.order,
-                gains,
-                list(witness),
-                dual=is_dual,
-                case=case.name,
-            )
-            return [cert], []
-        except RationalizationError as error:
-            reasons.append(f"{label}: {error}")
-    return [], reasons
+def certifiers() -> dict[str, tuple[Certifier, ...]]:
+    """Case kind → its certifiers (imports every certificate module first), sorted by kind.
 
-
-def _dkf(case: Case, seed: int) -> Certified:
-    del seed
-    spec = case.spec
-    certs, reasons = [], []
-    decision = decide_s_detectability(spec.A, spec.C, spec.W, order=spec.order)
-    if decision.verdict is False:
-        raise PropertyFails(
-            f"{case.name} is not S-detectable ({decision.reason}; seed000.def5.2.4, trackcert "
-            "dkf): there is nothing to certify"
-        )
-    witness = witness_from_decision(decision, spec.order)
-    if witness is None:
-        reasons.append("the LMI found no verified S-detectability witness (see trackcert dkf)")
-    else:
-        found, why = _gains_certificate(case, witness["gains"], witness["Y"], "LMI gains")
-        certs += found
-        reasons += why
-    if spec.L is not None:
-        found, why = _gains_certificate(case, spec.L, None, "the case's gains")
-        certs += found
-        reasons += why
-    return certs, reasons
-
-
-CERTIFIERS: dict[str, Callable[[Case, int], Certified]] = {
-    "tdoa": _tdoa,
-    "dkf": _dkf,
-    "pursuit": pursuit_certificates,
-}
-"""Case kind → builder of its certificates (and of the reasons for missing ones)."""
+    Returns
+    -------
+    dict
+    """
+    for module in role_modules("certificates"):
+        importlib.import_module(module)
+    found = {kind: tuple(builds) for kind, builds in _CERTIFIERS.items()}
+    for kind, (module, name) in INTERIM_CERTIFIERS.items():
+        found.setdefault(kind, (getattr(importlib.import_module(module), name),))
+    return dict(sorted(found.items()))
 
 
 def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:
@@ -175,19 +114,74 @@ def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:
     PropertyFails
         If the property to certify is decided false for this case.
     """
-    if case.kind not in CERTIFIERS:
+    known = certifiers()
+    if case.kind not in known:
         raise InconclusiveError(
-            f"no certificate kinds for case kind {case.kind!r} yet "
-            f"(supported: {sorted(CERTIFIERS)})"
+            f"no certificate kinds for case kind {case.kind!r} yet (supported: {sorted(known)})"
         )
-    certs, reasons = CERTIFIERS[case.kind](case, seed)
+    certs: list[dict[str, Any]] = []
+    reasons: list[str] = []
+    for build in known[case.kind]:
+        found, why = build(case, seed)
+        certs += found
+        reasons += why
     if not certs:
         raise InconclusiveError(f"no certificate for {case.name}: " + "; ".join(reasons))
     return certs
 
 
-def _certified(claim_id: str, case: Case) -> list[dict] | ClaimResult:
-    """The case's certificates, or the ``inconclusive`` result saying why there are none."""
+def certificate_bundle(case: Case, *, seed: int = 0) -> dict[str, Any]:
+    """The bundle of every certificate of ``case``, re-checked by ``proofs_check`` as written.
+
+    Parameters
+    ----------
+    case : Case
+        A loaded case.
+    seed : int
+        Seed of any random evaluation point.
+
+    Returns
+    -------
+    dict
+        A ``"kind": "bundle"`` certificate document.
+
+    Raises
+    ------
+    InconclusiveError, PropertyFails
+        As :func:`case_certificates`.
+    SolverError
+        If the document, serialised and parsed back, does not pass ``proofs_check`` (a bug).
+    """
+    import proofs_check
+    import proofs_check.parse
+    from theory.consensus.certificates import bundle
+
+    document = bundle(case_certificates(case, seed=seed), case=case.name)
+    text = json.dumps(document, indent=1, ensure_ascii=False)
+    if not proofs_check.check_certificate(proofs_check.parse.loads(text)).valid:
+        raise SolverError("the written certificate did not pass proofs_check (a bug)")
+    return document
+
+
+def certificates_or_inconclusive(claim_id: str, case: Case) -> list[dict] | ClaimResult:
+    """The case's certificates, or the ``inconclusive`` result of ``claim_id`` saying why none.
+
+    Parameters
+    ----------
+    claim_id : str
+        The certificate claim asking.
+    case : Case
+        A loaded case.
+
+    Returns
+    -------
+    list of dict or ClaimResult
+
+    Raises
+    ------
+    NotApplicable
+        If the property to certify is decided false (there is nothing to certify).
+    """
     try:
         return case_certificates(case)
     except InconclusiveError as error:
@@ -196,120 +190,64 @@ def _certified(claim_id: str, case: Case) -> list[dict] | ClaimResult:
         raise NotApplicable(str(error)) from error
 
 
-def _results(claim_id: str, case: Case, evidence: Callable[[dict], dict]) -> list[ClaimResult]:
-    certs = _certified(claim_id, case)
+def certificate_results(
+    claim_id: str, case: Case, evidence: Callable[[dict], dict]
+) -> list[ClaimResult]:
+    """One ``verified`` result of ``claim_id`` per certificate, carrying it as a document.
+
+    Parameters
+    ----------
+    claim_id : str
+        The certificate claim.
+    case : Case
+        A loaded case.
+    evidence : callable
+        ``evidence(certificate)`` → the evidence shown beside the document.
+
+    Returns
+    -------
+    list of ClaimResult
+        Or the one ``inconclusive`` result of :func:`certificates_or_inconclusive`.
+    """
+    certs = certificates_or_inconclusive(claim_id, case)
     if isinstance(certs, ClaimResult):
         return [certs]
     return [
-        ClaimResult(
-            claim_id,
-            case.name,
-            "exact",
-            "verified",
-            evidence={**evidence(cert), DOCUMENT_KEY: cert},
-            message=cert["claim"]["statement"],
+        certified_result(
+            claim_id, case, evidence(cert), document=cert, message=cert["claim"]["statement"]
         )
         for cert in certs
     ]
 
 
-@register(
-    "seed000.eq4.36.certified",
-    source="seed 000, eqs. (4.36)–(4.37)",
-    statement="the generic rank of the TDOA network observability matrix O and of each block "
-    "column O_i is certified by an exact non-vanishing minor at a rational point",
-    kinds=("tdoa",),
-)
-def generic_rank_claim(case: Case) -> list[ClaimResult]:
-    """Run the generic-rank certificates of a TDOA case as claim results (method ``exact``).
+def certified_result(
+    claim_id: str, case: Case, evidence: dict[str, Any], *, document: dict, message: str
+) -> ClaimResult:
+    """The ``verified`` result of a certificate claim, carrying ``document`` for the report.
 
     Parameters
     ----------
+    claim_id : str
+        The certificate claim.
     case : Case
-        A ``tdoa`` case.
+        The case certified.
+    evidence : dict
+        Shown beside the document.
+    document : dict
+        The certificate (or bundle) the report writes and re-checks with ``proofs_check``.
+    message : str
+        What it certifies, in one sentence.
 
     Returns
     -------
-    list of ClaimResult
-        One ``verified`` result per distinct network of the scene (one for a static scene),
-        with the certified ranks of ``O`` (agent 0) and of each ``O_i`` and the steps the network
-        holds; or one ``inconclusive`` result saying why there is none.
+    ClaimResult
+        Method ``exact``: the document was accepted by ``proofs_check`` when it was built.
     """
-    claim_id = "seed000.eq4.36.certified"
-    certs = _certified(claim_id, case)
-    if isinstance(certs, ClaimResult):
-        return [certs]
-    networks: dict[tuple[int, ...], list[dict]] = {}
-    for cert in certs:
-        networks.setdefault(tuple(cert["produced_by"].get("steps", [1])), []).append(cert)
-    return [
-        ClaimResult(
-            claim_id,
-            case.name,
-            "exact",
-            "verified",
-            evidence={**_rank_evidence(steps, group), DOCUMENT_KEY: bundle(group, case=case.name)},
-            message=_rank_message(group),
-        )
-        for steps, group in networks.items()
-    ]
-
-
-def _rank_evidence(steps: tuple[int, ...], group: list[dict]) -> dict[str, Any]:
-    return {
-        "steps": list(steps),
-        "ranks_at_least": {c["claim"]["agent"]: c["claim"]["rank_at_least"] for c in group},
-        "certificates": [
-            {
-                "agent": c["claim"]["agent"],
-                "rank_at_least": c["claim"]["rank_at_least"],
-                "rows": c["witness"]["rows"],
-                "cols": c["witness"]["cols"],
-                "minor": c["witness"]["minor"],
-            }
-            for c in group
-        ],
-        "seed": group[0]["produced_by"]["seed"],
-    }
-
-
-def _rank_message(group: list[dict]) -> str:
-    """The statement of the certificate of ``O``, then the certified ranks of each ``O_i``."""
-    ranks = {c["claim"]["agent"]: c["claim"]["rank_at_least"] for c in group}
-    whole = [c["claim"]["statement"] for c in group if c["claim"]["agent"] == 0]
-    agents = len(group[0]["data"]["neighbours"])
-    blocks = ", ".join(str(ranks.get(i, 0)) for i in range(1, agents + 1))
-    return "; ".join([*whole, f"block columns O_1 … O_{agents} have rank at least {blocks}"])
-
-
-@register(
-    "seed000.def5.2.4.certified",
-    source="seed 000, Definition 5.2.4 and Lemma 5.2.2",
-    statement="S-detectability is certified by rational gains and a Lyapunov tuple whose strict "
-    "inequalities are verified in exact arithmetic (proofs_check)",
-    kinds=("dkf",),
-)
-def dkf_certificate_claim(case: Case) -> list[ClaimResult]:
-    """Run the s-detectability certificates of a dkf case as claim results (method ``exact``).
-
-    Parameters
-    ----------
-    case : Case
-        A ``dkf`` case.
-
-    Returns
-    -------
-    list of ClaimResult
-        One per certificate (``verified``), or one ``inconclusive`` result saying why none
-        (a case that is not S-detectable has no such certificate).
-    """
-    return _results(
-        "seed000.def5.2.4.certified",
-        case,
-        lambda cert: {
-            "operator": cert["witness"]["operator"],
-            "gains": cert["witness"]["gains"],
-            "significant_bits": cert["produced_by"]["significant_bits"],
-            "float_margin": cert["produced_by"]["float_margin"],
-        },
+    return ClaimResult(
+        claim_id,
+        case.name,
+        "exact",
+        "verified",
+        evidence={**evidence, DOCUMENT_KEY: document},
+        message=message,
     )

@@ -7,7 +7,8 @@ ready-to-run case file. A property stating a claim the papers get wrong is regis
 ``expected_to_hold=False``: the default budget must find its counterexample (tests check this);
 a corrected property must survive.
 
-Modules that register properties are listed in :data:`PROPERTY_MODULES`.
+A module registers properties iff its file name is ``properties.py`` or ends in
+``_properties.py`` (:mod:`theory.core.discovery`); :func:`all_properties` imports every such module.
 """
 
 from __future__ import annotations
@@ -22,9 +23,10 @@ from hypothesis import HealthCheck, Phase, find, settings
 from hypothesis import strategies as st
 from hypothesis.errors import NoSuchExample
 
+from theory.core.discovery import role_modules
+
 __all__ = [
     "DEFAULT_EXAMPLES",
-    "PROPERTY_MODULES",
     "FalsifyResult",
     "Property",
     "all_properties",
@@ -34,13 +36,6 @@ __all__ = [
 ]
 
 DEFAULT_EXAMPLES = 200
-PROPERTY_MODULES: tuple[str, ...] = (
-    "theory.consensus.properties",
-    "theory.pursuit.properties",
-    "theory.tdoa.networked_properties",
-    "theory.tdoa.geometry_properties",
-    "theory.tdoa.averaged_properties",
-)
 
 _PROPERTIES: dict[str, Property] = {}
 
@@ -120,8 +115,8 @@ def register_property(prop: Property) -> Property:
 
 
 def all_properties() -> list[Property]:
-    """Every registered property, sorted by id."""
-    for module in PROPERTY_MODULES:
+    """Every registered property, sorted by id (imports every property module first)."""
+    for module in role_modules("properties"):
         importlib.import_module(module)
     return sorted(_PROPERTIES.values(), key=lambda p: p.id)
 

@@ -18,10 +18,10 @@ from theory.cli import app
 from theory.core.case_file import bundled_cases, load_case, parse_case
 from theory.core.claims import all_claims, get_claim
 from theory.core.errors import CaseError
+from theory.core.expectations import EXPECTATIONS_KEY, evaluate
 from theory.particle.case import PARAM_NAMES
 from theory.particle.claims import learned_bias
 from theory.report.canonical import canonical
-from theory.report.expectations import EXPECTATIONS_KEY, evaluate
 
 runner = CliRunner()
 PF_CASES = tuple(name for name, path in bundled_cases().items() if name.startswith("pf-"))

@@ -37,7 +37,7 @@ def write_case(folder: Path, name: str = "four-path", **changes: object) -> Path
 def fake_registry(monkeypatch: pytest.MonkeyPatch):
     """Give the test an empty claim registry; returns :func:`theory.core.claims.register`."""
     monkeypatch.setattr(claims, "_REGISTRY", {})
-    monkeypatch.setattr(claims, "CLAIM_MODULES", ())
+    monkeypatch.setattr(claims, "claim_modules", tuple)
     return register
 
 

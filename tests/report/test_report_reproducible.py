@@ -8,6 +8,7 @@ a bundled case).
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -35,3 +36,15 @@ def test_real_report_json_is_identical_for_the_same_seed(tmp_path: Path) -> None
         texts.append((out / "report.json").read_bytes())
         assert (out / "index.html").stat().st_size > 0
     assert texts[0] == texts[1]
+    _tolerances_come_from_the_table(json.loads(texts[0]), cases)
+
+
+def _tolerances_come_from_the_table(document: dict, cases: list) -> None:
+    """Every tolerance a result echoes is named in the table, with the table's default unless a
+    case overrides it (theory.core.tolerances)."""
+    table = {row["name"]: row["default"] for row in document["environment"]["tolerance_table"]}
+    overridden = {name for case in cases for name in case.tolerances}
+    for name, values in document["environment"]["tolerances"].items():
+        assert name in table, f"{name} is echoed but not in the tolerance table"
+        if name not in overridden:
+            assert values == [table[name]], (name, values)

@@ -54,7 +54,7 @@ def test_progress_counts_finished_runs_and_bad_counts_raise() -> None:
 
 def test_the_engine_imports_no_model_package() -> None:
     """``theory.sim.{runner,outputs,figures}`` hold no model: importing them loads none of the
-    domain packages (the lazy aliases for the CLI's old imports are only resolved on use)."""
+    domain packages."""
     code = (
         "import sys, theory.sim.runner, theory.sim.outputs, theory.sim.figures\n"
         "print(sorted(m for m in sys.modules if m.split('.')[:2] in "
@@ -66,14 +66,3 @@ def test_the_engine_imports_no_model_package() -> None:
         [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=root, env=env
     )
     assert out.stdout.strip() == "[]"
-
-
-def test_old_tdoa_names_still_resolve_for_the_cli() -> None:
-    import theory.sim.figures as figures
-    import theory.sim.outputs as outputs
-    from theory.tdoa.figures import write_figures
-    from theory.tdoa.outputs import write_data
-
-    assert figures.write_figures is write_figures and outputs.write_data is write_data
-    with pytest.raises(AttributeError):
-        _ = figures.no_such_name

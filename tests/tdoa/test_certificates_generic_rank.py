@@ -14,10 +14,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from proofs_check import MalformedError, check_certificate
-from theory.certify import generic_rank_claim
 from theory.core.case_file import load_case, parse_case
 from theory.core.observability import numeric_rank
 from theory.core.rationalize import RationalizationError, rational_unit_vector
+from theory.tdoa.certificate_claims import generic_rank_claim
 from theory.tdoa.rank_certificates import (
     exact_weights,
     generic_rank_certificates,

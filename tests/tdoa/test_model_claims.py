@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 from theory.core.case_file import bundled_cases, load_case, parse_case
 from theory.core.claims import get_claim
-from theory.core.network import metropolis_weights
+from theory.core.network import exact_metropolis_weights, metropolis_weights
 from theory.tdoa import model_claims
 from theory.tdoa.model import cv_discrete
 
@@ -69,7 +69,7 @@ def undirected_graphs(draw, *, min_nodes: int = 2, max_nodes: int = 12):
 
 @given(undirected_graphs())
 def test_exact_metropolis_is_symmetric_doubly_stochastic(adjacency: np.ndarray) -> None:
-    exact = model_claims.exact_metropolis(adjacency)
+    exact = exact_metropolis_weights(adjacency)
     n = len(exact)
     W = np.array([[float(w) for w in row] for row in exact])
     assert all(sum(row) == 1 for row in exact)
@@ -127,7 +127,7 @@ def test_metropolis_claim_does_not_apply_to_uniform_weights() -> None:
 def test_exact_weights_are_the_design_rule() -> None:
     path = np.array([[0, 1, 0], [1, 0, 1], [0, 1, 0]], dtype=bool)
     third = Fraction(1, 3)
-    assert model_claims.exact_metropolis(path) == [
+    assert exact_metropolis_weights(path) == [
         [1 - third, third, 0],
         [third, third, third],
         [0, third, 1 - third],

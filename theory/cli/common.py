@@ -1,4 +1,10 @@
-"""Helpers shared by the CLI commands: error handling, JSON output, exit codes."""
+"""Helpers shared by the CLI commands: error handling, JSON output, exit codes.
+
+The exit codes and the verdict → code rule are the library's (:mod:`theory.core.verdicts`);
+JSON conversion is :func:`theory.core.jsonable.plain`. ``EXIT_*`` and ``verdict_exit_code`` are
+re-exported for ``cli/iss.py`` (interim: the pursuit engineer imports them from
+:mod:`theory.core.verdicts` at the merge).
+"""
 
 from __future__ import annotations
 
@@ -8,7 +14,6 @@ import sys
 from collections.abc import Callable
 from typing import Any, NoReturn, TypeVar
 
-import numpy as np
 import typer
 from rich.console import Console
 
@@ -19,6 +24,14 @@ from theory.core.errors import (
     SolverError,
     TrackcertError,
 )
+from theory.core.jsonable import plain
+from theory.core.verdicts import (
+    EXIT_BAD_INPUT,
+    EXIT_FAILS,
+    EXIT_HOLDS,
+    EXIT_INCONCLUSIVE,
+)
+from theory.core.verdicts import exit_code as verdict_exit_code
 
 __all__ = [
     "EXIT_BAD_INPUT",
@@ -32,11 +45,8 @@ __all__ = [
     "json_option",
     "print_json",
     "reports_errors",
-    "to_jsonable",
     "verdict_exit_code",
 ]
-
-EXIT_HOLDS, EXIT_FAILS, EXIT_BAD_INPUT, EXIT_INCONCLUSIVE = 0, 1, 2, 3
 
 console = Console()
 error_console = Console(stderr=True)
@@ -68,29 +78,9 @@ def _fail(message: str, code: int) -> None:
     raise typer.Exit(code)
 
 
-def to_jsonable(value: Any) -> Any:
-    """``value`` with numpy scalars/arrays, tuples and complex numbers made plain JSON types."""
-    if isinstance(value, dict):
-        return {str(k): to_jsonable(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [to_jsonable(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return to_jsonable(value.tolist())
-    if isinstance(value, np.bool_):
-        return bool(value)
-    if isinstance(value, np.integer):
-        return int(value)
-    if isinstance(value, np.floating | float):
-        number = float(value)
-        return number if np.isfinite(number) else str(number)
-    if isinstance(value, complex | np.complexfloating):
-        return {"re": float(value.real), "im": float(value.imag)}
-    return value
-
-
 def print_json(data: Any) -> None:
     """Write ``data`` as indented JSON to stdout."""
-    sys.stdout.write(json.dumps(to_jsonable(data), indent=2, sort_keys=False) + "\n")
+    sys.stdout.write(json.dumps(plain(data), indent=2, sort_keys=False) + "\n")
 
 
 def case_argument(help: str = "Case file or bundled case name.") -> Any:
@@ -113,11 +103,6 @@ def json_option(help: str = "Print JSON.") -> Any:
         Its help text.
     """
     return typer.Option(False, "--json", help=help)
-
-
-def verdict_exit_code(verdict: bool | None) -> int:
-    """The DESIGN.md exit code of a verdict: True 0 (holds), False 1 (fails), None 3."""
-    return {True: EXIT_HOLDS, False: EXIT_FAILS, None: EXIT_INCONCLUSIVE}[verdict]
 
 
 def finish(data: Any, code: int, *, as_json: bool, show: Callable[[], None]) -> NoReturn:

@@ -1,7 +1,9 @@
 """``trackcert dkf CASE``: S-detectability and necessary conditions of a consensus Kalman filter.
 
-Exit codes: 0 S-detectable (witness verified), 1 not (certificate verified), 2 bad input,
-3 inconclusive (the LMI decision is near its boundary or the solver failed: the output says which).
+A shell over :func:`theory.consensus.dkf_report.dkf_report`. Exit codes
+(:mod:`theory.core.verdicts`): 0 S-detectable (witness verified), 1 not (certificate verified),
+2 bad input, 3 inconclusive (the LMI decision is near its boundary or the solver failed: the
+output says which).
 """
 
 from __future__ import annotations
@@ -9,23 +11,21 @@ from __future__ import annotations
 import typer
 from rich.table import Table
 
-from theory.cli.common import (
-    case_argument,
-    console,
-    finish,
-    json_option,
-    reports_errors,
-    verdict_exit_code,
-)
+from theory.cli.common import case_argument, console, finish, json_option, reports_errors
 from theory.core.case_file import load_case
-from theory.core.claims import all_claims, applicable_results
-from theory.core.errors import CaseError
+from theory.core.verdicts import exit_code
 
 __all__ = ["register"]
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``dkf`` command to ``app``."""
+    """Add the ``dkf`` command to ``app``.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The ``trackcert`` application.
+    """
 
     @app.command("dkf")
     @reports_errors
@@ -38,22 +38,11 @@ def register(app: typer.Typer) -> None:
         ),
     ) -> None:
         """S-detectability (LMI), Thm 5.2.10's conditions and the blind-set condition."""
-        loaded = load_case(case)
-        if loaded.kind != "dkf":
-            raise CaseError("kind", "dkf", loaded.kind, file=loaded.file)
-        if solver not in ("CLARABEL", "SCS"):
-            raise CaseError("--solver", "CLARABEL or SCS", solver, file=loaded.file)
-        from theory.consensus.claims import analyze_dkf  # cvxpy: imported on use
+        from theory.consensus.dkf_report import dkf_report  # cvxpy: imported on use
 
-        analysis = analyze_dkf(loaded, search_self_weight=self_weight, solver=solver)
-        data = analysis.to_json()
-        data["claims"] = [
-            result.to_json(claim.source)
-            for claim in all_claims()
-            if "dkf" in claim.kinds
-            for result in applicable_results(claim, loaded)
-        ]
-        code = verdict_exit_code(data["s_detectable"])
+        report = dkf_report(load_case(case), search_self_weight=self_weight, solver=solver)
+        data = report.to_json()
+        code = exit_code(report.verdict)
         finish(data, code, as_json=as_json, show=lambda: _print_table(data))
 
 
@@ -84,3 +73,8 @@ def _print_table(data: dict) -> None:
     console.print(table)
     for claim in data["claims"]:
         console.print(f"  {claim['id']}: {claim['status']}", markup=False)
+    for e in data["expectations"]:
+        console.print(
+            f"  expect {e['key']} = {e['expected']}: {e['verdict']} (got {e['got']})",
+            markup=False,
+        )

@@ -1,4 +1,8 @@
-"""``trackcert falsify CLAIM``: search for a counterexample to a claim, in each of its wordings."""
+"""``trackcert falsify CLAIM``: search for a counterexample to a claim, in each of its wordings.
+
+A shell over :func:`theory.falsify.falsify`; exit code (:mod:`theory.core.verdicts`) 0 when no
+wording has a counterexample in the budget, 1 when one has, 2 on bad input.
+"""
 
 from __future__ import annotations
 
@@ -6,14 +10,9 @@ import typer
 import yaml
 from rich.table import Table
 
-from theory.cli.common import (
-    EXIT_FAILS,
-    EXIT_HOLDS,
-    console,
-    print_json,
-    reports_errors,
-)
+from theory.cli.common import console, print_json, reports_errors
 from theory.core.errors import CaseError
+from theory.core.verdicts import exit_code
 from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, all_properties, falsify, properties_for
 
 __all__ = ["register"]
@@ -54,7 +53,7 @@ def register(app: typer.Typer) -> None:
         else:
             for result in results:
                 _show(result)
-        raise typer.Exit(EXIT_FAILS if any(r.found for r in results) else EXIT_HOLDS)
+        raise typer.Exit(exit_code(not any(r.found for r in results)))
 
 
 def _record(result: FalsifyResult) -> dict:

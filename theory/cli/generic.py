@@ -1,20 +1,29 @@
-"""``trackcert generic``: symbolic generic observability of one agent (seed 000 §4.2.1)."""
+"""``trackcert generic``: symbolic generic observability of one agent (seed 000 §4.2.1).
+
+A shell over :func:`theory.tdoa.generic_report.generic_report` and
+:func:`~theory.tdoa.generic_report.fig43_report`; exit code (:mod:`theory.core.verdicts`) 0 when the
+derivation reproduces the statement, 1 when a check disagrees, 2 on bad options.
+"""
 
 from __future__ import annotations
 
 import typer
 
-from theory.cli.common import EXIT_FAILS, print_json, reports_errors
-from theory.core.errors import CaseError
+from theory.cli.common import print_json, reports_errors
+from theory.core.verdicts import exit_code
+from theory.tdoa.generic_report import GenericReport, fig43_report, generic_report
 
-__all__ = ["MAX_ROWS", "register"]
-
-MAX_ROWS = {2: 8, 3: 4}
-"""Largest ``--rows`` per dimension: C(32, 4) = 35960 and C(24, 6) = 134596 minors."""
+__all__ = ["register"]
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``generic`` command to ``app``."""
+    """Add the ``generic`` command to ``app``.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The ``trackcert`` application.
+    """
 
     @app.command("generic")
     @reports_errors
@@ -37,65 +46,38 @@ def register(app: typer.Typer) -> None:
         the symbolic and exact ranks of every O_i agree and the pair is detectable.
         """
         if fig43 is not None:
-            _fig43(fig43, weights, seed, as_json)
-            return
-        if dim not in (2, 3):
-            raise CaseError("--dim", "2 or 3", dim, file="<command line>")
-        rows = dim if rows is None else rows
-        limit = MAX_ROWS[dim]
-        if rows < 1 or rows > limit:
-            raise CaseError(
-                "--rows",
-                f"an integer between 1 and {limit} for dim {dim} (all C(2·dim·rows, 2·dim) "
-                "minors are enumerated; footnote 2 needs only rows = dim + 1)",
-                rows,
-                file="<command line>",
-            )
-        from theory.tdoa.generic_rank import single_agent_generic_rank  # sympy: imported on use
-
-        result = single_agent_generic_rank(dim, rows, seed=seed)
-        ok = (
-            result.cross_check["all_agree"]
-            and result.random_rank.rank == result.kronecker_rank
-            and result.generically_full_rank == (rows >= dim)
-            and result.closed_form_alpha in (None, True)
-            and result.paper_factor_matches in (None, True)
-        )
-        if as_json:
-            print_json({**result.to_json(), "derivation": result.markdown(), "holds": ok})
+            report = fig43_report(fig43, weights=weights, seed=seed)
+            _show_fig43(report, fig43, weights, as_json)
         else:
-            typer.echo(result.markdown(), nl=False)  # raw markdown: no re-wrapping of tables
-        if not ok:
-            raise typer.Exit(EXIT_FAILS)
+            report = generic_report(dim, rows, seed=seed)
+            result = report.result
+            if as_json:
+                print_json(
+                    {**result.to_json(), "derivation": result.markdown(), "holds": report.holds}
+                )
+            else:
+                typer.echo(result.markdown(), nl=False)  # raw markdown: no re-wrapping of tables
+        raise typer.Exit(exit_code(report.holds))
 
 
-def _fig43(case: str, weights: str, seed: int, as_json: bool) -> None:
+def _show_fig43(report: GenericReport, case: str, weights: str, as_json: bool) -> None:
     """Print the Fig. 4.3 analysis: symbolic rank O_i, exact rank O, detectability."""
-    from theory.tdoa.fig43 import FIG43_EDGES, fig43_analysis  # sympy: imported on use
-
-    if case not in FIG43_EDGES:
-        raise CaseError("--fig43", f"one of {sorted(FIG43_EDGES)}", case, file="<command line>")
-    if weights not in ("metropolis", "uniform"):
-        raise CaseError("--weights", "metropolis or uniform", weights, file="<command line>")
-    result = fig43_analysis(case, rule=weights, seed=seed)
-    ok = result["agree"] and result["detectable"]
+    result = report.result
     if as_json:
-        print_json({**result, "holds": ok})
-    else:
-        exact = result["exact"]
-        lines = [f"Fig. 4.3 case ({case}), {weights} weights, App. B.1 shared-λ Jacobians"]
-        for agent, witness in enumerate(result["witnesses"], start=1):
-            lines.append(
-                f"  rank O_{agent} = {witness['rank']}: minor {witness['minor']} "
-                f"(rows (power, agent, edge) {witness['rows']})"
-            )
-        lines += [
-            f"  exact at a random point (seed {exact['seed']}): rank O = {exact['network_rank']}"
-            f" of {exact['n_states']}; Σ rank O_i = {exact['rank_sum']}; P(wrong "
-            f"rank-deficient verdict) ≤ {exact['error_bound']:.1e}",
-            f"  rank O = Σ rank O_i (paper, after eq. 4.36): {result['rank_sum_claim_holds']}",
-            f"  observable: {result['network_observable']}; detectable: {result['detectable']}",
-        ]
-        typer.echo("\n".join(lines))
-    if not ok:
-        raise typer.Exit(EXIT_FAILS)
+        print_json({**result, "holds": report.holds})
+        return
+    exact = result["exact"]
+    lines = [f"Fig. 4.3 case ({case}), {weights} weights, App. B.1 shared-λ Jacobians"]
+    for agent, witness in enumerate(result["witnesses"], start=1):
+        lines.append(
+            f"  rank O_{agent} = {witness['rank']}: minor {witness['minor']} "
+            f"(rows (power, agent, edge) {witness['rows']})"
+        )
+    lines += [
+        f"  exact at a random point (seed {exact['seed']}): rank O = {exact['network_rank']}"
+        f" of {exact['n_states']}; Σ rank O_i = {exact['rank_sum']}; P(wrong "
+        f"rank-deficient verdict) ≤ {exact['error_bound']:.1e}",
+        f"  rank O = Σ rank O_i (paper, after eq. 4.36): {result['rank_sum_claim_holds']}",
+        f"  observable: {result['network_observable']}; detectable: {result['detectable']}",
+    ]
+    typer.echo("\n".join(lines))

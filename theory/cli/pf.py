@@ -1,41 +1,36 @@
 """``trackcert pf CASE``: Monte Carlo runs of the distributed TDOA particle filter (seed 002 §3.3).
 
-Prints the per-node error summary and the verdicts of every registered claim for ``kind: pf``
-cases, and each key of the case's ``expect`` block with the value the claims observed (the
-verdicts of :mod:`theory.report.expectations`, as ``trackcert report`` gives them); with
-``-o DIR`` writes ``DIR/pf.json`` and the figures. Exit code 0 when every expectation is met, 1
-when one is unmet, 3 when one is inconclusive.
+A shell over :func:`theory.particle.pf_report.pf_report`: prints the per-node error summary, the
+verdicts of every registered claim for ``kind: pf`` cases, and each key of the case's ``expect``
+block with the value the claims observed (judged by :mod:`theory.core.expectations`, as
+``trackcert report`` judges it); with ``-o DIR`` the library writes ``DIR/pf.json`` and the
+figures. Exit code (:mod:`theory.core.verdicts`): 0 every expectation met, 1 one unmet, 3 one
+inconclusive or unchecked.
 """
 
 from __future__ import annotations
 
 import json
-from dataclasses import replace
 from pathlib import Path
 
 import typer
 from rich.table import Table
 
-from theory.cli.common import (
-    EXIT_FAILS,
-    EXIT_HOLDS,
-    EXIT_INCONCLUSIVE,
-    console,
-    print_json,
-    reports_errors,
-    to_jsonable,
-)
+from theory.cli.common import console, print_json, reports_errors
 from theory.core.case_file import Case, load_case
-from theory.core.claims import all_claims, applicable_results
-from theory.core.errors import CaseError
+from theory.core.verdicts import exit_code
 
 __all__ = ["register", "run_pf_case"]
 
-SNAPSHOT_STEPS = (0, 5, 20)
-
 
 def register(app: typer.Typer) -> None:
-    """Add the ``pf`` command to ``app``."""
+    """Add the ``pf`` command to ``app``.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The ``trackcert`` application.
+    """
 
     @app.command("pf")
     @reports_errors
@@ -53,12 +48,12 @@ def register(app: typer.Typer) -> None:
 def run_pf_case(
     case: Case, runs: int | None, seed: int | None, out: str | None, as_json: bool
 ) -> int:
-    """Run ``case`` (``kind: pf``), print the summary and return the exit code.
+    """Print :func:`theory.particle.pf_report.pf_report` of ``case`` and return the exit code.
 
     Parameters
     ----------
     case : Case
-        A loaded case; anything but ``kind: pf`` is refused.
+        A loaded ``kind: pf`` case.
     runs, seed : int or None
         Monte Carlo runs and base seed (``None``: the case's own).
     out : str or None
@@ -69,68 +64,17 @@ def run_pf_case(
     Returns
     -------
     int
-        1 when an expectation is unmet, 3 when one is inconclusive, 0 otherwise.
+        The expectations' exit code: 0 all met, 1 one unmet, 3 one inconclusive or unchecked.
     """
-    from theory.particle.experiments import monte_carlo, node_summary, shared_monte_carlo
+    from theory.particle.pf_report import pf_report
 
-    folder = None if out is None else Path(out)
-    if case.kind != "pf":
-        raise CaseError(
-            "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
-        )
-    spec = replace(
-        case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
-    )
-    case = replace(case, spec=spec)
-    mc = shared_monte_carlo(spec)
-    claims = [
-        (claim.source, result)
-        for claim in all_claims()
-        if "pf" in claim.kinds
-        for result in applicable_results(claim, case)
-    ]
-    figures = []
-    if folder is not None:
-        from theory.particle.figures import write_figures
-
-        first = monte_carlo(spec, runs=1, snapshot_steps=SNAPSHOT_STEPS)  # = run 0 of mc
-        figures = write_figures(replace(mc, snapshots=first.snapshots), spec, folder, case.name)
-    report = {
-        "case": case.name,
-        "runs": spec.runs,
-        "seed": spec.seed,
-        "model": spec.model,
-        "share": spec.config.share,
-        "config": to_jsonable(vars(spec.config)),
-        "agents": node_summary(mc, spec),
-        "claims": [result.to_json(source) for source, result in claims],
-        "expectations": _expectations(case, [result for _, result in claims]),
-        "figures": figures,
-    }
-    if folder is not None:
-        (folder / "pf.json").write_text(json.dumps(to_jsonable(report), indent=2) + "\n")
+    report = pf_report(case, runs=runs, seed=seed, out=None if out is None else Path(out))
+    record = report.to_json()
     if as_json:
-        print_json(report)
+        print_json(record)
     else:
-        _print(report)
-    verdicts = {e["verdict"] for e in report["expectations"]}
-    if "unmet" in verdicts:
-        return EXIT_FAILS
-    if verdicts - {"met"}:
-        return EXIT_INCONCLUSIVE
-    return EXIT_HOLDS
-
-
-def _expectations(case: Case, results: list) -> list[dict]:
-    from theory.report.canonical import canonical
-    from theory.report.expectations import EXPECTATIONS_KEY, evaluate
-
-    observed = [
-        (r.claim, canonical(r.evidence[EXPECTATIONS_KEY]), r.status)
-        for r in results
-        if EXPECTATIONS_KEY in r.evidence
-    ]
-    return [e.to_json() for e in evaluate(case.name, canonical(case.expect), observed)]
+        _print(record)
+    return exit_code(report.verdict)
 
 
 def _print(report: dict) -> None:

@@ -1,9 +1,14 @@
-"""``trackcert report [CASES…] -o DIR``: every registered check on every case, as a report."""
+"""``trackcert report [CASES…] -o DIR``: every registered check on every case, as a report.
+
+A shell over :func:`theory.report.build.build_report`; the exit code is the expectations' verdict
+(:mod:`theory.core.verdicts`).
+"""
 
 from __future__ import annotations
 
-import tempfile
+import contextlib
 from collections import Counter
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Annotated
 
@@ -11,13 +16,12 @@ import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from theory.cli.common import EXIT_FAILS, EXIT_HOLDS, console, error_console, reports_errors
+from theory.cli.common import console, error_console, reports_errors
 from theory.core.case_file import bundled_cases, load_case
-from theory.core.claims import all_claims
-from theory.core.errors import CaseError
+from theory.core.verdicts import exit_code
+from theory.report.build import build_report, check_count, choose_claims
 from theory.report.canonical import dumps
-from theory.report.render import write_report
-from theory.report.runner import MODEL_CASE, run_claims, select_claims
+from theory.report.runner import MODEL_CASE
 
 __all__ = ["DEFAULT_TIME_LIMIT", "register"]
 
@@ -63,37 +67,34 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Run every registered check on every case; write index.html, report.md, report.json.
 
-        Exit 0 when every expectation of every case is met, 1 otherwise, 2 on bad input. CASES
+        Exit 0 when every expectation of every case is met, 1 when one is unmet, 3 when one is
+        inconclusive or unchecked (and none unmet), 2 on bad input. CASES
         are case files or bundled names; --seed seeds every randomized check; --only keeps the
         claims whose id matches a pattern; --errata names the errata document; --time-limit
         bounds each check's wall time; --json prints report.json.
         """
         loaded = [load_case(c) for c in (cases or list(bundled_cases()))]
-        claims = select_claims(all_claims(), only or [])
-        if only and not claims:
-            raise CaseError(
-                "--only", "a pattern matching a registered claim id", only, hint=_known_ids()
+        claims = choose_claims(only or [])
+        with _progress(check_count(loaded, claims)) as advance:
+            run, document = build_report(
+                loaded,
+                out,
+                claims=claims,
+                seed=seed,
+                seconds=time_limit or None,
+                errata_path=errata,
+                progress=advance,
             )
-        if errata is not None and not errata.is_file():
-            raise CaseError("--errata", "a readable Markdown file", str(errata))
-        with tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures:
-            run = _run_with_progress(loaded, claims, seed, time_limit or None, Path(figures))
-            document = write_report(run, out, errata_path=errata)
         if as_json:
             console.file.write(dumps(document))
         else:
             _print_summary(document, out)
-        raise typer.Exit(EXIT_HOLDS if run.all_expectations_met else EXIT_FAILS)
+        raise typer.Exit(exit_code(run.verdict))
 
 
-def _known_ids() -> str:
-    return "Registered claims: " + ", ".join(c.id for c in all_claims())
-
-
-def _run_with_progress(cases, claims, seed, seconds, figure_dir):
-    total = sum(1 for c in claims if not c.kinds) + sum(
-        1 for case in cases for c in claims if case.kind in c.kinds
-    )
+@contextlib.contextmanager
+def _progress(total: int) -> Iterator[Callable[[str, str], None]]:
+    """A progress bar on stderr, and the hook advancing it before each check."""
     columns = (
         TextColumn("{task.description}"),
         BarColumn(),
@@ -108,14 +109,7 @@ def _run_with_progress(cases, claims, seed, seconds, figure_dir):
             progress.update(task, description=f"{claim_id} on {where}")
             progress.advance(task)
 
-        return run_claims(
-            cases,
-            seed=seed,
-            claims=claims,
-            progress=advance,
-            seconds=seconds,
-            figure_dir=figure_dir,
-        )
+        yield advance
 
 
 def _print_summary(document: dict, out: Path) -> None:

@@ -1,33 +1,27 @@
 """``trackcert simulate CASE``: closed-loop simulation, data files and figures (DESIGN.md).
 
-Runs ``kind: tdoa-sim`` cases (seed 000 ch. 4, :mod:`theory.tdoa.scenario`), 2-D
-``kind: pursuit`` cases (seed 003, :mod:`theory.pursuit.simulation`) and ``kind: dkf`` cases
-(seed 000 ch. 5, :mod:`theory.consensus.simulation`); ``kind: pf`` cases (seed 002) are handed to
-:func:`theory.cli.pf.run_pf_case`, as ``trackcert pf`` runs them.
+A shell over :func:`theory.simulate.simulate_case` with the case kind's simulator
+(:func:`theory.simulate.simulator_for`: ``kind: tdoa-sim`` in :mod:`theory.tdoa.sim_summary`,
+``kind: dkf`` in :mod:`theory.consensus.dkf_report`); ``kind: pf`` cases are handed to
+:func:`theory.cli.pf.run_pf_case`, as ``trackcert pf`` runs them. Interim: 2-D ``kind: pursuit``
+cases (seed 003, :mod:`theory.pursuit.simulation`) still use the backend below until the pursuit
+kind registers its simulator. Exit code (:mod:`theory.core.verdicts`): the expectations'
+verdict, 0 all met (or none stated), 1 one unmet, 3 one inconclusive or unchecked.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import functools
-import json
-import math
 from pathlib import Path
 from typing import Any
 
 import typer
 from rich.progress import Progress
 
-from theory.cli.common import (
-    EXIT_FAILS,
-    console,
-    error_console,
-    print_json,
-    reports_errors,
-    to_jsonable,
-)
+from theory.cli.common import console, error_console, print_json, reports_errors
 from theory.core.case_file import Case, load_case
 from theory.core.errors import CaseError
+from theory.core.verdicts import exit_code
 
 __all__ = ["register"]
 
@@ -66,7 +60,8 @@ def register(app: typer.Typer) -> None:
         as_json: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
     ) -> None:
         """Simulate the closed loop; write runs.npz, CSV tables, PNG figures and summary.json."""
-        from theory.sim.runner import default_workers, monte_carlo
+        from theory.sim.runner import default_workers
+        from theory.simulate import simulate_case, simulator_for
 
         loaded = load_case(case)
         if loaded.kind not in KINDS:
@@ -78,65 +73,43 @@ def register(app: typer.Typer) -> None:
 
             raise typer.Exit(run_pf_case(loaded, runs, seed, output, as_json))
         runs, seed = runs or 1, seed or 0
-        backend = {"tdoa-sim": _tdoa_backend, "pursuit": _pursuit_backend, "dkf": _dkf_backend}[
-            loaded.kind
-        ]
-        spec, simulate_one, header = backend(loaded, steps)
+        chosen = (
+            _interim_pursuit(loaded, steps)
+            if loaded.kind == "pursuit"
+            else simulator_for(loaded, steps)
+        )
         workers = workers or default_workers()
         with Progress(console=error_console, transient=True) as progress:
             task = progress.add_task(f"simulating {loaded.name}", total=runs)
-            results = monte_carlo(
-                spec,
+            simulation = simulate_case(
+                loaded,
+                chosen,
+                folder=Path(output),
                 runs=runs,
                 seed=seed,
                 workers=workers,
+                figures=figures,
                 progress=lambda done: progress.update(task, completed=done),
-                simulate=simulate_one,
             )
-        folder = Path(output)
-        folder.mkdir(parents=True, exist_ok=True)
-        summary, expectations, files = header["finish"](loaded, spec, results, folder, figures)
-        report = {
-            "case": loaded.name,
-            "source": loaded.source,
-            "kind": loaded.kind,
-            **header["fields"],
-            "runs": runs,
-            "seed": seed,
-            "workers": min(workers, runs),
-            **summary,
-            "expectations": expectations,
-            "files": [str(f) for f in files],
-        }
-        (folder / "summary.json").write_text(json.dumps(to_jsonable(report), indent=2))
+        report = simulation.to_json()
         if as_json:
             print_json(report)
         else:
             _print_table(report)
-        if not all(e["met"] for e in expectations.values()):
-            raise typer.Exit(EXIT_FAILS)
+        raise typer.Exit(exit_code(simulation.verdict))
 
 
-def _tdoa_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
-    from theory.tdoa.scenario import run_tdoa_scenario
+def _interim_pursuit(case: Case, steps: int | None) -> Any:
+    """The pursuit backend below as a :class:`theory.simulate.Simulator` (interim)."""
+    from theory.simulate import Finished, Simulator
 
-    spec = case.spec if steps is None else dataclasses.replace(case.spec, steps=steps)
-    fields = {"filter": spec.filter, "b": spec.b, "steps": spec.steps}
-    return spec, run_tdoa_scenario, {"fields": fields, "finish": _finish_tdoa}
+    spec, simulate_one, header = _pursuit_backend(case, steps)
 
+    def finish(case: Case, spec: Any, results: list, folder: Path, figures: bool) -> Finished:
+        summary, _, files = header["finish"](case, spec, results, folder, figures)
+        return Finished(summary, files)
 
-def _finish_tdoa(case: Case, spec: Any, results: list, folder: Path, figures: bool):
-    from theory.sim.figures import write_figures
-    from theory.sim.outputs import write_data
-    from theory.tdoa.metrics import check_expectations, summarize_runs
-
-    summary = summarize_runs(spec, results)
-    error_bound = case.tolerances.get("error_bound", 10.0 * math.sqrt(spec.r))
-    expectations = check_expectations(summary, case.expect, error_bound=error_bound)
-    files = write_data(results, summary, folder)
-    if figures:
-        files += write_figures(results, folder)
-    return {"tolerances": {"error_bound": error_bound}, **summary}, expectations, files
+    return Simulator(spec, simulate_one, header["fields"], finish)
 
 
 def _pursuit_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
@@ -170,22 +143,6 @@ def _finish_pursuit(case: Case, spec: Any, results: list, folder: Path, figures:
     if figures:
         files += write_pursuit_figures(results, folder)
     return summary, {}, files
-
-
-def _dkf_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
-    from theory.consensus.simulation import DEFAULT_STEPS, run_dkf_case
-
-    steps = steps or DEFAULT_STEPS
-    fields = {"order": case.spec.order, "steps": steps}
-    simulate_one = functools.partial(run_dkf_case, steps=steps)
-    return case.spec, simulate_one, {"fields": fields, "finish": _finish_dkf}
-
-
-def _finish_dkf(case: Case, spec: Any, results: list, folder: Path, figures: bool):
-    from theory.consensus.simulation import summarize_dkf, write_dkf_data
-
-    summary = summarize_dkf(spec, results)
-    return summary, {}, write_dkf_data(results, summary, folder)
 
 
 def _print_table(report: dict) -> None:

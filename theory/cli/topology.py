@@ -1,76 +1,24 @@
 """``trackcert topology CASE``: distributed TDOA observability of every agent (DESIGN.md).
 
-Exit codes: 0 every agent can localize the target at every step (the networked pair is
-detectable), 1 some agent cannot, 2 bad input, 3 inconclusive (a deciding singular value lies
-within ``inconclusive_factor`` of its threshold, or a linear-algebra routine failed).
+A shell over :func:`theory.tdoa.topology_report.topology_report`. Exit codes
+(:mod:`theory.core.verdicts`): 0 every agent can localize the target at every step, 1 some agent
+cannot, 2 bad input, 3 inconclusive (a deciding singular value lies within
+``inconclusive_factor`` of its threshold, or a linear-algebra routine failed).
 """
 
 from __future__ import annotations
 
-from typing import Any
-
-import numpy as np
 import typer
 from rich.table import Table
 
-from theory.cli.common import (
-    EXIT_HOLDS,
-    EXIT_INCONCLUSIVE,
-    case_argument,
-    console,
-    finish,
-    json_option,
-    reports_errors,
-    verdict_exit_code,
-)
+from theory.cli.common import case_argument, console, finish, json_option, reports_errors
 from theory.core.case_file import Case, load_case
-from theory.core.errors import CaseError, SolverError
-from theory.tdoa.time_varying import (
-    TrajectoryResult,
-    analyze_trajectory,
-    check_trajectory_expectations,
-)
-from theory.tdoa.topology import TopologyResult, check_expectations
+from theory.core.verdicts import exit_code
+from theory.tdoa.time_varying import TrajectoryResult
+from theory.tdoa.topology import TopologyResult
+from theory.tdoa.topology_report import TopologyReport, topology_report
 
-__all__ = ["register", "run_topology"]
-
-
-def run_topology(case: Case, *, network_rank: bool = True, **tolerances: float) -> TrajectoryResult:
-    """Analyze a ``kind: tdoa`` case at every step with the case's tolerances (overridable).
-
-    Parameters
-    ----------
-    case : Case
-        A loaded case.
-    network_rank : bool
-        ``False`` skips the rank of the whole networked matrix (cubic in the largest component);
-        per-agent verdicts and detectability are always computed.
-    **tolerances : float
-        ``rank_tol`` / ``inconclusive_factor`` overriding the case's (``None`` = keep).
-
-    Returns
-    -------
-    TrajectoryResult
-
-    Raises
-    ------
-    CaseError
-        If the case is not ``kind: tdoa``.
-    SolverError
-        If a linear-algebra routine fails (reported as inconclusive).
-    """
-    if case.kind != "tdoa":
-        raise CaseError("kind", "tdoa (trackcert topology checks TDOA cases)", case.kind)
-    chosen = {k: v for k, v in case.tolerances.items() if k in ("rank_tol", "inconclusive_factor")}
-    chosen.update({k: v for k, v in tolerances.items() if v is not None})
-    if not 0 < chosen.get("rank_tol", 0.5) < 1:
-        raise CaseError("--rank-tol", "a relative tolerance in (0, 1)", chosen["rank_tol"])
-    if chosen.get("inconclusive_factor", 1.0) < 1:
-        raise CaseError("--inconclusive-factor", "a factor ≥ 1", chosen["inconclusive_factor"])
-    try:
-        return analyze_trajectory(case.spec, network_rank=network_rank, **chosen)
-    except np.linalg.LinAlgError as error:
-        raise SolverError(f"linear algebra failed: {error}") from None
+__all__ = ["register"]
 
 
 def register(app: typer.Typer) -> None:
@@ -96,67 +44,23 @@ def register(app: typer.Typer) -> None:
         ),
     ) -> None:
         """Distributed TDOA observability of every agent (seed 000 §4.2.2, Cor. 4.2.4)."""
-        loaded = load_case(case)
-        result = run_topology(
-            loaded,
+        report = topology_report(
+            load_case(case),
             network_rank=network_rank,
             rank_tol=rank_tol,
             inconclusive_factor=inconclusive_factor,
         )
-        first = result.steps[0]
-        mismatches = check_expectations(first, loaded.expect) + check_trajectory_expectations(
-            result, loaded.expect
-        )
-        code = _exit_code(result)
+        code = exit_code(report.verdict)
         finish(
-            _json(loaded, result, mismatches, code),
+            {**report.to_json(), "exit_code": code},
             code,
             as_json=as_json,
-            show=lambda: _print_human(loaded, result, mismatches, code),
+            show=lambda: _print_human(report),
         )
 
 
-def _exit_code(result: TrajectoryResult) -> int:
-    return verdict_exit_code(result.first_failure_step is None if result.conclusive else None)
-
-
-def _verdict(result: TrajectoryResult, code: int) -> str:
-    if code == EXIT_INCONCLUSIVE:
-        reasons = [r for s in result.steps for r in s.inconclusive]
-        return "INCONCLUSIVE: " + reasons[0]
-    if code == EXIT_HOLDS:
-        steps = f" at all {len(result.steps)} steps" if len(result.steps) > 1 else ""
-        ambiguous = [a.id for a in result.steps[0].agents if a.uniqueness.unique is False]
-        caveat = (
-            f" (locally; for agents {ambiguous} another position has the same TDOAs)"
-            if ambiguous
-            else ""
-        )
-        return f"HOLDS: every agent can localize the target{steps}{caveat}"
-    step = result.steps[result.first_failure_step - 1]
-    failing = [a.id for a in step.agents if not a.localizes]
-    where = f" (first at step {step.step})" if len(result.steps) > 1 else ""
-    why = (
-        "; the networked pair is detectable, but a closed class upstream of them (agents that "
-        "hear only each other) cannot localize on its own"
-        if step.network.detectable
-        else ""
-    )
-    return f"FAILS: agents {failing} cannot localize the target{where}{why}"
-
-
-def _json(case: Case, result: TrajectoryResult, mismatches: list[str], code: int) -> dict[str, Any]:
-    data: dict[str, Any] = {"case": case.name, "source": case.source}
-    data.update(result.steps[0].to_json())
-    if len(result.steps) > 1:
-        data["time_varying"] = result.to_json()
-    data["expectations"] = {"met": not mismatches, "mismatches": mismatches}
-    data["verdict"] = _verdict(result, code)
-    data["exit_code"] = code
-    return data
-
-
-def _print_human(case: Case, result: TrajectoryResult, mismatches: list[str], code: int) -> None:
+def _print_human(report: TopologyReport) -> None:
+    case, result = report.case, report.result
     first = result.steps[0]
     console.print(_agent_table(case, first))
     net = first.network
@@ -182,10 +86,11 @@ def _print_human(case: Case, result: TrajectoryResult, mismatches: list[str], co
             markup=False,
         )
     console.print(f"tolerances: {first.tolerances}", markup=False)
-    if case.expect:
-        met = "met" if not mismatches else "NOT met: " + "; ".join(mismatches)
+    if report.expectations:
+        unmet = [e.describe() for e in report.expectations if not e.met]
+        met = "met" if not unmet else "NOT met: " + "; ".join(unmet)
         console.print(f"expectations: {met}", markup=False)
-    console.print(_verdict(result, code), markup=False, style="bold")
+    console.print(report.sentence(), markup=False, style="bold")
 
 
 def _agent_table(case: Case, step: TopologyResult) -> Table:

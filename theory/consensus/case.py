@@ -25,6 +25,7 @@ import numpy as np
 
 from theory.core.case_file import register_kind
 from theory.core.errors import CaseError
+from theory.core.tolerances import WEIGHT_SUM_TOL
 from theory.core.validation import (
     check_keys,
     finite_matrix,
@@ -93,7 +94,7 @@ class DkfSpec:
         return self.W.shape[0]
 
 
-def parse_dkf(block: Mapping[str, Any], *, weight_sum_tol: float = 1e-9) -> DkfSpec:
+def parse_dkf(block: Mapping[str, Any], *, weight_sum_tol: float = WEIGHT_SUM_TOL) -> DkfSpec:
     """Validate a ``dkf:`` block (see the module docstring for the fields).
 
     Parameters
@@ -167,4 +168,11 @@ def _gain(raw: object, field: str, n: int, C_i: np.ndarray) -> np.ndarray:
     return finite_matrix(raw, field, rows=n, cols=p)
 
 
-register_kind("dkf", parse_dkf, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+register_kind(
+    "dkf",
+    parse_dkf,
+    expect_keys=EXPECT_KEYS,
+    tolerance_keys=TOLERANCE_KEYS,
+    observe="theory.consensus.dkf_report:observe_dkf",
+    simulate="theory.consensus.dkf_report:dkf_simulator",
+)

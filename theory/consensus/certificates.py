@@ -34,6 +34,7 @@ from theory.core.rationalize import (
     stochastic_matrix,
     symmetric_projection,
 )
+from theory.core.tolerances import CERTIFICATE_MARGIN as LMI_MARGIN
 
 __all__ = [
     "LMI_MARGIN",
@@ -46,8 +47,6 @@ __all__ = [
     "s_detectability_certificate",
 ]
 
-LMI_MARGIN = 1e-9
-"""Default relative margin the float witness must clear: ``λ_min / max‖P_i‖``."""
 
 ORDERS = {"consensus-then-filter": "L", "filter-then-consensus": "J"}
 """Order of the consensus and filtering steps → operator: eq. (5.13) or eq. (C.6)."""

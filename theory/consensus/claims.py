@@ -2,7 +2,8 @@
 
 :func:`analyze_dkf` runs everything once per case (LMI decision, necessary conditions, radii
 with the case's gains or the witness's, self-weight searches); the registered claims and
-``trackcert dkf`` read from it.
+``trackcert dkf`` (:mod:`theory.consensus.dkf_report`, which also observes the case's ``expect``
+keys) read from it.
 """
 
 from __future__ import annotations
@@ -40,15 +41,11 @@ from theory.consensus.s_detectability import (
 from theory.consensus.self_weight import SelfWeightSearch, max_self_weight
 from theory.core.case_file import Case, load_case
 from theory.core.claims import ClaimResult, NotApplicable, register
+from theory.core.expectations import matches
 from theory.core.observability import RANK_TOL
+from theory.core.tolerances import HYPOTHESIS_TOL
 
 __all__ = ["DkfAnalysis", "analyze_dkf", "printed_match"]
-
-WEIGHT_TOL = 1e-4
-"""Bracket width of the self-weight bisection in :func:`analyze_dkf`."""
-
-HYPOTHESIS_TOL = 1e-9
-"""Distance of ``r_σ(J)`` from 1 within which Lemma A.2.1's hypothesis counts as undecided."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -133,33 +130,7 @@ class DkfAnalysis:
                 "tolerances": self.riccati.tolerances,
             },
             "tolerances": dict(self.tolerances),
-            "expectations": self.expectations(),
         }
-
-    def expectations(self) -> list[dict[str, Any]]:
-        """Each ``expect:`` entry of the case with what was found and whether it is met.
-
-        Spectral radii are compared at the digits written in the case (:func:`printed_match`);
-        the other keys are booleans compared exactly (an inconclusive result meets nothing).
-        """
-        found = {
-            "s_detectable": self.decision.verdict,
-            "spectral_radius_B": self.radius_B,
-            "spectral_radius_L": self.radius_L,
-            "self_weight_ok": _all_ok([b.ok for b in self.conditions.self_weights]),
-            "paper_conditions_ok": self.conditions.paper_conditions,
-            "blind_set_condition_ok": self.conditions.blind_set_condition,
-            "riccati_converges": self.riccati.status == "converged",
-        }
-        out = []
-        for key, expected in self.case.expect.items():
-            got = found[key]
-            if key.startswith("spectral_radius"):
-                met = printed_match(got, float(expected))
-            else:
-                met = got is not None and got == expected
-            out.append({"key": key, "expected": expected, "got": got, "met": met})
-        return out
 
 
 def _all_ok(values: list[bool | None]) -> bool | None:
@@ -244,6 +215,8 @@ def analyze_dkf(
 def printed_match(value: float | None, printed: float) -> bool:
     """Whether ``value`` rounds to ``printed`` at the digits the paper printed.
 
+    The rule of :func:`theory.core.expectations.matches` for an expected float.
+
     Parameters
     ----------
     value : float or None
@@ -251,11 +224,7 @@ def printed_match(value: float | None, printed: float) -> bool:
     printed : float
         The paper's number, as printed (its decimals set the tolerance).
     """
-    if value is None:
-        return False
-    text = repr(float(printed))
-    digits = len(text.split(".")[1]) if "." in text else 0
-    return abs(value - printed) <= 0.5 * 10.0**-digits * (1 + 1e-9)
+    return value is not None and matches(float(printed), value)
 
 
 def _status(ok: bool | None) -> str:

@@ -27,6 +27,7 @@ import numpy as np
 from theory.consensus.exact_self_weight import self_weight_ok_exact
 from theory.consensus.operators import spectral_radius
 from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
+from theory.core.tolerances import EIGEN_TOL, VALUE_TOL
 
 __all__ = [
     "VALUE_TOL",
@@ -43,11 +44,6 @@ __all__ = [
     "unobservable_partition",
     "w_detectability",
 ]
-
-EIGEN_TOL = 1e-7
-"""Relative tolerance for clustering eigenvalues and for the eigenspaces ``ker(A − λI)``."""
-VALUE_TOL = 1e-9
-"""Default relative tolerance around a threshold (e.g. ``|1 − w_ii r²| ≤ VALUE_TOL``)."""
 
 
 @dataclass(frozen=True)

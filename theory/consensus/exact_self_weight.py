@@ -3,7 +3,8 @@
 ``w_ii r_σ(A_iᵘ)² < 1`` is decided without floating point, so boundary cases such as seed 000
 Example 1's ``W_c`` (``w_ii = 0.25``, ``r_σ = 2``: exactly on the bound) get a verdict:
 
-1. the data are read as the decimals written (``Fraction(repr(x))``: 0.24 is 6/25);
+1. the data are read as the decimals written (:func:`theory.core.rationalize.exact_decimal`,
+   re-exported as ``to_fraction``: 0.24 is 6/25);
 2. the unobservable subspace ``N = null O`` (observability matrix, eq. (4.18)) gets a rational
    basis ``V`` from the reduced row echelon form; ``A_u = (V'V)⁻¹ V' A V`` (exact: ``N`` is
    A-invariant, so ``A V = V A_u``);
@@ -22,12 +23,9 @@ from fractions import Fraction
 import numpy as np
 from flint import fmpq, fmpq_mat
 
+from theory.core.rationalize import exact_decimal as to_fraction
+
 __all__ = ["exact_unobservable_part", "schur_stable", "self_weight_ok_exact", "to_fraction"]
-
-
-def to_fraction(x: float) -> Fraction:
-    """The decimal a float was written as: ``Fraction(repr(x))`` (0.24 → 6/25)."""
-    return Fraction(repr(float(x)))
 
 
 def _mat(rows: list[list[Fraction]]) -> fmpq_mat:

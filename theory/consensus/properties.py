@@ -21,6 +21,7 @@ from hypothesis import strategies as st
 from theory.consensus.conditions import necessary_conditions
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.core.observability import unobservable_eigenvalues
+from theory.core.tolerances import UNIT_CIRCLE_TOL
 from theory.falsify import Property, register_property
 
 __all__ = [
@@ -30,9 +31,6 @@ __all__ = [
     "small_dkf_problems",
     "strongly_connected",
 ]
-
-UNIT_CIRCLE_TOL = 1e-9
-"""An unobservable eigenvalue with |λ| ≥ 1 − UNIT_CIRCLE_TOL makes the pair undetectable."""
 
 
 @dataclass(frozen=True, eq=False)

@@ -34,6 +34,7 @@ from theory.consensus.operators import (
     covariance_operator_matrix,
     spectral_radius,
 )
+from theory.core.tolerances import BLOWUP, CONV_TOL, MAX_ITER, PSD_TOL
 
 __all__ = [
     "AveragedBoundCheck",
@@ -183,9 +184,9 @@ def coupled_riccati(
     P0: np.ndarray,
     *,
     order: str = "consensus-then-filter",
-    max_iter: int = 5000,
-    conv_tol: float = 1e-10,
-    blowup: float = 1e12,
+    max_iter: int = int(MAX_ITER),
+    conv_tol: float = CONV_TOL,
+    blowup: float = BLOWUP,
 ) -> RiccatiRun:
     """Iterate the coupled Riccati equations until convergence, divergence or ``max_iter``.
 
@@ -279,7 +280,7 @@ def check_covariance_bound(
     steps: int = 30,
     samples: int = 4000,
     seed: int = 0,
-    psd_tol: float = 1e-9,
+    psd_tol: float = PSD_TOL,
 ) -> CovarianceBoundCheck:
     """Check ``Σ(k) ≤ P(k)`` (Lemma 5.2.3) exactly and by Monte Carlo on eq. (5.5).
 
@@ -399,7 +400,7 @@ def check_averaged_bound(
     U: np.ndarray,
     *,
     steps: int = 200,
-    psd_tol: float = 1e-9,
+    psd_tol: float = PSD_TOL,
 ) -> AveragedBoundCheck:
     """Check both statements of seed 000 Lemma A.2.1 along ``steps`` iterations.
 

@@ -56,6 +56,7 @@ from theory.consensus.operators import (
     unvec_tuple,
     vec_tuple,
 )
+from theory.core.tolerances import CERT_TOL, LMI_MARGIN
 
 __all__ = [
     "CERT_TOL",
@@ -71,10 +72,6 @@ __all__ = [
     "witness_margin",
 ]
 
-LMI_MARGIN = 1e-8
-"""Default least relative margin ``m`` a witness must show (dimensionless)."""
-CERT_TOL = 1e-7
-"""Default largest ``ε_cert`` accepted as an infeasibility certificate (dimensionless)."""
 
 SOLVER_STATUSES = (
     "optimal",

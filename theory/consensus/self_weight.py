@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from theory.consensus.s_detectability import decide_s_detectability
+from theory.core.tolerances import WEIGHT_TOL
 
 __all__ = ["SelfWeightSearch", "max_self_weight", "self_weight_family"]
 
@@ -88,7 +89,7 @@ def max_self_weight(
     W: np.ndarray,
     agents: Sequence[int],
     *,
-    weight_tol: float = 1e-4,
+    weight_tol: float = WEIGHT_TOL,
     solver: str = "CLARABEL",
 ) -> SelfWeightSearch:
     """Supremum of ``w`` in ``[0, 1]`` such that ``(A, C, W(w))`` is S-detectable.

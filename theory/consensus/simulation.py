@@ -23,6 +23,7 @@ from theory.consensus.kalman_filter import (
     simulate_consensus_kf,
     true_error_covariance,
 )
+from theory.core.tolerances import CONVERGED_TOL, GROWTH
 from theory.sim.outputs import write_agents_csv, write_runs_npz
 
 __all__ = [
@@ -36,8 +37,6 @@ __all__ = [
 
 DEFAULT_STEPS = 400
 P0_SCALE = 10.0
-CONVERGED_TOL = 1e-3
-GROWTH = 2.0
 _ORDER = {"consensus-then-filter": "consensus-first", "filter-then-consensus": "filter-first"}
 
 

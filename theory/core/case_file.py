@@ -2,8 +2,10 @@
 
 A case file is YAML with the header ``name``, ``source``, ``kind``, optional ``description``,
 ``expect`` and ``tolerances``, and one block named after the kind (``tdoa:``, ``dkf:``,
-``pursuit:``). Each kind registers a parser with :func:`register_kind`; parsers raise
-:class:`~theory.core.errors.CaseError` and this module attributes the error to the file.
+``pursuit:``). Each kind registers a parser with :func:`register_kind` from a module named
+``case.py`` or ``*_case.py`` of its domain package (found by :mod:`theory.core.discovery`; loading
+a case imports the module of its kind only); parsers raise :class:`~theory.core.errors.CaseError`
+and this module attributes the error to the file.
 """
 
 from __future__ import annotations
@@ -16,15 +18,17 @@ from typing import Any
 
 import yaml
 
+from theory.core.discovery import kind_index
 from theory.core.errors import CaseError
 from theory.core.validation import check_keys, one_of, positive_number, require
 
 __all__ = [
-    "KIND_MODULES",
     "Case",
     "KindSpec",
     "bundled_case_dir",
     "bundled_cases",
+    "kind_spec",
+    "known_kinds",
     "load_case",
     "parse_case",
     "register_kind",
@@ -33,19 +37,10 @@ __all__ = [
 
 HEADER_FIELDS = ("name", "source", "kind", "description", "expect", "tolerances")
 
-KIND_MODULES: tuple[str, ...] = (
-    "theory.consensus.case",
-    "theory.particle.case",
-    "theory.pursuit.case",
-    "theory.tdoa.sim_case",
-    "theory.tdoa.case",
-)
-"""Modules that register case kinds (imported on first use)."""
-
 
 @dataclass(frozen=True)
 class KindSpec:
-    """How one case kind is parsed.
+    """How one case kind is parsed and observed.
 
     Attributes
     ----------
@@ -56,12 +51,52 @@ class KindSpec:
     check_expect : callable or None
         ``check_expect(spec, expect)`` validates the expected values against the spec (types,
         one entry per agent, …), raising :class:`~theory.core.errors.CaseError`.
+    observe : str or None
+        ``"module:function"`` of the kind's observer, ``observe(case) ->``
+        :class:`~theory.core.expectations.Observed` (imported on first use, so registering a kind
+        stays cheap); ``None`` when the kind's claims observe its keys themselves.
+    expect_rules : dict
+        Expect key → comparison rule of :data:`theory.core.expectations.RULES` (default
+        ``equal``), e.g. ``{"max_final_error": "at_most"}``.
+    simulate : str or None
+        ``"module:function"`` of the kind's simulator for ``trackcert simulate``,
+        ``simulate(case, steps) ->`` :class:`theory.simulate.Simulator`; ``None`` when the kind
+        is not simulated that way.
     """
 
     parse: Callable[[Mapping[str, Any]], Any]
     expect_keys: tuple[str, ...]
     tolerance_keys: tuple[str, ...] = ()
     check_expect: Callable[[Any, Mapping[str, Any]], None] | None = None
+    observe: str | None = None
+    expect_rules: dict[str, str] = field(default_factory=dict)
+    simulate: str | None = None
+
+    def observer(self) -> Callable[[Case], Any] | None:
+        """The function :attr:`observe` names, imported (``None`` when there is none).
+
+        Returns
+        -------
+        callable or None
+        """
+        return _resolve(self.observe)
+
+    def simulator(self) -> Callable[[Case, int | None], Any] | None:
+        """The function :attr:`simulate` names, imported (``None`` when there is none).
+
+        Returns
+        -------
+        callable or None
+        """
+        return _resolve(self.simulate)
+
+
+def _resolve(reference: str | None) -> Any:
+    """The object ``"module:name"`` names (imported now), or ``None``."""
+    if reference is None:
+        return None
+    module, _, name = reference.partition(":")
+    return getattr(importlib.import_module(module), name)
 
 
 _KINDS: dict[str, KindSpec] = {}
@@ -102,6 +137,9 @@ def register_kind(
     expect_keys: tuple[str, ...],
     tolerance_keys: tuple[str, ...] = (),
     check_expect: Callable[[Any, Mapping[str, Any]], None] | None = None,
+    observe: str | None = None,
+    expect_rules: Mapping[str, str] | None = None,
+    simulate: str | None = None,
 ) -> None:
     """Register the parser of ``kind`` (called by the kind's module at import time).
 
@@ -119,15 +157,69 @@ def register_kind(
         Keys the case's ``tolerances`` block may use.
     check_expect : callable, optional
         ``check_expect(spec, expect)``, when given, validates the expected values themselves.
+    observe : str, optional
+        ``"module:function"`` of the kind's observer (:class:`KindSpec`).
+    expect_rules : mapping, optional
+        Expect key → comparison rule (:data:`theory.core.expectations.RULES`).
+    simulate : str, optional
+        ``"module:function"`` of the kind's simulator (:class:`KindSpec`).
+
+    Raises
+    ------
+    ValueError
+        If ``observe`` or ``simulate`` is not of the form ``"module:function"``, or a rule names
+        an unknown key.
     """
-    _KINDS[kind] = KindSpec(parse, tuple(expect_keys), tuple(tolerance_keys), check_expect)
+    for reference in (observe, simulate):
+        if reference is not None and reference.count(":") != 1:
+            raise ValueError(f"{reference!r} is not 'module:function'")
+    rules = dict(expect_rules or {})
+    if set(rules) - set(expect_keys):
+        raise ValueError(f"expect_rules name unknown keys {sorted(set(rules) - set(expect_keys))}")
+    _KINDS[kind] = KindSpec(
+        parse, tuple(expect_keys), tuple(tolerance_keys), check_expect, observe, rules, simulate
+    )
 
 
 def known_kinds() -> dict[str, KindSpec]:
-    """All registered kinds (imports :data:`KIND_MODULES` first)."""
-    for module in KIND_MODULES:
+    """Every case kind, sorted (imports every kind module: :func:`kind_spec` imports one).
+
+    Returns
+    -------
+    dict
+        Kind name → :class:`KindSpec`.
+    """
+    for module in kind_index().values():
         importlib.import_module(module)
-    return dict(_KINDS)
+    return dict(sorted(_KINDS.items()))
+
+
+def kind_spec(kind: str) -> KindSpec:
+    """The :class:`KindSpec` of ``kind``, importing only the module that registers it.
+
+    Parameters
+    ----------
+    kind : str
+        A case kind, e.g. ``tdoa``.
+
+    Returns
+    -------
+    KindSpec
+
+    Raises
+    ------
+    CaseError
+        If no module registers ``kind`` (the message lists the known kinds).
+    """
+    if kind not in _KINDS and kind in kind_index():
+        importlib.import_module(kind_index()[kind])
+    if kind not in _KINDS:
+        raise CaseError("kind", f"one of {_kind_names()}", kind)
+    return _KINDS[kind]
+
+
+def _kind_names() -> list[str]:
+    return sorted(set(kind_index()) | set(_KINDS))
 
 
 def parse_case(data: object, *, file: str = "<data>") -> Case:
@@ -211,10 +303,9 @@ def resolve_case_path(name_or_path: str | Path) -> Path:
 
 
 def _parse(data: object, file: str) -> Case:
-    kinds = known_kinds()
     if not isinstance(data, Mapping):
         raise CaseError("<top level>", "a mapping with name, kind and a kind block", data)
-    kind = one_of(require(data, "kind", ""), sorted(kinds), "kind")
+    kind = one_of(require(data, "kind", ""), _kind_names(), "kind")
     check_keys(data, (*HEADER_FIELDS, kind), "")
     name = require(data, "name", "")
     if not isinstance(name, str) or not name.strip():
@@ -222,7 +313,7 @@ def _parse(data: object, file: str) -> Case:
     source = data.get("source", "")
     if not isinstance(source, str):
         raise CaseError("source", "a string citing where the case comes from", source)
-    spec_info = kinds[kind]
+    spec_info = kind_spec(kind)
     spec = spec_info.parse(require(data, kind, ""))
     expect = dict(check_keys(data.get("expect") or {}, spec_info.expect_keys, "expect"))
     if spec_info.check_expect is not None:

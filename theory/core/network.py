@@ -2,18 +2,27 @@
 
 Agent ids are 0-based inside the library and 1-based wherever a user sees them (DESIGN.md).
 Named weights follow DESIGN.md: ``metropolis`` is w_ij = 1/(1 + max(d_i, d_j)) on each edge with
-w_ii = 1 − Σ_j w_ij; ``uniform`` is w_ij = 1/(d_i + 1) for j ∈ N_i ∪ {i}.
+w_ii = 1 − Σ_j w_ij; ``uniform`` is w_ij = 1/(d_i + 1) for j ∈ N_i ∪ {i}. Each rule is written
+once in floats (:func:`metropolis_weights`, :func:`uniform_weights`, what filters and simulations
+use) and once in exact rationals (:func:`exact_metropolis_weights`, :func:`exact_uniform_weights`,
+what certificates and exact claims use), side by side (:data:`NAMED_WEIGHTS`).
 """
 
 from __future__ import annotations
+
+from fractions import Fraction
 
 import networkx as nx
 import numpy as np
 
 __all__ = [
+    "NAMED_WEIGHTS",
     "adjacency_from_edges",
     "adjacency_from_range",
     "components",
+    "exact_metropolis_weights",
+    "exact_uniform_weights",
+    "exact_weights",
     "metropolis_weights",
     "uniform_weights",
     "weights_support",
@@ -83,6 +92,84 @@ def uniform_weights(adjacency: np.ndarray) -> np.ndarray:
     """Uniform weights on ``adjacency``: each agent averages itself and its in-neighbours."""
     closed = adjacency | np.eye(adjacency.shape[0], dtype=bool)
     return closed / closed.sum(axis=1, keepdims=True)
+
+
+def exact_metropolis_weights(adjacency: np.ndarray) -> list[list[Fraction]]:
+    """The Metropolis weights of :func:`metropolis_weights` in exact rationals (DESIGN.md).
+
+    Parameters
+    ----------
+    adjacency : ndarray of bool, shape (N, N)
+        Symmetric adjacency without self-loops.
+
+    Returns
+    -------
+    list of list of Fraction
+        ``w_ij = 1/(1 + max(d_i, d_j))`` on each edge, ``w_ii = 1 − Σ_j w_ij``, 0 elsewhere.
+    """
+    degree = np.asarray(adjacency, dtype=bool).sum(axis=1)
+    return _exact(adjacency, lambda r, s: Fraction(1, 1 + int(max(degree[r], degree[s]))))
+
+
+def exact_uniform_weights(adjacency: np.ndarray) -> list[list[Fraction]]:
+    """The uniform weights of :func:`uniform_weights` in exact rationals (DESIGN.md).
+
+    Parameters
+    ----------
+    adjacency : ndarray of bool, shape (N, N)
+        ``adjacency[r, s]``: ``r`` hears ``s``.
+
+    Returns
+    -------
+    list of list of Fraction
+        ``w_rs = 1/(d_r + 1)`` for ``s ∈ N_r ∪ {r}``, 0 elsewhere.
+    """
+    degree = np.asarray(adjacency, dtype=bool).sum(axis=1)
+    return _exact(adjacency, lambda r, s: Fraction(1, 1 + int(degree[r])))
+
+
+NAMED_WEIGHTS = {
+    "metropolis": (metropolis_weights, exact_metropolis_weights),
+    "uniform": (uniform_weights, exact_uniform_weights),
+}
+"""Weight rule name → (float weights, exact weights): one rule, two arithmetics."""
+
+
+def exact_weights(adjacency: np.ndarray, rule: str) -> list[list[Fraction]]:
+    """The named weights ``rule`` of ``adjacency`` in exact rationals.
+
+    Parameters
+    ----------
+    adjacency : ndarray of bool, shape (N, N)
+        ``adjacency[r, s]``: ``r`` hears ``s`` (symmetric for ``metropolis``).
+    rule : {"metropolis", "uniform"}
+        The weight rule.
+
+    Returns
+    -------
+    list of list of Fraction
+
+    Raises
+    ------
+    ValueError
+        For another rule.
+    """
+    if rule not in NAMED_WEIGHTS:
+        raise ValueError(f"rule must be 'metropolis' or 'uniform'; got {rule!r}")
+    return NAMED_WEIGHTS[rule][1](adjacency)
+
+
+def _exact(adjacency: np.ndarray, weight) -> list[list[Fraction]]:
+    """Off-diagonal ``weight(r, s)`` on the edges, the diagonal completing each row to 1."""
+    hears = np.asarray(adjacency, dtype=bool)
+    n = hears.shape[0]
+    W = [[Fraction(0)] * n for _ in range(n)]
+    for r in range(n):
+        for s in np.flatnonzero(hears[r]):
+            if s != r:
+                W[r][int(s)] = weight(r, int(s))
+        W[r][r] = 1 - sum(W[r])
+    return W
 
 
 def weights_support(weights: np.ndarray) -> np.ndarray:

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from theory.core.tolerances import INCONCLUSIVE_FACTOR, RANK_TOL
+
 __all__ = [
     "RANK_TOL",
     "RankResult",
@@ -19,9 +21,6 @@ __all__ = [
     "observability_matrix",
     "unobservable_eigenvalues",
 ]
-
-RANK_TOL = 1e-9
-"""Default relative rank tolerance: σ counts as zero when σ ≤ RANK_TOL · σ_max."""
 
 
 @dataclass(frozen=True)
@@ -49,7 +48,7 @@ class RankResult:
     rank_tol: float
     margin: float
 
-    def conclusive(self, inconclusive_factor: float = 1e3) -> bool:
+    def conclusive(self, inconclusive_factor: float = INCONCLUSIVE_FACTOR) -> bool:
         """Whether every singular value clears the threshold by ``inconclusive_factor``."""
         return self.margin >= inconclusive_factor
 

@@ -1,5 +1,9 @@
 """From floating-point witnesses to exact rational ones (Peyrl–Parrilo style).
 
+Reading numbers exactly happens here too, in two ways only: :func:`exact_decimal` (the decimal a
+user wrote, for case data) and :func:`exact_float` (the binary float's exact value, for checks
+about the floats the suite computes with).
+
 A numerical solver returns a witness (Lyapunov matrices, gains, evaluation points) that satisfies
 strict inequalities only up to rounding. To prove the inequalities we
 
@@ -37,6 +41,7 @@ __all__ = [
     "dyadic",
     "dyadic_matrix",
     "exact_decimal",
+    "exact_float",
     "exact_matrix",
     "first_success",
     "fraction_strings",
@@ -77,7 +82,7 @@ def dyadic(x: float, exponent: int) -> Fraction:
     """
     if not np.isfinite(x):
         raise RationalizationError(f"cannot round the non-finite value {x!r} to a rational")
-    scaled = round(Fraction(float(x)) / Fraction(2) ** exponent)
+    scaled = round(exact_float(x) / Fraction(2) ** exponent)
     return Fraction(scaled) * Fraction(2) ** exponent
 
 
@@ -120,8 +125,40 @@ def symmetric_projection(matrix: np.ndarray) -> np.ndarray:
     return (array + array.T) / 2
 
 
-def exact_decimal(x: float) -> Fraction:
-    """The rational a user meant by a float: its shortest round-trip decimal (0.24 → 6/25).
+def exact_decimal(x: float | int | Fraction) -> Fraction:
+    """The rational a user meant by a number: a float's shortest round-trip decimal (0.24 → 6/25).
+
+    This is how the suite reads data written in a case file (coordinates, weights, system
+    matrices): the decimal as written, not the binary float nearest to it. Integers and
+    ``Fraction`` are returned exactly.
+
+    Parameters
+    ----------
+    x : float, int or Fraction
+        A finite number.
+
+    Returns
+    -------
+    Fraction
+
+    Raises
+    ------
+    RationalizationError
+        If ``x`` is not finite.
+    """
+    if isinstance(x, Fraction | int) and not isinstance(x, bool):
+        return Fraction(x)
+    if not np.isfinite(x):
+        raise RationalizationError(f"data value {x!r} is not finite")
+    return Fraction(repr(float(x)))
+
+
+def exact_float(x: float) -> Fraction:
+    """The exact value of the binary float ``x`` (``0.1 → 3602879701896397/36028797018963968``).
+
+    For checks about the floats the suite actually computes with (e.g. the zero pattern of the
+    powers of a float ``W``), where the decimal a user wrote (:func:`exact_decimal`) is not the
+    number in memory.
 
     Parameters
     ----------
@@ -138,8 +175,8 @@ def exact_decimal(x: float) -> Fraction:
         If ``x`` is not finite.
     """
     if not np.isfinite(x):
-        raise RationalizationError(f"data value {x!r} is not finite")
-    return Fraction(repr(float(x)))
+        raise RationalizationError(f"cannot read the non-finite value {x!r} as a rational")
+    return Fraction(float(x))
 
 
 def exact_matrix(matrix: Any) -> list[list[Fraction]]:
@@ -156,7 +193,7 @@ def exact_matrix(matrix: Any) -> list[list[Fraction]]:
     """
     rows = matrix if isinstance(matrix, list) else np.atleast_2d(np.asarray(matrix)).tolist()
     return [
-        [x if isinstance(x, Fraction) else exact_decimal(float(x)) for x in np.atleast_1d(row)]
+        [exact_decimal(x if isinstance(x, Fraction) else float(x)) for x in np.atleast_1d(row)]
         for row in rows
     ]
 

@@ -13,6 +13,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from theory.core.errors import CaseError
+from theory.core.tolerances import WEIGHT_SUM_TOL
 
 __all__ = [
     "check_keys",
@@ -282,7 +283,11 @@ def finite_vector(value: object, field: str, *, length: int | None = None) -> np
 
 
 def row_stochastic(
-    matrix: np.ndarray, field: str, *, tol: float = 1e-9, support: np.ndarray | None = None
+    matrix: np.ndarray,
+    field: str,
+    *,
+    tol: float = WEIGHT_SUM_TOL,
+    support: np.ndarray | None = None,
 ) -> np.ndarray:
     """Check a square, non-negative, row-stochastic matrix with positive diagonal.
 

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.claims import ClaimResult, register
+from theory.core.tolerances import Z_TOL
 from theory.particle.dcrw import (
     DcrwParams,
     fit_weibull,
@@ -28,7 +29,7 @@ from theory.particle.learning import movement_samples
 __all__ = ["REFERENCE", "SAMPLES", "SEED", "Z_TOL", "standard_errors"]
 
 REFERENCE = DcrwParams(mu=0.4, gamma=0.7, kappa=2.0, lam=3.0)
-SAMPLES, SEED, Z_TOL = 20_000, 2, 4.0
+SAMPLES, SEED = 20_000, 2
 EULER_GAMMA = 0.5772156649015329
 
 

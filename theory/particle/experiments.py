@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from theory.core.tolerances import PF_TOLERANCES
 from theory.particle.case import PfSpec
 from theory.particle.dcrw import sample_dcrw_path
 from theory.particle.filter import PfConfig, PfRun, run_filter, simulate_measurements
@@ -41,7 +42,7 @@ __all__ = [
     "summary_table",
 ]
 
-DEFAULT_TOLERANCES = {"converge_tol": 5.0, "diverge_tol": 10.0, "improvement_tol": 3.0}
+DEFAULT_TOLERANCES = dict(PF_TOLERANCES)
 """converge_tol / diverge_tol: metres of median tail error; improvement_tol: standard errors."""
 
 

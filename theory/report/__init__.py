@@ -1,7 +1,7 @@
 """``trackcert report``: every registered claim on every case, written as HTML, Markdown, JSON.
 
 - :mod:`theory.report.runner` runs the claims and never lets one failing check stop the rest;
-- :mod:`theory.report.expectations` compares each case's ``expect`` block with the claims' values;
+- :mod:`theory.core.expectations` compares each case's ``expect`` block with the claims' values;
 - :mod:`theory.report.environment` records what a reader needs to reproduce the report;
 - :mod:`theory.report.artifacts` copies figures and certificates and re-checks the certificates;
 - :mod:`theory.report.errata` reads ``docs/errata.md``; :mod:`theory.report.markup` renders it;

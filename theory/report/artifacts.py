@@ -20,7 +20,7 @@ import shutil
 import subprocess
 import sys
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -100,9 +100,7 @@ def collect(
             written["check"] = checker(Path(written["path"]), out_dir)
             certificates.append(written)
             evidence["certificate"] = written["path"]
-        collected.append(
-            Artifacts(replace(record, evidence=evidence), figures, tuple(certificates))
-        )
+        collected.append(Artifacts(record.with_evidence(evidence), figures, tuple(certificates)))
     return collected
 
 

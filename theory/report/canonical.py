@@ -1,25 +1,18 @@
 """Canonical JSON: one byte-for-byte form for the same data (the report's reproducibility).
 
 Evidence returned by claims mixes numpy arrays, sympy expressions, rationals and plain Python.
-:func:`canonical` turns it into plain JSON types with one rule per type, and :func:`dumps` writes
-it with sorted keys, fixed indentation and floats rounded to :data:`FLOAT_DIGITS` significant
-digits, so the same inputs give the same bytes. Values with no faithful plain form are refused
-(:class:`TypeError` naming where in the data they sit) instead of being written as a
-``repr`` that could carry a memory address.
+:func:`canonical` turns it into plain JSON types (:func:`theory.core.jsonable.plain`, the one
+conversion the commands use too) with floats rounded to :data:`FLOAT_DIGITS` significant digits,
+and :func:`dumps` writes it with sorted keys and fixed indentation, so the same inputs give the
+same bytes.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import json
-import math
-from collections.abc import Mapping
-from fractions import Fraction
-from pathlib import PurePath
 from typing import Any
 
-import numpy as np
-import sympy as sp
+from theory.core.jsonable import plain
 
 __all__ = ["FLOAT_DIGITS", "canonical", "dumps", "layout"]
 
@@ -28,63 +21,26 @@ FLOAT_DIGITS = 12
 
 
 def canonical(value: Any, where: str = "$") -> Any:
-    """Plain JSON data (dict, list, str, int, float, bool, None) equal in content to ``value``.
+    """Plain JSON data equal in content to ``value``, floats rounded to :data:`FLOAT_DIGITS`.
 
     Parameters
     ----------
     value : object
-        Numbers (Python, numpy, ``Fraction``, python-flint, sympy), arrays, sympy matrices and
-        expressions, mappings, sequences, sets, dataclasses, paths.
+        Anything :func:`theory.core.jsonable.plain` accepts.
     where : str
         Location of ``value`` in the enclosing data, used in error messages.
 
     Returns
     -------
     object
-        Floats rounded to :data:`FLOAT_DIGITS` significant digits; non-finite floats as the
-        strings ``"nan"``, ``"inf"``, ``"-inf"``; rationals as ``"p/q"`` strings; complex numbers
-        as ``{"re", "im"}``; sympy objects as their ``str``; sets sorted.
+        :func:`theory.core.jsonable.plain` with ``digits=FLOAT_DIGITS``.
 
     Raises
     ------
     TypeError
         If some part of ``value`` has no faithful JSON form (the message names where).
     """
-    if value is None or isinstance(value, bool | str):
-        return value
-    if isinstance(value, np.bool_):
-        return bool(value)
-    if isinstance(value, int | np.integer):
-        return int(value)
-    if isinstance(value, float | np.floating):
-        return _float(float(value))
-    if isinstance(value, complex | np.complexfloating):
-        return {"im": _float(float(value.imag)), "re": _float(float(value.real))}
-    if isinstance(value, Fraction):
-        return str(value)
-    if isinstance(value, PurePath):
-        return value.as_posix()
-    if isinstance(value, sp.MatrixBase):
-        return [[str(entry) for entry in row] for row in value.tolist()]
-    if isinstance(value, sp.Basic):
-        return str(value)
-    if type(value).__module__.startswith("flint"):
-        return _flint(value, where)
-    if isinstance(value, np.ndarray):
-        return canonical(value.tolist(), where)
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return canonical(dataclasses.asdict(value), where)
-    if isinstance(value, Mapping):
-        return {str(k): canonical(v, f"{where}.{k}") for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [canonical(v, f"{where}[{i}]") for i, v in enumerate(value)]
-    if isinstance(value, set | frozenset):
-        items = [canonical(v, f"{where}{{}}") for v in value]
-        return sorted(items, key=lambda item: json.dumps(item, sort_keys=True))
-    raise TypeError(
-        f"{where}: a {type(value).__name__} has no JSON form in the report; "
-        "return plain numbers, strings, lists, dicts, numpy arrays or sympy objects"
-    )
+    return plain(value, digits=FLOAT_DIGITS, where=where)
 
 
 def dumps(value: Any, *, width: int = 100) -> str:
@@ -139,20 +95,3 @@ def layout(data: Any, *, width: int = 100, indent: int = 0) -> str:
         return "{\n" + ",\n".join(items) + "\n" + " " * indent + "}"
     items = [pad + layout(v, width=width, indent=indent + 2).lstrip() for v in data]
     return "[\n" + ",\n".join(items) + "\n" + " " * indent + "]"
-
-
-def _float(number: float) -> float | str:
-    if not math.isfinite(number):
-        return str(number)
-    if number == 0:
-        return 0.0
-    return float(f"{number:.{FLOAT_DIGITS}g}")
-
-
-def _flint(value: Any, where: str) -> Any:
-    if hasattr(value, "tolist"):
-        return canonical(value.tolist(), where)
-    if hasattr(value, "entries") and hasattr(value, "nrows"):
-        rows, cols = value.nrows(), value.ncols()
-        return [[str(value[i, j]) for j in range(cols)] for i in range(rows)]
-    return str(value)

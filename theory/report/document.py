@@ -11,9 +11,9 @@ from collections.abc import Sequence
 from typing import Any
 
 from theory.core.claims import STATUSES
+from theory.core.expectations import VERDICTS
 from theory.report.artifacts import Artifacts
 from theory.report.errata import ErratumEntry
-from theory.report.expectations import VERDICTS
 from theory.report.runner import RunResult, paper_of
 
 __all__ = ["FORMAT", "PAPERS", "PROBABILITY_KEY", "build_document"]
@@ -93,23 +93,12 @@ def build_document(
 
 
 def _claim_entry(artifact: Artifacts) -> dict[str, Any]:
-    r = artifact.record
+    record = artifact.record
     return {
-        "id": r.id,
-        "source": r.source,
-        "statement": r.statement,
-        "paper": r.paper,
-        "case": r.case,
-        "method": r.method,
-        "status": r.status,
-        "margin": r.margin,
-        "probability_bound": r.evidence.get(PROBABILITY_KEY),
-        "tolerance": r.tolerance,
-        "message": r.message,
-        "evidence": r.evidence,
+        **record.to_json(),
+        "probability_bound": record.evidence.get(PROBABILITY_KEY),
         "figures": list(artifact.figures),
         "certificates": list(artifact.certificates),
-        "seed": r.seed,
     }
 
 

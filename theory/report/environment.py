@@ -16,7 +16,8 @@ from typing import Any
 
 import theory
 from theory.core.case_file import Case, bundled_case_dir
-from theory.core.claims import CLAIM_MODULES, all_claims
+from theory.core.claims import all_claims, claim_modules
+from theory.core.tolerances import table
 from theory.report.runner import Record
 from theory.report.time_limit import enforceable
 
@@ -69,8 +70,10 @@ def environment(
         ``python``, ``implementation``, ``platform``, ``packages`` (name → version or
         ``"not installed"``), ``trackcert`` (version and source revision), ``seed``,
         ``seed_rule``, ``cases`` (name, kind, file, SHA-256, tolerance overrides),
-        ``claim_modules``, ``claims_registered`` and ``tolerances`` (name → the distinct
-        values used by the claims), ``time_limit`` (seconds or ``None``) and
+        ``claim_modules``, ``claims_registered``, ``tolerances`` (name → the distinct
+        values used by the claims), ``tolerance_table`` (every named tolerance with its default,
+        unit, meaning and why: :func:`theory.core.tolerances.table`), ``time_limit`` (seconds or
+        ``None``) and
         ``time_limit_enforced`` (whether this platform can interrupt a check).
     """
     return {
@@ -82,9 +85,10 @@ def environment(
         "seed": seed,
         "seed_rule": SEED_RULE,
         "cases": [_case(case) for case in cases],
-        "claim_modules": list(CLAIM_MODULES),
+        "claim_modules": list(claim_modules()),
         "claims_registered": len(all_claims()),
         "tolerances": _tolerances(records),
+        "tolerance_table": table(),
         "time_limit": time_limit,
         "time_limit_enforced": time_limit is not None and enforceable(),
     }

@@ -21,19 +21,21 @@ import inspect
 import re
 import traceback
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from theory.core.case_file import Case
+from theory.core.case_file import Case, kind_spec
 from theory.core.claims import Claim, ClaimResult, NotApplicable, all_claims
 from theory.core.errors import CaseError
+from theory.core.expectations import Expectation, evaluate, observations_from
+from theory.core.verdicts import expectations_verdict
 from theory.report.canonical import canonical
-from theory.report.expectations import EXPECTATIONS_KEY, Expectation, evaluate
 from theory.report.time_limit import TimeLimitExceeded, time_limit
 
 __all__ = [
     "MODEL_CASE",
+    "RESULT_FIELDS",
     "Record",
     "RunResult",
     "derive_seed",
@@ -53,27 +55,74 @@ ProgressHook = Callable[[str, str], None]
 class Record:
     """One line of the report: a claim's result on a case (or the failure to get one).
 
-    Attributes ``id`` (the claim id), ``case``, ``method``, ``status``, ``message``, ``margin``,
-    ``tolerance``, ``evidence`` and ``figures`` mirror :class:`~theory.core.claims.ClaimResult`;
-    beside
-    them stand the claim's ``source`` and ``statement``, the ``paper`` it belongs to (``"000"`` …
-    or ``"other"``) and the derived ``seed`` (``None`` if the claim takes none). Figure files are
-    copied into the report folder when it is written.
+    Attributes
+    ----------
+    result : ClaimResult
+        The result, its evidence, margin and tolerances made plain JSON data
+        (:func:`theory.report.canonical.canonical`); a check that failed to run is an
+        ``inconclusive`` result of method ``none``. Its fields read through the record:
+        ``record.status`` is ``record.result.status``, ``record.id`` its ``claim``.
+    source, statement : str
+        The claim's source and statement.
+    paper : str
+        The seed paper it belongs to (``"000"`` … or ``"other"``, :func:`paper_of`).
+    seed : int or None
+        The derived seed (``None`` if the claim takes none).
+
+    Figure files are copied into the report folder when it is written.
     """
 
-    id: str
+    result: ClaimResult
     source: str
     statement: str
     paper: str
-    case: str
-    method: str
-    status: str
-    message: str = ""
-    margin: float | None = None
-    tolerance: dict[str, Any] = field(default_factory=dict)
-    evidence: dict[str, Any] = field(default_factory=dict)
-    figures: tuple[str, ...] = ()
     seed: int | None = None
+
+    @property
+    def id(self) -> str:
+        """The claim id (``result.claim``)."""
+        return self.result.claim
+
+    def __getattr__(self, name: str) -> Any:
+        if name in RESULT_FIELDS:
+            return getattr(self.result, name)
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    def with_evidence(self, evidence: dict[str, Any]) -> Record:
+        """The same record with ``evidence`` in place of the result's.
+
+        Parameters
+        ----------
+        evidence : dict
+            Plain JSON evidence.
+
+        Returns
+        -------
+        Record
+        """
+        return replace(self, result=replace(self.result, evidence=evidence))
+
+    def to_json(self) -> dict[str, Any]:
+        """The result's record (:meth:`ClaimResult.to_json`) with statement, paper and seed."""
+        return {
+            **self.result.to_json(self.source),
+            "statement": self.statement,
+            "paper": self.paper,
+            "seed": self.seed,
+        }
+
+
+RESULT_FIELDS = (
+    "case",
+    "method",
+    "status",
+    "message",
+    "margin",
+    "tolerance",
+    "evidence",
+    "figures",
+)
+"""Fields of :class:`~theory.core.claims.ClaimResult` read through a :class:`Record`."""
 
 
 @dataclass(frozen=True)
@@ -113,6 +162,12 @@ class RunResult:
     def all_expectations_met(self) -> bool:
         """Whether every expectation of every case is met (the report's exit code 0)."""
         return all(e.verdict == "met" for e in self.expectations)
+
+    @property
+    def verdict(self) -> bool | None:
+        """The expectations' verdict: False if one is unmet, True if all are met, else None
+        (:func:`theory.core.verdicts.expectations_verdict`; the report's exit code)."""
+        return expectations_verdict(self.expectations)
 
 
 def paper_of(claim_id: str, source: str) -> str:
@@ -296,39 +351,33 @@ def _record(claim: Claim, case: str, result: ClaimResult, seed: int | None) -> R
     evidence = canonical(result.evidence, "evidence")
     if not isinstance(evidence, dict):
         raise TypeError(f"evidence is a {type(result.evidence).__name__}, not a mapping")
-    return Record(
-        id=claim.id,
-        source=claim.source,
-        statement=claim.statement,
-        paper=paper_of(claim.id, claim.source),
+    plain = replace(
+        result,
+        claim=claim.id,
         case=case,
-        method=result.method,
-        status=result.status,
-        message=result.message,
+        evidence=evidence,
         margin=canonical(result.margin, "margin"),
         tolerance=canonical(dict(result.tolerance), "tolerance"),
-        evidence=evidence,
         figures=tuple(str(f) for f in result.figures),
-        seed=seed,
     )
+    return _wrap(claim, plain, seed)
+
+
+def _wrap(claim: Claim, result: ClaimResult, seed: int | None) -> Record:
+    paper = paper_of(claim.id, claim.source)
+    return Record(result, claim.source, claim.statement, paper, seed)
 
 
 def _failure(claim: Claim, case: str, error: BaseException, seed: int | None) -> Record:
     kind = type(error).__name__
-    return Record(
-        id=claim.id,
-        source=claim.source,
-        statement=claim.statement,
-        paper=paper_of(claim.id, claim.source),
-        case=case,
-        method="none",
-        status="inconclusive",
-        message=str(error)
+    message = (
+        str(error)
         if isinstance(error, TimeLimitExceeded)
-        else f"the check failed to run: {kind}: {error}",
-        evidence={"error": {"type": kind, "message": str(error), "where": _where(error)}},
-        seed=seed,
+        else f"the check failed to run: {kind}: {error}"
     )
+    evidence = {"error": {"type": kind, "message": str(error), "where": _where(error)}}
+    result = ClaimResult(claim.id, case, "none", "inconclusive", evidence, message=message)
+    return _wrap(claim, result, seed)
 
 
 def _where(error: BaseException) -> str:
@@ -347,9 +396,11 @@ def _expectations(cases: Sequence[Case], records: Sequence[Record]) -> tuple[Exp
     verdicts: list[Expectation] = []
     for case in cases:
         observations = [
-            (r.id, r.evidence[EXPECTATIONS_KEY], r.status)
+            found
             for r in records
-            if r.case == case.name and isinstance(r.evidence.get(EXPECTATIONS_KEY), dict)
+            if r.case == case.name
+            for found in observations_from(r.id, r.evidence, r.status)
         ]
-        verdicts.extend(evaluate(case.name, canonical(case.expect), observations))
+        rules = kind_spec(case.kind).expect_rules
+        verdicts.extend(evaluate(case.name, canonical(case.expect), observations, rules))
     return tuple(verdicts)

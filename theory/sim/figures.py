@@ -31,14 +31,3 @@ def save_figure(fig: Any, path: Path) -> Path:
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
-
-
-def __getattr__(name: str) -> Any:
-    """``write_figures`` of the TDOA closed loop moved to :mod:`theory.tdoa.figures`; this lazy
-    alias keeps ``theory/cli/simulate.py``'s old import working (nothing is imported until it is
-    asked for, so the engine loads no model)."""
-    if name == "write_figures":
-        from theory.tdoa.figures import write_figures
-
-        return write_figures
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -76,14 +76,3 @@ def write_timeseries_csv(path: Path, times: np.ndarray, columns: Mapping[str, np
         for k, t in enumerate(times):
             writer.writerow([f"{t:g}", *(f"{v:.6g}" for block in blocks for v in block[k])])
     return path
-
-
-def __getattr__(name: str) -> Any:
-    """``write_data`` of the TDOA closed loop moved to :mod:`theory.tdoa.outputs`; this lazy alias
-    keeps ``theory/cli/simulate.py``'s old import working (nothing is imported until it is asked
-    for, so the engine loads no model)."""
-    if name == "write_data":
-        from theory.tdoa.outputs import write_data
-
-        return write_data
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -53,6 +53,7 @@ from scipy.linalg import eigh
 
 from theory.core.network import components
 from theory.core.observability import RankResult, numeric_rank
+from theory.core.tolerances import PSD_RTOL
 from theory.tdoa.averaging import average_round
 from theory.tdoa.ekf import ekf_predict, ekf_update, kalman_gain
 from theory.tdoa.geometry import exact_direction_rank
@@ -71,10 +72,6 @@ __all__ = [
     "psd_violation",
     "simulate_linearized",
 ]
-
-PSD_RTOL = 1e-9
-"""Relative tolerance of every ``A ⪯ B`` check: ``λ_max(A − B) ≤ PSD_RTOL · max(‖A‖_F, ‖B‖_F,
-1)`` (:func:`psd_violation`)."""
 
 
 @dataclass(frozen=True, eq=False)

@@ -38,6 +38,7 @@ from hypothesis import strategies as st
 
 from theory.core.network import metropolis_weights
 from theory.core.observability import RANK_TOL, numeric_rank
+from theory.core.tolerances import KERNEL_RTOL, MIN_CONDITIONING
 from theory.falsify import Property, register_property
 from theory.tdoa.averaged_bounds import (
     PSD_RTOL,
@@ -71,12 +72,8 @@ BURN_IN = 40
 """Ping whose gains are frozen for the boundedness certificate."""
 HORIZON = 2 * BURN_IN
 """Pings run; the certified bound is checked on ``BURN_IN … HORIZON``."""
-MIN_CONDITIONING = 1e-3
-"""Smallest ``σ_r/σ_1`` of a component's nonzero Jacobian singular values that is counted."""
 NOISES = {"T": 1.0, "p0": 100.0, "q": 0.01, "r": 1.0}
 """Seed 000 §4.4: ping period, ``P_0 = p_0 I``, ``Q = q I``, ``R_i = r I``."""
-KERNEL_RTOL = 1e-9
-"""Relative tolerance of "equal to the prior's propagation" along ``ker G_C``."""
 
 
 @dataclass(frozen=True, eq=False)

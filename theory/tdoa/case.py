@@ -32,6 +32,7 @@ from theory.core.network import (
     uniform_weights,
     weights_support,
 )
+from theory.core.tolerances import COINCIDENCE_TOL
 from theory.core.validation import (
     check_keys,
     finite_array,
@@ -55,8 +56,6 @@ EXPECT_KEYS = (
     "unobservable_steps",
 )
 TOLERANCE_KEYS = ("rank_tol", "inconclusive_factor", "weight_sum_tol")
-COINCIDENCE_TOL = 1e-9
-"""Relative distance (to the scene's size) under which two points count as one."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -312,4 +311,5 @@ register_kind(
     expect_keys=EXPECT_KEYS,
     tolerance_keys=TOLERANCE_KEYS,
     check_expect=check_tdoa_expect,
+    observe="theory.tdoa.topology_report:observe_topology",
 )

@@ -29,6 +29,8 @@ import numpy as np
 import sympy as sp
 
 from theory.core.observability import RANK_TOL, numeric_rank
+from theory.core.rationalize import exact_decimal
+from theory.core.tolerances import INCONCLUSIVE_FACTOR
 from theory.tdoa.generic_rank import exact_rank
 from theory.tdoa.model import unit_directions
 
@@ -137,7 +139,7 @@ def stacked_jacobian_position(
 
 
 def rational(value: float | int | Fraction) -> Fraction:
-    """The rational a user wrote: ``Fraction(repr(x))`` for floats (``0.1 → 1/10``).
+    """The rational a user wrote (``0.1 → 1/10``): :func:`theory.core.rationalize.exact_decimal`.
 
     Parameters
     ----------
@@ -148,9 +150,7 @@ def rational(value: float | int | Fraction) -> Fraction:
     -------
     Fraction
     """
-    if isinstance(value, Fraction | int):
-        return Fraction(value)
-    return Fraction(repr(float(value)))
+    return exact_decimal(value)
 
 
 def exact_affine_rank(points: Sequence[Sequence[float | Fraction]]) -> int:
@@ -221,7 +221,7 @@ def analyze_geometry(
     agents: np.ndarray,
     *,
     rank_tol: float = RANK_TOL,
-    inconclusive_factor: float = 1e3,
+    inconclusive_factor: float = INCONCLUSIVE_FACTOR,
 ) -> DirectionGeometry:
     """Rank of a connected set's TDOA Jacobian at ``target``, with the paper's heuristic beside it.
 

@@ -15,15 +15,12 @@ import numpy as np
 from hypothesis import strategies as st
 
 from theory.core.observability import numeric_rank
+from theory.core.tolerances import INCONCLUSIVE_FACTOR, MIRROR_TOL, RANK_TOL
 from theory.falsify import Property, register_property
 from theory.strategies import TdoaScene, tdoa_scenes
 from theory.tdoa.model import tdoa_jacobian, tdoa_measurement, unit_directions
 
 __all__ = ["component_rank", "mirror_target", "scene_case"]
-
-RANK_TOL = 1e-9
-INCONCLUSIVE_FACTOR = 1e3
-MIRROR_TOL = 1e-9
 
 
 def component_rank(scene: TdoaScene) -> tuple[int, bool]:

@@ -20,7 +20,7 @@ from theory.tdoa.model import cv_discrete
 from theory.tdoa.scenario import TdoaRun, hears_at
 from theory.tdoa.sim_case import TdoaSimSpec
 
-__all__ = ["check_expectations", "run_metrics", "run_pcrb", "summarize_runs"]
+__all__ = ["run_metrics", "run_pcrb", "summarize_runs"]
 
 
 def run_pcrb(spec: TdoaSimSpec, run: TdoaRun) -> np.ndarray:
@@ -112,32 +112,3 @@ def summarize_runs(spec: TdoaSimSpec, runs: Sequence[TdoaRun]) -> dict[str, Any]
         "moving_fraction": float(np.mean([run.moving.mean() for run in runs])),
         "pcrb_position_trace": float(np.mean([bound[1:].mean() for bound in bounds])),
     }
-
-
-def check_expectations(
-    summary: dict[str, Any], expect: dict[str, Any], *, error_bound: float
-) -> dict[str, dict[str, Any]]:
-    """Compare a summary with a case's ``expect:`` block.
-
-    Parameters
-    ----------
-    summary : dict
-        From :func:`summarize_runs`.
-    expect : dict
-        ``bounded_error`` (bool): every agent's mean-over-runs final error is below
-        ``error_bound``; ``max_final_error`` (number): the largest such error is at most this.
-    error_bound : float
-        Metres; the threshold of ``bounded_error``.
-
-    Returns
-    -------
-    dict
-        ``{key: {"expected", "got", "met"}}``.
-    """
-    worst = max(agent["final_localization_error"] for agent in summary["agents"])
-    got = {"bounded_error": worst < error_bound, "max_final_error": worst}
-    out = {}
-    for key, wanted in expect.items():
-        met = got[key] == wanted if key == "bounded_error" else worst <= float(wanted)
-        out[key] = {"expected": wanted, "got": got[key], "met": bool(met)}
-    return out

@@ -17,9 +17,12 @@ import sympy as sp
 
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, register
+from theory.core.network import exact_metropolis_weights
+from theory.core.rationalize import exact_float
+from theory.core.tolerances import ROUNDING_TOL
 from theory.tdoa.model import cv_continuous, cv_discrete, cv_discrete_symbolic
 
-__all__ = ["check_discretization", "check_metropolis_weights", "exact_metropolis"]
+__all__ = ["check_discretization", "check_metropolis_weights"]
 
 DYADIC_PERIODS = (Fraction(1, 4), Fraction(1), Fraction(3))
 """Sampling periods at which the floating model must equal the exact one bit for bit (their
@@ -27,9 +30,6 @@ powers and halves are exact in binary floating point)."""
 
 STEPS_SHOWN = 20
 """Time steps whose exact weights the evidence lists (all steps are checked)."""
-
-ROUNDING_TOL = 8 * float(np.finfo(float).eps)
-"""Largest deviation allowed between the floating Metropolis weights and the exact ones."""
 
 
 @register(
@@ -116,33 +116,6 @@ def _library_matches(
     )
 
 
-def exact_metropolis(hears: np.ndarray) -> list[list[Fraction]]:
-    """Metropolis weights of an undirected graph in exact rationals (DESIGN.md's rule).
-
-    Parameters
-    ----------
-    hears : ndarray of bool, shape (N, N)
-        Symmetric adjacency without self-loops.
-
-    Returns
-    -------
-    list of list of Fraction
-        ``w_ij = 1/(1 + max(d_i, d_j))`` on each edge, ``w_ii = 1 − Σ_j w_ij``, 0 elsewhere.
-    """
-    n = hears.shape[0]
-    degree = [int(hears[i].sum()) for i in range(n)]
-    weights = [
-        [
-            Fraction(1, 1 + max(degree[i], degree[j])) if hears[i, j] else Fraction(0)
-            for j in range(n)
-        ]
-        for i in range(n)
-    ]
-    for i in range(n):
-        weights[i][i] = 1 - sum(weights[i])
-    return weights
-
-
 @register(
     "seed000.sec4.2.2.metropolis",
     source="seed 000 §4.2.2 (conditions on W before eq. (4.26)); DESIGN.md Metropolis rule",
@@ -198,13 +171,13 @@ def check_metropolis_weights(case: Case) -> list[ClaimResult]:
 
 
 def _metropolis_step(hears: np.ndarray, used: np.ndarray) -> dict[str, Any]:
-    exact = exact_metropolis(hears)
+    exact = exact_metropolis_weights(hears)
     n = len(exact)
     rows = [sum(row) for row in exact]
     columns = [sum(exact[i][j] for i in range(n)) for j in range(n)]
     self_weights = [exact[i][i] for i in range(n)]
     deviation = max(
-        abs(float(Fraction(float(used[i, j])) - exact[i][j])) for i in range(n) for j in range(n)
+        abs(float(exact_float(used[i, j]) - exact[i][j])) for i in range(n) for j in range(n)
     )
     return {
         "W": [[str(w) for w in row] for row in exact],

@@ -31,7 +31,9 @@ from math import lcm
 
 import numpy as np
 
+from theory.core.network import exact_weights
 from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
+from theory.core.tolerances import INCONCLUSIVE_FACTOR, UNIT_CIRCLE_FACTOR, UNIT_CIRCLE_TOL
 from theory.tdoa.generic_rank import exact_rank
 
 __all__ = [
@@ -47,9 +49,6 @@ __all__ = [
     "networked_pair",
     "unobservable_subspace",
 ]
-
-UNIT_CIRCLE_TOL = 1e-6
-"""Default tolerance: a mode with ``||μ| − 1| ≤ UNIT_CIRCLE_TOL`` counts as on the unit circle."""
 
 
 @dataclass(frozen=True)
@@ -274,8 +273,8 @@ def analyze_network(
     *,
     rank_tol: float = RANK_TOL,
     unit_circle_tol: float = UNIT_CIRCLE_TOL,
-    inconclusive_factor: float = 1e3,
-    unit_circle_factor: float = 10.0,
+    inconclusive_factor: float = INCONCLUSIVE_FACTOR,
+    unit_circle_factor: float = UNIT_CIRCLE_FACTOR,
 ) -> NetworkObservability:
     """Observability, detectability and the paper's rank-sum claim for ``(W ⊗ A, D_H)``.
 
@@ -462,35 +461,6 @@ class NetworkGenericRank:
     sample_size: int
     degree_bound: int
     error_bound: float
-
-
-def exact_weights(adjacency: np.ndarray, rule: str) -> list[list[Fraction]]:
-    """Metropolis or uniform weights (DESIGN.md) in exact rational arithmetic.
-
-    Parameters
-    ----------
-    adjacency : ndarray of bool, shape (N, N)
-        ``adjacency[r, s]``: ``r`` hears ``s`` (symmetric for ``metropolis``).
-    rule : {"metropolis", "uniform"}
-        The weight rule.
-
-    Returns
-    -------
-    list of list of Fraction
-    """
-    n = adjacency.shape[0]
-    degree = adjacency.sum(axis=1)
-    W = [[Fraction(0)] * n for _ in range(n)]
-    for r in range(n):
-        for s in np.flatnonzero(adjacency[r]):
-            if rule == "metropolis":
-                W[r][s] = Fraction(1, 1 + int(max(degree[r], degree[s])))
-            elif rule == "uniform":
-                W[r][s] = Fraction(1, 1 + int(degree[r]))
-            else:
-                raise ValueError(f"rule must be 'metropolis' or 'uniform'; got {rule!r}")
-        W[r][r] = 1 - sum(W[r])
-    return W
 
 
 def network_generic_rank(

@@ -16,6 +16,7 @@ from theory.core.case_file import Case, load_case
 from theory.core.claims import ClaimResult, register
 from theory.core.network import components
 from theory.core.observability import RANK_TOL
+from theory.core.tolerances import INCONCLUSIVE_FACTOR
 from theory.tdoa.fig43 import fig43_analysis
 from theory.tdoa.generic_rank import single_agent_generic_rank
 from theory.tdoa.geometry import analyze_geometry, exact_direction_rank
@@ -23,8 +24,6 @@ from theory.tdoa.model import cv_discrete, tdoa_jacobian
 from theory.tdoa.networked_observability import NetworkObservability, analyze_network
 
 __all__ = ["TdoaStep", "evaluate_tdoa_step"]
-
-INCONCLUSIVE_FACTOR = 1e3
 
 
 @dataclass(frozen=True)

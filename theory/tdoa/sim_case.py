@@ -43,6 +43,7 @@ import numpy as np
 from theory.core.case_file import register_kind
 from theory.core.errors import CaseError
 from theory.core.network import adjacency_from_edges
+from theory.core.tolerances import PERIOD_TOL
 from theory.core.validation import (
     check_keys,
     finite_matrix,
@@ -87,8 +88,6 @@ FIELDS = (
 )
 EXPECT_KEYS = ("bounded_error", "max_final_error")
 TOLERANCE_KEYS = ("error_bound",)
-PERIOD_TOL = 1e-9
-"""Relative tolerance on ``T/τ`` being an integer."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -273,4 +272,12 @@ def _offsets(block: Mapping[str, Any], agents: np.ndarray) -> np.ndarray:
     return finite_matrix(shape, f"{KIND}.formation", rows=n, cols=3)
 
 
-register_kind(KIND, parse_tdoa_sim, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+register_kind(
+    KIND,
+    parse_tdoa_sim,
+    expect_keys=EXPECT_KEYS,
+    tolerance_keys=TOLERANCE_KEYS,
+    observe="theory.tdoa.sim_summary:observe_tdoa_sim",
+    expect_rules={"max_final_error": "at_most"},
+    simulate="theory.tdoa.sim_summary:tdoa_simulator",
+)

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from theory.core.observability import RANK_TOL
+from theory.core.tolerances import CLUSTER_TOL
 
 __all__ = [
     "CLUSTER_TOL",
@@ -36,8 +37,6 @@ __all__ = [
     "symmetrizing_scale",
 ]
 
-CLUSTER_TOL = 1e-8
-"""Eigenvalues of W closer than this (W has norm ≤ 1 in the symmetrized basis) are one cluster."""
 
 GRAM_SAFE_RATIO = 1e-5
 """σ_min/σ_max above this is read from the d×d Gram matrix (its eigenvalues then carry ≥ 5 correct

@@ -18,7 +18,7 @@ from typing import Any
 from theory.tdoa.case import TdoaSpec
 from theory.tdoa.topology import TopologyResult, analyze_topology
 
-__all__ = ["TrajectoryResult", "analyze_trajectory", "check_trajectory_expectations"]
+__all__ = ["TrajectoryResult", "analyze_trajectory"]
 
 
 @dataclass(frozen=True)
@@ -82,32 +82,6 @@ def analyze_trajectory(spec: TdoaSpec, **options: Any) -> TrajectoryResult:
     counts = [sum(not step.agents[i].observable for step in steps) for i in range(spec.n_agents)]
     heuristic = [s.step for s in steps if not all(a.heuristic_4_noncoplanar for a in s.agents)]
     return TrajectoryResult(steps, failing[0] if failing else None, tuple(counts), tuple(heuristic))
-
-
-def check_trajectory_expectations(result: TrajectoryResult, expect: dict[str, Any]) -> list[str]:
-    """Mismatches with the ``first_failure_step`` / ``unobservable_steps`` keys of ``expect``.
-
-    Parameters
-    ----------
-    result : TrajectoryResult
-        The verdicts along the trajectory.
-    expect : dict
-        The case's ``expect`` block (other keys are ignored here).
-
-    Returns
-    -------
-    list of str
-        One line per mismatch.
-    """
-    actual = {
-        "first_failure_step": result.first_failure_step,
-        "unobservable_steps": list(result.unobservable_steps),
-    }
-    return [
-        f"{key}: expected {expect[key]!r}, got {actual[key]!r}"
-        for key in actual
-        if key in expect and expect[key] != actual[key]
-    ]
 
 
 def _step_json(step: TopologyResult) -> dict[str, Any]:

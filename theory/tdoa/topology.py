@@ -32,6 +32,7 @@ import scipy.sparse
 import scipy.sparse.csgraph
 
 from theory.core.observability import RANK_TOL, RankResult, numeric_rank
+from theory.core.tolerances import INCONCLUSIVE_FACTOR
 from theory.tdoa.case import TdoaSpec
 from theory.tdoa.model import cv_discrete, unit_directions
 from theory.tdoa.networked_observability import analyze_network
@@ -50,12 +51,9 @@ __all__ = [
     "NetworkVerdict",
     "TopologyResult",
     "analyze_topology",
-    "check_expectations",
     "observed_values",
 ]
 
-INCONCLUSIVE_FACTOR = 1e3
-"""A singular value within this factor of its threshold makes a verdict inconclusive."""
 
 DENSE_MAX_STATES = 240
 """Largest component (in states 2·d·n) whose non-symmetrizable W is ranked densely."""
@@ -338,31 +336,6 @@ def observed_values(result: TopologyResult) -> dict[str, Any]:
         "network_observable": got["network_observable"],
         "network_detectable": got["network_detectable"],
     }
-
-
-def check_expectations(result: TopologyResult, expect: dict[str, Any]) -> list[str]:
-    """Mismatches between ``result`` and a case's ``expect`` block (per-agent keys and network).
-
-    Parameters
-    ----------
-    result : TopologyResult
-        The verdicts (of the case's first step).
-    expect : dict
-        The case's ``expect`` block. Time-series keys (``first_failure_step``,
-        ``unobservable_steps``) are checked by
-        :func:`theory.tdoa.time_varying.check_trajectory_expectations`.
-
-    Returns
-    -------
-    list of str
-        One line per mismatch (empty when every expectation is met).
-    """
-    actual = observed_values(result)
-    return [
-        f"{key}: expected {value!r}, got {actual[key]!r}"
-        for key, value in expect.items()
-        if key in actual and actual[key] != value
-    ]
 
 
 @dataclass(frozen=True)

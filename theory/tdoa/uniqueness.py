@@ -24,13 +24,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from theory.core.observability import RANK_TOL, numeric_rank
+from theory.core.tolerances import UNIQUENESS_TOL
 from theory.tdoa.model import ranges
 
 __all__ = ["METHOD", "UNIQUENESS_TOL", "Uniqueness", "tdoa_solutions"]
 
 METHOD = "spherical intersection: linear system in (p, r_1) + quadric r_1 = ‖p − q_1‖"
-UNIQUENESS_TOL = 1e-7
-"""Relative tolerance (to the scene's size) for residuals, sign constraints and distinctness."""
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,400 @@
+"""Every named tolerance of the suite, once: its default, unit, meaning and why (STYLE.md 6).
+
+A module that decides something by comparing a float with a threshold imports the threshold from
+here (``from theory.core.tolerances import RANK_TOL``) and echoes it, under its name, in the
+``tolerance`` of its result; a case may override the ones its kind lists in ``tolerances:``.
+:data:`TOLERANCES` is the table (``report.json``'s ``environment.tolerance_table``,
+``docs/cli.md``), :func:`table` its plain-data form.
+
+Two values were unified here (see ``docs/cli.md``, *Tolerances*):
+
+* ``unit_circle_tol`` is ``1e-6`` everywhere (it was ``1e-9`` in the consensus properties):
+  eigenvalues of a defective matrix — the constant-velocity ``A`` has 2 × 2 Jordan blocks at 1 —
+  come out of LAPACK with errors of order ``√(eps·κ)``, up to ``6e-7`` for a mildly conditioned
+  similarity of a Jordan block, so a tolerance of ``1e-9`` can read a mode on the unit circle as
+  stable and call an undetectable pair detectable.
+* The two LMI thresholds differ in purpose and now in name: ``lmi_margin = 1e-8`` is the least
+  relative margin of a float witness for the *float* verdict "S-detectable"; a certificate
+  builder only needs the float witness strictly feasible enough to round
+  (``certificate_margin = 1e-9``), because ``proofs_check`` then decides in exact arithmetic.
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from typing import Any
+
+__all__ = [
+    "BLOWUP",
+    "BOUND_RTOL",
+    "CERTIFICATE_MARGIN",
+    "CERT_TOL",
+    "CLUSTER_TOL",
+    "COINCIDENCE_TOL",
+    "CONVERGED_TOL",
+    "CONV_TOL",
+    "EIGEN_TOL",
+    "ERROR_BOUND_SIGMAS",
+    "GROWTH",
+    "HYPOTHESIS_TOL",
+    "INCONCLUSIVE_FACTOR",
+    "KERNEL_RTOL",
+    "LMI_MARGIN",
+    "MARGIN_TOL",
+    "MAX_ITER",
+    "MIN_CONDITIONING",
+    "MIRROR_TOL",
+    "PERIOD_TOL",
+    "PF_TOLERANCES",
+    "PSD_RTOL",
+    "PSD_TOL",
+    "RANK_TOL",
+    "ROUNDING_TOL",
+    "TOLERANCES",
+    "UNIQUENESS_TOL",
+    "UNIT_CIRCLE_FACTOR",
+    "UNIT_CIRCLE_TOL",
+    "VALUE_TOL",
+    "VIOLATION_TOL",
+    "WEIGHT_SUM_TOL",
+    "WEIGHT_TOL",
+    "Z_TOL",
+    "Tolerance",
+    "defaults",
+    "table",
+]
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """One named tolerance.
+
+    Attributes
+    ----------
+    name : str
+        The name used in code, case files (``tolerances:``) and outputs, e.g. ``rank_tol``.
+    default : float
+        Its default value.
+    unit : str
+        What it is measured in (``relative to σ_max``, ``metres``, ``factor``, …).
+    meaning : str
+        The comparison it sets, in one sentence.
+    why : str
+        Where the value comes from.
+    """
+
+    name: str
+    default: float
+    unit: str
+    meaning: str
+    why: str
+
+
+TOLERANCES: dict[str, Tolerance] = {}
+"""Name → :class:`Tolerance`, in the order defined below."""
+
+
+def _named(name: str, default: float, unit: str, meaning: str, why: str) -> float:
+    TOLERANCES[name] = Tolerance(name, default, unit, meaning, why)
+    return default
+
+
+RANK_TOL = _named(
+    "rank_tol",
+    1e-9,
+    "relative to the largest singular value",
+    "a singular value below rank_tol · σ_max counts as zero (numeric rank, seed 000 eq. (4.18))",
+    "relative, so scale-aware (STYLE.md); far above SVD rounding (~1e-16 · dimension), and every "
+    "bundled topology verdict clears it by more than inconclusive_factor",
+)
+INCONCLUSIVE_FACTOR = _named(
+    "inconclusive_factor",
+    1e3,
+    "factor",
+    "a rank decision whose deciding singular value lies within this factor of its threshold "
+    "rank_tol · σ_max (either side) is inconclusive",
+    "three decades between a conclusive decision and its threshold",
+)
+UNIT_CIRCLE_TOL = _named(
+    "unit_circle_tol",
+    1e-6,
+    "absolute, on |λ|",
+    "a mode with |λ| ≥ 1 − unit_circle_tol counts as on or outside the unit circle (not stable)",
+    "above the √(eps·κ) error of defective eigenvalues (the CV model's Jordan blocks at 1)",
+)
+UNIT_CIRCLE_FACTOR = _named(
+    "unit_circle_factor",
+    10.0,
+    "factor",
+    "a mode whose ||λ| − 1| lies within this factor of unit_circle_tol (either side) makes the "
+    "detectability verdict inconclusive",
+    "one decade around the threshold",
+)
+LMI_MARGIN = _named(
+    "lmi_margin",
+    1e-8,
+    "relative (λ_min(ρY − L*(Y)) / (ρ λ_max(Y)))",
+    "least margin m of the LMI witness for the float verdict S-detectable "
+    "(r_σ(L) ≤ ρ(1 − m), seed 000 Def. 5.2.4)",
+    "of the order of the SDP solvers' accuracy (feasibility tolerances ~1e-8), so a margin at "
+    "solver noise is not read as a proof",
+)
+CERTIFICATE_MARGIN = _named(
+    "certificate_margin",
+    1e-9,
+    "relative (λ_min / max ‖P_i‖)",
+    "least float margin a witness must show before it is rounded to rationals for proofs_check",
+    "only a gate against futile rounding: the exact check in proofs_check decides",
+)
+CERT_TOL = _named(
+    "cert_tol",
+    1e-7,
+    "relative",
+    "largest ε_cert accepted as a float infeasibility certificate of the S-detectability LMI",
+    "a decade above lmi_margin: the residual of an optimal solve is of the solver's accuracy",
+)
+VALUE_TOL = _named(
+    "value_tol",
+    1e-9,
+    "relative",
+    "band around a threshold of seed 000 Thm 5.2.10 (e.g. |1 − w_ii r²| ≤ value_tol) within "
+    "which a condition is undecided",
+    "far below the decimals the papers print, far above float error",
+)
+EIGEN_TOL = _named(
+    "eigen_tol",
+    1e-7,
+    "relative to ‖A‖",
+    "eigenvalues of A closer than this are one cluster; kernels ker(A − λI) are taken with it",
+    "above the √eps error of repeated eigenvalues",
+)
+WEIGHT_TOL = _named(
+    "weight_tol",
+    1e-4,
+    "absolute, on a weight",
+    "bracket width at which the bisection for the largest self-weight stops (seed 000 §5.3)",
+    "the paper prints self-weight bounds to 4 decimals",
+)
+HYPOTHESIS_TOL = _named(
+    "hypothesis_tol",
+    1e-9,
+    "absolute, on a spectral radius",
+    "distance of r_σ(J) from 1 within which Lemma A.2.1's hypothesis counts as undecided",
+    "a radius that close to 1 cannot be told from 1 at the data's precision",
+)
+WEIGHT_SUM_TOL = _named(
+    "weight_sum_tol",
+    1e-9,
+    "absolute, on a row sum",
+    "an explicit consensus matrix is row-stochastic when |Σ_j w_ij − 1| ≤ weight_sum_tol",
+    "a hand-written matrix with 9 decimals is accepted; a typo is not",
+)
+BOUND_RTOL = _named(
+    "bound_rtol",
+    1e-9,
+    "relative",
+    "a formation whose CRB trace is within this relative distance of the bound attains it "
+    "(seed 000 eq. (4.43), seed 003 Result 3)",
+    "far above the float error of traces of small well-conditioned matrices",
+)
+CONVERGED_TOL = _named(
+    "converged_tol",
+    1e-3,
+    "relative change",
+    "covariances are bounded when ‖P_i(K)‖ / ‖P_i(K/2)‖ is within converged_tol of 1",
+    "a bounded covariance changes by less than 0.1 % between K/2 and K",
+)
+GROWTH = _named(
+    "growth",
+    2.0,
+    "factor",
+    "covariances are unbounded when ‖P_i(K)‖ / ‖P_i(K/2)‖ exceeds this factor",
+    "the norm of an unbounded covariance at least doubles between K/2 and K",
+)
+MIRROR_TOL = _named(
+    "mirror_tol",
+    1e-9,
+    "relative to the scene's size",
+    "two TDOA vectors this close are equal (a target and its mirror image)",
+    "TDOA differences are differences of distances of order the scene size",
+)
+UNIQUENESS_TOL = _named(
+    "uniqueness_tol",
+    1e-7,
+    "relative to the scene's size",
+    "residual, sign and distinctness tolerance of the spherical-intersection TDOA solutions",
+    "absorbs cancellation in the closed-form solution of the quadric",
+)
+CLUSTER_TOL = _named(
+    "cluster_tol",
+    1e-8,
+    "absolute (W of norm ≤ 1 in the symmetrized basis)",
+    "eigenvalues of W closer than this are one cluster (spectral rank, seed 000 eq. (4.36))",
+    "far above the ~1e-15 eigenvalue error of a symmetric W",
+)
+COINCIDENCE_TOL = _named(
+    "coincidence_tol",
+    1e-9,
+    "relative to the scene's size",
+    "two agents (or an agent and the target) this close are one point: the case is refused",
+    "TDOA Jacobians divide by these distances",
+)
+PERIOD_TOL = _named(
+    "period_tol",
+    1e-9,
+    "relative",
+    "T/τ counts as an integer when within period_tol of one (kind: tdoa-sim)",
+    "periods are written with a few decimals",
+)
+ROUNDING_TOL = _named(
+    "rounding_tol",
+    8 * sys.float_info.epsilon,
+    "absolute, on a weight",
+    "largest deviation of the float Metropolis weights from the exact ones",
+    "a few ulps: each weight is one division and one subtraction",
+)
+ERROR_BOUND_SIGMAS = _named(
+    "error_bound_sigmas",
+    10.0,
+    "TDOA noise standard deviations",
+    "a tdoa-sim run has bounded_error when every agent's final error is below "
+    "error_bound = error_bound_sigmas · √r metres (unless the case sets error_bound)",
+    "ten noise standard deviations",
+)
+CONV_TOL = _named(
+    "conv_tol",
+    1e-10,
+    "relative step",
+    "the coupled Riccati iteration has converged when max_i ‖P_i(k+1) − P_i(k)‖ ≤ "
+    "conv_tol · max_i ‖P_i(k)‖ (seed 000 eqs. (5.7)–(5.9))",
+    "a contraction reaches it long before max_iter; float noise sits near 1e-16",
+)
+BLOWUP = _named(
+    "blowup",
+    1e12,
+    "factor on the initial norm",
+    "the coupled Riccati iteration diverges when its norm exceeds blowup times the initial one",
+    "twelve decades above the start",
+)
+MAX_ITER = _named(
+    "max_iter",
+    5000.0,
+    "iterations",
+    "iteration budget of the coupled Riccati iteration (neither converged nor diverged: "
+    "status max_iter)",
+    "a budget, not a threshold; echoed with the tolerances it bounds",
+)
+PSD_TOL = _named(
+    "psd_tol",
+    1e-9,
+    "relative to the matrices' norm",
+    "a symmetric matrix counts as positive semidefinite when its least eigenvalue is ≥ −psd_tol "
+    "(Lemma 5.2.3, Lemma A.2.1 bounds)",
+    "far above the float error of the symmetric eigenvalue problem",
+)
+Z_TOL = _named(
+    "z_tol",
+    4.0,
+    "asymptotic standard errors",
+    "a maximum-likelihood estimate is consistent with the true parameter when within z_tol "
+    "standard errors (seed 002 eqs. (3.1)–(3.2), (3.17))",
+    "a false alarm below 1e-4 per parameter under normality",
+)
+PSD_RTOL = _named(
+    "psd_rtol",
+    1e-9,
+    "relative to max(‖A‖_F, ‖B‖_F, 1)",
+    "A ⪯ B holds when λ_max(A − B) ≤ psd_rtol · max(‖A‖_F, ‖B‖_F, 1) (averaged-filter bounds, "
+    "seed 000 App. A)",
+    "far above the float error of symmetric eigenvalues, scale-aware through the Frobenius norms",
+)
+KERNEL_RTOL = _named(
+    "kernel_rtol",
+    1e-9,
+    "relative",
+    "along ker G_C the averaged filter's covariance equals the prior's propagation within this "
+    "relative tolerance (nothing is learnt there)",
+    "the equality is exact in real arithmetic; the tolerance absorbs the recursion's rounding",
+)
+MIN_CONDITIONING = _named(
+    "min_conditioning",
+    1e-3,
+    "ratio σ_r / σ_1",
+    "a component's Jacobian counts for the averaged-filter certificate only when its smallest "
+    "non-zero singular value is at least this fraction of the largest",
+    "below it the burn-in of the certificate is too short (docs/property-based.md)",
+)
+MARGIN_TOL = _named(
+    "margin_tol",
+    1e-9,
+    "relative (each condition's margin is scaled, e.g. |ε₁|/‖ε‖, λ_min(K)/λ_max(K))",
+    "an ISS condition of seed 003 whose relative margin is below margin_tol is inconclusive",
+    "the conditions are exact where they can be (ΔΔᵀ, the Laplacian): the margin guards the "
+    "float ones; theory.pursuit.iss.DEFAULT_MARGIN_TOL is this value until it imports it",
+)
+VIOLATION_TOL = _named(
+    "violation_tol",
+    1e-6,
+    "absolute, on V̇",
+    "a printed inequality of seed 003 is violated at a point when it fails by more than this",
+    "far above the float error of V̇; seed003.eq72 writes this value literally until it imports it",
+)
+PF_TOLERANCES = {
+    "converge_tol": _named(
+        "converge_tol",
+        5.0,
+        "metres of median tail error",
+        "a particle-filter node converges when its median tail error is below converge_tol",
+        "seed 002 §3.3: converged errors stay within a few metres",
+    ),
+    "diverge_tol": _named(
+        "diverge_tol",
+        10.0,
+        "metres of median tail error",
+        "a particle-filter node does not converge when its median tail error exceeds diverge_tol",
+        "seed 002 §3.3, Figs. 3.2–3.5",
+    ),
+    "improvement_tol": _named(
+        "improvement_tol",
+        3.0,
+        "standard errors",
+        "a variant is better when its mean error is lower by improvement_tol standard errors",
+        "three standard errors of the Monte Carlo mean",
+    ),
+}
+"""The ``kind: pf`` tolerances (their case keys), by name."""
+
+
+def defaults(*names: str) -> dict[str, float]:
+    """The default values of ``names``, e.g. ``defaults("rank_tol", "inconclusive_factor")``.
+
+    Parameters
+    ----------
+    *names : str
+        Names in :data:`TOLERANCES`.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    KeyError
+        Naming an unknown tolerance and listing the known ones.
+    """
+    unknown = [n for n in names if n not in TOLERANCES]
+    if unknown:
+        raise KeyError(f"unknown tolerances {unknown}; known: {sorted(TOLERANCES)}")
+    return {n: TOLERANCES[n].default for n in names}
+
+
+def table() -> list[dict[str, Any]]:
+    """The table as plain data (``name``, ``default``, ``unit``, ``meaning``, ``why``).
+
+    Returns
+    -------
+    list of dict
+        In the order of :data:`TOLERANCES`.
+    """
+    return [vars(t).copy() for t in TOLERANCES.values()]

@@ -1,0 +1,135 @@
+"""What ``trackcert pf`` (and ``trackcert simulate`` on a ``kind: pf`` case) reports.
+
+:func:`pf_report` runs the case's Monte Carlo (seed 002 §3.3, :mod:`theory.particle.experiments`)
+and every registered claim of kind ``pf``; the claims observe the case's ``expect`` keys in their
+evidence (``kind: pf`` has no separate observer), and the block is judged from those
+observations with :mod:`theory.core.expectations`, exactly as ``trackcert report`` judges it.
+With a folder it writes ``pf.json`` and the figures. The command only prints the record and
+exits with the expectations' verdict (:mod:`theory.core.verdicts`).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any
+
+from theory.core.case_file import Case
+from theory.core.claims import ClaimResult, all_claims, applicable_results, get_claim
+from theory.core.errors import CaseError
+from theory.core.expectations import Expectation, evaluate, observations_from
+from theory.core.jsonable import plain
+from theory.core.verdicts import Verdict, expectations_verdict
+
+__all__ = ["SNAPSHOT_STEPS", "PfReport", "pf_report"]
+
+SNAPSHOT_STEPS = (0, 5, 20)
+"""Steps whose particle clouds the figures show."""
+
+
+@dataclass(frozen=True)
+class PfReport:
+    """The record ``trackcert pf`` prints (and writes as ``pf.json``).
+
+    Attributes
+    ----------
+    case : Case
+        The case, with the runs and seed used.
+    agents : list of dict
+        Per-node error summary (:func:`theory.particle.experiments.node_summary`).
+    claims : tuple of ClaimResult
+        Every registered ``pf`` claim's results on the case.
+    expectations : tuple of Expectation
+        The case's ``expect`` block judged against the claims' observations.
+    figures : tuple of str
+        Figure files written (none without a folder).
+    """
+
+    case: Case
+    agents: list[dict[str, Any]]
+    claims: tuple[ClaimResult, ...]
+    expectations: tuple[Expectation, ...]
+    figures: tuple[str, ...] = ()
+
+    @property
+    def verdict(self) -> Verdict:
+        """The expectations' verdict (:func:`theory.core.verdicts.expectations_verdict`)."""
+        return expectations_verdict(self.expectations)
+
+    def to_json(self) -> dict[str, Any]:
+        """``case``, ``runs``, ``seed``, ``model``, ``share``, ``config``, ``agents``,
+        ``claims``, ``expectations`` (the verdict records) and ``figures``."""
+        spec = self.case.spec
+        return {
+            "case": self.case.name,
+            "runs": spec.runs,
+            "seed": spec.seed,
+            "model": spec.model,
+            "share": spec.config.share,
+            "config": plain(vars(spec.config)),
+            "agents": self.agents,
+            "claims": [r.to_json(get_claim(r.claim).source) for r in self.claims],
+            "expectations": [e.to_json() for e in self.expectations],
+            "figures": list(self.figures),
+        }
+
+
+def pf_report(
+    case: Case, *, runs: int | None = None, seed: int | None = None, out: Path | None = None
+) -> PfReport:
+    """Run ``case`` (``kind: pf``), its claims and its expectations; write ``out`` if given.
+
+    Parameters
+    ----------
+    case : Case
+        A loaded case; anything but ``kind: pf`` is refused.
+    runs, seed : int, optional
+        Monte Carlo runs and base seed (``None``: the case's own).
+    out : Path, optional
+        Folder for ``pf.json`` and figures (``None``: write nothing).
+
+    Returns
+    -------
+    PfReport
+
+    Raises
+    ------
+    CaseError
+        If the case is not ``kind: pf``.
+    """
+    from theory.particle.experiments import node_summary, shared_monte_carlo
+
+    if case.kind != "pf":
+        raise CaseError(
+            "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
+        )
+    spec = replace(
+        case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
+    )
+    case = replace(case, spec=spec)
+    mc = shared_monte_carlo(spec)
+    claims = [
+        result
+        for claim in all_claims()
+        if "pf" in claim.kinds
+        for result in applicable_results(claim, case)
+    ]
+    observed = [
+        found for r in claims for found in observations_from(r.claim, plain(r.evidence), r.status)
+    ]
+    expectations = evaluate(case.name, plain(case.expect), observed)
+    figures = () if out is None else _figures(case, mc, Path(out))
+    report = PfReport(case, node_summary(mc, spec), tuple(claims), tuple(expectations), figures)
+    if out is not None:
+        (Path(out) / "pf.json").write_text(json.dumps(plain(report.to_json()), indent=2) + "\n")
+    return report
+
+
+def _figures(case: Case, mc: Any, folder: Path) -> tuple[str, ...]:
+    from theory.particle.experiments import monte_carlo
+    from theory.particle.figures import write_figures
+
+    first = monte_carlo(case.spec, runs=1, snapshot_steps=SNAPSHOT_STEPS)  # = run 0 of mc
+    snapshots = replace(mc, snapshots=first.snapshots)
+    return tuple(write_figures(snapshots, case.spec, folder, case.name))

@@ -1,0 +1,123 @@
+"""``trackcert report`` as one library call: choose the claims, run them, write the folder.
+
+:func:`build_report` runs :func:`theory.report.runner.run_claims` with figures drawn in a
+temporary folder and writes the report with :func:`theory.report.render.write_report`; the
+command only shows progress and a summary and exits with the expectations' verdict
+(:mod:`theory.core.verdicts`).
+"""
+
+from __future__ import annotations
+
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from theory.core.case_file import Case
+from theory.core.claims import Claim, all_claims
+from theory.core.errors import CaseError
+from theory.report.render import write_report
+from theory.report.runner import ProgressHook, RunResult, run_claims, select_claims
+
+__all__ = ["build_report", "check_count", "choose_claims"]
+
+
+def choose_claims(patterns: Sequence[str] = ()) -> list[Claim]:
+    """The registered claims matching ``patterns`` (all of them when none is given).
+
+    Parameters
+    ----------
+    patterns : sequence of str
+        Shell-style patterns of claim ids (``--only``).
+
+    Returns
+    -------
+    list of Claim
+
+    Raises
+    ------
+    CaseError
+        If patterns are given and none matches a registered claim (the hint lists them).
+    """
+    registered = all_claims()
+    claims = select_claims(registered, patterns)
+    if patterns and not claims:
+        known = "Registered claims: " + ", ".join(c.id for c in registered)
+        raise CaseError(
+            "--only", "a pattern matching a registered claim id", list(patterns), hint=known
+        )
+    return claims
+
+
+def check_count(cases: Sequence[Case], claims: Sequence[Claim]) -> int:
+    """How many checks :func:`build_report` runs: each model claim once, each claim per case.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+        The cases.
+    claims : sequence of Claim
+        The claims.
+
+    Returns
+    -------
+    int
+    """
+    return sum(1 for c in claims if not c.kinds) + sum(
+        1 for case in cases for c in claims if case.kind in c.kinds
+    )
+
+
+def build_report(
+    cases: Sequence[Case],
+    out_dir: Path,
+    *,
+    claims: Sequence[Claim] | None = None,
+    seed: int = 0,
+    seconds: float | None = None,
+    errata_path: Path | None = None,
+    progress: ProgressHook | None = None,
+) -> tuple[RunResult, dict[str, Any]]:
+    """Run every claim on every case and write ``index.html``, ``report.md``, ``report.json``.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+        The cases (distinct names).
+    out_dir : Path
+        The report folder.
+    claims : sequence of Claim, optional
+        Default: every registered claim.
+    seed : int
+        Seed of every randomized check (:func:`theory.report.runner.derive_seed`).
+    seconds : float, optional
+        Time limit of each check (``None``: none).
+    errata_path : Path, optional
+        The errata document (default ``docs/errata.md``).
+    progress : callable, optional
+        ``progress(claim_id, case_name)`` before each check (``case_name`` is
+        :data:`~theory.report.runner.MODEL_CASE` for model claims).
+
+    Returns
+    -------
+    (RunResult, dict)
+        What the claims returned, and the ``report.json`` document.
+
+    Raises
+    ------
+    CaseError
+        If ``errata_path`` is not a readable file, or the folder cannot be written.
+    """
+    if errata_path is not None and not Path(errata_path).is_file():
+        raise CaseError("--errata", "a readable Markdown file", str(errata_path))
+    with tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures:
+        run = run_claims(
+            cases,
+            seed=seed,
+            claims=claims,
+            progress=progress,
+            seconds=seconds,
+            figure_dir=Path(figures),
+        )
+        document = write_report(run, out_dir, errata_path=errata_path)
+    return run, document

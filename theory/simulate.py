@@ -1,0 +1,205 @@
+"""Closed-loop simulation of a case: the kind's simulator run over seeds (``trackcert simulate``).
+
+A kind that ``trackcert simulate`` runs names a simulator when it registers
+(:func:`theory.core.case_file.register_kind`, ``simulate="module:function"``):
+``simulator(case, steps) -> Simulator`` says what one run is (a picklable
+``run(spec, rng)``), which fields the record gets, and how the runs are summarised, written and
+observed (:class:`Finished`). :func:`simulate_case` runs it on the engine
+(:func:`theory.sim.runner.monte_carlo`: run ``i`` seeded by child ``i`` of
+``SeedSequence(seed)``), judges the case's ``expect`` block with
+:mod:`theory.core.expectations` when the simulator observes it, and writes ``summary.json``.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from theory.core.case_file import Case, kind_spec
+from theory.core.errors import CaseError
+from theory.core.expectations import Expectation, Observed, judge
+from theory.core.jsonable import plain
+from theory.core.verdicts import Verdict, expectations_verdict
+
+__all__ = ["Finished", "Simulation", "Simulator", "simulate_case", "simulator_for"]
+
+SOURCE = "trackcert simulate"
+"""The observations' source in the command's verdict records."""
+
+
+@dataclass(frozen=True)
+class Finished:
+    """What a simulator makes of its runs.
+
+    Attributes
+    ----------
+    summary : dict
+        Record fields (per-agent ``agents`` rows, tolerances, …).
+    files : list of Path
+        Data and figure files written.
+    observed : Observed or None
+        The expect keys the runs decide (``None``: the kind's keys are not about simulation).
+    """
+
+    summary: dict[str, Any]
+    files: list[Path]
+    observed: Observed | None = None
+
+
+@dataclass(frozen=True)
+class Simulator:
+    """One kind's simulation, ready for the engine.
+
+    Attributes
+    ----------
+    spec : object
+        What each run receives (the case's spec, steps overridden).
+    run : callable
+        ``run(spec, rng) -> run record``, picklable (module level or a ``functools.partial``).
+    fields : dict
+        Record fields naming the settings (filter, steps, …).
+    finish : callable
+        ``finish(case, spec, runs, folder, figures) -> Finished``.
+    """
+
+    spec: Any
+    run: Callable[[Any, Any], Any]
+    fields: dict[str, Any]
+    finish: Callable[[Case, Any, list, Path, bool], Finished]
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """The record of one ``trackcert simulate`` call (also written as ``summary.json``).
+
+    Attributes
+    ----------
+    case : Case
+        The case simulated.
+    runs, seed, workers : int
+        Monte Carlo runs, root seed and the worker processes used.
+    fields : dict
+        The simulator's settings.
+    finished : Finished
+        Summary, files and observations.
+    expectations : tuple of Expectation
+        The case's ``expect`` block judged against ``finished.observed`` (empty when not
+        observed).
+    """
+
+    case: Case
+    runs: int
+    seed: int
+    workers: int
+    fields: dict[str, Any]
+    finished: Finished
+    expectations: tuple[Expectation, ...] = field(default_factory=tuple)
+
+    @property
+    def verdict(self) -> Verdict:
+        """The expectations' verdict (:func:`theory.core.verdicts.expectations_verdict`)."""
+        return expectations_verdict(self.expectations)
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``summary.json`` record: case, settings, summary, expectations, files.
+
+        ``expectations`` maps each key to its verdict record
+        (:meth:`theory.core.expectations.Expectation.to_json`: ``expected``, ``got``, ``met``,
+        ``verdict``, …).
+        """
+        case = self.case
+        return {
+            "case": case.name,
+            "source": case.source,
+            "kind": case.kind,
+            **self.fields,
+            "runs": self.runs,
+            "seed": self.seed,
+            "workers": self.workers,
+            **self.finished.summary,
+            "expectations": {e.key: e.to_json() for e in self.expectations},
+            "files": [str(f) for f in self.finished.files],
+        }
+
+
+def simulator_for(case: Case, steps: int | None = None) -> Simulator:
+    """The simulator of ``case``'s kind.
+
+    Parameters
+    ----------
+    case : Case
+        A loaded case.
+    steps : int, optional
+        Overrides the number of steps.
+
+    Returns
+    -------
+    Simulator
+
+    Raises
+    ------
+    CaseError
+        If the kind names no simulator.
+    """
+    make = kind_spec(case.kind).simulator()
+    if make is None:
+        raise CaseError("kind", "a kind trackcert simulate runs", case.kind, file=case.file)
+    return make(case, steps)
+
+
+def simulate_case(
+    case: Case,
+    simulator: Simulator,
+    *,
+    folder: Path,
+    runs: int = 1,
+    seed: int = 0,
+    workers: int = 1,
+    figures: bool = True,
+    progress: Callable[[int], None] | None = None,
+) -> Simulation:
+    """Run ``simulator`` ``runs`` times, summarise, judge the expectations, write the files.
+
+    Parameters
+    ----------
+    case : Case
+        The case.
+    simulator : Simulator
+        From :func:`simulator_for` (or an interim one).
+    folder : Path
+        Where data, figures and ``summary.json`` go (created).
+    runs, seed, workers : int
+        Monte Carlo runs, root seed (run ``i`` uses child ``i``) and worker processes.
+    figures : bool
+        Whether to draw PNG figures.
+    progress : callable, optional
+        Called with the number of runs finished.
+
+    Returns
+    -------
+    Simulation
+    """
+    from theory.sim.runner import monte_carlo
+
+    results = monte_carlo(
+        simulator.spec,
+        runs=runs,
+        seed=seed,
+        workers=workers,
+        progress=progress,
+        simulate=simulator.run,
+    )
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    finished = simulator.finish(case, simulator.spec, results, folder, figures)
+    expectations = (
+        () if finished.observed is None else judge(case, finished.observed, source=SOURCE)
+    )
+    simulation = Simulation(
+        case, runs, seed, min(workers, runs), simulator.fields, finished, tuple(expectations)
+    )
+    (folder / "summary.json").write_text(json.dumps(plain(simulation.to_json()), indent=2))
+    return simulation
