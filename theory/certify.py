@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.consensus.certificates import bundle, s_detectability_certificate
+from theory.consensus.certificates import s_detectability_certificate
 from theory.consensus.operators import (
     closed_loop,
     covariance_operator_matrix,
@@ -33,6 +33,7 @@ from theory.consensus.operators import (
 )
 from theory.consensus.s_detectability import decide_s_detectability, witness_from_decision
 from theory.core.case_file import Case
+from theory.core.certificate_format import bundle
 from theory.core.claims import DOCUMENT_KEY, ClaimResult, NotApplicable, register
 from theory.core.errors import InconclusiveError, PropertyFails
 from theory.core.rationalize import RationalizationError

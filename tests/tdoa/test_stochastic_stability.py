@@ -9,8 +9,8 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.tdoa import stochastic_stability as ss
 from theory.core.claims import get_claim
+from theory.tdoa import stochastic_stability as ss
 
 ONE = Fraction(1)
 

@@ -17,15 +17,17 @@ import numpy as np
 
 from theory.certify import case_certificates
 from theory.consensus.certificates import (
-    bundle,
-    covariance_bound_certificate,
-    ekf_covariance_bound_certificate,
     mjls_stability_certificate,
     s_detectability_certificate,
 )
 from theory.consensus.s_detectability import s_detectability_witness
 from theory.core.case_file import load_case
+from theory.core.certificate_format import bundle
 from theory.pursuit.certificates import iss_certificate
+from theory.tdoa.covariance_certificates import (
+    covariance_bound_certificate,
+    ekf_covariance_bound_certificate,
+)
 from theory.tdoa.rank_certificates import generic_rank_certificates
 
 HERE = Path(__file__).resolve().parent
