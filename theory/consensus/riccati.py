@@ -149,7 +149,7 @@ class RiccatiRun:
     Attributes
     ----------
     status : str
-        ``converged``, ``diverged`` or ``max_iter``.
+        ``converged``, ``diverged``, ``max_iter`` or (with ``fixed_steps``) ``steps``.
     iterations : int
     P : ndarray, shape (N, n, n)
         Last iterate.
@@ -159,8 +159,8 @@ class RiccatiRun:
         Whether ``r_σ`` of the order's operator with those gains is < 1 (None unless converged).
     radius : float or None
         That spectral radius.
-    norms : ndarray
-        ``max_i ‖P_i(k)‖₂`` for each k.
+    agent_norms : ndarray, shape (iterations + 1, N)
+        ``‖P_i(k)‖₂`` for each k and agent.
     tolerances : dict
     """
 
@@ -170,8 +170,13 @@ class RiccatiRun:
     gains: tuple[np.ndarray, ...]
     stabilizing: bool | None
     radius: float | None
-    norms: np.ndarray
+    agent_norms: np.ndarray
     tolerances: dict
+
+    @property
+    def norms(self) -> np.ndarray:
+        """``max_i ‖P_i(k)‖₂`` for each k."""
+        return self.agent_norms.max(axis=1)
 
 
 def coupled_riccati(
@@ -186,6 +191,7 @@ def coupled_riccati(
     max_iter: int = 5000,
     conv_tol: float = 1e-10,
     blowup: float = 1e12,
+    fixed_steps: bool = False,
 ) -> RiccatiRun:
     """Iterate the coupled Riccati equations until convergence, divergence or ``max_iter``.
 
@@ -203,6 +209,9 @@ def coupled_riccati(
         Relative step size declaring convergence.
     blowup : float
         Norm growth factor declaring divergence.
+    fixed_steps : bool
+        Run exactly ``max_iter`` steps (status ``steps``; no test but finiteness): the recursion
+        as the consensus Kalman filter runs it.
 
     Returns
     -------
@@ -214,19 +223,20 @@ def coupled_riccati(
     """
     N, n = W.shape[0], A.shape[0]
     P = np.broadcast_to(np.asarray(P0, dtype=float), (N, n, n)).copy()
-    start = max(float(np.max(np.linalg.norm(P, 2, axis=(1, 2)))), 1.0)
-    norms = [start]
-    status, iterations = "max_iter", 0
+    norms = [np.linalg.norm(P, 2, axis=(1, 2))]
+    start = max(float(norms[0].max()), 1.0)
+    status, iterations = ("steps" if fixed_steps else "max_iter"), 0
     while iterations < max_iter:
         iterations += 1
         nxt = coupled_riccati_step(A, C, W, Q, R, P, order=order)[1]
         step = float(np.max(np.linalg.norm(nxt - P, 2, axis=(1, 2))))
         P = nxt
-        norms.append(float(np.max(np.linalg.norm(P, 2, axis=(1, 2)))))
-        if not np.isfinite(norms[-1]) or norms[-1] > blowup * start:
+        norms.append(np.linalg.norm(P, 2, axis=(1, 2)))
+        top = float(norms[-1].max())
+        if not np.isfinite(top) or (not fixed_steps and top > blowup * start):
             status = "diverged"
             break
-        if step <= conv_tol * norms[-1]:
+        if not fixed_steps and step <= conv_tol * top:
             status = "converged"
             break
     gains = coupled_riccati_step(A, C, W, Q, R, P, order=order)[0] if status != "diverged" else ()

@@ -142,9 +142,7 @@ def ekf_covariance_bound_certificate(
     data = {
         "W": fraction_strings(stochastic_matrix(W)),
         "A": fraction_strings(A_q),
-        "modes": [
-            {"K": strings(ks), "H": strings(hs)} for ks, hs in zip(Ks_q, Hs_q, strict=True)
-        ],
+        "modes": [{"K": strings(ks), "H": strings(hs)} for ks, hs in zip(Ks_q, Hs_q, strict=True)],
     }
     floats = [[np.array(m, dtype=float) for m in mode] for mode in modes_q]
     return _covariance(data, W, floats, modes_q, X, rate, lmi_margin, precisions, case)
