@@ -199,6 +199,69 @@ def s_detectability(cert: dict[str, Any]) -> list[Check]:
     return checks + _lyapunov(operator, W, gammas, witness, bound)
 
 
+def s_detectability_infeasible(cert: dict[str, Any]) -> list[Check]:
+    """``(A, C, W)`` is not S-detectable: no gains give ``r_σ(L) < ρ`` (Farkas witness).
+
+    The witness is multipliers ``Λ_j ⪰ 0`` (n × n) and ``Ψ_i ⪰ 0`` (2n × 2n), not all zero, that
+    annihilate the LMI of Theorem 3 in ``docs/theory/s-detectability.md``:
+    ``F1_j = Y_j − Σ_i (w_ij/ρ) Z_i``, ``F2_i = [[Z_i, M_iᵀ], [M_i, Y_i]]`` with
+    ``M_i = Y_i A − G_i C_i``.
+    ``F*(Λ, Ψ) = 0`` reads ``Ψ_i,11 = Σ_j (w_ij/ρ) Λ_j``, ``Ψ_i,21 C_iᵀ = 0`` and
+    ``Λ_i + Ψ_i,22 + A Ψ_i,21ᵀ + Ψ_i,21 Aᵀ = 0`` (``Ψ_i,21``: lower-left block). Then no
+    ``(Y, G, Z)`` has ``F ≻ 0`` (``0 = ⟨F*(Λ, Ψ), x⟩ = ⟨(Λ, Ψ), F(x)⟩ > 0``), so no gains exist.
+    """
+    claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
+    data = p.fields(cert["data"], "data", ("A", "C", "W"))
+    witness = p.fields(cert["witness"], "witness", ("Lambda", "Psi"))
+    n = _size(witness["Lambda"], "witness.Lambda")
+    A = p.matrix(data["A"], "data.A", n, n)
+    W, checks = _weights(data["W"])
+    agents = len(W)
+    C = p.matrix_list(data["C"], "data.C", agents, None, n)
+    Lam = p.matrix_list(witness["Lambda"], "witness.Lambda", agents, n, n)
+    Psi = p.matrix_list(witness["Psi"], "witness.Psi", agents, 2 * n, 2 * n)
+    _refuse_costly(agents * (agents * n * n + 16 * n**3), _bits([A, W, *C, *Lam, *Psi]))
+    rho = _bound(claim, "spectral_radius_below")
+    checks += [definite(f"Λ_{j + 1} ⪰ 0", L_j, semi=True) for j, L_j in enumerate(Lam)]
+    checks += [definite(f"Ψ_{i + 1} ⪰ 0", P_i, semi=True) for i, P_i in enumerate(Psi)]
+    total = sum(la.trace(M) for M in (*Lam, *Psi))
+    checks.append(Check("not all zero: Σ tr Λ_j + Σ tr Ψ_i > 0", total > 0, f"sum {show(total)}"))
+    for i in range(agents):
+        checks += _annihilated(i, A, C[i], W, rho, Lam, Psi[i])
+    return checks
+
+
+def _annihilated(
+    i: int, A: Matrix, C_i: Matrix, W: Matrix, rho: Fraction, Lam: list[Matrix], Psi_i: Matrix
+) -> list[Check]:
+    """The three blocks of ``F*(Λ, Ψ)`` belonging to agent ``i`` (0-based), each exactly 0."""
+    n, k = len(A), i + 1
+    P11 = [row[:n] for row in Psi_i[:n]]
+    P21 = [row[:n] for row in Psi_i[n:]]
+    P22 = [row[n:] for row in Psi_i[n:]]
+    mixed = [[Fraction(0)] * n for _ in range(n)]
+    for j, L_j in enumerate(Lam):
+        if W[i][j]:
+            mixed = la.add(mixed, la.scale(W[i][j] / rho, L_j))
+    moved = la.add(la.matmul(A, la.transpose(P21)), la.matmul(P21, la.transpose(A)))
+    return [
+        _zero(f"F*_Z{k}: Ψ_{k},11 − Σ_j (w_{k}j/ρ) Λ_j = 0", la.sub(P11, mixed)),
+        _zero(f"F*_G{k}: Ψ_{k},21 C_{k}ᵀ = 0", la.matmul(P21, la.transpose(C_i))),
+        _zero(
+            f"F*_Y{k}: Λ_{k} + Ψ_{k},22 + A Ψ_{k},21ᵀ + Ψ_{k},21 Aᵀ = 0",
+            la.add(Lam[i], la.add(P22, moved)),
+        ),
+    ]
+
+
+def _zero(name: str, matrix: Matrix) -> Check:
+    for r, row in enumerate(matrix):
+        for c, x in enumerate(row):
+            if x:
+                return Check(name, False, f"entry ({r + 1},{c + 1}) is {show(x)}, not 0")
+    return Check(name, True, "every entry is exactly 0")
+
+
 def covariance_bound(cert: dict[str, Any]) -> list[Check]:
     """``Xⁱ ≻ f₁ⁱ(M, X)`` for every listed mode ``M`` (seed 000 Lemma A.2.1, Cor. A.2.2).
 
@@ -432,6 +495,7 @@ def _coordination(raw_L: Any, raw_r: Any, n: int, k_c: Fraction, w: dict, two: b
 KINDS = {
     "mjls-stability": mjls_stability,
     "s-detectability": s_detectability,
+    "s-detectability-infeasible": s_detectability_infeasible,
     "covariance-bound": covariance_bound,
     "generic-rank": generic_rank,
     "iss": iss,

@@ -20,7 +20,9 @@ from __future__ import annotations
 from fractions import Fraction
 
 import numpy as np
-from flint import fmpq, fmpq_mat
+from flint import fmpq_mat
+
+from theory.consensus.exact_linalg import fractions_of, null_basis, rational_matrix, to_fmpq
 
 __all__ = ["exact_unobservable_part", "schur_stable", "self_weight_ok_exact", "to_fraction"]
 
@@ -28,15 +30,6 @@ __all__ = ["exact_unobservable_part", "schur_stable", "self_weight_ok_exact", "t
 def to_fraction(x: float) -> Fraction:
     """The decimal a float was written as: ``Fraction(repr(x))`` (0.24 → 6/25)."""
     return Fraction(repr(float(x)))
-
-
-def _mat(rows: list[list[Fraction]]) -> fmpq_mat:
-    m, n = len(rows), len(rows[0]) if rows else 0
-    return fmpq_mat(m, n, [fmpq(x.numerator, x.denominator) for row in rows for x in row])
-
-
-def _rational(M: np.ndarray) -> list[list[Fraction]]:
-    return [[to_fraction(x) for x in row] for row in np.atleast_2d(M)]
 
 
 def exact_unobservable_part(A: np.ndarray, C: np.ndarray) -> fmpq_mat:
@@ -55,37 +48,21 @@ def exact_unobservable_part(A: np.ndarray, C: np.ndarray) -> fmpq_mat:
         ``k × k`` with ``k = n − rank O`` (``0 × 0`` if observable).
     """
     n = A.shape[0]
-    Aq = _mat(_rational(A))
+    Aq = to_fmpq(rational_matrix(A))
     rows: list[list[Fraction]] = []
-    block = _rational(np.asarray(C, dtype=float).reshape(-1, n)) if np.size(C) else []
+    block = rational_matrix(np.asarray(C, dtype=float).reshape(-1, n)) if np.size(C) else []
     power = [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
     for _ in range(n):
         if block:
-            product = _mat(block) * _mat(power)
-            rows.extend([[Fraction(int(x.p), int(x.q)) for x in r] for r in product.tolist()])
-        power = [[Fraction(int(x.p), int(x.q)) for x in r] for r in (_mat(power) * Aq).tolist()]
-    V = _null_basis(rows, n)
+            product = to_fmpq(block) * to_fmpq(power)
+            rows.extend(fractions_of(product))
+        power = fractions_of(to_fmpq(power) * Aq)
+    V = null_basis(rows, n)
     if not V:
         return fmpq_mat(0, 0)
-    Vq = _mat([[V[c][r] for c in range(len(V))] for r in range(n)])
+    Vq = to_fmpq([[V[c][r] for c in range(len(V))] for r in range(n)])
     Vt = Vq.transpose()
     return (Vt * Vq).solve(Vt * Aq * Vq)
-
-
-def _null_basis(rows: list[list[Fraction]], n: int) -> list[list[Fraction]]:
-    if not rows:
-        return [[Fraction(int(i == j)) for i in range(n)] for j in range(n)]
-    R, rank = _mat(rows).rref()
-    R = [[Fraction(int(x.p), int(x.q)) for x in r] for r in R.tolist()[:rank]]
-    pivots = [next(j for j, x in enumerate(r) if x != 0) for r in R]
-    basis = []
-    for free in (j for j in range(n) if j not in pivots):
-        v = [Fraction(0)] * n
-        v[free] = Fraction(1)
-        for r, p in zip(R, pivots, strict=True):
-            v[p] = -r[free]
-        basis.append(v)
-    return basis
 
 
 def schur_stable(coefficients: list[Fraction]) -> bool:
