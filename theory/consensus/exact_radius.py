@@ -1,4 +1,4 @@
-"""``r_σ(T) < ρ`` decided exactly for the positive operators of seed 000 ch. 5 with rational ``Γ_i``.
+"""``r_σ(T) < ρ`` decided exactly for the positive operators of seed 000 ch. 5, rational ``Γ_i``.
 
 For ``T`` one of L (eq. (5.13)), J (App. C.3) or their adjoints (all positive: ``w_ij ≥ 0``):
 ``r_σ(T) < ρ`` iff ``I − T/ρ`` is invertible and the solution ``X`` of ``X − T(X)/ρ = I``

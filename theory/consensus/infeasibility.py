@@ -11,7 +11,8 @@ eigenvalue of ``A`` with a rational eigenvector ``v`` and ``S ⊆ {i : C_i v = 0
 ``c ≥ 0``, ``c ≠ 0`` (supported on S) satisfy ``λ² (W_SS c)_i ≥ ρ c_i`` for ``i ∈ S`` (so
 ``λ² r_σ(W_SS) ≥ ρ``, Collatz–Wielandt). With ``a_i = Σ_j w_ij c_j / ρ`` and ``V = v vᵀ``::
 
-    Λ_j = c_j V,   Ψ_i = [[a_i, −c_i/λ], [−c_i/λ, c_i]] ⊗ V   (i ∈ S),   Ψ_i = [[a_i, 0], [0, 0]] ⊗ V
+    Λ_j = c_j V,    Ψ_i = [[a_i, −c_i/λ], [−c_i/λ, c_i]] ⊗ V   (i ∈ S),
+                    Ψ_i = [[a_i, 0], [0, 0]] ⊗ V              (i ∉ S)
 
 ``Ψ_i ⪰ 0`` since ``a_i c_i ≥ c_i²/λ²``; ``F*_Z = 0`` by the choice of ``a``, ``F*_G =
 −2 Ψ_i,21 C_iᵀ ∝ v (C_i v)ᵀ = 0`` on S, and ``F*_Y = (2 c_i − 2 c_i) V = 0``. The vector ``c`` is
