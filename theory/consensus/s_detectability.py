@@ -47,15 +47,20 @@ from typing import Any
 import cvxpy as cp
 import numpy as np
 
+from theory.consensus.infeasibility import infeasibility_certificate
 from theory.consensus.operators import (
     B_matrix,
     L_adjoint_map,
     closed_loop,
     covariance_operator_matrix,
     spectral_radius,
-    unvec_tuple,
-    vec_tuple,
 )
+from theory.consensus.primal_certificates import (
+    certificate_gains,
+    primal_certificate,
+    primal_lyapunov,
+)
+from theory.core.rationalize import RationalizationError
 
 __all__ = [
     "CERT_TOL",
@@ -109,8 +114,8 @@ class SDetectability:
     Attributes
     ----------
     verdict : bool or None
-        True: S-detectable (witness verified); False: not (certificate verified); None:
-        inconclusive.
+        True: S-detectable (an exact ``s-detectability`` certificate checked); False: not (an
+        exact ``s-detectability-infeasible`` certificate checked); None: inconclusive.
     reason : str
         One sentence saying what decided it (or why nothing did).
     solver : str
@@ -128,20 +133,26 @@ class SDetectability:
     cert_epsilon : float or None
         ``ε_cert`` recomputed from the projected multipliers.
     gains : tuple of ndarray or None
-        ``L_i`` (n × p_i) from the witness.
+        ``L_i`` (n × p_i): the certificate's when ``verdict`` is True, else the LMI's candidate.
     Y : ndarray or None
         Dual Lyapunov tuple, shape (N, n, n).
     X : ndarray or None
-        Primal Lyapunov tuple for the filter's operator: ``X − T(X) = I``.
+        Primal Lyapunov tuple for the filter's operator with the certificate's gains:
+        ``X − T(X) = I`` (floats; None unless ``verdict`` is True).
     radius_L, radius_J, radius_B : float or None
-        ``r_σ`` of L, J and B with the candidate gains ``Y_i⁻¹ G_i`` of the solver's solution
-        (the witness's gains when ``verdict`` is True; otherwise informative only).
+        ``r_σ`` of L, J and B (floats) with the candidate gains ``Y_i⁻¹ G_i`` of the solver's
+        solution (informative only).
     multipliers : dict or None
         ``{"Lambda": (N, n, n), "Psi": (N, 2n, 2n)}`` projected onto the PSD cone.
     tolerances : dict
         ``lmi_margin`` and ``cert_tol`` used.
     order : str
         Filter order the primal Lyapunov tuple ``X`` refers to.
+    certificate : dict or None
+        The exact certificate the verdict rests on (``s-detectability`` when True,
+        ``s-detectability-infeasible`` when False), already accepted by :mod:`proofs_check`.
+    route : str
+        How the certificate was obtained.
     """
 
     verdict: bool | None
@@ -162,6 +173,8 @@ class SDetectability:
     multipliers: dict[str, np.ndarray] | None = None
     tolerances: dict[str, float] = field(default_factory=dict)
     order: str = "consensus-then-filter"
+    certificate: dict[str, Any] | None = None
+    route: str = ""
 
     def evidence(self) -> dict[str, Any]:
         """JSON-ready summary (no matrices)."""
@@ -178,6 +191,8 @@ class SDetectability:
             "candidate_radius_L": self.radius_L,
             "candidate_radius_J": self.radius_J,
             "candidate_radius_B": self.radius_B,
+            "certificate_kind": None if self.certificate is None else self.certificate["kind"],
+            "certificate_route": self.route,
             "tolerances": dict(self.tolerances),
         }
 
@@ -192,8 +207,14 @@ def decide_s_detectability(
     solver: str = "CLARABEL",
     lmi_margin: float = LMI_MARGIN,
     cert_tol: float = CERT_TOL,
+    candidate_gains: Sequence[tuple[str, Sequence[np.ndarray]]] = (),
+    case: str | None = None,
 ) -> SDetectability:
     """Decide whether gains ``L_i`` exist with ``r_σ(L) < rho`` (S-detectability for rho = 1).
+
+    Only exact certificates decide (module docstring): True when an ``s-detectability``
+    certificate passes :mod:`proofs_check`, False when an ``s-detectability-infeasible`` one
+    does, None (inconclusive) otherwise — whatever the float margins say.
 
     Parameters
     ----------
@@ -210,14 +231,19 @@ def decide_s_detectability(
     solver : str
         A cvxpy SDP solver name (``CLARABEL`` or ``SCS``).
     lmi_margin : float
-        Least relative witness margin ``m`` accepted (see module docstring).
+        Least relative witness margin ``m`` worth rounding (see module docstring).
     cert_tol : float
-        Largest ``ε_cert`` accepted as an infeasibility certificate.
+        ``ε_cert`` at or below which the float dual is reported as suggesting infeasibility
+        (informative: it decides nothing).
+    candidate_gains : sequence of (label, gains)
+        Further gains (the case's, the Riccati iteration's) to try with exact Lyapunov tuples.
+    case : str, optional
+        Case name recorded in the certificate.
 
     Returns
     -------
     SDetectability
-        Never raises on solver failure: the verdict is then None (inconclusive).
+        Never raises on solver failure: the exact routes are still tried.
 
     References
     ----------
@@ -227,20 +253,55 @@ def decide_s_detectability(
     W = np.asarray(W, dtype=float)
     C = [np.asarray(Ci, dtype=float).reshape(-1, A.shape[0]) for Ci in C]
     tolerances = {"lmi_margin": lmi_margin, "cert_tol": cert_tol}
+    base = _float_evidence(A, C, W, rho, solver) | {"order": order, "tolerances": tolerances}
+    witness = None
+    if base.get("witness_margin", float("-inf")) >= lmi_margin:
+        witness = (base["gains"], base["Y"])
+    floats = [("LMI candidate gains", base["gains"])] if base.get("gains") else []
+    cert, route, reasons = primal_certificate(
+        A, C, W, order=order, rho=rho, witness=witness, candidates=[*floats, *candidate_gains],
+        lmi_margin=lmi_margin, case=case,
+    )  # fmt: skip
+    if cert is not None:
+        gains = certificate_gains(cert, C)
+        found = {"gains": gains, "X": primal_lyapunov(A, C, W, gains, order)}
+        found["Y"] = base["Y"] if route.startswith("LMI witness") else None
+        reason = f"certificate verified exactly (proofs_check): {route}"
+        return SDetectability(True, reason, **(base | found), certificate=cert, route=route)
+    try:
+        cert = infeasibility_certificate(A, C, W, rho=rho, case=case)
+    except RationalizationError as error:
+        reasons.append(str(error))
+    else:
+        route = "Farkas multipliers from the blind set " + str(cert["produced_by"]["agents"])
+        reason = f"infeasibility certificate verified exactly (proofs_check): {route}"
+        return SDetectability(False, reason, **base, certificate=cert, route=route)
+    hint = base.get("cert_epsilon")
+    suggests = (
+        f"; the float dual suggests infeasibility (ε_cert = {hint:.3g} ≤ cert_tol) but proves "
+        "nothing"
+        if hint is not None and hint <= cert_tol
+        else ""
+    )
+    reason = "no exact certificate either way" + suggests + ": " + "; ".join(reasons)
+    return SDetectability(None, reason, **base)
+
+
+def _float_evidence(
+    A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float, solver: str
+) -> dict[str, Any]:
+    """Solve the normalised LMI; its candidate gains, margins and multipliers (floats only)."""
     problem, parts = _build_lmi(A, C, W, rho)
+    common: dict[str, Any] = {"solver": solver, "rho": rho}
     try:
         with warnings.catch_warnings():  # inaccuracy is reported through the status table
             warnings.simplefilter("ignore", UserWarning)
             problem.solve(solver=solver)
         status = SOLVER_STATUS_TABLE.get(problem.status, "solver_error")
-    except (cp.error.SolverError, ArithmeticError, ValueError) as error:
-        return SDetectability(
-            None, f"solver failed: {error}", solver, "solver_error", rho, tolerances=tolerances
-        )
-    common = {"solver": solver, "solver_status": status, "rho": rho, "tolerances": tolerances}
+    except (cp.error.SolverError, ArithmeticError, ValueError):
+        return common | {"solver_status": "solver_error"}
     if status not in ("optimal", "optimal_inaccurate"):
-        reason = f"solver status {status}: the normalised LMI is always feasible and bounded"
-        return SDetectability(None, reason, order=order, **common)
+        return common | {"solver_status": status}
     Y = np.stack([np.asarray(v.value, dtype=float) for v in parts["Y"]])
     try:
         gains = tuple(
@@ -254,33 +315,17 @@ def decide_s_detectability(
         gains = tuple(np.zeros((A.shape[0], Ci.shape[0])) for Ci in C)
         m = float("-inf")
     eps = _certificate_epsilon(A, C, W, rho, parts)
-    radii = _radii(A, C, W, gains)
-    base = dict(
-        mu=float(parts["mu"].value),
-        witness_margin=m,
-        cert_epsilon=eps["epsilon"],
-        multipliers=eps["multipliers"],
-        order=order,
-        **radii,
-        **common,
-    )
-    if m >= lmi_margin:
-        X = _primal_lyapunov(W, closed_loop(A, C, gains), order)
-        reason = f"witness verified: margin m = {m:.3g} ≥ lmi_margin, r_σ(L) ≤ {rho * (1 - m):.6g}"
-        return SDetectability(
-            True, reason, radius_bound=rho * (1 - m), gains=gains, Y=Y, X=X, **base
-        )
-    if status == "optimal" and eps["epsilon"] <= cert_tol:
-        reason = (
-            f"certificate verified: ε_cert = {eps['epsilon']:.3g} ≤ cert_tol; no (Y, G, Z) with "
-            f"relative LMI margin above ε_cert"
-        )
-        return SDetectability(False, reason, **base)
-    reason = (
-        f"neither side verified (witness margin {m:.3g} < {lmi_margin:g}, ε_cert "
-        f"{eps['epsilon']:.3g} vs {cert_tol:g}, status {status}): near the boundary"
-    )
-    return SDetectability(None, reason, **base)
+    return common | {
+        "solver_status": status,
+        "mu": float(parts["mu"].value),
+        "witness_margin": m,
+        "radius_bound": rho * (1 - m) if m > 0 else None,
+        "cert_epsilon": eps["epsilon"],
+        "multipliers": eps["multipliers"],
+        "gains": gains,
+        "Y": Y,
+        **_radii(A, C, W, gains),
+    }
 
 
 def s_detectability_witness(
@@ -491,11 +536,3 @@ def _radii(
         "radius_J": spectral_radius(covariance_operator_matrix(W, Gamma, "filter-then-consensus")),
         "radius_B": spectral_radius(B_matrix(W, Gamma)),
     }
-
-
-def _primal_lyapunov(W: np.ndarray, Gamma: np.ndarray, order: str) -> np.ndarray:
-    N, n = Gamma.shape[0], Gamma.shape[1]
-    T = covariance_operator_matrix(W, Gamma, order)
-    rhs = vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
-    X = unvec_tuple(np.linalg.solve(np.eye(T.shape[0]) - T, rhs), N, n)
-    return (X + X.transpose(0, 2, 1)) / 2
