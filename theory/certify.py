@@ -5,11 +5,9 @@
 
 * ``tdoa``: ``generic-rank`` of the network observability matrix and of each agent's block
   column (:mod:`theory.tdoa.rank_certificates`);
-* ``dkf``: ``s-detectability`` with the gains of the LMI witness
-  (:func:`theory.consensus.s_detectability.witness_from_decision`), and, when the case fixes gains,
-  with
-  those gains. The witness used is the primal Lyapunov tuple of the filter's order; the dual
-  tuple is the fallback.
+* ``dkf``: the ``s-detectability`` certificate the exact decision rests on
+  (:func:`theory.consensus.s_detectability.decide_s_detectability`: a rounded LMI witness or an
+  exact Lyapunov tuple) and, when the case fixes gains, one for those gains.
 * ``pursuit``: ``iss`` (:mod:`theory.pursuit.certificates`), when the case's conditions hold.
 
 A case whose property is decided false (not S-detectable, a condition of the ISS analysis
@@ -22,16 +20,10 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-import numpy as np
-
 from theory.consensus.certificates import s_detectability_certificate
-from theory.consensus.operators import (
-    closed_loop,
-    covariance_operator_matrix,
-    unvec_tuple,
-    vec_tuple,
-)
-from theory.consensus.s_detectability import decide_s_detectability, witness_from_decision
+from theory.consensus.exact_linalg import rational_matrix
+from theory.consensus.primal_certificates import exact_gain_certificate, primal_lyapunov
+from theory.consensus.s_detectability import SDetectability, decide_s_detectability
 from theory.core.case_file import Case
 from theory.core.certificate_format import bundle
 from theory.core.claims import DOCUMENT_KEY, ClaimResult, NotApplicable, register
@@ -44,8 +36,8 @@ __all__ = [
     "CERTIFIERS",
     "case_certificates",
     "dkf_certificate_claim",
+    "dkf_certificates",
     "generic_rank_claim",
-    "primal_lyapunov",
 ]
 
 Certified = tuple[list[dict[str, Any]], list[str]]
@@ -58,92 +50,76 @@ def _tdoa(case: Case, seed: int) -> Certified:
         return [], [str(error)]
 
 
-def primal_lyapunov(
-    A: np.ndarray, C: Any, W: np.ndarray, gains: Any, order: str
-) -> np.ndarray | None:
-    """The tuple ``X = Σ_k T^k(I)`` solving ``X − T(X) = I`` (``T`` of ``order``), if ``X ≻ 0``.
-
-    Parameters
-    ----------
-    A : ndarray, shape (n, n)
-        System matrix.
-    C : sequence of ndarray
-        Measurement matrices.
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    gains : sequence of ndarray
-        Gains ``L_i``.
-    order : str
-        ``consensus-then-filter`` (operator L) or ``filter-then-consensus`` (operator J).
-
-    Returns
-    -------
-    ndarray of shape (N, n, n), or None
-        None when ``I − T`` is singular or the solution is not positive definite (then
-        ``r_σ(T) ≥ 1``).
-    """
-    N, n = np.asarray(W).shape[0], np.asarray(A).shape[0]
-    T = covariance_operator_matrix(W, closed_loop(A, C, gains), order)
-    try:
-        x = np.linalg.solve(
-            np.eye(T.shape[0]) - T, vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
-        )
-    except np.linalg.LinAlgError:
-        return None
-    X = unvec_tuple(x, N, n)
-    X = (X + X.transpose(0, 2, 1)) / 2
-    return X if all(np.linalg.eigvalsh(Xi)[0] > 0 for Xi in X) else None
-
-
-def _gains_certificate(case: Case, gains: Any, dual: np.ndarray | None, label: str) -> Certified:
+def _case_gains_certificate(case: Case) -> Certified:
+    """The case's own gains certified: float primal tuple rounded, else the exact tuple."""
     spec = case.spec
-    attempts = [(primal_lyapunov(spec.A, spec.C, spec.W, gains, spec.order), False)]
-    if dual is not None:
-        attempts.append((dual, True))
     reasons = []
-    for witness, is_dual in attempts:
-        if witness is None:
-            reasons.append(f"{label}: X − T(X) = I has no positive definite solution")
-            continue
+    X = primal_lyapunov(spec.A, spec.C, spec.W, spec.L, spec.order)
+    if X is None:
+        reasons.append("the case's gains: X − T(X) = I has no positive definite solution")
+    else:
         try:
             cert = s_detectability_certificate(
-                spec.A,
-                spec.C,
-                spec.W,
-                spec.order,
-                gains,
-                list(witness),
-                dual=is_dual,
-                case=case.name,
+                spec.A, spec.C, spec.W, spec.order, spec.L, list(X), case=case.name
             )
             return [cert], []
         except RationalizationError as error:
-            reasons.append(f"{label}: {error}")
-    return [], reasons
+            reasons.append(f"the case's gains: {error}")
+    exact = [rational_matrix(g) if g.size else [] for g in spec.L]
+    try:
+        cert = exact_gain_certificate(
+            spec.A, spec.C, spec.W, exact, order=spec.order, case=case.name
+        )
+        return [cert], []
+    except RationalizationError as error:
+        return [], [*reasons, f"the case's gains (exact tuple): {error}"]
 
 
-def _dkf(case: Case, seed: int) -> Certified:
-    del seed
-    spec = case.spec
-    certs, reasons = [], []
-    decision = decide_s_detectability(spec.A, spec.C, spec.W, order=spec.order)
+def dkf_certificates(case: Case, decision: SDetectability) -> Certified:
+    """The ``s-detectability`` certificates of a dkf case given its decision (computed once).
+
+    Parameters
+    ----------
+    case : Case
+        A ``dkf`` case.
+    decision : SDetectability
+        :func:`~theory.consensus.s_detectability.decide_s_detectability` of the case.
+
+    Returns
+    -------
+    (certificates, reasons)
+        The decision's own certificate and, when the case fixes gains, one for those gains.
+
+    Raises
+    ------
+    PropertyFails
+        If the decision is "not S-detectable" (an exact infeasibility certificate checked).
+    """
     if decision.verdict is False:
         raise PropertyFails(
             f"{case.name} is not S-detectable ({decision.reason}; seed000.def5.2.4, trackcert "
             "dkf): there is nothing to certify"
         )
-    witness = witness_from_decision(decision, spec.order)
-    if witness is None:
-        reasons.append("the LMI found no verified S-detectability witness (see trackcert dkf)")
+    certs, reasons = [], []
+    if decision.verdict:
+        certs.append(decision.certificate)
     else:
-        found, why = _gains_certificate(case, witness["gains"], witness["Y"], "LMI gains")
-        certs += found
-        reasons += why
-    if spec.L is not None:
-        found, why = _gains_certificate(case, spec.L, None, "the case's gains")
+        reasons.append(f"no exact S-detectability certificate: {decision.reason}")
+    if case.spec.L is not None:
+        found, why = _case_gains_certificate(case)
         certs += found
         reasons += why
     return certs, reasons
+
+
+def _dkf(case: Case, seed: int) -> Certified:
+    del seed
+    spec = case.spec
+    candidates = [("the case's gains", spec.L)] if spec.L is not None else []
+    decision = decide_s_detectability(
+        spec.A, spec.C, spec.W, order=spec.order, candidate_gains=candidates, case=case.name
+    )
+    return dkf_certificates(case, decision)
 
 
 CERTIFIERS: dict[str, Callable[[Case, int], Certified]] = {
@@ -181,24 +157,35 @@ def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:
             f"no certificate kinds for case kind {case.kind!r} yet "
             f"(supported: {sorted(CERTIFIERS)})"
         )
-    certs, reasons = CERTIFIERS[case.kind](case, seed)
+    return _nonempty(case, *CERTIFIERS[case.kind](case, seed))
+
+
+def _nonempty(case: Case, certs: list[dict], reasons: list[str]) -> list[dict]:
     if not certs:
         raise InconclusiveError(f"no certificate for {case.name}: " + "; ".join(reasons))
     return certs
 
 
-def _certified(claim_id: str, case: Case) -> list[dict] | ClaimResult:
-    """The case's certificates, or the ``inconclusive`` result saying why there are none."""
+def _certified(
+    claim_id: str, case: Case, make: Callable[[], Certified] | None = None
+) -> list[dict] | ClaimResult:
+    """The case's certificates (from ``make`` when given), or the ``inconclusive`` result
+    saying why there are none."""
     try:
-        return case_certificates(case)
+        return _nonempty(case, *make()) if make is not None else case_certificates(case)
     except InconclusiveError as error:
         return ClaimResult(claim_id, case.name, "exact", "inconclusive", message=str(error))
     except PropertyFails as error:
         raise NotApplicable(str(error)) from error
 
 
-def _results(claim_id: str, case: Case, evidence: Callable[[dict], dict]) -> list[ClaimResult]:
-    certs = _certified(claim_id, case)
+def _results(
+    claim_id: str,
+    case: Case,
+    evidence: Callable[[dict], dict],
+    make: Callable[[], Certified] | None = None,
+) -> list[ClaimResult]:
+    certs = _certified(claim_id, case, make)
     if isinstance(certs, ClaimResult):
         return [certs]
     return [
@@ -290,13 +277,15 @@ def _rank_message(group: list[dict]) -> str:
     "inequalities are verified in exact arithmetic (proofs_check)",
     kinds=("dkf",),
 )
-def dkf_certificate_claim(case: Case) -> list[ClaimResult]:
+def dkf_certificate_claim(case: Case, analysis: Any = None) -> list[ClaimResult]:
     """Run the s-detectability certificates of a dkf case as claim results (method ``exact``).
 
     Parameters
     ----------
     case : Case
         A ``dkf`` case.
+    analysis : DkfAnalysis, optional
+        :func:`theory.consensus.claims.analyze_dkf` of the case, whose decision is reused.
 
     Returns
     -------
@@ -304,13 +293,14 @@ def dkf_certificate_claim(case: Case) -> list[ClaimResult]:
         One per certificate (``verified``), or one ``inconclusive`` result saying why none
         (a case that is not S-detectable has no such certificate).
     """
+    make = None if analysis is None else (lambda: dkf_certificates(case, analysis.decision))
     return _results(
         "seed000.def5.2.4.certified",
         case,
         lambda cert: {
             "operator": cert["witness"]["operator"],
             "gains": cert["witness"]["gains"],
-            "significant_bits": cert["produced_by"]["significant_bits"],
-            "float_margin": cert["produced_by"]["float_margin"],
+            **{k: v for k, v in cert["produced_by"].items() if k != "tool"},
         },
+        make,
     )

@@ -35,11 +35,13 @@ def tdoa_observed(case: Case) -> dict[str, Any]:
     }
 
 
-def dkf_observed(case: Case) -> dict[str, Any]:
-    """Observed values of ``case``'s dkf keys, from :func:`theory.consensus.claims.analyze_dkf`."""
+def dkf_observed(case: Case, analysis: Any = None) -> dict[str, Any]:
+    """Observed values of ``case``'s dkf keys, from :func:`theory.consensus.claims.analyze_dkf`
+    (``analysis``, when the caller has already computed it)."""
     from theory.consensus.claims import analyze_dkf
 
-    return {e["key"]: e["got"] for e in analyze_dkf(case).expectations()}
+    analysis = analysis or analyze_dkf(case, search_self_weight=False)
+    return {e["key"]: e["got"] for e in analysis.expectations()}
 
 
 def pursuit_observed(case: Case) -> dict[str, Any]:
@@ -70,10 +72,10 @@ def _expectation_claim(kind: str, command: str, observe: Any) -> None:
         statement=f"Every expectation a {kind} case states is what trackcert {command} finds.",
         kinds=(kind,),
     )
-    def run(case: Case) -> list[ClaimResult]:
+    def run(case: Case, **computed: Any) -> list[ClaimResult]:
         from theory.report.expectations import matches
 
-        observed = {k: v for k, v in observe(case).items() if k in case.expect}
+        observed = {k: v for k, v in observe(case, **computed).items() if k in case.expect}
         undecided = [k for k, v in observed.items() if v is None and case.expect[k] is not None]
         wrong = [
             k for k, v in observed.items() if k not in undecided and not matches(case.expect[k], v)

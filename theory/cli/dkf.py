@@ -18,7 +18,6 @@ from theory.cli.common import (
     verdict_exit_code,
 )
 from theory.core.case_file import load_case
-from theory.core.claims import all_claims, applicable_results
 from theory.core.errors import CaseError
 
 __all__ = ["register"]
@@ -43,16 +42,11 @@ def register(app: typer.Typer) -> None:
             raise CaseError("kind", "dkf", loaded.kind, file=loaded.file)
         if solver not in ("CLARABEL", "SCS"):
             raise CaseError("--solver", "CLARABEL or SCS", solver, file=loaded.file)
-        from theory.consensus.claims import analyze_dkf  # cvxpy: imported on use
+        from theory.consensus.claims import analyze_dkf, dkf_claim_results  # cvxpy: on use
 
         analysis = analyze_dkf(loaded, search_self_weight=self_weight, solver=solver)
         data = analysis.to_json()
-        data["claims"] = [
-            result.to_json(claim.source)
-            for claim in all_claims()
-            if "dkf" in claim.kinds
-            for result in applicable_results(claim, loaded)
-        ]
+        data["claims"] = [r.to_json(claim.source) for claim, r in dkf_claim_results(analysis)]
         code = verdict_exit_code(data["s_detectable"])
         finish(data, code, as_json=as_json, show=lambda: _print_table(data))
 

@@ -55,7 +55,7 @@ ROUNDING_BITS = (24, 48, 96)
 def primal_lyapunov(
     A: np.ndarray, C: Sequence[np.ndarray], W: np.ndarray, gains: Sequence[np.ndarray], order: str
 ) -> np.ndarray | None:
-    """The float tuple ``X = Σ_k T^k(I)`` solving ``X − T(X) = I`` (``T`` of ``order``), if ``X ≻ 0``.
+    """The float ``X = Σ_k T^k(I)`` solving ``X − T(X) = I`` (``T`` of ``order``), if ``X ≻ 0``.
 
     Parameters
     ----------

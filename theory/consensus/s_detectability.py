@@ -133,9 +133,9 @@ class SDetectability:
     cert_epsilon : float or None
         ``ε_cert`` recomputed from the projected multipliers.
     gains : tuple of ndarray or None
-        ``L_i`` (n × p_i): the certificate's when ``verdict`` is True, else the LMI's candidate.
+        ``L_i`` (n × p_i) of the certificate (None unless ``verdict`` is True).
     Y : ndarray or None
-        Dual Lyapunov tuple, shape (N, n, n).
+        Dual Lyapunov tuple, shape (N, n, n), when the certificate came from the LMI witness.
     X : ndarray or None
         Primal Lyapunov tuple for the filter's operator with the certificate's gains:
         ``X − T(X) = I`` (floats; None unless ``verdict`` is True).
@@ -254,10 +254,11 @@ def decide_s_detectability(
     C = [np.asarray(Ci, dtype=float).reshape(-1, A.shape[0]) for Ci in C]
     tolerances = {"lmi_margin": lmi_margin, "cert_tol": cert_tol}
     base = _float_evidence(A, C, W, rho, solver) | {"order": order, "tolerances": tolerances}
+    lmi_gains, lmi_Y = base.pop("gains", None), base.pop("Y", None)
     witness = None
     if base.get("witness_margin", float("-inf")) >= lmi_margin:
-        witness = (base["gains"], base["Y"])
-    floats = [("LMI candidate gains", base["gains"])] if base.get("gains") else []
+        witness = (lmi_gains, lmi_Y)
+    floats = [("LMI candidate gains", lmi_gains)] if lmi_gains else []
     cert, route, reasons = primal_certificate(
         A, C, W, order=order, rho=rho, witness=witness, candidates=[*floats, *candidate_gains],
         lmi_margin=lmi_margin, case=case,
@@ -265,7 +266,7 @@ def decide_s_detectability(
     if cert is not None:
         gains = certificate_gains(cert, C)
         found = {"gains": gains, "X": primal_lyapunov(A, C, W, gains, order)}
-        found["Y"] = base["Y"] if route.startswith("LMI witness") else None
+        found["Y"] = lmi_Y if route.startswith("LMI witness") else None
         reason = f"certificate verified exactly (proofs_check): {route}"
         return SDetectability(True, reason, **(base | found), certificate=cert, route=route)
     try:
