@@ -159,11 +159,26 @@ def _lyapunov(operator: str, W: Matrix, gammas: list[Matrix], witness: dict, bou
     return checks + _decrease(name, operator, W, gammas, P, bound, R)
 
 
-def _bound(claim: dict[str, Any], key: str) -> Fraction:
+def _bound(claim: dict[str, Any], key: str, *, at_most_one: bool = True) -> Fraction:
     bound = p.rational(claim[key], f"claim.{key}")
-    if not 0 < bound <= 1:
-        raise p.MalformedError(f"claim.{key}: expected a rational in (0, 1], got {bound}")
+    if not 0 < bound <= (1 if at_most_one else bound):
+        expected = "(0, 1]" if at_most_one else "(0, ∞)"
+        raise p.MalformedError(f"claim.{key}: expected a rational in {expected}, got {bound}")
     return bound
+
+
+def _system(cert: dict[str, Any], witness_keys: tuple[str, ...], size_key: str):
+    """Claim ``ρ``, witness, ``n``, ``A``, ``W`` (with its checks) and ``C`` of the two
+    S-detectability kinds; ``ρ`` may exceed 1 (Lemma 1 of the theory note holds for any ρ > 0)."""
+    claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
+    data = p.fields(cert["data"], "data", ("A", "C", "W"))
+    witness = p.fields(cert["witness"], "witness", witness_keys)
+    n = _size(witness[size_key], f"witness.{size_key}")
+    A = p.matrix(data["A"], "data.A", n, n)
+    W, checks = _weights(data["W"])
+    C = p.matrix_list(data["C"], "data.C", len(W), None, n)
+    rho = _bound(claim, "spectral_radius_below", at_most_one=False)
+    return rho, witness, n, A, W, checks, C
 
 
 def mjls_stability(cert: dict[str, Any]) -> list[Check]:
@@ -181,21 +196,15 @@ def mjls_stability(cert: dict[str, Any]) -> list[Check]:
 
 def s_detectability(cert: dict[str, Any]) -> list[Check]:
     """``(A, C, W)`` is S-detectable: ``r_σ(L) < ρ`` with ``Γ_i = A − L_i C_i`` (Def. 5.2.4)."""
-    claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
-    data = p.fields(cert["data"], "data", ("A", "C", "W"))
-    witness = p.fields(cert["witness"], "witness", ("operator", "gains", "P", "decrease"))
+    keys = ("operator", "gains", "P", "decrease")
+    bound, witness, n, A, W, checks, C = _system(cert, keys, "P")
     operator = p.text(witness["operator"], "witness.operator", OPERATORS)
-    n = _size(witness["P"], "witness.P")
-    A = p.matrix(data["A"], "data.A", n, n)
-    W, checks = _weights(data["W"])
-    C = p.matrix_list(data["C"], "data.C", len(W), None, n)
     gains = [
         p.matrix(g, f"witness.gains[{i + 1}]", n, len(C[i]))
         for i, g in enumerate(_items(witness["gains"], "witness.gains", len(W)))
     ]
     _refuse_costly(len(W) * n**3, _bits([A, *C, *gains]))
     gammas = [la.sub(A, la.matmul(L_i, C_i)) for L_i, C_i in zip(gains, C, strict=True)]
-    bound = _bound(claim, "spectral_radius_below")
     return checks + _lyapunov(operator, W, gammas, witness, bound)
 
 
@@ -210,18 +219,11 @@ def s_detectability_infeasible(cert: dict[str, Any]) -> list[Check]:
     ``Λ_i + Ψ_i,22 + A Ψ_i,21ᵀ + Ψ_i,21 Aᵀ = 0`` (``Ψ_i,21``: lower-left block). Then no
     ``(Y, G, Z)`` has ``F ≻ 0`` (``0 = ⟨F*(Λ, Ψ), x⟩ = ⟨(Λ, Ψ), F(x)⟩ > 0``), so no gains exist.
     """
-    claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
-    data = p.fields(cert["data"], "data", ("A", "C", "W"))
-    witness = p.fields(cert["witness"], "witness", ("Lambda", "Psi"))
-    n = _size(witness["Lambda"], "witness.Lambda")
-    A = p.matrix(data["A"], "data.A", n, n)
-    W, checks = _weights(data["W"])
+    rho, witness, n, A, W, checks, C = _system(cert, ("Lambda", "Psi"), "Lambda")
     agents = len(W)
-    C = p.matrix_list(data["C"], "data.C", agents, None, n)
     Lam = p.matrix_list(witness["Lambda"], "witness.Lambda", agents, n, n)
     Psi = p.matrix_list(witness["Psi"], "witness.Psi", agents, 2 * n, 2 * n)
     _refuse_costly(agents * (agents * n * n + 16 * n**3), _bits([A, W, *C, *Lam, *Psi]))
-    rho = _bound(claim, "spectral_radius_below")
     checks += [definite(f"Λ_{j + 1} ⪰ 0", L_j, semi=True) for j, L_j in enumerate(Lam)]
     checks += [definite(f"Ψ_{i + 1} ⪰ 0", P_i, semi=True) for i, P_i in enumerate(Psi)]
     total = sum(la.trace(M) for M in (*Lam, *Psi))
@@ -255,11 +257,7 @@ def _annihilated(
 
 
 def _zero(name: str, matrix: Matrix) -> Check:
-    for r, row in enumerate(matrix):
-        for c, x in enumerate(row):
-            if x:
-                return Check(name, False, f"entry ({r + 1},{c + 1}) is {show(x)}, not 0")
-    return Check(name, True, "every entry is exactly 0")
+    return _equal(name, [[Fraction(0)] * len(row) for row in matrix], matrix)
 
 
 def covariance_bound(cert: dict[str, Any]) -> list[Check]:

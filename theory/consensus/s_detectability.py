@@ -265,8 +265,11 @@ def decide_s_detectability(
     )  # fmt: skip
     if cert is not None:
         gains = certificate_gains(cert, C)
-        found = {"gains": gains, "X": primal_lyapunov(A, C, W, gains, order)}
-        found["Y"] = lmi_Y if route.startswith("LMI witness") else None
+        found = {"gains": gains, "X": primal_lyapunov(A, C, W, gains, order), "Y": None}
+        found |= {"witness_margin": None, "radius_bound": None}
+        if route.startswith("LMI witness"):  # the margin of the rounded gains, not the float ones
+            m = witness_margin(A, C, W, gains, lmi_Y, rho=rho)
+            found |= {"Y": lmi_Y, "witness_margin": m, "radius_bound": rho * (1 - m)}
         reason = f"certificate verified exactly (proofs_check): {route}"
         return SDetectability(True, reason, **(base | found), certificate=cert, route=route)
     try:
