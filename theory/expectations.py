@@ -36,8 +36,15 @@ def tdoa_observed(case: Case) -> dict[str, Any]:
 
 
 def dkf_observed(case: Case, analysis: Any = None) -> dict[str, Any]:
-    """Observed values of ``case``'s dkf keys, from :func:`theory.consensus.claims.analyze_dkf`
-    (``analysis``, when the caller has already computed it)."""
+    """Observed values of ``case``'s dkf keys, from :func:`theory.consensus.claims.analyze_dkf`.
+
+    Parameters
+    ----------
+    case : Case
+        A ``dkf`` case.
+    analysis : DkfAnalysis, optional
+        Its analysis, when the caller has already computed it.
+    """
     from theory.consensus.claims import analyze_dkf
 
     analysis = analysis or analyze_dkf(case, search_self_weight=False)

@@ -35,12 +35,12 @@ def to_fmpq(rows: Matrix) -> fmpq_mat:
 
 
 def fractions_of(M: fmpq_mat) -> Matrix:
-    """A ``flint.fmpq_mat`` as rows of Fractions."""
+    """The ``flint.fmpq_mat`` ``M`` as rows of Fractions."""
     return [[Fraction(int(x.p), int(x.q)) for x in row] for row in M.tolist()]
 
 
 def rational_matrix(M: np.ndarray | Matrix) -> Matrix:
-    """Float data read as the decimals it prints as (0.24 → 6/25); Fractions kept."""
+    """The matrix ``M``, floats read as the decimals they print as (0.24 → 6/25), Fractions kept."""
     if isinstance(M, list) and M and isinstance(M[0], list) and M[0]:
         if isinstance(M[0][0], Fraction):
             return M
@@ -53,7 +53,13 @@ def identity(n: int) -> Matrix:
 
 
 def kron(a: Matrix, b: Matrix) -> Matrix:
-    """The Kronecker product ``a ⊗ b`` (``np.kron``'s layout)."""
+    """The Kronecker product ``a ⊗ b`` (``np.kron``'s layout).
+
+    Parameters
+    ----------
+    a, b : list of rows of Fraction
+        Exact matrices.
+    """
     return [[x * y for x in ra for y in rb] for ra in a for rb in b]
 
 

@@ -89,12 +89,12 @@ def bundle(certificates: Sequence[dict], *, case: str | None = None) -> dict:
 
 
 def strings(mats: Sequence[Matrix]) -> list:
-    """A list of exact matrices as nested lists of rational strings."""
+    """The exact matrices ``mats`` as nested lists of rational strings."""
     return [fraction_strings(m) for m in mats]
 
 
 def rational_bound(value: float | Fraction) -> Fraction:
-    """A bound such as ``ρ`` or a rate as a rational with denominator at most 10⁶."""
+    """The bound ``value`` (``ρ``, a rate) as a rational with denominator at most 10⁶."""
     return Fraction(value).limit_denominator(10**6)
 
 
