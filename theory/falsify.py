@@ -36,6 +36,7 @@ __all__ = [
 DEFAULT_EXAMPLES = 200
 PROPERTY_MODULES: tuple[str, ...] = (
     "theory.consensus.properties",
+    "theory.consensus.riccati_properties",
     "theory.pursuit.properties",
     "theory.tdoa.networked_properties",
     "theory.tdoa.geometry_properties",
