@@ -50,11 +50,12 @@ __all__ = [
 ]
 
 HORIZON = 40
-"""Steps of the Riccati and bound iterations compared."""
+"""Steps of the Riccati and bound iterations compared (fewer if the iterates pass BLOWUP)."""
 PSD_TOL = 1e-9
 """Relative slack of each matrix inequality, ``λ ≥ −PSD_TOL · max(1, ‖P^L(k)‖)``."""
-CHECKED_STEPS = (1, HORIZON // 2, HORIZON)
-"""Steps whose Riccati gains are shown exactly to have ``r_σ(T) ≥ 1`` (negative verdicts)."""
+BLOWUP = 1e12
+"""A diverging iteration is followed until ``max_i ‖P_i(k)‖`` exceeds this (beyond it
+``C_i P C_iᵀ + R_i`` loses ``R_i`` to rounding)."""
 
 
 @dataclass(frozen=True)
@@ -71,8 +72,8 @@ class RiccatiAgreement:
         Positive verdict: ``max_k max_i λ_max(P_i(k) − P_i^L(k)) / max(1, ‖P^L(k)‖)``;
         negative: ``max_k max_i λ_max(P_i(k) − P_i(k+1)) / max(1, ‖P(k+1)‖)`` (both ≤ PSD_TOL).
     stabilizing_steps : tuple of int
-        Negative verdict: the checked steps whose Riccati gains nevertheless have ``r_σ < 1``
-        (must be empty).
+        Negative verdict: the checked steps (first, middle, last) whose Riccati gains nevertheless
+        have ``r_σ < 1`` (must be empty).
     """
 
     verdict: bool | None
@@ -124,7 +125,7 @@ def bound_iteration(
 
 def _riccati(problem: DkfProblem, Q, R, P0, order: str) -> tuple[np.ndarray, list]:
     P, gains = [np.asarray(P0, float)], []
-    for _ in range(HORIZON):
+    while len(gains) < HORIZON and np.linalg.norm(P[-1], 2, axis=(1, 2)).max() <= BLOWUP:
         g, nxt = coupled_riccati_step(problem.A, problem.C, problem.W, Q, R, P[-1], order=order)
         P.append(nxt)
         gains.append(g)
@@ -184,15 +185,17 @@ def riccati_agreement(problem: DkfProblem, *, order: str = ORDERS[0]) -> Riccati
         P0 = F @ F.transpose(0, 2, 1)
         P, _ = _riccati(problem, Q, R, P0, order)
         bound = bound_iteration(
-            problem.A, problem.C, problem.W, Q, R, decision.gains, P0, order=order, steps=HORIZON
-        )
+            problem.A, problem.C, problem.W, Q, R, decision.gains, P0, order=order,
+            steps=len(P) - 1,
+        )  # fmt: skip
         worst = _excess(bound, P)
         return RiccatiAgreement(True, worst <= PSD_TOL, worst)
     P, gains = _riccati(problem, Q, R, np.zeros((N, n, n)), order)
     worst = _excess(P[1:], P[:-1])
     stabilizing = ()
     if N * n * n <= EXACT_DIM:
-        stabilizing = tuple(k for k in CHECKED_STEPS if _stabilizing(problem, gains[k - 1], order))
+        checked = sorted({1, (len(gains) + 1) // 2, len(gains)})
+        stabilizing = tuple(k for k in checked if _stabilizing(problem, gains[k - 1], order))
     return RiccatiAgreement(False, worst <= PSD_TOL and not stabilizing, worst, stabilizing)
 
 
