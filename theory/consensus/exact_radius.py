@@ -17,20 +17,39 @@ from __future__ import annotations
 from collections.abc import Sequence
 from fractions import Fraction
 
+import numpy as np
+
 from proofs_check.linalg import first_asymmetry, positive_definite
 from theory.consensus.exact_linalg import (
     Matrix,
     fractions_of,
     identity,
     kron,
+    rational_matrix,
     to_fmpq,
 )
+from theory.consensus.operators import (
+    closed_loop,
+    covariance_operator_matrix,
+    spectral_radius,
+)
+from theory.core.rationalize import stochastic_matrix
 
-__all__ = ["EXACT_DIM", "exact_lyapunov", "exact_operator_matrix", "radius_below"]
+__all__ = [
+    "EXACT_DIM",
+    "RADIUS_TOL",
+    "exact_lyapunov",
+    "exact_operator_matrix",
+    "gains_stabilize",
+    "radius_below",
+]
 
 EXACT_DIM = 200
 """Largest ``N n²`` for which the exact decision is attempted (a 200 × 200 rational solve takes
 about 0.3 s); larger problems are left to the rounded certificates."""
+RADIUS_TOL = 1e-6
+"""Above :data:`EXACT_DIM`, the float ``r_σ`` decides only outside ``ρ(1 ± RADIUS_TOL)``: an
+eigenvalue of a non-normal matrix can move by ``√ε ≈ 1e-8`` for a 2 × 2 Jordan block."""
 
 
 def exact_operator_matrix(operator: str, W: Matrix, gammas: Sequence[Matrix]) -> Matrix:
@@ -137,3 +156,60 @@ def radius_below(
     return X is not None and all(
         first_asymmetry(Xi) is None and positive_definite(Xi).positive for Xi in X
     )
+
+
+def gains_stabilize(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    gains: Sequence[np.ndarray],
+    *,
+    order: str,
+    rho: Fraction = Fraction(1),
+    radius_tol: float = RADIUS_TOL,
+) -> bool | None:
+    """Whether the float ``gains`` give ``r_σ(T) < ρ`` for the order's operator (L or J).
+
+    The gains are read exactly (a float is a dyadic rational), the data as the decimals they
+    print as (rows of ``W`` summing to exactly 1), and the answer is exact when ``N n² ≤
+    EXACT_DIM``; above it the float radius decides outside ``ρ(1 ± radius_tol)``, and within
+    that band the answer is None.
+
+    Parameters
+    ----------
+    A, C, W : array_like
+        The data (seed 000 eqs. (5.1)–(5.3)).
+    gains : sequence of ndarray
+        ``L_i``, shapes ``(n, p_i)``.
+    order : str
+        ``consensus-then-filter`` (L, eq. (5.13)) or ``filter-then-consensus`` (J, App. C.3).
+    rho : Fraction
+        ``ρ > 0``.
+    radius_tol : float
+        Relative band of the float decision.
+
+    Returns
+    -------
+    bool or None
+
+    References
+    ----------
+    seed 000 Lemma 5.2.2, footnote 5.
+    """
+    n, N = np.asarray(A).shape[0], np.asarray(W).shape[0]
+    if N * n * n > EXACT_DIM:
+        radius = spectral_radius(covariance_operator_matrix(W, closed_loop(A, C, gains), order))
+        if abs(radius - float(rho)) <= radius_tol * float(rho):
+            return None
+        return radius < float(rho)
+    A_q = rational_matrix(A)
+    gammas = []
+    for g, c in zip(gains, C, strict=True):
+        if not np.size(c):
+            gammas.append(A_q)
+            continue
+        G = [[Fraction(float(x)) for x in row] for row in np.asarray(g, float)]
+        product = to_fmpq(G) * to_fmpq(rational_matrix(np.asarray(c, float).reshape(-1, n)))
+        gammas.append(fractions_of(to_fmpq(A_q) - product))
+    operator = "L" if order == "consensus-then-filter" else "J"
+    return radius_below(operator, stochastic_matrix(W), gammas, rho)

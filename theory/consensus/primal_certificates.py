@@ -207,7 +207,7 @@ def _exact_candidates(
     out = [("projection gains L_i = A C_i⁺", projection_gains(A, C))]
     for label, gains in candidates:
         floats = [np.asarray(g, float) for g in gains]
-        if all(np.all(np.isfinite(g)) for g in floats):
+        if len(floats) == len(C) and all(np.all(np.isfinite(g)) for g in floats):
             rounded = [dyadic_matrix(g, ROUNDING_BITS[0]) if g.size else [] for g in floats]
             out.append((label, rounded))
     return out

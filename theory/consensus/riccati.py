@@ -25,6 +25,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from theory.consensus.case import ORDERS
+from theory.consensus.exact_radius import gains_stabilize
 from theory.consensus.operators import (
     B_matrix,
     E_map,
@@ -156,7 +157,9 @@ class RiccatiRun:
     gains : tuple of ndarray
         Gains of the last iterate (eq. (5.8), or the reversed order's).
     stabilizing : bool or None
-        Whether ``r_σ`` of the order's operator with those gains is < 1 (None unless converged).
+        Whether ``r_σ`` of the order's operator with those gains is < 1, decided exactly
+        (:func:`theory.consensus.exact_radius.gains_stabilize`; None unless converged, or inside
+        the float band above ``EXACT_DIM``).
     radius : float or None
         That spectral radius.
     agent_norms : ndarray, shape (iterations + 1, N)
@@ -210,8 +213,9 @@ def coupled_riccati(
     blowup : float
         Norm growth factor declaring divergence.
     fixed_steps : bool
-        Run exactly ``max_iter`` steps (status ``steps``; no test but finiteness): the recursion
-        as the consensus Kalman filter runs it.
+        Run exactly ``max_iter`` steps (status ``steps``; it stops early, ``diverged``, only when
+        the iterates stop being finite or ``C_i P C_iᵀ + R_i`` becomes numerically singular past
+        ``blowup``): the recursion as the consensus Kalman filter runs it.
 
     Returns
     -------
@@ -228,7 +232,13 @@ def coupled_riccati(
     status, iterations = ("steps" if fixed_steps else "max_iter"), 0
     while iterations < max_iter:
         iterations += 1
-        nxt = coupled_riccati_step(A, C, W, Q, R, P, order=order)[1]
+        try:
+            nxt = coupled_riccati_step(A, C, W, Q, R, P, order=order)[1]
+        except np.linalg.LinAlgError:  # C P Cᵀ + R lost R to rounding: P has blown up
+            if float(norms[-1].max()) <= blowup * start:
+                raise
+            status = "diverged"
+            break
         step = float(np.max(np.linalg.norm(nxt - P, 2, axis=(1, 2))))
         P = nxt
         norms.append(np.linalg.norm(P, 2, axis=(1, 2)))
@@ -244,7 +254,7 @@ def coupled_riccati(
     if status == "converged":
         T = covariance_operator_matrix(W, closed_loop(A, C, gains), order)
         radius = spectral_radius(T)
-        stabilizing = radius < 1
+        stabilizing = gains_stabilize(A, C, W, gains, order=order)
     tol = {"conv_tol": conv_tol, "blowup": blowup, "max_iter": max_iter}
     return RiccatiRun(status, iterations, P, gains, stabilizing, radius, np.array(norms), tol)
 

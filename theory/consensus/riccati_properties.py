@@ -25,20 +25,17 @@ exactly, for the iteration's own gains (negative verdicts). Inconclusive verdict
 from __future__ import annotations
 
 from dataclasses import dataclass
-from fractions import Fraction
 from typing import Any
 
 import numpy as np
 
 from theory.consensus.case import ORDERS
 from theory.consensus.certificates import ORDERS as OPERATOR_OF
-from theory.consensus.exact_linalg import fractions_of, rational_matrix, to_fmpq
-from theory.consensus.exact_radius import EXACT_DIM, radius_below
+from theory.consensus.exact_radius import EXACT_DIM, gains_stabilize
 from theory.consensus.operators import E_map, apply_operator, closed_loop
 from theory.consensus.riccati import coupled_riccati_step
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.consensus.strategies import DkfProblem, dkf_problems
-from theory.core.rationalize import stochastic_matrix
 from theory.falsify import Property, register_property
 
 __all__ = [
@@ -143,19 +140,6 @@ def _excess(upper: np.ndarray, lower: np.ndarray) -> float:
     return worst
 
 
-def _stabilizing(problem: DkfProblem, gains, order: str) -> bool:
-    """``r_σ(T) < 1`` for these float gains (read exactly, as the dyadics they are)."""
-    A_q, W_q = rational_matrix(problem.A), stochastic_matrix(problem.W)
-    gammas = []
-    for g, c in zip(gains, problem.C, strict=True):
-        if not c.size:
-            gammas.append(A_q)
-            continue
-        G = [[Fraction(float(x)) for x in row] for row in g]
-        gammas.append(fractions_of(to_fmpq(A_q) - to_fmpq(G) * to_fmpq(rational_matrix(c))))
-    return radius_below(OPERATOR_OF[order], W_q, gammas)
-
-
 def riccati_agreement(problem: DkfProblem, *, order: str = ORDERS[0]) -> RiccatiAgreement:
     """Check the module docstring's statement on ``problem`` (``Q = I``, ``R_i = I``).
 
@@ -195,7 +179,11 @@ def riccati_agreement(problem: DkfProblem, *, order: str = ORDERS[0]) -> Riccati
     stabilizing = ()
     if N * n * n <= EXACT_DIM:
         checked = sorted({1, (len(gains) + 1) // 2, len(gains)})
-        stabilizing = tuple(k for k in checked if _stabilizing(problem, gains[k - 1], order))
+        stabilizing = tuple(
+            k
+            for k in checked
+            if gains_stabilize(problem.A, problem.C, problem.W, gains[k - 1], order=order)
+        )
     return RiccatiAgreement(False, worst <= PSD_TOL and not stabilizing, worst, stabilizing)
 
 
