@@ -41,6 +41,7 @@ __all__ = [
     "exact_lyapunov",
     "exact_operator_matrix",
     "gains_stabilize",
+    "nonnegative_radius_below",
     "radius_below",
 ]
 
@@ -213,3 +214,32 @@ def gains_stabilize(
         gammas.append(fractions_of(to_fmpq(A_q) - product))
     operator = "L" if order == "consensus-then-filter" else "J"
     return radius_below(operator, stochastic_matrix(W), gammas, rho)
+
+
+def nonnegative_radius_below(M: Matrix, rho: Fraction = Fraction(1)) -> bool:
+    """Whether ``r_σ(M) < ρ`` for an entrywise non-negative exact matrix ``M``.
+
+    ``ρI − M`` is a Z-matrix; it is a nonsingular M-matrix — equivalently ``r_σ(M) < ρ`` — iff
+    all its leading principal minors are positive (Berman–Plemmons, Thm 6.2.3).
+
+    Parameters
+    ----------
+    M : exact (m, m) matrix
+        Non-negative entries.
+    rho : Fraction
+        ``ρ > 0``.
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    ValueError
+        If ``M`` has a negative entry.
+    """
+    if any(x < 0 for row in M for x in row):
+        raise ValueError("M has a negative entry")
+    m = len(M)
+    shifted = [[(rho if r == c else 0) - M[r][c] for c in range(m)] for r in range(m)]
+    return all(to_fmpq([row[:k] for row in shifted[:k]]).det() > 0 for k in range(1, m + 1))

@@ -1,4 +1,4 @@
-"""Thm 5.2.10's self-weight bound decided in exact rational arithmetic (python-flint).
+"""Thm 5.2.10's self-weight bound and detectability decided in exact rational arithmetic (flint).
 
 ``w_ii r_σ(A_iᵘ)² < 1`` is decided without floating point, so boundary cases such as seed 000
 Example 1's ``W_c`` (``w_ii = 0.25``, ``r_σ = 2``: exactly on the bound) get a verdict:
@@ -24,7 +24,13 @@ from flint import fmpq_mat
 
 from theory.consensus.exact_linalg import fractions_of, null_basis, rational_matrix, to_fmpq
 
-__all__ = ["exact_unobservable_part", "schur_stable", "self_weight_ok_exact", "to_fraction"]
+__all__ = [
+    "detectable_exact",
+    "exact_unobservable_part",
+    "schur_stable",
+    "self_weight_ok_exact",
+    "to_fraction",
+]
 
 
 def to_fraction(x: float) -> Fraction:
@@ -39,18 +45,21 @@ def exact_unobservable_part(A: np.ndarray, C: np.ndarray) -> fmpq_mat:
     ----------
     A : ndarray, shape (n, n)
         System matrix (entries read as written decimals).
-    C : ndarray, shape (p, n)
-        Measurement matrix (``p = 0`` allowed).
+    C : ndarray, shape (p, n), or list of rows of Fraction
+        Measurement matrix (``p = 0`` allowed; exact rows are used as they are).
 
     Returns
     -------
     flint.fmpq_mat
         ``k × k`` with ``k = n − rank O`` (``0 × 0`` if observable).
     """
-    n = A.shape[0]
+    n = len(A) if isinstance(A, list) else A.shape[0]
     Aq = to_fmpq(rational_matrix(A))
     rows: list[list[Fraction]] = []
-    block = rational_matrix(np.asarray(C, dtype=float).reshape(-1, n)) if np.size(C) else []
+    if isinstance(C, list):  # exact rows already
+        block = C
+    else:
+        block = rational_matrix(np.asarray(C, dtype=float).reshape(-1, n)) if np.size(C) else []
     power = [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
     for _ in range(n):
         if block:
@@ -119,3 +128,30 @@ def self_weight_ok_exact(A: np.ndarray, C: np.ndarray, w: float) -> bool:
         return True
     t = [s[j] * wq ** (k - j) for j in range(k + 1)]
     return schur_stable(t)
+
+
+def detectable_exact(A: np.ndarray, C: np.ndarray) -> bool:
+    """Whether ``(A, C)`` is detectable, decided exactly: ``A_u`` is Schur stable (Schur–Cohn).
+
+    Every unobservable eigenvalue is an eigenvalue of ``A_u`` (Kalman decomposition), so the pair
+    is detectable iff ``det(zI − A_u)`` has all its roots in the open unit disk.
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        System matrix (entries read as written decimals).
+    C : ndarray, shape (p, n), or list of rows of Fraction
+        Measurement matrix (``p = 0`` allowed).
+
+    Returns
+    -------
+    bool
+
+    References
+    ----------
+    seed 000 Def. 5.2.9, Thm 5.2.10 (1).
+    """
+    A_u = exact_unobservable_part(A, C)
+    if A_u.nrows() == 0:
+        return True
+    return schur_stable([Fraction(int(x.p), int(x.q)) for x in A_u.charpoly().coeffs()])

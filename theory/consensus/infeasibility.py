@@ -38,7 +38,13 @@ from theory.consensus.exact_linalg import Matrix, null_basis, rational_eigenvalu
 from theory.core.certificate_format import envelope, rational_bound, strings
 from theory.core.rationalize import RationalizationError, fraction_strings, stochastic_matrix
 
-__all__ = ["MAX_FLATS", "SOURCE", "blind_set_witness", "infeasibility_certificate"]
+__all__ = [
+    "MAX_FLATS",
+    "SOURCE",
+    "blind_flats",
+    "blind_set_witness",
+    "infeasibility_certificate",
+]
 
 SOURCE = "seed 000, Definition 5.2.4; docs/theory/s-detectability.md, Theorems 3 and 4"
 MAX_FLATS = 2000
@@ -54,8 +60,26 @@ def _matmul(a: Matrix, b: Matrix) -> Matrix:
     ]
 
 
-def _flats(A: Matrix, C: Sequence[Matrix], lam: Fraction) -> Iterator[tuple[list, tuple[int, ...]]]:
-    """``(v, S)``: a rational vector of a flat of ``ker(A − λI)`` and the agents blind to it."""
+def blind_flats(
+    A: Matrix, C: Sequence[Matrix], lam: Fraction
+) -> Iterator[tuple[list, tuple[int, ...]]]:
+    """``(v, S)``: a rational vector of a flat of ``ker(A − λI)`` and the agents blind to it.
+
+    Parameters
+    ----------
+    A : exact (n, n) matrix
+        System matrix.
+    C : sequence of exact matrices
+        Measurement matrices (``[]`` for an agent without sensor).
+    lam : Fraction
+        A rational eigenvalue of ``A``.
+
+    Yields
+    ------
+    (list of Fraction, tuple of int)
+        A vector of the flat and the 0-based agents ``S`` blind to the whole flat (S non-empty),
+        once per distinct S (at most :data:`MAX_FLATS` flats are explored).
+    """
     n = len(A)
     shifted = [[A[r][c] - (lam if r == c else 0) for c in range(n)] for r in range(n)]
     queue, seen = [null_basis(shifted, n)], set()
@@ -154,7 +178,7 @@ def blind_set_witness(
     for lam in rational_eigenvalues(A):
         if lam == 0:
             continue
-        for v, S in _flats(A, C, lam):
+        for v, S in blind_flats(A, C, lam):
             M = [[lam * lam * W[i][j] for j in S] for i in S]
             for c_S in _perron_vectors(M, rho):
                 if _supersolution(M, c_S, rho):
