@@ -33,6 +33,7 @@ from theory.consensus.case import ORDERS
 from theory.consensus.certificates import ORDERS as OPERATOR_OF
 from theory.consensus.exact_radius import EXACT_DIM, gains_stabilize
 from theory.consensus.operators import E_map, apply_operator, closed_loop
+from theory.consensus.properties import dkf_case
 from theory.consensus.riccati import coupled_riccati_step
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.consensus.strategies import DkfProblem, dkf_problems
@@ -187,22 +188,6 @@ def riccati_agreement(problem: DkfProblem, *, order: str = ORDERS[0]) -> Riccati
     return RiccatiAgreement(False, worst <= PSD_TOL and not stabilizing, worst, stabilizing)
 
 
-def _case(problem: DkfProblem) -> dict[str, Any]:
-    n = problem.A.shape[0]
-    return {
-        "name": f"falsify-riccati-seed{problem.seed}",
-        "source": "trackcert falsify (seed 000 ch. 5, Riccati agreement)",
-        "kind": "dkf",
-        "dkf": {
-            "A": problem.A.tolist(),
-            "C": [c.tolist() for c in problem.C],
-            "W": problem.W.tolist(),
-            "Q": np.eye(n).tolist(),
-            "R": [np.eye(c.shape[0]).tolist() for c in problem.C],
-        },
-    }
-
-
 EXAMPLES = dkf_problems(max_states=2, max_agents=3, a_bound=2.0, integer_data=True)
 """Small integer problems, so that exact verdicts (both ways) are common."""
 
@@ -217,7 +202,7 @@ register_property(
         "produce has r_σ ≥ 1, hence they are unbounded.",
         examples=EXAMPLES,
         holds=lambda problem: all(riccati_agreement(problem, order=o).holds for o in ORDERS),
-        to_case=_case,
+        to_case=dkf_case,
         expected_to_hold=True,
     )
 )
