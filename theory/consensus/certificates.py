@@ -24,11 +24,17 @@ from fractions import Fraction
 
 import numpy as np
 
-import proofs_check
 from proofs_check.linalg import Matrix, matmul, scale, sub
 from proofs_check.operators import apply_operator as exact_operator
 from theory.consensus.operators import apply_operator
-from theory.core.certificate_format import bundle, envelope, rational_bound, rounded, strings
+from theory.core.certificate_format import (
+    bundle,
+    checked,
+    envelope,
+    rational_bound,
+    rounded,
+    strings,
+)
 from theory.core.rationalize import (
     PRECISIONS,
     RationalizationError,
@@ -341,10 +347,9 @@ def exact_s_detectability_certificate(
     zero = [[Fraction(0)] for _ in range(n)]
     gains = [g if g and g[0] else zero for g in gains]
     cert = _document(_exact_data(A, Cs, W), operator, gains, list(P), rational_bound(rho), case)
-    verdict = proofs_check.check_certificate(cert)
-    if not verdict.valid:
-        failed = next(c for c in verdict.checks if not c.valid)
-        raise RationalizationError(f"s-detectability: {failed.name} fails: {failed.detail}")
+    why = checked(cert)
+    if why is not None:
+        raise RationalizationError(f"s-detectability: {why}")
     cert["produced_by"] = {"tool": "trackcert", "witness": "exact (no rounding)"}
     return cert
 

@@ -26,7 +26,7 @@ from theory.core.rationalize import (
     fraction_strings,
 )
 
-__all__ = ["FORMAT", "bundle", "envelope", "rational_bound", "rounded", "strings"]
+__all__ = ["FORMAT", "bundle", "checked", "envelope", "rational_bound", "rounded", "strings"]
 
 FORMAT = proofs_check.FORMAT
 """The format version every certificate carries."""
@@ -88,6 +88,32 @@ def bundle(certificates: Sequence[dict], *, case: str | None = None) -> dict:
     return out
 
 
+def checked(cert: dict[str, Any]) -> str | None:
+    """Run :mod:`proofs_check` on ``cert``: None if it is valid, else why not.
+
+    A certificate the checker refuses as too costly (work estimate, time budget) is reported like
+    an invalid one, so a builder moves on instead of failing.
+
+    Parameters
+    ----------
+    cert : dict
+        A certificate.
+
+    Returns
+    -------
+    str or None
+        The first failing check (name and detail), the refusal, or None when valid.
+    """
+    try:
+        verdict = proofs_check.check_certificate(cert)
+    except proofs_check.MalformedError as error:
+        return f"proofs_check refuses it: {error}"
+    if verdict.valid:
+        return None
+    failed = next((c for c in verdict.checks if not c.valid), None)
+    return f"{failed.name}: {failed.detail}" if failed else "no checks"
+
+
 def strings(mats: Sequence[Matrix]) -> list:
     """The exact matrices ``mats`` as nested lists of rational strings."""
     return [fraction_strings(m) for m in mats]
@@ -144,7 +170,7 @@ def rounded(
     def attempt(bits: int) -> dict | None:
         exact = {name: [dyadic_matrix(m, bits) for m in mats] for name, mats in matrices.items()}
         cert = build(exact)
-        return cert if proofs_check.check_certificate(cert).valid else None
+        return cert if checked(cert) is None else None
 
     cert, bits = first_success(attempt, precisions=precisions, what=what)
     cert["produced_by"] = {
