@@ -39,7 +39,14 @@ from theory.consensus.s_detectability import (
 )
 from theory.consensus.self_weight import SelfWeightSearch, max_self_weight
 from theory.core.case_file import Case, load_case
-from theory.core.claims import Claim, ClaimResult, NotApplicable, all_claims, register
+from theory.core.claims import (
+    DOCUMENT_KEY,
+    Claim,
+    ClaimResult,
+    NotApplicable,
+    all_claims,
+    register,
+)
 from theory.core.observability import RANK_TOL
 
 __all__ = ["DkfAnalysis", "analyze_dkf", "dkf_claim_results", "printed_match"]
@@ -65,7 +72,8 @@ class DkfAnalysis:
     gains : tuple of ndarray or None
         Gains used for the radii: the case's, else the witness's.
     gains_source : str
-        ``case``, ``lmi_witness``, or ``eq5.8_at_identity`` (eq. (5.8) with ``Π_i = I``, used only
+        ``case``, ``certificate`` (the gains of the exact S-detectability certificate; its route is
+        in the decision's evidence), or ``eq5.8_at_identity`` (eq. (5.8) with ``Π_i = I``, used only
         when the case fixes no gains and no witness exists).
     radius_B, radius_L, radius_J : float or None
         Spectral radii with those gains.
@@ -210,7 +218,7 @@ def analyze_dkf(
     conditions = necessary_conditions(
         spec.A, spec.C, spec.W, rank_tol=tol["rank_tol"], value_tol=tol["value_tol"]
     )
-    gains, source = (spec.L, "case") if spec.L is not None else (decision.gains, "lmi_witness")
+    gains, source = (spec.L, "case") if spec.L is not None else (decision.gains, "certificate")
     if gains is None:
         identity = np.broadcast_to(np.eye(spec.n), (spec.n_agents, spec.n, spec.n))
         gains, source = riccati_gains(spec.A, spec.C, spec.R, identity), "eq5.8_at_identity"
@@ -305,13 +313,16 @@ def _claim_s_detectable(case: Case, analysis: DkfAnalysis | None = None) -> list
     expected = case.expect.get("s_detectable", True)
     ok = None if verdict is None else verdict == expected
     margin = analysis.decision.witness_margin if verdict else analysis.decision.cert_epsilon
+    evidence = {"expected": expected, **analysis.decision.evidence()}
+    if verdict is False:  # the exact infeasibility certificate, re-checked by the report
+        evidence[DOCUMENT_KEY] = analysis.decision.certificate
     return [
         _result(
             "seed000.def5.2.4",
             case,
             "lmi",
             ok,
-            {"expected": expected, **analysis.decision.evidence()},
+            evidence,
             margin=margin,
             tolerance=analysis.decision.tolerances,
             message=analysis.decision.reason,

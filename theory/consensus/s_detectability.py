@@ -15,26 +15,26 @@ homogeneous LMI system in ``x = (Y, G, Z)``::
 
 We solve ``max μ`` subject to ``F(x) ⪰ μ I`` and ``‖x‖_F ≤ 1`` (always feasible and bounded).
 
-**Witness (feasible).** ``L_i = Y_i⁻¹ G_i`` and ``Y``; re-checked without ``Z``:
-``Y_j ≻ 0`` and ``ρ Y_j − Σ_i w_ij (A − L_i C_i)' Y_i (A − L_i C_i) ⪰ m · max_i λ_max(Y_i) · I``
-with ``m ≥ lmi_margin``, which proves ``r_σ(L) ≤ ρ (1 − m)``; the eigenvalues of the explicit
-matrix of L are computed as a cross-check, and a primal Lyapunov tuple ``X`` with
-``X − T(X) = I`` (``T`` = L or J, the operator of the filter's order) is solved for too.
-
-**Certificate (infeasible).** Theorem of alternatives for strict homogeneous LMIs: the system has
-no solution iff multipliers ``Λ_j ⪰ 0``, ``Ψ_i ⪰ 0``, not all zero, annihilate it:
-``F*(Λ, Ψ) = 0``, i.e. ::
+**Candidates (floats).** ``L_i = Y_i⁻¹ G_i`` and ``Y``; re-checked without ``Z``: ``Y_j ≻ 0`` and
+``ρ Y_j − Σ_i w_ij (A − L_i C_i)' Y_i (A − L_i C_i) ⪰ m · max_i λ_max(Y_i) · I``. The solver's
+dual variables, projected onto the PSD cone, give ``ε_cert = ‖F*(Λ, Ψ)‖_F / (Σ tr Λ_j + Σ tr Ψ_i)``
+with ``F*(Λ, Ψ) = 0`` meaning::
 
     R_Z_i = Ψ_i,11 − Σ_j (w_ij/ρ) Λ_j = 0
     R_G_i = −2 Ψ_i,21 C_i'            = 0
     R_Y_i = Λ_i + Ψ_i,22 + A Ψ_i,21' + Ψ_i,21 A' = 0
 
-(``Ψ_i,21`` is the lower-left ``n × n`` block). The solver's dual variables are such multipliers;
-we project them onto the PSD cone and compute ``ε_cert = ‖F*(Λ, Ψ)‖_F / (Σ tr Λ_j + Σ tr Ψ_i)``:
-no ``x`` with ``‖x‖_F ≤ 1`` has ``F(x) ⪰ μ I`` for ``μ > ε_cert`` (since
-``μ Σ tr ≤ ⟨(Λ, Ψ), F(x)⟩ = ⟨F*(Λ, Ψ), x⟩ ≤ ‖F*‖``). "Not S-detectable" is reported only when the
-solver reports optimality, ``ε_cert ≤ cert_tol`` and no witness survives; anything else is
-"inconclusive".
+(``Ψ_i,21`` is the lower-left ``n × n`` block; Theorem of alternatives: the strict system has no
+solution iff such multipliers exist, not all zero). ``ε_cert`` bounds the normalised margin; it
+proves nothing (seed 000 Example 1 at ``w = 0.249999999`` has ``ε_cert ≈ 9e-9`` and *is*
+S-detectable).
+
+**Verdicts rest on exact certificates only.** True when an ``s-detectability`` certificate
+passes :mod:`proofs_check` (:mod:`theory.consensus.primal_certificates`: the witness rounded when
+``m ≥ lmi_margin``, or exact Lyapunov tuples for candidate gains); False when an
+``s-detectability-infeasible`` certificate does (:mod:`theory.consensus.infeasibility`: exact
+Farkas multipliers); None otherwise, with each route's reason. ``docs/theory/s-detectability.md``
+§6 lists every audited decision.
 """
 
 from __future__ import annotations
