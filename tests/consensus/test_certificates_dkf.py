@@ -12,9 +12,10 @@ from hypothesis import assume, given, settings
 from typer.testing import CliRunner
 
 from proofs_check import check_certificate
-from theory.certify import dkf_certificate_claim, primal_lyapunov
+from theory.certify import dkf_certificate_claim
 from theory.cli import app
 from theory.consensus.certificates import s_detectability_certificate
+from theory.consensus.primal_certificates import primal_lyapunov
 from theory.consensus.s_detectability import s_detectability_witness
 from theory.core.case_file import load_case
 from theory.core.claims import NotApplicable
