@@ -1,7 +1,8 @@
 """Exact rational linear algebra for the ch. 5 decisions (python-flint ``fmpq_mat`` underneath).
 
 Matrices are lists of rows of :class:`fractions.Fraction` (the format of :mod:`proofs_check`);
-these helpers convert to and from ``flint.fmpq_mat`` for the heavy steps (reduced row echelon
+these helpers (with :func:`proofs_check.linalg.identity`, re-exported) convert to and from
+``flint.fmpq_mat`` for the heavy steps (reduced row echelon
 form, solving, characteristic polynomials) and read float data as the decimals it prints as.
 """
 
@@ -12,6 +13,7 @@ from fractions import Fraction
 import numpy as np
 from flint import fmpq, fmpq_mat
 
+from proofs_check.linalg import Matrix, identity
 from theory.core.rationalize import exact_matrix
 
 __all__ = [
@@ -24,8 +26,6 @@ __all__ = [
     "rational_matrix",
     "to_fmpq",
 ]
-
-Matrix = list[list[Fraction]]
 
 
 def to_fmpq(rows: Matrix) -> fmpq_mat:
@@ -45,11 +45,6 @@ def rational_matrix(M: np.ndarray | Matrix) -> Matrix:
         if isinstance(M[0][0], Fraction):
             return M
     return exact_matrix(np.atleast_2d(np.asarray(M, dtype=float)))
-
-
-def identity(n: int) -> Matrix:
-    """The ``n × n`` identity."""
-    return [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
 
 
 def kron(a: Matrix, b: Matrix) -> Matrix:

@@ -33,6 +33,7 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
+from proofs_check.linalg import matmul
 from theory.consensus.exact_linalg import Matrix, null_basis, rational_eigenvalues, rational_matrix
 from theory.core.certificate_format import checked, envelope, rational_bound, strings
 from theory.core.rationalize import RationalizationError, fraction_strings, stochastic_matrix
@@ -50,13 +51,6 @@ MAX_FLATS = 2000
 """Most flats (intersections of an eigenspace with kernels of the ``C_i``) explored."""
 PERRON_BITS = (16, 32, 52)
 """Precisions (bits) tried when rounding a float Perron vector."""
-
-
-def _matmul(a: Matrix, b: Matrix) -> Matrix:
-    return [
-        [sum((x * b[k][c] for k, x in enumerate(row) if x), Fraction(0)) for c in range(len(b[0]))]
-        for row in a
-    ]
 
 
 def blind_flats(
@@ -85,7 +79,7 @@ def blind_flats(
     while queue and len(seen) < MAX_FLATS:
         basis = queue.pop()
         F = [list(col) for col in zip(*basis, strict=True)]  # n × k
-        images = [_matmul(Ci, F) if Ci else [] for Ci in C]
+        images = [matmul(Ci, F) if Ci else [] for Ci in C]
         S = tuple(i for i, im in enumerate(images) if not any(x for row in im for x in row))
         if S in seen:
             continue
