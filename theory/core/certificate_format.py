@@ -167,12 +167,19 @@ def rounded(
             f"lmi_margin = {lmi_margin:g}; it is not strictly feasible, so no certificate"
         )
 
+    failures: list[str] = []
+
     def attempt(bits: int) -> dict | None:
         exact = {name: [dyadic_matrix(m, bits) for m in mats] for name, mats in matrices.items()}
         cert = build(exact)
-        return cert if checked(cert) is None else None
+        why = checked(cert)
+        failures.append(f"{bits} bits: {why}")
+        return cert if why is None else None
 
-    cert, bits = first_success(attempt, precisions=precisions, what=what)
+    try:
+        cert, bits = first_success(attempt, precisions=precisions, what=what)
+    except RationalizationError as error:
+        raise RationalizationError(f"{error} (last attempt, {failures[-1]})") from None
     cert["produced_by"] = {
         "tool": "trackcert",
         "significant_bits": bits,
