@@ -159,11 +159,26 @@ def _lyapunov(operator: str, W: Matrix, gammas: list[Matrix], witness: dict, bou
     return checks + _decrease(name, operator, W, gammas, P, bound, R)
 
 
-def _bound(claim: dict[str, Any], key: str) -> Fraction:
+def _bound(claim: dict[str, Any], key: str, *, at_most_one: bool = True) -> Fraction:
     bound = p.rational(claim[key], f"claim.{key}")
-    if not 0 < bound <= 1:
-        raise p.MalformedError(f"claim.{key}: expected a rational in (0, 1], got {bound}")
+    if not 0 < bound <= (1 if at_most_one else bound):
+        expected = "(0, 1]" if at_most_one else "(0, ∞)"
+        raise p.MalformedError(f"claim.{key}: expected a rational in {expected}, got {bound}")
     return bound
+
+
+def _system(cert: dict[str, Any], witness_keys: tuple[str, ...], size_key: str):
+    """Claim ``ρ``, witness, ``n``, ``A``, ``W`` (with its checks) and ``C`` of the two
+    S-detectability kinds; ``ρ`` may exceed 1 (Lemma 1 of the theory note holds for any ρ > 0)."""
+    claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
+    data = p.fields(cert["data"], "data", ("A", "C", "W"))
+    witness = p.fields(cert["witness"], "witness", witness_keys)
+    n = _size(witness[size_key], f"witness.{size_key}")
+    A = p.matrix(data["A"], "data.A", n, n)
+    W, checks = _weights(data["W"])
+    C = p.matrix_list(data["C"], "data.C", len(W), None, n)
+    rho = _bound(claim, "spectral_radius_below", at_most_one=False)
+    return rho, witness, n, A, W, checks, C
 
 
 def mjls_stability(cert: dict[str, Any]) -> list[Check]:
@@ -181,22 +196,68 @@ def mjls_stability(cert: dict[str, Any]) -> list[Check]:
 
 def s_detectability(cert: dict[str, Any]) -> list[Check]:
     """``(A, C, W)`` is S-detectable: ``r_σ(L) < ρ`` with ``Γ_i = A − L_i C_i`` (Def. 5.2.4)."""
-    claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
-    data = p.fields(cert["data"], "data", ("A", "C", "W"))
-    witness = p.fields(cert["witness"], "witness", ("operator", "gains", "P", "decrease"))
+    keys = ("operator", "gains", "P", "decrease")
+    bound, witness, n, A, W, checks, C = _system(cert, keys, "P")
     operator = p.text(witness["operator"], "witness.operator", OPERATORS)
-    n = _size(witness["P"], "witness.P")
-    A = p.matrix(data["A"], "data.A", n, n)
-    W, checks = _weights(data["W"])
-    C = p.matrix_list(data["C"], "data.C", len(W), None, n)
     gains = [
         p.matrix(g, f"witness.gains[{i + 1}]", n, len(C[i]))
         for i, g in enumerate(_items(witness["gains"], "witness.gains", len(W)))
     ]
     _refuse_costly(len(W) * n**3, _bits([A, *C, *gains]))
     gammas = [la.sub(A, la.matmul(L_i, C_i)) for L_i, C_i in zip(gains, C, strict=True)]
-    bound = _bound(claim, "spectral_radius_below")
     return checks + _lyapunov(operator, W, gammas, witness, bound)
+
+
+def s_detectability_infeasible(cert: dict[str, Any]) -> list[Check]:
+    """``(A, C, W)`` is not S-detectable: no gains give ``r_σ(L) < ρ`` (Farkas witness).
+
+    The witness is multipliers ``Λ_j ⪰ 0`` (n × n) and ``Ψ_i ⪰ 0`` (2n × 2n), not all zero, that
+    annihilate the LMI of Theorem 3 in ``docs/theory/s-detectability.md``:
+    ``F1_j = Y_j − Σ_i (w_ij/ρ) Z_i``, ``F2_i = [[Z_i, M_iᵀ], [M_i, Y_i]]`` with
+    ``M_i = Y_i A − G_i C_i``.
+    ``F*(Λ, Ψ) = 0`` reads ``Ψ_i,11 = Σ_j (w_ij/ρ) Λ_j``, ``Ψ_i,21 C_iᵀ = 0`` and
+    ``Λ_i + Ψ_i,22 + A Ψ_i,21ᵀ + Ψ_i,21 Aᵀ = 0`` (``Ψ_i,21``: lower-left block). Then no
+    ``(Y, G, Z)`` has ``F ≻ 0`` (``0 = ⟨F*(Λ, Ψ), x⟩ = ⟨(Λ, Ψ), F(x)⟩ > 0``), so no gains exist.
+    """
+    rho, witness, n, A, W, checks, C = _system(cert, ("Lambda", "Psi"), "Lambda")
+    agents = len(W)
+    Lam = p.matrix_list(witness["Lambda"], "witness.Lambda", agents, n, n)
+    Psi = p.matrix_list(witness["Psi"], "witness.Psi", agents, 2 * n, 2 * n)
+    _refuse_costly(agents * (agents * n * n + 16 * n**3), _bits([A, W, *C, *Lam, *Psi]))
+    checks += [definite(f"Λ_{j + 1} ⪰ 0", L_j, semi=True) for j, L_j in enumerate(Lam)]
+    checks += [definite(f"Ψ_{i + 1} ⪰ 0", P_i, semi=True) for i, P_i in enumerate(Psi)]
+    total = sum(la.trace(M) for M in (*Lam, *Psi))
+    checks.append(Check("not all zero: Σ tr Λ_j + Σ tr Ψ_i > 0", total > 0, f"sum {show(total)}"))
+    for i in range(agents):
+        checks += _annihilated(i, A, C[i], W, rho, Lam, Psi[i])
+    return checks
+
+
+def _annihilated(
+    i: int, A: Matrix, C_i: Matrix, W: Matrix, rho: Fraction, Lam: list[Matrix], Psi_i: Matrix
+) -> list[Check]:
+    """The three blocks of ``F*(Λ, Ψ)`` belonging to agent ``i`` (0-based), each exactly 0."""
+    n, k = len(A), i + 1
+    P11 = [row[:n] for row in Psi_i[:n]]
+    P21 = [row[:n] for row in Psi_i[n:]]
+    P22 = [row[n:] for row in Psi_i[n:]]
+    mixed = [[Fraction(0)] * n for _ in range(n)]
+    for j, L_j in enumerate(Lam):
+        if W[i][j]:
+            mixed = la.add(mixed, la.scale(W[i][j] / rho, L_j))
+    moved = la.add(la.matmul(A, la.transpose(P21)), la.matmul(P21, la.transpose(A)))
+    return [
+        _zero(f"F*_Z{k}: Ψ_{k},11 − Σ_j (w_{k}j/ρ) Λ_j = 0", la.sub(P11, mixed)),
+        _zero(f"F*_G{k}: Ψ_{k},21 C_{k}ᵀ = 0", la.matmul(P21, la.transpose(C_i))),
+        _zero(
+            f"F*_Y{k}: Λ_{k} + Ψ_{k},22 + A Ψ_{k},21ᵀ + Ψ_{k},21 Aᵀ = 0",
+            la.add(Lam[i], la.add(P22, moved)),
+        ),
+    ]
+
+
+def _zero(name: str, matrix: Matrix) -> Check:
+    return _equal(name, [[Fraction(0)] * len(row) for row in matrix], matrix)
 
 
 def covariance_bound(cert: dict[str, Any]) -> list[Check]:
@@ -432,6 +493,7 @@ def _coordination(raw_L: Any, raw_r: Any, n: int, k_c: Fraction, w: dict, two: b
 KINDS = {
     "mjls-stability": mjls_stability,
     "s-detectability": s_detectability,
+    "s-detectability-infeasible": s_detectability_infeasible,
     "covariance-bound": covariance_bound,
     "generic-rank": generic_rank,
     "iss": iss,

@@ -24,6 +24,7 @@ __all__ = [
     "positive_definite",
     "scale",
     "sub",
+    "trace",
     "transpose",
 ]
 
@@ -69,6 +70,11 @@ def sub(a: Matrix, b: Matrix) -> Matrix:
 def scale(factor: Fraction, a: Matrix) -> Matrix:
     """``factor · a``."""
     return [[factor * x for x in row] for row in a]
+
+
+def trace(a: Matrix) -> Fraction:
+    """``tr a``."""
+    return sum((row[i] for i, row in enumerate(a)), Fraction(0))
 
 
 def first_asymmetry(a: Matrix) -> tuple[int, int, Fraction] | None:

@@ -125,6 +125,10 @@ def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:
         found, why = build(case, seed)
         certs += found
         reasons += why
+    return _nonempty(case, certs, reasons)
+
+
+def _nonempty(case: Case, certs: list[dict], reasons: list[str]) -> list[dict]:
     if not certs:
         raise InconclusiveError(f"no certificate for {case.name}: " + "; ".join(reasons))
     return certs
@@ -154,7 +158,7 @@ def certificate_bundle(case: Case, *, seed: int = 0) -> dict[str, Any]:
     """
     import proofs_check
     import proofs_check.parse
-    from theory.consensus.certificates import bundle
+    from theory.core.certificate_format import bundle
 
     document = bundle(case_certificates(case, seed=seed), case=case.name)
     text = json.dumps(document, indent=1, ensure_ascii=False)
@@ -163,7 +167,9 @@ def certificate_bundle(case: Case, *, seed: int = 0) -> dict[str, Any]:
     return document
 
 
-def certificates_or_inconclusive(claim_id: str, case: Case) -> list[dict] | ClaimResult:
+def certificates_or_inconclusive(
+    claim_id: str, case: Case, make: Callable[[], Certified] | None = None
+) -> list[dict] | ClaimResult:
     """The case's certificates, or the ``inconclusive`` result of ``claim_id`` saying why none.
 
     Parameters
@@ -172,6 +178,10 @@ def certificates_or_inconclusive(claim_id: str, case: Case) -> list[dict] | Clai
         The certificate claim asking.
     case : Case
         A loaded case.
+    make : callable, optional
+        Builds ``(certificates, reasons)`` from results the caller already computed (for
+        example the case's S-detectability decision); by default every certifier of the kind
+        runs (:func:`case_certificates`).
 
     Returns
     -------
@@ -183,7 +193,7 @@ def certificates_or_inconclusive(claim_id: str, case: Case) -> list[dict] | Clai
         If the property to certify is decided false (there is nothing to certify).
     """
     try:
-        return case_certificates(case)
+        return _nonempty(case, *make()) if make is not None else case_certificates(case)
     except InconclusiveError as error:
         return ClaimResult(claim_id, case.name, "exact", "inconclusive", message=str(error))
     except PropertyFails as error:
@@ -191,7 +201,10 @@ def certificates_or_inconclusive(claim_id: str, case: Case) -> list[dict] | Clai
 
 
 def certificate_results(
-    claim_id: str, case: Case, evidence: Callable[[dict], dict]
+    claim_id: str,
+    case: Case,
+    evidence: Callable[[dict], dict],
+    make: Callable[[], Certified] | None = None,
 ) -> list[ClaimResult]:
     """One ``verified`` result of ``claim_id`` per certificate, carrying it as a document.
 
@@ -203,13 +216,15 @@ def certificate_results(
         A loaded case.
     evidence : callable
         ``evidence(certificate)`` → the evidence shown beside the document.
+    make : callable, optional
+        As in :func:`certificates_or_inconclusive`.
 
     Returns
     -------
     list of ClaimResult
         Or the one ``inconclusive`` result of :func:`certificates_or_inconclusive`.
     """
-    certs = certificates_or_inconclusive(claim_id, case)
+    certs = certificates_or_inconclusive(claim_id, case, make)
     if isinstance(certs, ClaimResult):
         return [certs]
     return [

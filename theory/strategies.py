@@ -12,7 +12,8 @@ Users import these in their own property tests (STYLE.md, *Adopt* 11)::
     def test_cone_scenes_lose_rank(scene): ...
 
 Names are plural nouns, bounds are keyword-only, conditioning is bounded, and impossible
-arguments raise :class:`hypothesis.errors.InvalidArgument` with the offending value.
+arguments raise :class:`hypothesis.errors.InvalidArgument` with the offending value. The
+consensus-filter strategies live in :mod:`theory.consensus.strategies` and are re-exported here.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ import numpy as np
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
+from theory.consensus.strategies import DkfProblem, dkf_problems
 from theory.core.case_file import Case, parse_case
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.model import closed_loop_rates, path_numeric, rotation_numeric
@@ -56,33 +58,6 @@ __all__ = [
     "tracker_states",
     "weight_matrices",
 ]
-
-
-@dataclass(frozen=True, eq=False)
-class DkfProblem:
-    """A consensus-filter problem (seed 000 ch. 5): system, per-agent measurements, weights,
-    gains, and the seed that built them.
-
-    Attributes
-    ----------
-    seed : int
-        Seed of the ``numpy.random.Generator`` that drew everything else (a failing example is
-        reproduced from it).
-    A : ndarray, shape (n, n)
-        State matrix.
-    C : tuple of ndarray
-        Measurement matrix ``C_i`` of each agent, shape (p_i, n) with ``p_i`` possibly 0.
-    W : ndarray, shape (N, N)
-        Row-stochastic consensus weights.
-    L : tuple of ndarray
-        Filter gain ``L_i`` of each agent, shape (n, p_i).
-    """
-
-    seed: int
-    A: np.ndarray
-    C: tuple[np.ndarray, ...]
-    W: np.ndarray
-    L: tuple[np.ndarray, ...]
 
 
 @dataclass(frozen=True)
@@ -202,80 +177,6 @@ def digraph_laplacians(
         if i != j:
             adjacency[i, j] = 1
     return np.diag(adjacency.sum(axis=1)) - adjacency
-
-
-def _directed_weights(rng: np.random.Generator, n: int, min_weight: float) -> np.ndarray:
-    support = rng.random((n, n)) < rng.uniform(0.2, 1.0)
-    np.fill_diagonal(support, True)
-    raw = np.where(support, rng.uniform(min_weight, 1.0, (n, n)), 0.0)
-    return raw / raw.sum(axis=1, keepdims=True)
-
-
-def dkf_problems(
-    *,
-    min_states: int = 1,
-    max_states: int = 3,
-    min_agents: int = 1,
-    max_agents: int = 4,
-    max_rows: int = 2,
-    a_bound: float = 1.5,
-    gain_bound: float = 1.0,
-    integer_data: bool = False,
-) -> st.SearchStrategy[DkfProblem]:
-    """Consensus-filter problems built from one drawn seed (a failing example is its seed).
-
-    ``W`` is row-stochastic with a random directed support and weights ≥ 0.1 before
-    normalisation.
-
-    Parameters
-    ----------
-    min_states, max_states : int
-        Bounds on the state dimension ``n`` (``1 ≤ min_states ≤ max_states``).
-    min_agents, max_agents : int
-        Bounds on the number of agents ``N`` (``1 ≤ min_agents ≤ max_agents``).
-    max_rows : int
-        Each ``C_i`` has 0 to ``max_rows`` rows (``≥ 0``).
-    a_bound : float
-        Bound on the magnitude of the entries of ``A`` (``> 0``).
-    gain_bound : float
-        Bound on the magnitude of the entries of the gains ``L_i`` (``≥ 0``).
-    integer_data : bool
-        Make the entries of ``A`` multiples of ``a_bound/2`` and those of ``C_i`` lie in
-        {−1, 0, 1} (exact arithmetic stays small).
-
-    Returns
-    -------
-    SearchStrategy of DkfProblem
-
-    Raises
-    ------
-    InvalidArgument
-        At call time, for impossible bounds.
-    """
-    check_range("min_states", min_states, "max_states", max_states, 1)
-    check_range("min_agents", min_agents, "max_agents", max_agents, 1)
-    if max_rows < 0 or not a_bound > 0 or not gain_bound >= 0:
-        raise InvalidArgument(
-            "need max_rows ≥ 0, a_bound > 0, gain_bound ≥ 0; "
-            f"got {max_rows}, {a_bound}, {gain_bound}"
-        )
-
-    def build(seed: int) -> DkfProblem:
-        rng = np.random.default_rng(seed)
-        n = int(rng.integers(min_states, max_states + 1))
-        N = int(rng.integers(min_agents, max_agents + 1))
-        rows = [int(rng.integers(0, max_rows + 1)) for _ in range(N)]
-        if integer_data:
-            A = rng.integers(-2, 3, (n, n)).astype(float) / 2 * a_bound
-            C = tuple(rng.integers(-1, 2, (p, n)).astype(float) for p in rows)
-        else:
-            A = rng.uniform(-a_bound, a_bound, (n, n))
-            C = tuple(rng.uniform(-1, 1, (p, n)) for p in rows)
-        W = _directed_weights(rng, N, 0.1)
-        L = tuple(rng.uniform(-gain_bound, gain_bound, (n, p)) for p in rows)
-        return DkfProblem(seed, A, C, W, L)
-
-    return st.integers(0, 2**32 - 1).map(build)
 
 
 @st.composite

@@ -13,9 +13,9 @@ from typer.testing import CliRunner
 
 from proofs_check import check_certificate
 from theory.cli import app
-from theory.consensus.case_certificates import primal_lyapunov
 from theory.consensus.certificate_claims import dkf_certificate_claim
 from theory.consensus.certificates import s_detectability_certificate
+from theory.consensus.primal_certificates import primal_lyapunov
 from theory.consensus.s_detectability import s_detectability_witness
 from theory.core.case_file import load_case
 from theory.core.claims import NotApplicable

@@ -68,25 +68,29 @@ def test_bad_input_exits_2_without_traceback(tmp_path):
     assert "dkf.Q" in result.output and "Traceback" not in result.output
 
 
-def test_unreachable_tolerances_give_inconclusive_exit_3(tmp_path):
+def _write(tmp_path, block, **extra):
     case = tmp_path / "edge.yaml"
-    case.write_text(
-        yaml.safe_dump(
-            {
-                "name": "edge",
-                "kind": "dkf",
-                "dkf": {
-                    "A": [[2]],
-                    "C": [[], [[1]]],
-                    "W": [[0.2, 0.8], [0, 1]],
-                    "Q": [[1]],
-                    "R": [[], [[1]]],
-                },
-                "tolerances": {"lmi_margin": 10.0, "cert_tol": 1e-300},
-            }
-        )
+    case.write_text(yaml.safe_dump({"name": "edge", "kind": "dkf", "dkf": block, **extra}))
+    return str(case)
+
+
+def test_unreachable_lmi_margin_leaves_the_exact_route(tmp_path):
+    """``lmi_margin = 10`` rules the LMI witness out, yet A = 2 with a blind agent of self-weight
+    0.2 (4 · 0.2 < 1) is certified by the projection gains' exact Lyapunov tuple: exit 0."""
+    block = {"A": [[2]], "C": [[], [[1]]], "W": [[0.2, 0.8], [0, 1]], "Q": [[1]], "R": [[], [[1]]]}
+    result = run(
+        _write(tmp_path, block, tolerances={"lmi_margin": 10.0}), "--json", "--no-self-weight"
     )
-    result = run(str(case), "--json", "--no-self-weight")
+    assert result.exit_code == 0, result.output
+    detail = json.loads(result.stdout)["s_detectability"]
+    assert "exact Lyapunov tuple" in detail["certificate_route"]
+
+
+def test_no_exact_certificate_gives_inconclusive_exit_3(tmp_path):
+    """A golden-ratio A (irrational eigenvectors) watched by one agent without sensor is not
+    S-detectable, but no rational Farkas witness exists this way: inconclusive, exit 3."""
+    block = {"A": [[1.2, 1.2], [1.2, 0]], "C": [[]], "W": [[1]], "Q": [[1, 0], [0, 1]], "R": [[]]}
+    result = run(_write(tmp_path, block), "--json", "--no-self-weight")
     assert result.exit_code == 3, result.output
     assert json.loads(result.stdout)["s_detectable"] is None
 

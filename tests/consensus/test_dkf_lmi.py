@@ -128,10 +128,19 @@ def test_solver_status_table_is_closed():
     assert {"optimal", "infeasible", "solver_error"} <= set(SOLVER_STATUS_TABLE.values())
 
 
-def test_missing_solver_is_inconclusive_not_a_crash():
-    s = spec("ch5-example-1-wg")
-    result = decide_s_detectability(s.A, s.C, s.W, solver="NO_SUCH_SOLVER")
-    assert result.verdict is None and result.solver_status == "solver_error"
+def test_missing_solver_is_not_a_crash_and_exact_routes_still_decide():
+    """Without a solver the exact routes remain: Example 1's W_g is certified by the projection
+    gains, W_b refuted by its blind set; a golden-ratio A with a blind agent has neither
+    (irrational eigenvector) and stays inconclusive."""
+    verdicts = {}
+    for name in ("ch5-example-1-wg", "ch5-example-1-wb"):
+        s = spec(name)
+        result = decide_s_detectability(s.A, s.C, s.W, solver="NO_SUCH_SOLVER")
+        assert result.solver_status == "solver_error"
+        verdicts[name] = result.verdict
+    assert verdicts == {"ch5-example-1-wg": True, "ch5-example-1-wb": False}
+    golden = decide_s_detectability(GOLDEN, [np.zeros((0, 2))], np.eye(1), solver="NO_SUCH_SOLVER")
+    assert golden.verdict is None and golden.certificate is None
 
 
 @pytest.mark.parametrize("name", ["ch5-example-1-wg", "ch5-example-1-wb", "ch5-example-2-wg"])
@@ -141,6 +150,10 @@ def test_scs_agrees_with_clarabel(name):
     scs = decide_s_detectability(s.A, s.C, s.W, solver="SCS", cert_tol=1e-4)
     assert clarabel.verdict is not None
     assert scs.verdict in (clarabel.verdict, None)
+
+
+GOLDEN = np.array([[1.2, 1.2], [1.2, 0.0]])
+"""``1.2·[[1, 1], [1, 0]]``: eigenvalues ``0.6(1 ± √5)``, no rational eigenvector."""
 
 
 @given(dkf_problems(max_states=2, max_agents=3, a_bound=1.2))

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from hypothesis import assume, given
 
+from theory.consensus.case import ORDERS
 from theory.consensus.operators import (
     E_map,
     J_matrix,
@@ -23,8 +24,6 @@ from theory.consensus.riccati import (
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.core.case_file import load_case
 from theory.strategies import dkf_problems
-
-ORDERS = ["consensus-then-filter", "filter-then-consensus"]
 
 
 def run(name, order, **kw):

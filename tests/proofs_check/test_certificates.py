@@ -18,13 +18,15 @@ from hypothesis import strategies as st
 
 from proofs_check import MalformedError, check_certificate
 from theory.consensus.certificates import (
-    covariance_bound_certificate,
-    ekf_covariance_bound_certificate,
     float_margin,
     mjls_stability_certificate,
     s_detectability_certificate,
 )
 from theory.core.rationalize import RationalizationError
+from theory.tdoa.covariance_certificates import (
+    covariance_bound_certificate,
+    ekf_covariance_bound_certificate,
+)
 
 OPERATORS = ("L", "J", "L-adjoint", "J-adjoint")
 

@@ -7,7 +7,10 @@ re-checks with ``proofs_check``.
 
 from __future__ import annotations
 
+from typing import Any
+
 from theory.certify import certificate_results
+from theory.consensus.case_certificates import decision_certificates
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, register
 
@@ -21,13 +24,15 @@ __all__ = ["dkf_certificate_claim"]
     "inequalities are verified in exact arithmetic (proofs_check)",
     kinds=("dkf",),
 )
-def dkf_certificate_claim(case: Case) -> list[ClaimResult]:
+def dkf_certificate_claim(case: Case, analysis: Any = None) -> list[ClaimResult]:
     """Run the s-detectability certificates of a dkf case as claim results (method ``exact``).
 
     Parameters
     ----------
     case : Case
         A ``dkf`` case.
+    analysis : DkfAnalysis, optional
+        :func:`theory.consensus.claims.analyze_dkf` of the case, whose decision is reused.
 
     Returns
     -------
@@ -35,13 +40,14 @@ def dkf_certificate_claim(case: Case) -> list[ClaimResult]:
         One per certificate (``verified``), or one ``inconclusive`` result saying why none
         (a case that is not S-detectable has no such certificate).
     """
+    make = None if analysis is None else (lambda: decision_certificates(case, analysis.decision))
     return certificate_results(
         "seed000.def5.2.4.certified",
         case,
         lambda cert: {
             "operator": cert["witness"]["operator"],
             "gains": cert["witness"]["gains"],
-            "significant_bits": cert["produced_by"]["significant_bits"],
-            "float_margin": cert["produced_by"]["float_margin"],
+            **{k: v for k, v in cert["produced_by"].items() if k != "tool"},
         },
+        make,
     )

@@ -8,7 +8,7 @@ keys) read from it.
 
 from __future__ import annotations
 
-import functools
+import inspect
 from dataclasses import dataclass
 from typing import Any
 
@@ -40,12 +40,19 @@ from theory.consensus.s_detectability import (
 )
 from theory.consensus.self_weight import SelfWeightSearch, max_self_weight
 from theory.core.case_file import Case, load_case
-from theory.core.claims import ClaimResult, NotApplicable, register
+from theory.core.claims import (
+    DOCUMENT_KEY,
+    Claim,
+    ClaimResult,
+    NotApplicable,
+    all_claims,
+    register,
+)
 from theory.core.expectations import matches
 from theory.core.observability import RANK_TOL
 from theory.core.tolerances import HYPOTHESIS_TOL
 
-__all__ = ["DkfAnalysis", "analyze_dkf", "printed_match"]
+__all__ = ["DkfAnalysis", "analyze_dkf", "dkf_claim_results", "printed_match"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -62,7 +69,8 @@ class DkfAnalysis:
     gains : tuple of ndarray or None
         Gains used for the radii: the case's, else the witness's.
     gains_source : str
-        ``case``, ``lmi_witness``, or ``eq5.8_at_identity`` (eq. (5.8) with ``Π_i = I``, used only
+        ``case``, ``certificate`` (the gains of the exact S-detectability certificate; its route is
+        in the decision's evidence), or ``eq5.8_at_identity`` (eq. (5.8) with ``Π_i = I``, used only
         when the case fixes no gains and no witness exists).
     radius_B, radius_L, radius_J : float or None
         Spectral radii with those gains.
@@ -139,7 +147,6 @@ def _all_ok(values: list[bool | None]) -> bool | None:
     return None if any(v is None for v in values) else True
 
 
-@functools.lru_cache(maxsize=32)
 def analyze_dkf(
     case: Case, *, search_self_weight: bool = True, solver: str = "CLARABEL"
 ) -> DkfAnalysis:
@@ -170,19 +177,19 @@ def analyze_dkf(
         "cert_tol": case.tolerances.get("cert_tol", CERT_TOL),
         "value_tol": case.tolerances.get("value_tol", VALUE_TOL),
     }
-    decision = decide_s_detectability(
-        spec.A,
-        spec.C,
-        spec.W,
-        order=spec.order,
-        solver=solver,
-        lmi_margin=tol["lmi_margin"],
-        cert_tol=tol["cert_tol"],
+    riccati = coupled_riccati(
+        spec.A, spec.C, spec.W, spec.Q, spec.R, 10 * np.eye(spec.n), order=spec.order
     )
+    candidates = [("the case's gains", spec.L)] if spec.L is not None else []
+    candidates += [("the Riccati iteration's gains", riccati.gains)] if riccati.gains else []
+    decision = decide_s_detectability(
+        spec.A, spec.C, spec.W, order=spec.order, solver=solver, lmi_margin=tol["lmi_margin"],
+        cert_tol=tol["cert_tol"], candidate_gains=candidates, case=case.name,
+    )  # fmt: skip
     conditions = necessary_conditions(
         spec.A, spec.C, spec.W, rank_tol=tol["rank_tol"], value_tol=tol["value_tol"]
     )
-    gains, source = (spec.L, "case") if spec.L is not None else (decision.gains, "lmi_witness")
+    gains, source = (spec.L, "case") if spec.L is not None else (decision.gains, "certificate")
     if gains is None:
         identity = np.broadcast_to(np.eye(spec.n), (spec.n_agents, spec.n, spec.n))
         gains, source = riccati_gains(spec.A, spec.C, spec.R, identity), "eq5.8_at_identity"
@@ -206,10 +213,38 @@ def analyze_dkf(
             )
             for group in groups
         ]
-    riccati = coupled_riccati(
-        spec.A, spec.C, spec.W, spec.Q, spec.R, 10 * np.eye(spec.n), order=spec.order
-    )
     return DkfAnalysis(case, decision, conditions, gains, source, *radii, searches, riccati, tol)
+
+
+def dkf_claim_results(analysis: DkfAnalysis) -> list[tuple[Claim, ClaimResult]]:
+    """Every registered claim about dkf cases, run on ``analysis.case`` with ``analysis`` passed
+    to each check that takes it, so the LMI, the Riccati iteration and the conditions are
+    computed once (``trackcert dkf``).
+
+    Parameters
+    ----------
+    analysis : DkfAnalysis
+        From :func:`analyze_dkf`.
+
+    Returns
+    -------
+    list of (Claim, ClaimResult)
+        In registry order; a :class:`~theory.core.claims.NotApplicable` check gives no result.
+    """
+    out = []
+    for claim in all_claims():
+        if "dkf" not in claim.kinds:
+            continue
+        params = inspect.signature(claim.run).parameters.values()
+        takes = any(p.name == "analysis" or p.kind is p.VAR_KEYWORD for p in params)
+        try:
+            results = (
+                claim.run(analysis.case, analysis=analysis) if takes else claim.run(analysis.case)
+            )
+        except NotApplicable:
+            results = []
+        out += [(claim, result) for result in results]
+    return out
 
 
 def printed_match(value: float | None, printed: float) -> bool:
@@ -241,19 +276,22 @@ def _result(claim: str, case: Case, method: str, ok: bool | None, evidence: dict
     statement="(A, C, W) is S-detectable as the case expects (true when it states nothing)",
     kinds=("dkf",),
 )
-def _claim_s_detectable(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case, search_self_weight=False)
+def _claim_s_detectable(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
+    analysis = analysis or analyze_dkf(case, search_self_weight=False)
     verdict = analysis.decision.verdict
     expected = case.expect.get("s_detectable", True)
     ok = None if verdict is None else verdict == expected
     margin = analysis.decision.witness_margin if verdict else analysis.decision.cert_epsilon
+    evidence = {"expected": expected, **analysis.decision.evidence()}
+    if verdict is False:  # the exact infeasibility certificate, re-checked by the report
+        evidence[DOCUMENT_KEY] = analysis.decision.certificate
     return [
         _result(
             "seed000.def5.2.4",
             case,
             "lmi",
             ok,
-            {"expected": expected, **analysis.decision.evidence()},
+            evidence,
             margin=margin,
             tolerance=analysis.decision.tolerances,
             message=analysis.decision.reason,
@@ -261,8 +299,10 @@ def _claim_s_detectable(case: Case) -> list[ClaimResult]:
     ]
 
 
-def _necessity(case: Case, claim: str, holds: bool | None, what: str) -> list[ClaimResult]:
-    analysis = analyze_dkf(case, search_self_weight=False)
+def _necessity(
+    analysis: DkfAnalysis, claim: str, holds: bool | None, what: str
+) -> list[ClaimResult]:
+    case = analysis.case
     verdict = analysis.decision.verdict
     if verdict is True:
         ok = holds
@@ -285,11 +325,12 @@ def _necessity(case: Case, claim: str, holds: bool | None, what: str) -> list[Cl
     "w_ii < 1/r_σ(A_iᵘ)² for every agent",
     kinds=("dkf",),
 )
-def _claim_thm(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case, search_self_weight=False)
+def _claim_thm(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
+    analysis = analysis or analyze_dkf(case, search_self_weight=False)
     return _necessity(
-        case, "seed000.thm5.2.10", analysis.conditions.paper_conditions, "Thm 5.2.10's conditions"
-    )
+        analysis, "seed000.thm5.2.10", analysis.conditions.paper_conditions,
+        "Thm 5.2.10's conditions",
+    )  # fmt: skip
 
 
 @register(
@@ -299,10 +340,10 @@ def _claim_thm(case: Case) -> list[ClaimResult]:
     "set S of agents blind to a common eigenvector",
     kinds=("dkf",),
 )
-def _claim_blindset(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case, search_self_weight=False)
+def _claim_blindset(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
+    analysis = analysis or analyze_dkf(case, search_self_weight=False)
     return _necessity(
-        case,
+        analysis,
         "seed000.thm5.2.10.blindset",
         analysis.conditions.blind_set_condition,
         "the blind-set conditions",
@@ -316,8 +357,8 @@ def _claim_blindset(case: Case) -> list[ClaimResult]:
     "P − L(P) > 0 for some P > 0",
     kinds=("dkf",),
 )
-def _claim_lemma_522(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case, search_self_weight=False)
+def _claim_lemma_522(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
+    analysis = analysis or analyze_dkf(case, search_self_weight=False)
     spec = case.spec
     if analysis.gains is None:
         return [_result("seed000.lem5.2.2", case, "numeric", None, {"gains_source": "none"})]
@@ -371,8 +412,8 @@ def _lyapunov_side(M: np.ndarray, radius: float, N: int, n: int, gap: float = 1e
     statement="with fixed gains, the error covariances of (5.5) satisfy Σ(k) ≤ P(k) of (5.15)",
     kinds=("dkf",),
 )
-def _claim_lemma_523(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case, search_self_weight=False)
+def _claim_lemma_523(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
+    analysis = analysis or analyze_dkf(case, search_self_weight=False)
     spec = case.spec
     if analysis.gains is None:
         return [_result("seed000.lem5.2.3", case, "simulation", None, {"gains_source": "none"})]
@@ -408,8 +449,8 @@ def _claim_lemma_523(case: Case) -> list[ClaimResult]:
     "P_{k+1} = f_1(M, P_k) + U stays below (α + μ/(1 − r)) X",
     kinds=("dkf",),
 )
-def _claim_lemma_a21(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case, search_self_weight=False)
+def _claim_lemma_a21(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
+    analysis = analysis or analyze_dkf(case, search_self_weight=False)
     spec = case.spec
     radius = analysis.radius_J
     if radius is None:
@@ -478,8 +519,8 @@ def _claim_lemma_a21(case: Case) -> list[ClaimResult]:
     "(A, C, W) is S-detectable",
     kinds=("dkf",),
 )
-def _claim_riccati(case: Case) -> list[ClaimResult]:
-    analysis = analyze_dkf(case, search_self_weight=False)
+def _claim_riccati(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
+    analysis = analysis or analyze_dkf(case, search_self_weight=False)
     run, verdict = analysis.riccati, analysis.decision.verdict
     stabilizing = run.status == "converged" and run.stabilizing
     ok = True if not stabilizing else verdict
@@ -492,12 +533,6 @@ def _claim_riccati(case: Case) -> list[ClaimResult]:
         "expected_converges": case.expect.get("riccati_converges"),
     }
     return [_result("seed000.fn5", case, "numeric", ok, evidence, tolerance=dict(run.tolerances))]
-
-
-@functools.lru_cache(maxsize=16)
-def _bundled(name: str) -> Case:
-    """A bundled case, loaded once (so :func:`analyze_dkf`'s cache applies)."""
-    return load_case(name)
 
 
 @register(
@@ -524,7 +559,7 @@ def _example_claim(
     evidence: dict[str, Any] = {}
     ok: bool | None = True
     for variant in variants:
-        analysis = analyze_dkf(_bundled(f"{prefix}-{variant}"))
+        analysis = analyze_dkf(load_case(f"{prefix}-{variant}"))
         case = analysis.case
         bounds = {b.agent: b for b in analysis.conditions.self_weights}
         printed = {a: printed_match(bounds[a].radius, r) for a, r in radii.items()}
@@ -565,7 +600,7 @@ def _example_claim(
     statement="n=1, N=2, A=C_i=1, L=(0.3, −0.25): r_σ(B) = 0.975 while r_σ(L) = 1.026",
 )
 def _claim_counterexample(_: object) -> list[ClaimResult]:
-    analysis = analyze_dkf(_bundled("ch5-counterexample"))
+    analysis = analyze_dkf(load_case("ch5-counterexample"))
     rB, rL = analysis.radius_B, analysis.radius_L
     ok = printed_match(rB, 0.975) and printed_match(rL, 1.026)
     evidence = {

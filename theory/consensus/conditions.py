@@ -24,7 +24,16 @@ import control
 import networkx as nx
 import numpy as np
 
-from theory.consensus.exact_self_weight import self_weight_ok_exact
+from theory.consensus.exact_linalg import (
+    fractions_of,
+    identity,
+    rational_eigenvalues,
+    rational_matrix,
+    to_fmpq,
+)
+from theory.consensus.exact_radius import nonnegative_radius_below
+from theory.consensus.exact_self_weight import detectable_exact, self_weight_ok_exact
+from theory.consensus.infeasibility import blind_flats
 from theory.consensus.operators import spectral_radius
 from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
 from theory.core.tolerances import EIGEN_TOL, VALUE_TOL
@@ -216,8 +225,8 @@ class SourceComponent:
     agents : tuple of int
         1-based agent ids.
     detectable : bool or None
-        Whether ``(A, C_S)`` is detectable (None: an unobservable eigenvalue has
-        ``| |λ| − 1 | ≤ value_tol``).
+        Whether ``(A, C_S)`` is detectable, decided exactly (Schur–Cohn on the unobservable part,
+        :func:`~theory.consensus.exact_self_weight.detectable_exact`).
     unstable_unobservable : tuple of complex
         Unobservable eigenvalues of ``(A, C_S)`` with ``|λ| ≥ 1 − value_tol``.
     """
@@ -330,14 +339,14 @@ def w_detectability(
     Returns
     -------
     list of bool or None
-        One verdict per agent (None: an unobservable ``|λ|`` within ``value_tol`` of 1).
+        One verdict per agent, decided exactly on the rows ``C_j A^k`` (data as written).
 
     References
     ----------
     seed 000 eqs. (5.19)–(5.20), Lemmas 5.2.6–5.2.7.
     """
     return [
-        _detectable(A, o_matrix(A, C, W, i), rank_tol=rank_tol, value_tol=value_tol)[0]
+        _detectable(A, _o_rows_exact(A, C, W, i), rank_tol=rank_tol, value_tol=value_tol)[0]
         for i in range(W.shape[0])
     ]
 
@@ -435,7 +444,35 @@ def blind_sets(
                     sub = _null_space(Ci @ F, rank_tol * max(np.linalg.norm(Ci), 1e-300))
                     if sub.shape[1] >= 1:
                         queue.append(F @ sub)
-    return sorted(found.values(), key=lambda b: -b.value)
+    return sorted(_exact_blind_sets(A, C, W, found, scale), key=lambda b: -b.value)
+
+
+def _exact_blind_sets(
+    A: np.ndarray, C: Sequence[np.ndarray], W: np.ndarray, found: dict, scale: float
+) -> list[BlindSet]:
+    """The float blind sets, with those of rational eigenvalues replaced by exact ones.
+
+    For a rational eigenvalue λ the flats are computed over the rationals
+    (:func:`~theory.consensus.infeasibility.blind_flats`) and ``λ² r_σ(W_SS) < 1`` is decided
+    exactly (:func:`~theory.consensus.exact_radius.nonnegative_radius_below`); the verdict then
+    has no tolerance. Irrational eigenvalues keep the float decision with ``value_tol``.
+    """
+    n = A.shape[0]
+    A_q, W_q = rational_matrix(A), rational_matrix(W)
+    C_q = [rational_matrix(np.asarray(c, float).reshape(-1, n)) if np.size(c) else [] for c in C]
+    out = dict(found)
+    for lam in rational_eigenvalues(A_q):
+        if lam == 0:
+            continue
+        out = {k: b for k, b in out.items() if abs(k[0] - float(lam)) > EIGEN_TOL * scale}
+        for _, S in blind_flats(A_q, C_q, lam):
+            M = [[lam * lam * W_q[i][j] for j in S] for i in S]
+            radius = spectral_radius(W[np.ix_(S, S)])
+            ok = nonnegative_radius_below(M)
+            out[(complex(lam), S)] = BlindSet(
+                complex(lam), tuple(i + 1 for i in S), radius, float(lam) ** 2 * radius, ok
+            )
+    return list(out.values())
 
 
 @dataclass(frozen=True)
@@ -556,14 +593,35 @@ def _sign(margin: float, tol: float) -> bool | None:
 
 
 def _detectable(
-    A: np.ndarray, C: np.ndarray, *, rank_tol: float, value_tol: float
-) -> tuple[bool | None, list[complex]]:
-    split = unobservable_partition(A, C, rank_tol=rank_tol)
+    A: np.ndarray, C: np.ndarray | list, *, rank_tol: float, value_tol: float
+) -> tuple[bool, list[complex]]:
+    """Detectability decided exactly (:func:`detectable_exact`); the float unobservable
+    eigenvalues with ``|λ| ≥ 1 − value_tol`` are reported beside it (informative)."""
+    rows = C if isinstance(C, list) else np.asarray(C, dtype=float)
+    floats = np.array([[float(x) for x in r] for r in rows]) if isinstance(C, list) else rows
+    split = unobservable_partition(A, floats.reshape(-1, A.shape[0]), rank_tol=rank_tol)
     eigs = np.linalg.eigvals(split.A_u) if split.A_u.size else np.zeros(0)
     bad = [complex(x) for x in eigs if abs(x) >= 1 - value_tol]
-    if any(abs(x) > 1 + value_tol for x in bad):
-        return False, bad
-    return (None if bad else True), bad
+    return detectable_exact(A, C), bad
+
+
+def _o_rows_exact(A: np.ndarray, C: Sequence[np.ndarray], W: np.ndarray, agent: int) -> list:
+    """Exact rows ``C_j A^k`` with ``w_ij^{(k)} > 0`` spanning ``O_i``'s row space (see
+    :func:`o_matrix`; the data read as written decimals)."""
+    n, N = A.shape[0], W.shape[0]
+    A_q = to_fmpq(rational_matrix(A))
+    reach = np.zeros(N, dtype=bool)
+    reach[agent] = True
+    power = to_fmpq(identity(n))
+    rows: list = []
+    for _ in range(min(n * n * N, N + n - 1)):
+        for j in np.flatnonzero(reach):
+            if np.size(C[j]):
+                C_q = to_fmpq(rational_matrix(np.asarray(C[j], dtype=float).reshape(-1, n)))
+                rows += fractions_of(C_q * power)
+        reach = (reach.astype(int) @ (W > 0).astype(int)) > 0
+        power = power * A_q
+    return rows
 
 
 def _distinct_eigenvalues(A: np.ndarray, scale: float, rel: float = EIGEN_TOL) -> list[complex]:

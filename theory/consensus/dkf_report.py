@@ -20,7 +20,7 @@ from typing import Any
 
 from theory.consensus.case import EXPECT_KEYS
 from theory.core.case_file import Case
-from theory.core.claims import ClaimResult, all_claims, applicable_results, get_claim
+from theory.core.claims import ClaimResult, get_claim
 from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, Observed, judge
 from theory.simulate import Finished, Simulator
@@ -55,13 +55,15 @@ def dkf_observed(analysis: Any) -> Observed:
     return Observed(values, frozenset(k for k, v in values.items() if v is None))
 
 
-def observe_dkf(case: Case) -> Observed:
+def observe_dkf(case: Case, analysis: Any = None) -> Observed:
     """The observer of ``kind: dkf`` (:func:`theory.core.case_file.register_kind`).
 
     Parameters
     ----------
     case : Case
         A loaded dkf case (its own tolerances apply).
+    analysis : DkfAnalysis, optional
+        Its analysis, when the caller has already computed it.
 
     Returns
     -------
@@ -71,7 +73,7 @@ def observe_dkf(case: Case) -> Observed:
     """
     from theory.consensus.claims import analyze_dkf
 
-    return dkf_observed(analyze_dkf(case, search_self_weight=False))
+    return dkf_observed(analysis or analyze_dkf(case, search_self_weight=False))
 
 
 @dataclass(frozen=True)
@@ -134,15 +136,10 @@ def dkf_report(
         raise CaseError("kind", "dkf", case.kind, file=case.file)
     if solver not in SOLVERS:
         raise CaseError("--solver", " or ".join(SOLVERS), solver, file=case.file)
-    from theory.consensus.claims import analyze_dkf  # cvxpy: imported on use
+    from theory.consensus.claims import analyze_dkf, dkf_claim_results  # cvxpy: on use
 
     analysis = analyze_dkf(case, search_self_weight=search_self_weight, solver=solver)
-    claims = [
-        result
-        for claim in all_claims()
-        if "dkf" in claim.kinds
-        for result in applicable_results(claim, case)
-    ]
+    claims = [result for _, result in dkf_claim_results(analysis)]
     expectations = judge(case, dkf_observed(analysis), source=SOURCE)
     return DkfReport(analysis, tuple(claims), tuple(expectations))
 

@@ -1,4 +1,4 @@
-"""Thm 5.2.10's self-weight bound decided in exact rational arithmetic (python-flint).
+"""Thm 5.2.10's self-weight bound and detectability decided in exact rational arithmetic (flint).
 
 ``w_ii r_σ(A_iᵘ)² < 1`` is decided without floating point, so boundary cases such as seed 000
 Example 1's ``W_c`` (``w_ii = 0.25``, ``r_σ = 2``: exactly on the bound) get a verdict:
@@ -21,20 +21,18 @@ from __future__ import annotations
 from fractions import Fraction
 
 import numpy as np
-from flint import fmpq, fmpq_mat
+from flint import fmpq_mat
 
+from theory.consensus.exact_linalg import fractions_of, null_basis, rational_matrix, to_fmpq
 from theory.core.rationalize import exact_decimal as to_fraction
 
-__all__ = ["exact_unobservable_part", "schur_stable", "self_weight_ok_exact", "to_fraction"]
-
-
-def _mat(rows: list[list[Fraction]]) -> fmpq_mat:
-    m, n = len(rows), len(rows[0]) if rows else 0
-    return fmpq_mat(m, n, [fmpq(x.numerator, x.denominator) for row in rows for x in row])
-
-
-def _rational(M: np.ndarray) -> list[list[Fraction]]:
-    return [[to_fraction(x) for x in row] for row in np.atleast_2d(M)]
+__all__ = [
+    "detectable_exact",
+    "exact_unobservable_part",
+    "schur_stable",
+    "self_weight_ok_exact",
+    "to_fraction",
+]
 
 
 def exact_unobservable_part(A: np.ndarray, C: np.ndarray) -> fmpq_mat:
@@ -44,46 +42,33 @@ def exact_unobservable_part(A: np.ndarray, C: np.ndarray) -> fmpq_mat:
     ----------
     A : ndarray, shape (n, n)
         System matrix (entries read as written decimals).
-    C : ndarray, shape (p, n)
-        Measurement matrix (``p = 0`` allowed).
+    C : ndarray, shape (p, n), or list of rows of Fraction
+        Measurement matrix (``p = 0`` allowed; exact rows are used as they are).
 
     Returns
     -------
     flint.fmpq_mat
         ``k × k`` with ``k = n − rank O`` (``0 × 0`` if observable).
     """
-    n = A.shape[0]
-    Aq = _mat(_rational(A))
+    n = len(A) if isinstance(A, list) else A.shape[0]
+    Aq = to_fmpq(rational_matrix(A))
     rows: list[list[Fraction]] = []
-    block = _rational(np.asarray(C, dtype=float).reshape(-1, n)) if np.size(C) else []
+    if isinstance(C, list):  # exact rows already
+        block = C
+    else:
+        block = rational_matrix(np.asarray(C, dtype=float).reshape(-1, n)) if np.size(C) else []
     power = [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
     for _ in range(n):
         if block:
-            product = _mat(block) * _mat(power)
-            rows.extend([[Fraction(int(x.p), int(x.q)) for x in r] for r in product.tolist()])
-        power = [[Fraction(int(x.p), int(x.q)) for x in r] for r in (_mat(power) * Aq).tolist()]
-    V = _null_basis(rows, n)
+            product = to_fmpq(block) * to_fmpq(power)
+            rows.extend(fractions_of(product))
+        power = fractions_of(to_fmpq(power) * Aq)
+    V = null_basis(rows, n)
     if not V:
         return fmpq_mat(0, 0)
-    Vq = _mat([[V[c][r] for c in range(len(V))] for r in range(n)])
+    Vq = to_fmpq([[V[c][r] for c in range(len(V))] for r in range(n)])
     Vt = Vq.transpose()
     return (Vt * Vq).solve(Vt * Aq * Vq)
-
-
-def _null_basis(rows: list[list[Fraction]], n: int) -> list[list[Fraction]]:
-    if not rows:
-        return [[Fraction(int(i == j)) for i in range(n)] for j in range(n)]
-    R, rank = _mat(rows).rref()
-    R = [[Fraction(int(x.p), int(x.q)) for x in r] for r in R.tolist()[:rank]]
-    pivots = [next(j for j, x in enumerate(r) if x != 0) for r in R]
-    basis = []
-    for free in (j for j in range(n) if j not in pivots):
-        v = [Fraction(0)] * n
-        v[free] = Fraction(1)
-        for r, p in zip(R, pivots, strict=True):
-            v[p] = -r[free]
-        basis.append(v)
-    return basis
 
 
 def schur_stable(coefficients: list[Fraction]) -> bool:
@@ -140,3 +125,30 @@ def self_weight_ok_exact(A: np.ndarray, C: np.ndarray, w: float) -> bool:
         return True
     t = [s[j] * wq ** (k - j) for j in range(k + 1)]
     return schur_stable(t)
+
+
+def detectable_exact(A: np.ndarray, C: np.ndarray) -> bool:
+    """Whether ``(A, C)`` is detectable, decided exactly: ``A_u`` is Schur stable (Schur–Cohn).
+
+    Every unobservable eigenvalue is an eigenvalue of ``A_u`` (Kalman decomposition), so the pair
+    is detectable iff ``det(zI − A_u)`` has all its roots in the open unit disk.
+
+    Parameters
+    ----------
+    A : ndarray, shape (n, n)
+        System matrix (entries read as written decimals).
+    C : ndarray, shape (p, n), or list of rows of Fraction
+        Measurement matrix (``p = 0`` allowed).
+
+    Returns
+    -------
+    bool
+
+    References
+    ----------
+    seed 000 Def. 5.2.9, Thm 5.2.10 (1).
+    """
+    A_u = exact_unobservable_part(A, C)
+    if A_u.nrows() == 0:
+        return True
+    return schur_stable([Fraction(int(x.p), int(x.q)) for x in A_u.charpoly().coeffs()])

@@ -1,19 +1,22 @@
 """The consensus Kalman filter of seed 000 ch. 5, both orders, simulated on plain arrays.
 
-``order="consensus-first"`` (eqs. (5.3)–(5.4), (5.7)–(5.9)):
+``order="consensus-then-filter"`` (eqs. (5.3)–(5.4), (5.7)–(5.9)):
 ``ξ_i = Σ_j w_ij x̂_j``, ``Π_i = Σ_j w_ij P_j``, ``L_i = AΠ_iC_i'(R_i + C_iΠ_iC_i')⁻¹``,
 ``x̂_i ← Aξ_i + L_i(y_i − C_iξ_i)``, ``P_i ← AΠ_iA' + Q − AΠ_iC_i'(C_iΠ_iC_i' + R_i)⁻¹C_iΠ_iA'``.
 
-``order="filter-first"`` (App. C.3, the filter of its ref. [29]): every agent applies the local
-step with its own ``x̂_j``, ``P_j``, then averages: ``x̂_i ← Σ_j w_ij [Ax̂_j + L_j(y_j − C_jx̂_j)]``,
+``order="filter-then-consensus"`` (App. C.3, the filter of its ref. [29]): every agent applies
+the local step with its own ``x̂_j``, ``P_j``, then averages:
+``x̂_i ← Σ_j w_ij [Ax̂_j + L_j(y_j − C_jx̂_j)]``,
 ``P_i ← Σ_j w_ij [AP_jA' + Q − AP_jC_j'(C_jP_jC_j' + R_j)⁻¹C_jP_jA']``.
 
 The estimation errors ``ε_i = x − x̂_i`` are propagated directly, by (5.5) and its
-filter-first twin ``ε_i ← Σ_j w_ij [(A − L_jC_j)ε_j + ω − L_jv_j]`` (C.4 with noise): for an
-unstable ``A`` the state itself overflows the floating-point range long before the errors do,
-and ``x − x̂`` computed from two huge numbers would be meaningless.
+filter-then-consensus twin ``ε_i ← Σ_j w_ij [(A − L_jC_j)ε_j + ω − L_jv_j]`` (C.4 with noise):
+for an unstable ``A`` the state itself overflows the floating-point range long before the
+errors do, and ``x − x̂`` computed from two huge numbers would be meaningless.
 
-The case kind ``dkf`` belongs to another module; this one takes the matrices directly.
+The covariances and gains come from the one coupled Riccati step of
+:mod:`theory.consensus.riccati`; the order names are :data:`theory.consensus.case.ORDERS`. The
+case kind ``dkf`` belongs to another module; this one takes the matrices directly.
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.consensus.case import ORDERS as RICCATI_ORDERS
+from theory.consensus.case import ORDERS
 from theory.consensus.operators import B2_matrix, B_matrix, closed_loop
 from theory.consensus.riccati import coupled_riccati_step, error_noise_covariance
 
@@ -32,12 +35,9 @@ __all__ = [
     "ORDERS",
     "ConsensusKfRun",
     "ch5_examples",
-    "coupled_riccati",
     "simulate_consensus_kf",
     "true_error_covariance",
 ]
-
-ORDERS = ("consensus-first", "filter-first")
 
 
 @dataclass(frozen=True, eq=False)
@@ -60,57 +60,9 @@ class ConsensusKfRun:
         return np.linalg.norm(self.covariances, 2, axis=(2, 3))
 
 
-def _riccati_order(order: str) -> str:
-    """The :mod:`theory.consensus.riccati` name of a filter order; ValueError for an unknown one."""
+def _check_order(order: str) -> None:
     if order not in ORDERS:
         raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
-    return dict(zip(ORDERS, RICCATI_ORDERS, strict=True))[order]
-
-
-def coupled_riccati(
-    A: np.ndarray,
-    C: Sequence[np.ndarray],
-    W: np.ndarray,
-    Q: np.ndarray,
-    R: Sequence[np.ndarray],
-    P0: np.ndarray,
-    steps: int,
-    *,
-    order: str = "consensus-first",
-) -> np.ndarray:
-    """The coupled Riccati recursion of the consensus Kalman filter alone (no data needed).
-
-    Parameters
-    ----------
-    A, C, W, Q, R : ndarray or sequences
-        As in :func:`simulate_consensus_kf`.
-    P0 : ndarray, shape (n, n)
-        Every agent's ``P_i(0)``.
-    steps : int
-        Number of steps ``K``.
-    order : {"consensus-first", "filter-first"}
-
-    Returns
-    -------
-    ndarray, shape (K+1, N)
-        Spectral norms ``‖P_i(k)‖``.
-
-    Raises
-    ------
-    ValueError
-        For an unknown ``order``.
-
-    References
-    ----------
-    seed 000, eqs. (5.7)–(5.9), App. C.3.
-    """
-    riccati_order = _riccati_order(order)
-    P = np.tile(P0, (W.shape[0], 1, 1))
-    norms = [np.linalg.norm(P, 2, axis=(1, 2))]
-    for _ in range(steps):
-        P = coupled_riccati_step(A, C, W, Q, R, P, order=riccati_order)[1]
-        norms.append(np.linalg.norm(P, 2, axis=(1, 2)))
-    return np.array(norms)
 
 
 def simulate_consensus_kf(
@@ -125,7 +77,7 @@ def simulate_consensus_kf(
     P0: np.ndarray,
     steps: int,
     rng: np.random.Generator,
-    order: str = "consensus-first",
+    order: str = "consensus-then-filter",
 ) -> ConsensusKfRun:
     """Simulate the consensus Kalman filter's errors for ``x(k+1) = Ax + ω``, ``y_i = C_ix + v_i``.
 
@@ -149,7 +101,7 @@ def simulate_consensus_kf(
         Number of steps ``K``.
     rng : numpy.random.Generator
         Source of ``ω`` and ``v_i``.
-    order : {"consensus-first", "filter-first"}
+    order : {"consensus-then-filter", "filter-then-consensus"}
         Which filter (see the module docstring).
 
     Returns
@@ -165,24 +117,22 @@ def simulate_consensus_kf(
     ----------
     seed 000, eqs. (5.1)–(5.9), App. C.3.
     """
-    riccati_order = _riccati_order(order)
+    _check_order(order)
     n, agents = A.shape[0], W.shape[0]
     errors = np.empty((steps + 1, agents, n))
     covariances = np.empty((steps + 1, agents, n, n))
     errors[0], covariances[0] = np.asarray(x0) - np.asarray(estimate0), P0
     for k in range(steps):
         omega = rng.multivariate_normal(np.zeros(n), Q)
-        gains, covariances[k + 1] = coupled_riccati_step(
-            A, C, W, Q, R, covariances[k], order=riccati_order
-        )
-        es = W @ errors[k] if order == "consensus-first" else errors[k]
+        gains, covariances[k + 1] = coupled_riccati_step(A, C, W, Q, R, covariances[k], order=order)
+        es = W @ errors[k] if order == "consensus-then-filter" else errors[k]
         es = np.array(
             [
                 (A - L @ Ci) @ e + omega - L @ _measurement_noise(rng, Ri)
                 for e, L, Ci, Ri in zip(es, gains, C, R, strict=True)
             ]
         )
-        errors[k + 1] = W @ es if order == "filter-first" else es
+        errors[k + 1] = W @ es if order == "filter-then-consensus" else es
     return ConsensusKfRun(errors, covariances)
 
 
@@ -200,14 +150,15 @@ def true_error_covariance(
     P0: np.ndarray,
     steps: int,
     *,
-    order: str = "consensus-first",
+    order: str = "consensus-then-filter",
 ) -> tuple[np.ndarray, np.ndarray]:
     """The exact network error covariance under the filter's own gains, beside its ``P_i``.
 
     With the gains ``L_i(k)`` of (5.8) computed from the coupled Riccati recursion, the network
     error ``ε = col(ε_i)`` obeys ``ε⁺ = Bε + 1⊗ω − blkdiag(L_i)v`` with
-    ``B = diag(A − L_iC_i)(W⊗I)`` (consensus-first, (5.11)) or ``(W⊗I)diag(A − L_iC_i)``
-    (filter-first, (C.5)), so ``Σ⁺ = BΣBᵀ + (11ᵀ⊗Q) + blkdiag(L_iR_iL_iᵀ)`` (filter-first:
+    ``B = diag(A − L_iC_i)(W⊗I)`` (consensus-then-filter, (5.11)) or ``(W⊗I)diag(A − L_iC_i)``
+    (filter-then-consensus, (C.5)), so ``Σ⁺ = BΣBᵀ + (11ᵀ⊗Q) + blkdiag(L_iR_iL_iᵀ)``
+    (filter-then-consensus:
     the noise term is premultiplied by ``W⊗I`` and postmultiplied by its transpose).
     The initial errors are independent with covariance ``P0`` each.
 
@@ -217,7 +168,7 @@ def true_error_covariance(
         As in :func:`simulate_consensus_kf`.
     P0 : ndarray, shape (n, n)
     steps : int
-    order : {"consensus-first", "filter-first"}
+    order : {"consensus-then-filter", "filter-then-consensus"}
 
     Returns
     -------
@@ -235,17 +186,17 @@ def true_error_covariance(
     ----------
     seed 000, eqs. (5.5)–(5.11), App. C.3.
     """
-    riccati_order = _riccati_order(order)
+    _check_order(order)
     n, agents = A.shape[0], W.shape[0]
     mix = np.kron(W, np.eye(n))
     P = np.tile(P0, (agents, 1, 1))
     Sigma = np.kron(np.eye(agents), P0)
     traces, p_norms = [np.trace(Sigma)], [np.linalg.norm(P, 2, axis=(1, 2))]
     for _ in range(steps):
-        gains, P = coupled_riccati_step(A, C, W, Q, R, P, order=riccati_order)
+        gains, P = coupled_riccati_step(A, C, W, Q, R, P, order=order)
         Gamma = closed_loop(A, C, gains)
         noise = error_noise_covariance(Q, R, gains)
-        if order == "consensus-first":
+        if order == "consensus-then-filter":
             B = B_matrix(W, Gamma)
         else:
             B, noise = B2_matrix(W, Gamma), mix @ noise @ mix.T

@@ -14,7 +14,12 @@ With ``Γ_i = A − L_i C_i``:
 * ``L_i(V) = Γ_i E_i(V) Γ_i'``, matrix ``diag[Γ_i ⊗ Γ_i] (W ⊗ I_{n²})`` — eq. (5.13), Lemma 5.2.2;
 * ``J_i(V) = Σ_j w_ij Γ_j V_j Γ_j'``, matrix ``(W ⊗ I_{n²}) diag[Γ_j ⊗ Γ_j]`` — App. C.3;
 * the adjoint of L for the trace inner product, ``L*_j(Y) = Σ_i w_ij Γ_i' Y_i Γ_i``, matrix
-  ``𝓛ᵀ`` — the "dual operator" in which gains enter linearly after ``G_i = Y_i L_i``.
+  ``𝓛ᵀ`` — the "dual operator" in which gains enter linearly after ``G_i = Y_i L_i``;
+* the adjoint of J, ``J*_j(Y) = Γ_j' (Σ_i w_ij Y_i) Γ_j``, matrix ``𝓙ᵀ``.
+
+:func:`apply_operator` applies any of the four by the names :mod:`proofs_check.operators` uses
+(``L``, ``J``, ``L-adjoint``, ``J-adjoint``); the exact checker has its own rational twin on
+purpose (it imports nothing from ``theory``).
 """
 
 from __future__ import annotations
@@ -27,15 +32,18 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 __all__ = [
+    "OPERATORS",
     "B2_matrix",
     "B_matrix",
     "E_map",
     "E_matrix",
+    "J_adjoint_map",
     "J_map",
     "J_matrix",
     "L_adjoint_map",
     "L_map",
     "L_matrix",
+    "apply_operator",
     "closed_loop",
     "covariance_operator_matrix",
     "spectral_radius",
@@ -129,6 +137,46 @@ def J_map(W: np.ndarray, Gamma: np.ndarray, V: np.ndarray) -> np.ndarray:
         As in :func:`L_map`.
     """
     return E_map(W, Gamma @ V @ Gamma.transpose(0, 2, 1))
+
+
+def J_adjoint_map(W: np.ndarray, Gamma: np.ndarray, Y: np.ndarray) -> np.ndarray:
+    """``J*_j(Y) = Γ_j' (Σ_i w_ij Y_i) Γ_j``, the adjoint of J for ``⟨V, Y⟩ = Σ_i tr(V_i' Y_i)``.
+
+    Parameters
+    ----------
+    W, Gamma, Y : ndarray
+        As ``W``, ``Gamma``, ``V`` in :func:`L_map`.
+    """
+    return Gamma.transpose(0, 2, 1) @ E_map(W.T, Y) @ Gamma
+
+
+OPERATORS = {"L": L_map, "J": J_map, "L-adjoint": L_adjoint_map, "J-adjoint": J_adjoint_map}
+"""The four positive operators by the names of :data:`proofs_check.operators.OPERATORS`."""
+
+
+def apply_operator(name: str, W: np.ndarray, Gamma: np.ndarray, V: np.ndarray) -> np.ndarray:
+    """``T(V)`` for ``T`` one of :data:`OPERATORS` (floating point).
+
+    Parameters
+    ----------
+    name : {"L", "J", "L-adjoint", "J-adjoint"}
+        The operator.
+    W, Gamma, V : array_like
+        As in :func:`L_map` (sequences of matrices are stacked).
+
+    Returns
+    -------
+    ndarray, shape (N, n, n)
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``name``.
+    """
+    if name not in OPERATORS:
+        raise ValueError(f"unknown operator {name!r}; expected one of {sorted(OPERATORS)}")
+    arrays = (np.asarray(x, dtype=float) for x in (W, Gamma, V))
+    return OPERATORS[name](*arrays)
 
 
 def _block_diag(blocks: np.ndarray) -> np.ndarray:

@@ -82,7 +82,8 @@ def jointly_detectable(problem: SmallDkf) -> bool:
 
 
 def dkf_case(problem: SmallDkf) -> dict[str, Any]:
-    """A ready-to-run ``kind: dkf`` case (Q = I, R_i = I) reproducing ``problem``."""
+    """A ready-to-run ``kind: dkf`` case (Q = I, R_i = I) reproducing ``problem`` (a
+    :class:`SmallDkf` or a :class:`~theory.consensus.strategies.DkfProblem`)."""
     n = problem.A.shape[0]
     return {
         "name": f"falsify-dkf-n{n}-N{len(problem.C)}",

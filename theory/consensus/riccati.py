@@ -25,6 +25,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from theory.consensus.case import ORDERS
+from theory.consensus.exact_radius import gains_stabilize
 from theory.consensus.operators import (
     B_matrix,
     E_map,
@@ -150,18 +151,20 @@ class RiccatiRun:
     Attributes
     ----------
     status : str
-        ``converged``, ``diverged`` or ``max_iter``.
+        ``converged``, ``diverged``, ``max_iter`` or (with ``fixed_steps``) ``steps``.
     iterations : int
     P : ndarray, shape (N, n, n)
         Last iterate.
     gains : tuple of ndarray
         Gains of the last iterate (eq. (5.8), or the reversed order's).
     stabilizing : bool or None
-        Whether ``r_σ`` of the order's operator with those gains is < 1 (None unless converged).
+        Whether ``r_σ`` of the order's operator with those gains is < 1, decided exactly
+        (:func:`theory.consensus.exact_radius.gains_stabilize`; None unless converged, or inside
+        the float band above ``EXACT_DIM``).
     radius : float or None
         That spectral radius.
-    norms : ndarray
-        ``max_i ‖P_i(k)‖₂`` for each k.
+    agent_norms : ndarray, shape (iterations + 1, N)
+        ``‖P_i(k)‖₂`` for each k and agent.
     tolerances : dict
     """
 
@@ -171,8 +174,13 @@ class RiccatiRun:
     gains: tuple[np.ndarray, ...]
     stabilizing: bool | None
     radius: float | None
-    norms: np.ndarray
+    agent_norms: np.ndarray
     tolerances: dict
+
+    @property
+    def norms(self) -> np.ndarray:
+        """``max_i ‖P_i(k)‖₂`` for each k."""
+        return self.agent_norms.max(axis=1)
 
 
 def coupled_riccati(
@@ -187,6 +195,7 @@ def coupled_riccati(
     max_iter: int = int(MAX_ITER),
     conv_tol: float = CONV_TOL,
     blowup: float = BLOWUP,
+    fixed_steps: bool = False,
 ) -> RiccatiRun:
     """Iterate the coupled Riccati equations until convergence, divergence or ``max_iter``.
 
@@ -204,6 +213,10 @@ def coupled_riccati(
         Relative step size declaring convergence.
     blowup : float
         Norm growth factor declaring divergence.
+    fixed_steps : bool
+        Run exactly ``max_iter`` steps (status ``steps``; it stops early, ``diverged``, only when
+        the iterates stop being finite or ``C_i P C_iᵀ + R_i`` becomes numerically singular past
+        ``blowup``): the recursion as the consensus Kalman filter runs it.
 
     Returns
     -------
@@ -215,19 +228,26 @@ def coupled_riccati(
     """
     N, n = W.shape[0], A.shape[0]
     P = np.broadcast_to(np.asarray(P0, dtype=float), (N, n, n)).copy()
-    start = max(float(np.max(np.linalg.norm(P, 2, axis=(1, 2)))), 1.0)
-    norms = [start]
-    status, iterations = "max_iter", 0
+    norms = [np.linalg.norm(P, 2, axis=(1, 2))]
+    start = max(float(norms[0].max()), 1.0)
+    status, iterations = ("steps" if fixed_steps else "max_iter"), 0
     while iterations < max_iter:
         iterations += 1
-        nxt = coupled_riccati_step(A, C, W, Q, R, P, order=order)[1]
-        step = float(np.max(np.linalg.norm(nxt - P, 2, axis=(1, 2))))
-        P = nxt
-        norms.append(float(np.max(np.linalg.norm(P, 2, axis=(1, 2)))))
-        if not np.isfinite(norms[-1]) or norms[-1] > blowup * start:
+        try:
+            nxt = coupled_riccati_step(A, C, W, Q, R, P, order=order)[1]
+        except np.linalg.LinAlgError:  # C P Cᵀ + R lost R to rounding: P has blown up
+            if float(norms[-1].max()) <= blowup * start:
+                raise
             status = "diverged"
             break
-        if step <= conv_tol * norms[-1]:
+        step = float(np.max(np.linalg.norm(nxt - P, 2, axis=(1, 2))))
+        P = nxt
+        norms.append(np.linalg.norm(P, 2, axis=(1, 2)))
+        top = float(norms[-1].max())
+        if not np.isfinite(top) or (not fixed_steps and top > blowup * start):
+            status = "diverged"
+            break
+        if not fixed_steps and step <= conv_tol * top:
             status = "converged"
             break
     gains = coupled_riccati_step(A, C, W, Q, R, P, order=order)[0] if status != "diverged" else ()
@@ -235,7 +255,7 @@ def coupled_riccati(
     if status == "converged":
         T = covariance_operator_matrix(W, closed_loop(A, C, gains), order)
         radius = spectral_radius(T)
-        stabilizing = radius < 1
+        stabilizing = gains_stabilize(A, C, W, gains, order=order)
     tol = {"conv_tol": conv_tol, "blowup": blowup, "max_iter": max_iter}
     return RiccatiRun(status, iterations, P, gains, stabilizing, radius, np.array(norms), tol)
 

@@ -15,26 +15,26 @@ homogeneous LMI system in ``x = (Y, G, Z)``::
 
 We solve ``max μ`` subject to ``F(x) ⪰ μ I`` and ``‖x‖_F ≤ 1`` (always feasible and bounded).
 
-**Witness (feasible).** ``L_i = Y_i⁻¹ G_i`` and ``Y``; re-checked without ``Z``:
-``Y_j ≻ 0`` and ``ρ Y_j − Σ_i w_ij (A − L_i C_i)' Y_i (A − L_i C_i) ⪰ m · max_i λ_max(Y_i) · I``
-with ``m ≥ lmi_margin``, which proves ``r_σ(L) ≤ ρ (1 − m)``; the eigenvalues of the explicit
-matrix of L are computed as a cross-check, and a primal Lyapunov tuple ``X`` with
-``X − T(X) = I`` (``T`` = L or J, the operator of the filter's order) is solved for too.
-
-**Certificate (infeasible).** Theorem of alternatives for strict homogeneous LMIs: the system has
-no solution iff multipliers ``Λ_j ⪰ 0``, ``Ψ_i ⪰ 0``, not all zero, annihilate it:
-``F*(Λ, Ψ) = 0``, i.e. ::
+**Candidates (floats).** ``L_i = Y_i⁻¹ G_i`` and ``Y``; re-checked without ``Z``: ``Y_j ≻ 0`` and
+``ρ Y_j − Σ_i w_ij (A − L_i C_i)' Y_i (A − L_i C_i) ⪰ m · max_i λ_max(Y_i) · I``. The solver's
+dual variables, projected onto the PSD cone, give ``ε_cert = ‖F*(Λ, Ψ)‖_F / (Σ tr Λ_j + Σ tr Ψ_i)``
+with ``F*(Λ, Ψ) = 0`` meaning::
 
     R_Z_i = Ψ_i,11 − Σ_j (w_ij/ρ) Λ_j = 0
     R_G_i = −2 Ψ_i,21 C_i'            = 0
     R_Y_i = Λ_i + Ψ_i,22 + A Ψ_i,21' + Ψ_i,21 A' = 0
 
-(``Ψ_i,21`` is the lower-left ``n × n`` block). The solver's dual variables are such multipliers;
-we project them onto the PSD cone and compute ``ε_cert = ‖F*(Λ, Ψ)‖_F / (Σ tr Λ_j + Σ tr Ψ_i)``:
-no ``x`` with ``‖x‖_F ≤ 1`` has ``F(x) ⪰ μ I`` for ``μ > ε_cert`` (since
-``μ Σ tr ≤ ⟨(Λ, Ψ), F(x)⟩ = ⟨F*(Λ, Ψ), x⟩ ≤ ‖F*‖``). "Not S-detectable" is reported only when the
-solver reports optimality, ``ε_cert ≤ cert_tol`` and no witness survives; anything else is
-"inconclusive".
+(``Ψ_i,21`` is the lower-left ``n × n`` block; Theorem of alternatives: the strict system has no
+solution iff such multipliers exist, not all zero). ``ε_cert`` bounds the normalised margin; it
+proves nothing (seed 000 Example 1 at ``w = 0.249999999`` has ``ε_cert ≈ 9e-9`` and *is*
+S-detectable).
+
+**Verdicts rest on exact certificates only.** True when an ``s-detectability`` certificate
+passes :mod:`proofs_check` (:mod:`theory.consensus.primal_certificates`: the witness rounded when
+``m ≥ lmi_margin``, or exact Lyapunov tuples for candidate gains); False when an
+``s-detectability-infeasible`` certificate does (:mod:`theory.consensus.infeasibility`: exact
+Farkas multipliers); None otherwise, with each route's reason. ``docs/theory/s-detectability.md``
+§6 lists every audited decision.
 """
 
 from __future__ import annotations
@@ -47,15 +47,20 @@ from typing import Any
 import cvxpy as cp
 import numpy as np
 
+from theory.consensus.infeasibility import infeasibility_certificate
 from theory.consensus.operators import (
     B_matrix,
     L_adjoint_map,
     closed_loop,
     covariance_operator_matrix,
     spectral_radius,
-    unvec_tuple,
-    vec_tuple,
 )
+from theory.consensus.primal_certificates import (
+    certificate_gains,
+    primal_certificate,
+    primal_lyapunov,
+)
+from theory.core.rationalize import RationalizationError
 from theory.core.tolerances import CERT_TOL, LMI_MARGIN
 
 __all__ = [
@@ -106,8 +111,8 @@ class SDetectability:
     Attributes
     ----------
     verdict : bool or None
-        True: S-detectable (witness verified); False: not (certificate verified); None:
-        inconclusive.
+        True: S-detectable (an exact ``s-detectability`` certificate checked); False: not (an
+        exact ``s-detectability-infeasible`` certificate checked); None: inconclusive.
     reason : str
         One sentence saying what decided it (or why nothing did).
     solver : str
@@ -125,20 +130,26 @@ class SDetectability:
     cert_epsilon : float or None
         ``ε_cert`` recomputed from the projected multipliers.
     gains : tuple of ndarray or None
-        ``L_i`` (n × p_i) from the witness.
+        ``L_i`` (n × p_i) of the certificate (None unless ``verdict`` is True).
     Y : ndarray or None
-        Dual Lyapunov tuple, shape (N, n, n).
+        Dual Lyapunov tuple, shape (N, n, n), when the certificate came from the LMI witness.
     X : ndarray or None
-        Primal Lyapunov tuple for the filter's operator: ``X − T(X) = I``.
+        Primal Lyapunov tuple for the filter's operator with the certificate's gains:
+        ``X − T(X) = I`` (floats; None unless ``verdict`` is True).
     radius_L, radius_J, radius_B : float or None
-        ``r_σ`` of L, J and B with the candidate gains ``Y_i⁻¹ G_i`` of the solver's solution
-        (the witness's gains when ``verdict`` is True; otherwise informative only).
+        ``r_σ`` of L, J and B (floats) with the candidate gains ``Y_i⁻¹ G_i`` of the solver's
+        solution (informative only).
     multipliers : dict or None
         ``{"Lambda": (N, n, n), "Psi": (N, 2n, 2n)}`` projected onto the PSD cone.
     tolerances : dict
         ``lmi_margin`` and ``cert_tol`` used.
     order : str
         Filter order the primal Lyapunov tuple ``X`` refers to.
+    certificate : dict or None
+        The exact certificate the verdict rests on (``s-detectability`` when True,
+        ``s-detectability-infeasible`` when False), already accepted by :mod:`proofs_check`.
+    route : str
+        How the certificate was obtained.
     """
 
     verdict: bool | None
@@ -159,6 +170,8 @@ class SDetectability:
     multipliers: dict[str, np.ndarray] | None = None
     tolerances: dict[str, float] = field(default_factory=dict)
     order: str = "consensus-then-filter"
+    certificate: dict[str, Any] | None = None
+    route: str = ""
 
     def evidence(self) -> dict[str, Any]:
         """JSON-ready summary (no matrices)."""
@@ -175,6 +188,8 @@ class SDetectability:
             "candidate_radius_L": self.radius_L,
             "candidate_radius_J": self.radius_J,
             "candidate_radius_B": self.radius_B,
+            "certificate_kind": None if self.certificate is None else self.certificate["kind"],
+            "certificate_route": self.route,
             "tolerances": dict(self.tolerances),
         }
 
@@ -189,8 +204,14 @@ def decide_s_detectability(
     solver: str = "CLARABEL",
     lmi_margin: float = LMI_MARGIN,
     cert_tol: float = CERT_TOL,
+    candidate_gains: Sequence[tuple[str, Sequence[np.ndarray]]] = (),
+    case: str | None = None,
 ) -> SDetectability:
     """Decide whether gains ``L_i`` exist with ``r_σ(L) < rho`` (S-detectability for rho = 1).
+
+    Only exact certificates decide (module docstring): True when an ``s-detectability``
+    certificate passes :mod:`proofs_check`, False when an ``s-detectability-infeasible`` one
+    does, None (inconclusive) otherwise — whatever the float margins say.
 
     Parameters
     ----------
@@ -207,14 +228,19 @@ def decide_s_detectability(
     solver : str
         A cvxpy SDP solver name (``CLARABEL`` or ``SCS``).
     lmi_margin : float
-        Least relative witness margin ``m`` accepted (see module docstring).
+        Least relative witness margin ``m`` worth rounding (see module docstring).
     cert_tol : float
-        Largest ``ε_cert`` accepted as an infeasibility certificate.
+        ``ε_cert`` at or below which the float dual is reported as suggesting infeasibility
+        (informative: it decides nothing).
+    candidate_gains : sequence of (label, gains)
+        Further gains (the case's, the Riccati iteration's) to try with exact Lyapunov tuples.
+    case : str, optional
+        Case name recorded in the certificate.
 
     Returns
     -------
     SDetectability
-        Never raises on solver failure: the verdict is then None (inconclusive).
+        Never raises on solver failure: the exact routes are still tried.
 
     References
     ----------
@@ -224,20 +250,59 @@ def decide_s_detectability(
     W = np.asarray(W, dtype=float)
     C = [np.asarray(Ci, dtype=float).reshape(-1, A.shape[0]) for Ci in C]
     tolerances = {"lmi_margin": lmi_margin, "cert_tol": cert_tol}
+    base = _float_evidence(A, C, W, rho, solver) | {"order": order, "tolerances": tolerances}
+    lmi_gains, lmi_Y = base.pop("gains", None), base.pop("Y", None)
+    witness = None
+    if base.get("witness_margin", float("-inf")) >= lmi_margin:
+        witness = (lmi_gains, lmi_Y)
+    floats = [("LMI candidate gains", lmi_gains)] if lmi_gains else []
+    cert, route, reasons = primal_certificate(
+        A, C, W, order=order, rho=rho, witness=witness, candidates=[*floats, *candidate_gains],
+        lmi_margin=lmi_margin, case=case,
+    )  # fmt: skip
+    if cert is not None:
+        gains = certificate_gains(cert, C)
+        found = {"gains": gains, "X": primal_lyapunov(A, C, W, gains, order), "Y": None}
+        found |= {"witness_margin": None, "radius_bound": None}
+        if route.startswith("LMI witness"):  # the margin of the rounded gains, not the float ones
+            m = witness_margin(A, C, W, gains, lmi_Y, rho=rho)
+            found |= {"Y": lmi_Y, "witness_margin": m, "radius_bound": rho * (1 - m)}
+        reason = f"certificate verified exactly (proofs_check): {route}"
+        return SDetectability(True, reason, **(base | found), certificate=cert, route=route)
+    try:
+        cert = infeasibility_certificate(A, C, W, rho=rho, case=case)
+    except RationalizationError as error:
+        reasons.append(str(error))
+    else:
+        route = "Farkas multipliers from the blind set " + str(cert["produced_by"]["agents"])
+        reason = f"infeasibility certificate verified exactly (proofs_check): {route}"
+        return SDetectability(False, reason, **base, certificate=cert, route=route)
+    hint = base.get("cert_epsilon")
+    suggests = (
+        f"; the float dual suggests infeasibility (ε_cert = {hint:.3g} ≤ cert_tol) but proves "
+        "nothing"
+        if hint is not None and hint <= cert_tol
+        else ""
+    )
+    reason = "no exact certificate either way" + suggests + ": " + "; ".join(reasons)
+    return SDetectability(None, reason, **base)
+
+
+def _float_evidence(
+    A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float, solver: str
+) -> dict[str, Any]:
+    """Solve the normalised LMI; its candidate gains, margins and multipliers (floats only)."""
     problem, parts = _build_lmi(A, C, W, rho)
+    common: dict[str, Any] = {"solver": solver, "rho": rho}
     try:
         with warnings.catch_warnings():  # inaccuracy is reported through the status table
             warnings.simplefilter("ignore", UserWarning)
             problem.solve(solver=solver)
         status = SOLVER_STATUS_TABLE.get(problem.status, "solver_error")
-    except (cp.error.SolverError, ArithmeticError, ValueError) as error:
-        return SDetectability(
-            None, f"solver failed: {error}", solver, "solver_error", rho, tolerances=tolerances
-        )
-    common = {"solver": solver, "solver_status": status, "rho": rho, "tolerances": tolerances}
+    except (cp.error.SolverError, ArithmeticError, ValueError):
+        return common | {"solver_status": "solver_error"}
     if status not in ("optimal", "optimal_inaccurate"):
-        reason = f"solver status {status}: the normalised LMI is always feasible and bounded"
-        return SDetectability(None, reason, order=order, **common)
+        return common | {"solver_status": status}
     Y = np.stack([np.asarray(v.value, dtype=float) for v in parts["Y"]])
     try:
         gains = tuple(
@@ -251,33 +316,17 @@ def decide_s_detectability(
         gains = tuple(np.zeros((A.shape[0], Ci.shape[0])) for Ci in C)
         m = float("-inf")
     eps = _certificate_epsilon(A, C, W, rho, parts)
-    radii = _radii(A, C, W, gains)
-    base = dict(
-        mu=float(parts["mu"].value),
-        witness_margin=m,
-        cert_epsilon=eps["epsilon"],
-        multipliers=eps["multipliers"],
-        order=order,
-        **radii,
-        **common,
-    )
-    if m >= lmi_margin:
-        X = _primal_lyapunov(W, closed_loop(A, C, gains), order)
-        reason = f"witness verified: margin m = {m:.3g} ≥ lmi_margin, r_σ(L) ≤ {rho * (1 - m):.6g}"
-        return SDetectability(
-            True, reason, radius_bound=rho * (1 - m), gains=gains, Y=Y, X=X, **base
-        )
-    if status == "optimal" and eps["epsilon"] <= cert_tol:
-        reason = (
-            f"certificate verified: ε_cert = {eps['epsilon']:.3g} ≤ cert_tol; no (Y, G, Z) with "
-            f"relative LMI margin above ε_cert"
-        )
-        return SDetectability(False, reason, **base)
-    reason = (
-        f"neither side verified (witness margin {m:.3g} < {lmi_margin:g}, ε_cert "
-        f"{eps['epsilon']:.3g} vs {cert_tol:g}, status {status}): near the boundary"
-    )
-    return SDetectability(None, reason, **base)
+    return common | {
+        "solver_status": status,
+        "mu": float(parts["mu"].value),
+        "witness_margin": m,
+        "radius_bound": rho * (1 - m) if m > 0 else None,
+        "cert_epsilon": eps["epsilon"],
+        "multipliers": eps["multipliers"],
+        "gains": gains,
+        "Y": Y,
+        **_radii(A, C, W, gains),
+    }
 
 
 def s_detectability_witness(
@@ -488,11 +537,3 @@ def _radii(
         "radius_J": spectral_radius(covariance_operator_matrix(W, Gamma, "filter-then-consensus")),
         "radius_B": spectral_radius(B_matrix(W, Gamma)),
     }
-
-
-def _primal_lyapunov(W: np.ndarray, Gamma: np.ndarray, order: str) -> np.ndarray:
-    N, n = Gamma.shape[0], Gamma.shape[1]
-    T = covariance_operator_matrix(W, Gamma, order)
-    rhs = vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
-    X = unvec_tuple(np.linalg.solve(np.eye(T.shape[0]) - T, rhs), N, n)
-    return (X + X.transpose(0, 2, 1)) / 2

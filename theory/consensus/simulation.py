@@ -37,7 +37,6 @@ __all__ = [
 
 DEFAULT_STEPS = 400
 P0_SCALE = 10.0
-_ORDER = {"consensus-then-filter": "consensus-first", "filter-then-consensus": "filter-first"}
 
 
 def run_dkf_case(
@@ -63,7 +62,7 @@ def run_dkf_case(
     x0 = rng.multivariate_normal(np.zeros(n), P0)
     return simulate_consensus_kf(
         spec.A, spec.C, spec.W, spec.Q, spec.R, x0=x0, estimate0=np.zeros(n), P0=P0,
-        steps=steps, rng=rng, order=_ORDER[spec.order],
+        steps=steps, rng=rng, order=spec.order,
     )  # fmt: skip
 
 
@@ -107,7 +106,7 @@ def summarize_dkf(spec: DkfSpec, runs: Sequence[ConsensusKfRun]) -> dict[str, An
         )
     traces, _ = true_error_covariance(
         spec.A, spec.C, spec.W, spec.Q, spec.R, P0_SCALE * np.eye(spec.A.shape[0]),
-        norms.shape[0] - 1, order=_ORDER[spec.order],
+        norms.shape[0] - 1, order=spec.order,
     )  # fmt: skip
     return {
         "agents": agents,

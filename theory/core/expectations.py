@@ -285,13 +285,16 @@ def judge(case: Any, observed: Observed, *, source: str) -> list[Expectation]:
     return evaluate(case.name, case.expect, found, kind_spec(case.kind).expect_rules)
 
 
-def observe_case(case: Any) -> Observed:
+def observe_case(case: Any, **computed: Any) -> Observed:
     """What the observer of ``case``'s kind finds (:attr:`KindSpec.observe`).
 
     Parameters
     ----------
     case : Case
         A loaded case.
+    **computed : Any
+        Results the caller already computed for the case (e.g. ``analysis=`` of a dkf case),
+        passed on to the observer so nothing is computed twice.
 
     Returns
     -------
@@ -307,7 +310,7 @@ def observe_case(case: Any) -> Observed:
     observer = kind_spec(case.kind).observer()
     if observer is None:
         raise ValueError(f"kind {case.kind!r} has no observer: its claims observe its keys")
-    return observer(case)
+    return observer(case, **computed)
 
 
 def expectation_claim(
@@ -347,8 +350,8 @@ def expectation_claim(
         statement=f"Every expectation a {kind} case states is what trackcert {command} finds.",
         kinds=(kind,),
     )
-    def run(case: Any) -> list[ClaimResult]:
-        observed = (observe or observe_case)(case)
+    def run(case: Any, **computed: Any) -> list[ClaimResult]:
+        observed = (observe or observe_case)(case, **computed)
         verdicts = judge(case, observed, source=claim_id)
         verdict = expectations_verdict(verdicts)
         shown = [e.describe() for e in verdicts if not e.met]

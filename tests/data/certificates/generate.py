@@ -17,15 +17,21 @@ import numpy as np
 
 from theory.certify import case_certificates
 from theory.consensus.certificates import (
-    bundle,
-    covariance_bound_certificate,
-    ekf_covariance_bound_certificate,
     mjls_stability_certificate,
     s_detectability_certificate,
 )
-from theory.consensus.s_detectability import s_detectability_witness
+from theory.consensus.exact_linalg import rational_matrix
+from theory.consensus.infeasibility import infeasibility_certificate
+from theory.consensus.primal_certificates import exact_gain_certificate
+from theory.consensus.s_detectability import decide_s_detectability, s_detectability_witness
 from theory.core.case_file import load_case
+from theory.core.certificate_format import bundle
+from theory.core.rationalize import dyadic_matrix, fraction_strings
 from theory.pursuit.certificates import iss_certificate
+from theory.tdoa.covariance_certificates import (
+    covariance_bound_certificate,
+    ekf_covariance_bound_certificate,
+)
 from theory.tdoa.rank_certificates import generic_rank_certificates
 
 HERE = Path(__file__).resolve().parent
@@ -123,6 +129,7 @@ def good() -> dict[str, dict]:
             list(lmi["Y"]),
             dual=True,
         ),
+        **_boundary(),
         "generic-rank-fig43-case-d": bundle(generic_rank_certificates(case.spec, case=case.name)),
         **{
             f"iss-{name}": iss_certificate(load_case(cases / f"{name}.yaml").spec, case=name)
@@ -131,8 +138,58 @@ def good() -> dict[str, dict]:
     }
 
 
+def _boundary() -> dict[str, dict]:
+    """Seed 000 Example 1 at the self-weight bound 0.25: just below it (w = 0.249999999, exact
+    Lyapunov tuple of the gains [2; 0], [0; 2], 2I: P_1 ≈ diag(1, 1e9)), on it and above it (exact
+    Farkas multipliers of the blind agent 2), and Example 2's W_b (blind agent 3, λ = 1.7205)."""
+    A, Cs, W, gains = _example1(0.249999999)
+    exact = [rational_matrix(g) for g in gains]
+    example2 = load_case(HERE.parents[2] / "cases" / "ch5-example-2-wb.yaml").spec
+    return {
+        "s-detectability-ch5-example1-w0.249999999-exact": exact_gain_certificate(
+            A, Cs, W, exact, order="consensus-then-filter"
+        ),
+        "s-detectability-infeasible-ch5-example1-Wc": infeasibility_certificate(
+            *_example1(0.25)[:3]
+        ),
+        "s-detectability-infeasible-ch5-example1-Wb": infeasibility_certificate(
+            *_example1(0.26)[:3]
+        ),
+        "s-detectability-infeasible-ch5-example2-Wb": infeasibility_certificate(
+            example2.A, example2.C, example2.W
+        ),
+    }
+
+
+def _float_dual(w11: float) -> dict:
+    """The solver's multipliers for Example 1 at ``w11``, rounded: the "ε_cert ≈ 9e-9"
+    evidence that used to refute S-detectability at w = 0.249999999. ``F*(Λ, Ψ) ≠ 0``."""
+    A, Cs, W, _ = _example1(w11)
+    decision = decide_s_detectability(A, Cs, W)
+    cert = copy.deepcopy(infeasibility_certificate(*_example1(0.25)[:3]))
+    cert["data"]["W"] = fraction_strings([[Fraction(repr(x)) for x in row] for row in W.tolist()])
+    cert["witness"] = {
+        name: [fraction_strings(dyadic_matrix(m, 40)) for m in decision.multipliers[key]]
+        for name, key in (("Lambda", "Lambda"), ("Psi", "Psi"))
+    }
+    return cert
+
+
 def bad(valid: dict[str, dict]) -> tuple[dict[str, dict], dict[str, object]]:
     invalid, malformed = {}, {}
+    c = copy.deepcopy(valid["s-detectability-infeasible-ch5-example1-Wc"])
+    c["data"]["W"] = [["6/25", "19/25", "0"], ["19/25", "6/25", "0"], ["0", "0", "1"]]
+    invalid["s-detectability-infeasible-Wc-multipliers-for-Wg"] = c
+    c = copy.deepcopy(valid["s-detectability-infeasible-ch5-example1-Wc"])
+    c["witness"]["Psi"][1] = [
+        [x if x.startswith("-") or x == "0" else "-" + x for x in row]
+        for row in c["witness"]["Psi"][1]
+    ]
+    invalid["s-detectability-infeasible-negated-Psi"] = c
+    c = copy.deepcopy(valid["s-detectability-infeasible-ch5-example1-Wc"])
+    c["witness"] = {k: [[["0"] * len(r) for r in m] for m in v] for k, v in c["witness"].items()}
+    invalid["s-detectability-infeasible-zero-multipliers"] = c
+    invalid["s-detectability-infeasible-float-dual-w0.249999999"] = _float_dual(0.249999999)
     c = copy.deepcopy(valid["mjls-stability-scalar"])
     c["witness"]["P"][0] = [["-1"]]
     c["witness"]["decrease"][0] = [["-5/4"]]

@@ -1,0 +1,199 @@
+"""Public hypothesis strategies for consensus-filter problems (seed 000 ch. 5).
+
+Re-exported by :mod:`theory.strategies`. :func:`dkf_problems` draws random systems, measurements
+and networks from one seed; :func:`boundary_values` draws parameters approaching a threshold from
+both sides (and on it), the sweeps that test that verdicts near a boundary are correct or
+inconclusive; :func:`self_weight_examples` builds seed 000 Examples 1–2 with a given self-weight.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+from hypothesis import strategies as st
+from hypothesis.errors import InvalidArgument
+
+from theory.consensus.kalman_filter import ch5_examples
+from theory.strategy_helpers import check_range
+
+__all__ = [
+    "SELF_WEIGHT_THRESHOLDS",
+    "DkfProblem",
+    "boundary_values",
+    "dkf_problems",
+    "self_weight_examples",
+]
+
+
+@dataclass(frozen=True, eq=False)
+class DkfProblem:
+    """A consensus-filter problem (seed 000 ch. 5): system, per-agent measurements, weights,
+    gains, and the seed that built them.
+
+    Attributes
+    ----------
+    seed : int
+        Seed of the ``numpy.random.Generator`` that drew everything else (a failing example is
+        reproduced from it).
+    A : ndarray, shape (n, n)
+        State matrix.
+    C : tuple of ndarray
+        Measurement matrix ``C_i`` of each agent, shape (p_i, n) with ``p_i`` possibly 0.
+    W : ndarray, shape (N, N)
+        Row-stochastic consensus weights.
+    L : tuple of ndarray
+        Filter gain ``L_i`` of each agent, shape (n, p_i).
+    """
+
+    seed: int
+    A: np.ndarray
+    C: tuple[np.ndarray, ...]
+    W: np.ndarray
+    L: tuple[np.ndarray, ...]
+
+
+def _directed_weights(rng: np.random.Generator, n: int, min_weight: float) -> np.ndarray:
+    support = rng.random((n, n)) < rng.uniform(0.2, 1.0)
+    np.fill_diagonal(support, True)
+    raw = np.where(support, rng.uniform(min_weight, 1.0, (n, n)), 0.0)
+    return raw / raw.sum(axis=1, keepdims=True)
+
+
+def dkf_problems(
+    *,
+    min_states: int = 1,
+    max_states: int = 3,
+    min_agents: int = 1,
+    max_agents: int = 4,
+    max_rows: int = 2,
+    a_bound: float = 1.5,
+    gain_bound: float = 1.0,
+    integer_data: bool = False,
+) -> st.SearchStrategy[DkfProblem]:
+    """Consensus-filter problems built from one drawn seed (a failing example is its seed).
+
+    ``W`` is row-stochastic with a random directed support and weights ≥ 0.1 before
+    normalisation.
+
+    Parameters
+    ----------
+    min_states, max_states : int
+        Bounds on the state dimension ``n`` (``1 ≤ min_states ≤ max_states``).
+    min_agents, max_agents : int
+        Bounds on the number of agents ``N`` (``1 ≤ min_agents ≤ max_agents``).
+    max_rows : int
+        Each ``C_i`` has 0 to ``max_rows`` rows (``≥ 0``).
+    a_bound : float
+        Bound on the magnitude of the entries of ``A`` (``> 0``).
+    gain_bound : float
+        Bound on the magnitude of the entries of the gains ``L_i`` (``≥ 0``).
+    integer_data : bool
+        Make the entries of ``A`` multiples of ``a_bound/2`` and those of ``C_i`` lie in
+        {−1, 0, 1} (exact arithmetic stays small).
+
+    Returns
+    -------
+    SearchStrategy of DkfProblem
+
+    Raises
+    ------
+    InvalidArgument
+        At call time, for impossible bounds.
+    """
+    check_range("min_states", min_states, "max_states", max_states, 1)
+    check_range("min_agents", min_agents, "max_agents", max_agents, 1)
+    if max_rows < 0 or not a_bound > 0 or not gain_bound >= 0:
+        raise InvalidArgument(
+            "need max_rows ≥ 0, a_bound > 0, gain_bound ≥ 0; "
+            f"got {max_rows}, {a_bound}, {gain_bound}"
+        )
+
+    def build(seed: int) -> DkfProblem:
+        rng = np.random.default_rng(seed)
+        n = int(rng.integers(min_states, max_states + 1))
+        N = int(rng.integers(min_agents, max_agents + 1))
+        rows = [int(rng.integers(0, max_rows + 1)) for _ in range(N)]
+        if integer_data:
+            A = rng.integers(-2, 3, (n, n)).astype(float) / 2 * a_bound
+            C = tuple(rng.integers(-1, 2, (p, n)).astype(float) for p in rows)
+        else:
+            A = rng.uniform(-a_bound, a_bound, (n, n))
+            C = tuple(rng.uniform(-1, 1, (p, n)) for p in rows)
+        W = _directed_weights(rng, N, 0.1)
+        L = tuple(rng.uniform(-gain_bound, gain_bound, (n, p)) for p in rows)
+        return DkfProblem(seed, A, C, W, L)
+
+    return st.integers(0, 2**32 - 1).map(build)
+
+
+SELF_WEIGHT_THRESHOLDS = {
+    "example 1": Fraction(1, 4),
+    "example 2": 1 / Fraction(3441, 2000) ** 2,
+}
+"""Exact self-weight thresholds of seed 000 §5.3: ``1/r_σ(A_iᵘ)²`` with ``r_σ = 2`` and
+``1.7205 = 3441/2000`` (S-detectable iff the varied self-weight is below it; proofs in
+``docs/theory/s-detectability.md``, "Boundary sweeps")."""
+
+
+def boundary_values(
+    threshold: Fraction, *, min_exponent: int = 1, max_exponent: int = 17
+) -> st.SearchStrategy[float]:
+    """Floats ``t (1 ± 10^{-k})`` for ``k`` in ``[min_exponent, max_exponent]``, and ``t`` itself.
+
+    Parameters
+    ----------
+    threshold : Fraction
+        The threshold ``t > 0``.
+    min_exponent, max_exponent : int
+        Bounds on ``k`` (``1 ≤ min_exponent ≤ max_exponent``); ``k = 17`` is below float
+        resolution, so such draws land on or next to ``t``.
+
+    Returns
+    -------
+    SearchStrategy of float
+
+    Raises
+    ------
+    InvalidArgument
+        For a non-positive threshold or impossible bounds.
+    """
+    if not threshold > 0:
+        raise InvalidArgument(f"threshold={threshold} must be positive")
+    check_range("min_exponent", min_exponent, "max_exponent", max_exponent, 1)
+    t = float(threshold)
+    offsets = st.tuples(st.sampled_from((-1, 1)), st.integers(min_exponent, max_exponent))
+    return st.one_of(st.just(t), offsets.map(lambda o: t * (1 + o[0] * 10.0 ** -o[1])))
+
+
+def self_weight_examples(example: str, w: float) -> tuple[np.ndarray, list[np.ndarray], np.ndarray]:
+    """``(A, C, W(w))`` of seed 000 Example 1 (agents 1 and 2 get self-weight ``w``, their other
+    weight ``1 − w``) or Example 2 (agent 3 gets ``w``, ``(1 − w)/2`` to agents 1 and 2).
+
+    Parameters
+    ----------
+    example : {"example 1", "example 2"}
+        Which example of :func:`theory.consensus.kalman_filter.ch5_examples`.
+    w : float
+        The self-weight, in ``[0, 1]``.
+
+    Returns
+    -------
+    (A, C, W)
+
+    Raises
+    ------
+    InvalidArgument
+        For an unknown example or ``w`` outside ``[0, 1]``.
+    """
+    if example not in SELF_WEIGHT_THRESHOLDS or not 0 <= w <= 1:
+        raise InvalidArgument(
+            f"example={example!r}, w={w!r}: expected {list(SELF_WEIGHT_THRESHOLDS)}, w in [0, 1]"
+        )
+    data = ch5_examples()[example]
+    if example == "example 1":
+        W = np.array([[w, 1 - w, 0], [1 - w, w, 0], [0, 0, 1]])
+    else:
+        W = np.array([[1, 0, 0], [0, 1, 0], [(1 - w) / 2, (1 - w) / 2, w]])
+    return data["A"], list(data["C"]), W

@@ -1,0 +1,189 @@
+"""The certificate envelope shared by every builder (DESIGN.md, *Certificates*).
+
+A certificate is ``{"format", "kind", "source", "case"?, "claim", "data", "witness",
+"produced_by"?}`` with every number an exact rational string (``docs/certificates.md``); a bundle
+is ``{"format", "kind": "bundle", "case"?, "certificates"}``. The builders of each domain
+(:mod:`theory.consensus.certificates`, :mod:`theory.consensus.infeasibility`,
+:mod:`theory.tdoa.covariance_certificates`, …) compute claim, data and witness; this module
+wraps them, and :func:`rounded` turns a floating witness into the first dyadic rounding that the
+independent checker :mod:`proofs_check` accepts — never into anything weaker.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+import proofs_check
+from theory.core.rationalize import (
+    PRECISIONS,
+    RationalizationError,
+    dyadic_matrix,
+    first_success,
+    fraction_strings,
+)
+
+__all__ = ["FORMAT", "bundle", "checked", "envelope", "rational_bound", "rounded", "strings"]
+
+FORMAT = proofs_check.FORMAT
+"""The format version every certificate carries."""
+
+Matrix = list[list[Fraction]]
+
+
+def envelope(
+    kind: str,
+    claim: dict[str, Any],
+    data: dict[str, Any],
+    witness: dict[str, Any],
+    *,
+    source: str = "",
+    case: str | None = None,
+) -> dict[str, Any]:
+    """One certificate: the kind, where its claim comes from, the claim, data and witness.
+
+    Parameters
+    ----------
+    kind : str
+        A kind of :data:`proofs_check.kinds.KINDS`.
+    claim, data, witness : dict
+        Already in exact strings (:func:`strings`).
+    source : str
+        The paper and result, e.g. ``seed 000, Lemma 5.2.2``.
+    case : str, optional
+        Case name recorded in the certificate.
+
+    Returns
+    -------
+    dict
+    """
+    cert: dict[str, Any] = {"format": FORMAT, "kind": kind, "source": source, "claim": claim}
+    cert |= {"data": data, "witness": witness}
+    if case is not None:
+        cert["case"] = case
+    return cert
+
+
+def bundle(certificates: Sequence[dict], *, case: str | None = None) -> dict:
+    """Several certificates in one file (``"kind": "bundle"``), valid iff each one is.
+
+    Parameters
+    ----------
+    certificates : sequence of dict
+        Certificates made with :func:`envelope` (or in its format).
+    case : str, optional
+        Case name recorded in the bundle.
+
+    Returns
+    -------
+    dict
+    """
+    out: dict[str, Any] = {"format": FORMAT, "kind": "bundle"}
+    if case is not None:
+        out["case"] = case
+    out["certificates"] = list(certificates)
+    return out
+
+
+def checked(cert: dict[str, Any]) -> str | None:
+    """Run :mod:`proofs_check` on ``cert``: None if it is valid, else why not.
+
+    A certificate the checker refuses as too costly (work estimate, time budget) is reported like
+    an invalid one, so a builder moves on instead of failing.
+
+    Parameters
+    ----------
+    cert : dict
+        A certificate.
+
+    Returns
+    -------
+    str or None
+        The first failing check (name and detail), the refusal, or None when valid.
+    """
+    try:
+        verdict = proofs_check.check_certificate(cert)
+    except proofs_check.MalformedError as error:
+        return f"proofs_check refuses it: {error}"
+    if verdict.valid:
+        return None
+    failed = next((c for c in verdict.checks if not c.valid), None)
+    return f"{failed.name}: {failed.detail}" if failed else "no checks"
+
+
+def strings(mats: Sequence[Matrix]) -> list:
+    """The exact matrices ``mats`` as nested lists of rational strings."""
+    return [fraction_strings(m) for m in mats]
+
+
+def rational_bound(value: float | Fraction) -> Fraction:
+    """The bound ``value`` (``ρ``, a rate) as a rational with denominator at most 10⁶."""
+    return Fraction(value).limit_denominator(10**6)
+
+
+def rounded(
+    build: Callable[[dict[str, list[Matrix]]], dict],
+    matrices: dict[str, list[np.ndarray]],
+    *,
+    margin: float,
+    lmi_margin: float,
+    precisions: Sequence[int] = PRECISIONS,
+    what: str,
+) -> dict:
+    """Round the float ``matrices`` with growing precision until ``build(rounded)`` checks.
+
+    Parameters
+    ----------
+    build : callable
+        ``build({name: [exact matrices]}) -> certificate``.
+    matrices : dict of str to list of ndarray
+        The float witness, by name.
+    margin : float
+        The float witness's relative margin (must exceed ``lmi_margin``).
+    lmi_margin : float
+        Least margin worth rounding.
+    precisions : sequence of int
+        Significant bits tried in turn.
+    what : str
+        Names the certificate in error messages.
+
+    Returns
+    -------
+    dict
+        The first certificate :func:`proofs_check.check_certificate` accepts, with
+        ``produced_by`` (tool, significant bits, float margin, lmi_margin).
+
+    Raises
+    ------
+    RationalizationError
+        If the margin is too small or no rounding passes the exact check.
+    """
+    if not margin > lmi_margin:
+        raise RationalizationError(
+            f"{what}: the float witness's relative margin {margin:.3g} does not exceed "
+            f"lmi_margin = {lmi_margin:g}; it is not strictly feasible, so no certificate"
+        )
+
+    failures: list[str] = []
+
+    def attempt(bits: int) -> dict | None:
+        exact = {name: [dyadic_matrix(m, bits) for m in mats] for name, mats in matrices.items()}
+        cert = build(exact)
+        why = checked(cert)
+        failures.append(f"{bits} bits: {why}")
+        return cert if why is None else None
+
+    try:
+        cert, bits = first_success(attempt, precisions=precisions, what=what)
+    except RationalizationError as error:
+        raise RationalizationError(f"{error} (last attempt, {failures[-1]})") from None
+    cert["produced_by"] = {
+        "tool": "trackcert",
+        "significant_bits": bits,
+        "float_margin": f"{margin:.6g}",
+        "lmi_margin": f"{lmi_margin:g}",
+    }
+    return cert
