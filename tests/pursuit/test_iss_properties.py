@@ -37,12 +37,8 @@ from theory.pursuit.iss_counterexamples import (
     eq75_missing_norm,
     xi_not_orthogonal_to_ones,
 )
-from theory.pursuit.model import (
-    closed_loop_rates,
-    path_derivative_numeric,
-    path_numeric,
-    rotation_numeric,
-)
+from theory.pursuit.model import closed_loop_rates, exp_skew, path_derivative
+from theory.pursuit.model import path as path_numeric
 from theory.strategies import digraph_laplacians, pursuit_cases, tracker_states
 
 REL_TOL = 1e-9
@@ -87,7 +83,7 @@ def test_corrected_eq71_no_violation(data) -> None:
     params = {"r_x": path.r_x, "r_y": path.r_y, "gamma0": path.gamma0}
     if spec.dim == 3:
         params.update({"r_z": path.r_z, "c": path.c})
-    r_prime = path_derivative_numeric(state.gamma, **params)
+    r_prime = path_derivative(state.gamma, **params)
     phi_sq = (
         float(np.sum((state.rotation.T @ state.v_err) ** 2)) + float(state.q_err @ r_prime) ** 2
     )
@@ -247,7 +243,7 @@ def _dec_rhs(spec, x_tilde):
         out = np.zeros_like(s)
         for i in range(n):
             params = {"r_x": path[i].r_x, "r_y": path[i].r_y, "gamma0": path[i].gamma0}
-            rotation = rotation_numeric([s[i, 2]])
+            rotation = exp_skew([s[i, 2]])
             rates = closed_loop_rates(
                 position=s[i, :2], rotation=rotation, gamma=gamma[i], gamma_dot=gamma_dot[i],
                 target_position=q, target_velocity=v, estimate_position=q + q_err[i],
@@ -275,7 +271,7 @@ def _mu_norm(spec, t, state):
     total = float(xi @ xi + e_gamma @ e_gamma)
     for i in range(n):
         params = {"r_x": path[i].r_x, "r_y": path[i].r_y, "gamma0": path[i].gamma0}
-        rotation = rotation_numeric([s[i, 2]])
+        rotation = exp_skew([s[i, 2]])
         e_p = rotation.T @ (s[i, :2] - path_numeric(s[i, 3], **params) - q) - spec.epsilon
         total += float(e_p @ e_p)
     return math.sqrt(total)

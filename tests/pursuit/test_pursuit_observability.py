@@ -17,9 +17,9 @@ import sympy as sp
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.pursuit import observability as po
 from theory.core.claims import get_claim
 from theory.core.observability import numeric_rank
+from theory.pursuit import observability as po
 
 RADII = st.floats(10.0, 200.0)
 PHASES = st.floats(0.0, 2 * math.pi)

@@ -141,9 +141,9 @@ def _finish_tdoa(case: Case, spec: Any, results: list, folder: Path, figures: bo
 
 def _pursuit_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
     from theory.pursuit.simulation import (
+        RECORD_INTERVAL,
         check_pursuit_case,
         default_steps,
-        integration_step,
         run_pursuit_case,
     )
 
@@ -151,9 +151,13 @@ def _pursuit_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
         check_pursuit_case(case.spec)
     except CaseError as error:
         raise error.in_file(case.file) from None
-    steps = steps or default_steps(case.spec.dim)
-    dt = integration_step(case.spec.dim)
-    fields = {"controller": case.spec.controller, "dim": case.spec.dim, "steps": steps, "dt": dt}
+    steps = steps or default_steps()
+    fields = {
+        "controller": case.spec.controller,
+        "dim": case.spec.dim,
+        "steps": steps,
+        "dt": RECORD_INTERVAL,
+    }
     simulate_one = functools.partial(run_pursuit_case, steps=steps)
     return case.spec, simulate_one, {"fields": fields, "finish": _finish_pursuit}
 

@@ -34,7 +34,8 @@ import sympy as sp
 
 from theory.core.claims import ClaimResult, register
 from theory.core.observability import RANK_TOL, RankResult, numeric_rank
-from theory.pursuit.model import path, path_numeric
+from theory.pursuit.model import path as path_numeric
+from theory.pursuit.model_symbolic import path
 
 __all__ = [
     "CIRCLE_RADIUS",
@@ -251,7 +252,7 @@ def helix_samples(
         raise ValueError(f"steps must be at least 1, got {steps}")
     times = sampling_period * np.arange(steps)
     gamma = omega_bar * times
-    relative = path_numeric(gamma, r_x, r_y, gamma0, r_z, float(c)).T
+    relative = path_numeric(gamma, r_x, r_y, gamma0, r_z, float(c))
     return times, relative
 
 
@@ -895,8 +896,8 @@ def check_result2(case: None = None, *, rank_tol: float = RANK_TOL) -> list[Clai
 def _formation_evidence(times: np.ndarray, rank_tol: float) -> dict[str, Any]:
     """Table I's N = 2 formation around a target at rest: γ₀^[1] − γ₀^[2] = π/2 (§V)."""
     radius, rate = TABLE_I_PATH["r_x"], TABLE_I_PATH["omega_bar"]
-    p1 = path_numeric(rate * times, radius, radius, np.pi / 2).T
-    p2 = path_numeric(rate * times, radius, radius, 0.0).T
+    p1 = path_numeric(rate * times, radius, radius, np.pi / 2)
+    p2 = path_numeric(rate * times, radius, radius, 0.0)
     o_rank = numeric_rank(o_matrix(p2 - p1, times), rank_tol=rank_tol)
     both = numeric_rank(
         range_jacobian(np.vstack([p1, p2]), np.concatenate([times, times])), rank_tol=rank_tol

@@ -22,15 +22,17 @@ import numpy as np
 
 from theory.core.errors import CaseError
 from theory.pursuit.case import PursuitSpec
-from theory.pursuit.closed_loop import DecRun, DecSettings, delta_matrix, simulate_dec
+from theory.pursuit.closed_loop import DecRun, DecSettings, simulate_dec
+from theory.pursuit.model import desired_speed
 from theory.sim.figures import save_figure
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
 
 __all__ = [
     "DEFAULT_DURATION",
+    "RECORD_INTERVAL",
     "check_pursuit_case",
+    "dec_arguments",
     "default_steps",
-    "integration_step",
     "run_pursuit_case",
     "summarize_pursuit",
     "write_pursuit_data",
@@ -41,26 +43,14 @@ DEFAULT_DURATION = 450.0
 """Seconds simulated by default (the paper's runs; 4501 samples of 0.1 s in 2-D)."""
 
 
-def integration_step(dim: int) -> float:
-    """Forward-Euler step: 0.1 s in 2-D; 0.02 s in 3-D, where 0.1 s makes the loop blow up
-    (turn rates of tens of rad/s early on) and 0.02 s agrees with 0.005 s to 1e-2 m.
-
-    Parameters
-    ----------
-    dim : int
-        2 or 3.
-
-    Returns
-    -------
-    float
-    """
-    return 0.1 if dim == 2 else 0.02
+RECORD_INTERVAL = 0.1
+"""Seconds between recorded samples (both dimensions): the integrator adapts its own steps
+(:mod:`theory.pursuit.closed_loop`) and lands on every record."""
 
 
-def default_steps(dim: int) -> int:
-    """Steps in ``DEFAULT_DURATION``: ``round(DEFAULT_DURATION / integration_step(dim))``, an
-    int, for ``dim`` 2 or 3."""
-    return round(DEFAULT_DURATION / integration_step(dim))
+def default_steps() -> int:
+    """Records after the first in ``DEFAULT_DURATION``: 4500 of ``RECORD_INTERVAL``."""
+    return round(DEFAULT_DURATION / RECORD_INTERVAL)
 
 
 def check_pursuit_case(spec: PursuitSpec) -> None:
@@ -79,7 +69,7 @@ def check_pursuit_case(spec: PursuitSpec) -> None:
         raise CaseError("pursuit.target", "a target motion to simulate", "nothing")
     if spec.dekf is None:
         raise CaseError("pursuit.dekf", "DEKF settings (Ts, sigma, V, Q) to simulate", "nothing")
-    if np.linalg.matrix_rank(delta_matrix(spec.epsilon)) < spec.dim:
+    if spec.epsilon[0] == 0:
         raise CaseError(
             "pursuit.epsilon",
             "an ε making Δ of (22) full row rank (ε₁ ≠ 0 in 2-D)",
@@ -88,54 +78,66 @@ def check_pursuit_case(spec: PursuitSpec) -> None:
 
 
 def _target_states(spec: PursuitSpec, steps: int) -> np.ndarray:
-    times = integration_step(spec.dim) * np.arange(steps + 1)
+    times = RECORD_INTERVAL * np.arange(steps + 1)
     motion = spec.target
     return np.array([np.concatenate([motion.position(t), motion.velocity_at(t)]) for t in times])
 
 
-def run_pursuit_case(
-    spec: PursuitSpec, rng: np.random.Generator, steps: int | None = None
-) -> DecRun:
-    """One run of the 2-D DEC loop for a pursuit case.
+def _initial_trackers(spec: PursuitSpec, start: np.ndarray) -> dict[str, np.ndarray]:
+    """Initial positions, headings, γ and e_γ = γ̇(0) − ω_d(0) (defaults: module docstring)."""
+    d, laplacian = spec.dim, spec.laplacian.astype(float)
+    positions, headings, gammas, rates = [], [], [], []
+    for i, tracker in enumerate(spec.trackers):
+        initial = tracker.initial
+        default = start + np.array([-40.0 + 5 * i, -40.0 - 5 * i, 0.0][:d])
+        positions.append(initial.get("position", default))
+        euler = np.asarray(initial.get("euler", np.zeros(1 if d == 2 else 3)), dtype=float)
+        headings.append(euler[0] if d == 2 else euler)
+        gammas.append(initial.get("gamma", float(i)))
+        rates.append(initial.get("gamma_dot"))
+    gammas = np.array(gammas, float)
+    omega_d = desired_speed(spec.omega_bar, laplacian, gammas, spec.k_c or 0.0)
+    e_gamma = np.array([0.0 if r is None else r - w for r, w in zip(rates, omega_d, strict=True)])
+    return {
+        "initial_positions": np.array(positions, float),
+        "initial_headings": np.array(headings),
+        "initial_gammas": gammas,
+        "initial_gamma_errors": e_gamma if spec.controller == "II" else None,
+    }
+
+
+def dec_arguments(spec: PursuitSpec, steps: int | None = None) -> dict[str, Any]:
+    """The keyword arguments of :func:`theory.pursuit.closed_loop.simulate_dec` for a case
+    (all but ``rng``).
 
     Parameters
     ----------
     spec : PursuitSpec
         A case accepted by :func:`check_pursuit_case`.
-    rng : numpy.random.Generator
-        Source of the range noise.
     steps : int, optional
-        Number of :func:`integration_step` steps (default :func:`default_steps`).
+        Number of records after the first, every :data:`RECORD_INTERVAL` (default
+        :func:`default_steps`).
 
     Returns
     -------
-    DecRun
+    dict
     """
-    steps = default_steps(spec.dim) if steps is None else steps
+    steps = default_steps() if steps is None else steps
     dekf, d = spec.dekf, spec.dim
     target = _target_states(spec, steps)
-    positions, headings, gammas = [], [], []
-    for i, tracker in enumerate(spec.trackers):
-        initial = tracker.initial
-        default = target[0, :d] + np.array([-40.0 + 5 * i, -40.0 - 5 * i, 0.0][:d])
-        positions.append(initial.get("position", default))
-        euler = np.asarray(initial.get("euler", np.zeros(1 if d == 2 else 3)), dtype=float)
-        headings.append(euler[0] if d == 2 else euler)
-        gammas.append(initial.get("gamma", float(i)))
     offset = np.array([5.0, -5.0, 0.0][:d])
     x0 = dekf.x0 if dekf.x0 is not None else np.concatenate([target[0, :d] + offset, np.zeros(d)])
-    P0 = dekf.P0 if dekf.P0 is not None else 10.0 * np.eye(2 * d)
     settings = DecSettings(
         omega_bar=spec.omega_bar,
         epsilon=tuple(float(e) for e in spec.epsilon),
-        Kp=tuple(float(k) for k in np.diag(spec.K_p)),
-        k_gamma=spec.k_gamma if spec.k_gamma is not None else 1.0,
+        Kp=spec.K_p,
+        k_gamma=spec.k_gamma if spec.k_gamma is not None else 0.0,
         k_c=spec.k_c if spec.k_c is not None else 0.0,
         controller=spec.controller,
         V=dekf.V,
-        Q=tuple(float(q) for q in np.diag(dekf.Q)),
+        Q=dekf.Q,
         Ts=dekf.Ts,
-        dt=integration_step(spec.dim),
+        dt=RECORD_INTERVAL,
         sigma=dekf.sigma,
     )
     paths = np.array(
@@ -144,11 +146,39 @@ def run_pursuit_case(
             for t in spec.trackers
         ]
     )
-    in_neighbours = [list(np.flatnonzero(row)) for row in spec.adjacency]
-    return simulate_dec(
-        target, np.array(positions, float), np.array(headings), np.array(gammas, float),
-        in_neighbours, x0, P0, steps, rng, settings, paths=paths, fusion=dekf.weights,
-    )  # fmt: skip
+    return {
+        "target": target,
+        **_initial_trackers(spec, target[0, :d]),
+        "in_neighbours": [list(np.flatnonzero(row)) for row in spec.adjacency],
+        "x0": x0,
+        "P0": dekf.P0 if dekf.P0 is not None else 10.0 * np.eye(2 * d),
+        "steps": steps,
+        "settings": settings,
+        "paths": paths,
+        "fusion": dekf.weights,
+    }
+
+
+def run_pursuit_case(
+    spec: PursuitSpec, rng: np.random.Generator, steps: int | None = None
+) -> DecRun:
+    """One run of the DEC loop (2-D or 3-D) for a pursuit case.
+
+    Parameters
+    ----------
+    spec : PursuitSpec
+        A case accepted by :func:`check_pursuit_case`.
+    rng : numpy.random.Generator
+        Source of the range noise.
+    steps : int, optional
+        Number of records after the first, every :data:`RECORD_INTERVAL` (default
+        :func:`default_steps`).
+
+    Returns
+    -------
+    DecRun
+    """
+    return simulate_dec(rng=rng, **dec_arguments(spec, steps))
 
 
 def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, Any]:
