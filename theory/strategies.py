@@ -9,7 +9,8 @@ Users import these in their own property tests (STYLE.md, *Adopt* 11)::
     def test_cone_scenes_lose_rank(scene): ...
 
 Names are plural nouns, bounds are keyword-only, conditioning is bounded, and impossible
-arguments raise :class:`hypothesis.errors.InvalidArgument` with the offending value.
+arguments raise :class:`hypothesis.errors.InvalidArgument` with the offending value. The seed 003
+strategies live in :mod:`theory.pursuit.strategies` and are re-exported here.
 """
 
 from __future__ import annotations
@@ -27,6 +28,8 @@ from theory.pursuit.strategies import (
     TrackerState,
     pursuit_cases,
     pursuit_parameters,
+    simulated_pursuit_blocks,
+    simulated_pursuit_cases,
     tracker_states,
 )
 
@@ -43,6 +46,8 @@ __all__ = [
     "networks",
     "pursuit_cases",
     "pursuit_parameters",
+    "simulated_pursuit_blocks",
+    "simulated_pursuit_cases",
     "state_space_pairs",
     "tdoa_scenes",
     "tracker_states",

@@ -344,3 +344,29 @@ def test_lemma2_equality_along_the_kinematics(data) -> None:
     K = pursuit_iss(spec).K
     expected = -float(e @ K @ e)
     assert math.isclose(rates.v_dot, expected, rel_tol=1e-8, abs_tol=1e-8 * (1 + e @ e))
+
+
+# ---------------------------------------------------------------------------------------------
+# Theorem 2 against the simulator (the agreement property of trackcert falsify)
+
+
+def test_simulator_agrees_with_the_certificate_on_random_cases() -> None:
+    """``seed003.thm2.sim-trajectories/corrected``: no counterexample within the CI budget (25
+    derandomized examples of :func:`theory.strategies.simulated_pursuit_cases`)."""
+    from theory.falsify import falsify, properties_for
+
+    (prop,) = properties_for("seed003.thm2.sim-trajectories/corrected")
+    result = falsify(prop, examples=25, seed=0)
+    assert not result.found, result.case
+
+
+def test_agreement_counterexample_case_reloads() -> None:
+    """The case an example becomes is a valid case that ``trackcert iss`` certifies."""
+    from hypothesis import find
+
+    from theory.pursuit.properties import agreement_case, agreement_examples, agreement_verdict
+
+    example = find(agreement_examples(), lambda e: e.block["dim"] == 3, settings=None)
+    case = parse_case(agreement_case(example))
+    assert case.expect == {"iss": True, "simulation_bounded": True}
+    assert agreement_verdict(example)["simulation_bounded"]

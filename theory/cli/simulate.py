@@ -164,6 +164,7 @@ def _pursuit_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
 
 def _finish_pursuit(case: Case, spec: Any, results: list, folder: Path, figures: bool):
     from theory.pursuit.simulation import (
+        pursuit_expectations,
         summarize_pursuit,
         write_pursuit_data,
         write_pursuit_figures,
@@ -173,7 +174,10 @@ def _finish_pursuit(case: Case, spec: Any, results: list, folder: Path, figures:
     files = write_pursuit_data(results, summary, folder)
     if figures:
         files += write_pursuit_figures(results, folder)
-    return summary, {}, files
+    for stopped in summary["stopped_at"]:
+        if stopped is not None:
+            error_console.print(f"warning: a run's integration stopped at t = {stopped:g} s")
+    return summary, pursuit_expectations(case, summary), files
 
 
 def _dkf_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:

@@ -78,7 +78,7 @@ TRACKER_FIELDS_3D = ("r_x", "r_y", "r_z", "c", "gamma0", "initial")
 INITIAL_FIELDS = ("position", "euler", "gamma", "gamma_dot")
 TARGET_FIELDS = ("offset", "velocity", "amplitude", "frequency", "phase")
 DEKF_FIELDS = ("Ts", "sigma", "V", "Q", "weights", "x0", "P0")
-EXPECT_KEYS = ("iss", "delta_full_rank", "strongly_connected")
+EXPECT_KEYS = ("iss", "delta_full_rank", "strongly_connected", "simulation_bounded")
 TOLERANCE_KEYS = ("margin_tol", "weight_sum_tol")
 
 

@@ -122,13 +122,13 @@ class DecRun:
     target: np.ndarray
     steps: int = 0
     rejected: int = 0
-    stopped_at: float | None = None
+    stopped_at: float = math.nan
     stop_reason: str = ""
 
     @property
     def completed(self) -> bool:
         """Whether the integration reached the last record."""
-        return self.stopped_at is None
+        return math.isnan(self.stopped_at)
 
 
 class LoopState:
@@ -411,8 +411,22 @@ def _path_harmonics(paths: np.ndarray) -> model.PathHarmonics:
 def build_loop(
     settings: DecSettings, paths: np.ndarray, in_neighbours: list[list[int]], dim: int
 ) -> DecLoop:
-    """The :class:`DecLoop` of ``settings`` for trackers on ``paths`` (rows as in
-    :func:`simulate_dec`) with in-neighbours ``in_neighbours``.
+    """The :class:`DecLoop` of ``settings`` for trackers on ``paths``.
+
+    Parameters
+    ----------
+    settings : DecSettings
+        Gains (``epsilon``, ``Kp``, ``k_gamma``, ``k_c``, ``omega_bar``, ``controller``).
+    paths : ndarray, shape (N, 3) or (N, 5)
+        Rows as in :func:`simulate_dec`.
+    in_neighbours : list of list of int
+        0-based in-neighbours of each tracker (L = D_in − A).
+    dim : int
+        2 or 3.
+
+    Returns
+    -------
+    DecLoop
 
     Raises
     ------
@@ -497,7 +511,7 @@ def _run(
     z = np.full((steps + 1, state.z.size), np.nan)
     R = np.full((steps + 1, *state.R.shape), np.nan)
     estimates = np.full((steps + 1, loop.n, 2 * loop.dim + 1), np.nan)
-    counts, h, stopped, reason = [0, 0], dt, None, ""
+    counts, h, stopped, reason = [0, 0], dt, math.nan, ""
     filter_state = (dekf["x_pred"], dekf["Omega"])
     for m in range(steps + 1):
         if m % every == 0:

@@ -11,6 +11,7 @@ seed 003, eqs. (4), (21), (22), (65)–(78), Remark 6, Lemmas 1–4, Theorems 1�
 
 from __future__ import annotations
 
+from importlib import import_module
 from typing import Any
 
 from theory.core.claims import ClaimResult, applicable_results, get_claim, register
@@ -37,6 +38,12 @@ from theory.pursuit.iss_symbolic import (
 )
 
 __all__ = ["run_case_claims", "run_model_claims"]
+
+# Interim, until claim modules are found by convention (*_claims.py) instead of
+# theory.core.claims.CLAIM_MODULES: importing this listed module registers its siblings too.
+import_module("theory.pursuit.certificate_claims")
+import_module("theory.pursuit.observability_claims")
+import_module("theory.pursuit.simulation_claims")
 
 CASE_CLAIMS = ("seed003.thm1", "seed003.lem4", "seed003.lem3", "seed003.thm2")
 MODEL_CLAIMS = (

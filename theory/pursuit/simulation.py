@@ -4,8 +4,9 @@ Adapts a :class:`~theory.pursuit.case.PursuitSpec` to
 :func:`theory.pursuit.closed_loop.simulate_dec`.
 Defaults where the case leaves the simulation unspecified (documented in
 ``docs/simulation.md``): tracker ``i`` (0-based) starts at ``q(0) + (−40 + 5i, −40 − 5i[, 0])``
-m with zero Euler angles and ``γ^[i](0) = i`` rad; estimates start at
-``[q(0) + (5, −5[, 0]); 0]`` with ``P = 10 I``; steps of ``dt = 0.1`` s.
+m with zero Euler angles, ``γ^[i](0) = i`` rad and γ̇(0) = ω_d(0) (a case's ``gamma_dot``
+sets e_γ(0) = γ̇(0) − ω_d(0), Type II); estimates start at ``[q(0) + (5, −5[, 0]); 0]`` with
+``P = 10 I``. The loop is integrated with error control and recorded every 0.1 s.
 """
 
 from __future__ import annotations
@@ -14,17 +15,13 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 
+from theory.core.case_file import Case
 from theory.core.errors import CaseError
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.closed_loop import DecRun, DecSettings, simulate_dec
 from theory.pursuit.model import desired_speed
-from theory.sim.figures import save_figure
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
 
 __all__ = [
@@ -33,6 +30,7 @@ __all__ = [
     "check_pursuit_case",
     "dec_arguments",
     "default_steps",
+    "pursuit_expectations",
     "run_pursuit_case",
     "summarize_pursuit",
     "write_pursuit_data",
@@ -194,7 +192,11 @@ def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, An
     dict
         ``{"agents": [{"id", "final_localization_error", "mean_localization_error",
         "final_pursuit_error", "mean_pursuit_error"}], "final_gamma_spread",
-        "final_gamma_rate_error", "omega_bar"}`` (means over runs; errors in m, γ in rad).
+        "final_gamma_rate_error", "omega_bar", "integration_steps", "stopped_at",
+        "iss_agreement"}`` (means over runs; errors in m, γ in rad; ``stopped_at`` per run,
+        ``None`` when the run completed; ``iss_agreement``: run 0 against the certified
+        estimate, :func:`theory.pursuit.iss_check.simulation_agreement`, or ``None`` when
+        ``trackcert iss`` certifies nothing).
     """
     loc = np.mean([r.localization_errors for r in runs], axis=0)
     pur = np.mean([r.pursuit_errors for r in runs], axis=0)
@@ -215,7 +217,44 @@ def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, An
             np.mean([np.abs(r.gamma_rates[-1] - spec.omega_bar).max() for r in runs])
         ),
         "omega_bar": spec.omega_bar,
+        "integration_steps": [r.steps for r in runs],
+        "stopped_at": [None if r.completed else r.stopped_at for r in runs],
+        "iss_agreement": _agreement(spec, runs[0]),
     }
+
+
+def _agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any] | None:
+    from theory.pursuit.iss import iss_conditions
+    from theory.pursuit.iss_check import simulation_agreement
+
+    statuses = {c.status for c in iss_conditions(spec)} - {"not-applicable"}
+    if statuses != {"holds"}:
+        return None
+    return simulation_agreement(spec, run)
+
+
+def pursuit_expectations(case: Case, summary: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """The ``simulation_bounded`` expectation of ``case`` against run 0 of ``summary``.
+
+    Parameters
+    ----------
+    case : Case
+        The simulated case (its ``expect`` block).
+    summary : dict
+        From :func:`summarize_pursuit`.
+
+    Returns
+    -------
+    dict
+        ``{"simulation_bounded": {"expected", "got", "met"}}`` when the case expects it, else
+        empty (``got`` is ``None`` when ``trackcert iss`` certifies nothing).
+    """
+    if "simulation_bounded" not in case.expect:
+        return {}
+    agreement = summary["iss_agreement"]
+    got = None if agreement is None else agreement["simulation_bounded"]
+    wanted = case.expect["simulation_bounded"]
+    return {"simulation_bounded": {"expected": wanted, "got": got, "met": got == wanted}}
 
 
 def write_pursuit_data(runs: Sequence[DecRun], summary: dict[str, Any], folder: Path) -> list[Path]:
@@ -262,6 +301,13 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
     -------
     list of pathlib.Path
     """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from theory.sim.figures import save_figure
+
     run = runs[0]
     paths = []
     fig, ax = plt.subplots(figsize=(6, 6))

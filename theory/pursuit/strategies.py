@@ -20,10 +20,12 @@ from theory.pursuit.model import closed_loop_rates, exp_skew
 from theory.pursuit.model import path as path_point
 
 __all__ = [
+    "SIMULATED_BOUNDS",
     "PursuitParameters",
     "TrackerState",
     "pursuit_cases",
     "pursuit_parameters",
+    "simulated_pursuit_blocks",
     "simulated_pursuit_cases",
     "tracker_states",
 ]
@@ -164,6 +166,43 @@ def _vectors(dim: int, bound: float) -> st.SearchStrategy[np.ndarray]:
     return st.lists(st.floats(-bound, bound), min_size=dim, max_size=dim).map(np.array)
 
 
+def _check_choices(dims: tuple[int, ...], controllers: tuple[str, ...]) -> None:
+    if not dims or not set(dims) <= {2, 3}:
+        raise InvalidArgument(f"dims={dims}; expected a non-empty subset of (2, 3)")
+    if not controllers or not set(controllers) <= {"I", "II"}:
+        raise InvalidArgument(f"controllers={controllers}; expected a subset of ('I', 'II')")
+
+
+def _pursuit_block(draw: st.DrawFn, n: int, dim: int, controller: str, bounds: dict) -> dict:
+    """A ``pursuit:`` block's gains, ε, ω̄ and paths (no graph, target or DEKF)."""
+    positive_gains, sizes = st.floats(*bounds["gains"]), st.floats(*bounds["path_sizes"])
+    eigen = draw(st.lists(positive_gains, min_size=dim, max_size=dim))
+    q_rot = exp_skew(draw(_vectors(1 if dim == 2 else 3, 3.0)))
+    K_p = q_rot @ np.diag(eigen) @ q_rot.T
+    eps1 = draw(st.floats(*bounds["epsilon_1"])) * draw(st.sampled_from([-1, 1]))
+    epsilon = [eps1, *draw(st.lists(st.floats(-3, 3), min_size=dim - 1, max_size=dim - 1))]
+    trackers = []
+    for _ in range(n):
+        path = {"r_x": draw(sizes), "r_y": draw(sizes)}
+        path["gamma0"] = draw(st.floats(-math.pi, math.pi))
+        if dim == 3:
+            path["r_z"] = draw(sizes)
+            path["c"] = draw(st.floats(1.2, 5)) * draw(st.sampled_from([-1, 1]))
+        trackers.append(path)
+    block = {
+        "dim": dim,
+        "controller": controller,
+        "omega_bar": draw(st.floats(*bounds["omega_bar"])),
+        "epsilon": epsilon,
+        "K_p": ((K_p + K_p.T) / 2).tolist(),
+        "k_gamma": draw(st.floats(*bounds.get("k_gamma", bounds["gains"]))),
+        "trackers": trackers,
+    }
+    if n > 1:
+        block["k_c"] = draw(positive_gains)
+    return block
+
+
 @st.composite
 def pursuit_cases(
     draw: st.DrawFn,
@@ -195,40 +234,117 @@ def pursuit_cases(
     """
     if n_trackers < 1:
         raise InvalidArgument(f"n_trackers={n_trackers} must be at least 1")
-    if not dims or not set(dims) <= {2, 3}:
-        raise InvalidArgument(f"dims={dims}; expected a non-empty subset of (2, 3)")
-    if not controllers or not set(controllers) <= {"I", "II"}:
-        raise InvalidArgument(f"controllers={controllers}; expected a subset of ('I', 'II')")
+    _check_choices(dims, controllers)
     _check_interval("gains", gains)
     _check_interval("path_sizes", path_sizes)
-    positive_gains, sizes = st.floats(*gains), st.floats(*path_sizes)
-    dim = draw(st.sampled_from(dims))
-    eigen = draw(st.lists(positive_gains, min_size=dim, max_size=dim))
-    q_rot = exp_skew(draw(_vectors(1 if dim == 2 else 3, 3.0)))
-    K_p = q_rot @ np.diag(eigen) @ q_rot.T
-    eps1 = draw(st.floats(0.1, 3.0)) * draw(st.sampled_from([-1, 1]))
-    epsilon = [eps1, *draw(st.lists(st.floats(-3, 3), min_size=dim - 1, max_size=dim - 1))]
-    trackers = []
-    for _ in range(n_trackers):
-        path = {"r_x": draw(sizes), "r_y": draw(sizes)}
-        path["gamma0"] = draw(st.floats(-math.pi, math.pi))
-        if dim == 3:
-            path["r_z"] = draw(sizes)
-            path["c"] = draw(st.floats(1.2, 5)) * draw(st.sampled_from([-1, 1]))
-        trackers.append(path)
-    block = {
-        "dim": dim,
-        "controller": draw(st.sampled_from(controllers)),
-        "omega_bar": draw(st.floats(-1, 1)),
-        "epsilon": epsilon,
-        "K_p": ((K_p + K_p.T) / 2).tolist(),
-        "k_gamma": draw(positive_gains),
-        "trackers": trackers,
-    }
+    bounds = {"gains": gains, "path_sizes": path_sizes, "epsilon_1": (0.1, 3.0)}
+    bounds["omega_bar"] = (-1.0, 1.0)
+    dim, controller = draw(st.sampled_from(dims)), draw(st.sampled_from(controllers))
+    block = _pursuit_block(draw, n_trackers, dim, controller, bounds)
     if n_trackers > 1:
-        block["k_c"] = draw(positive_gains)
         block["edges"] = [[(i + 1) % n_trackers + 1, i + 1] for i in range(n_trackers)]
     return parse_case({"name": "random", "kind": "pursuit", "pursuit": block})
+
+
+SIMULATED_BOUNDS = {
+    "gains": (0.1, 1.0),
+    "k_gamma": (1.0, 500.0),
+    "path_sizes": (5.0, 40.0),
+    "epsilon_1": (0.3, 2.0),
+    "omega_bar": (-0.2, 0.2),
+}
+"""Ranges of :func:`simulated_pursuit_cases`: Tables I–II widened (k_γ down to 1, where the
+path-parameter loop is weakly damped), kept where a short run integrates in well under a second."""
+
+
+def _target_and_filter(draw: st.DrawFn, dim: int) -> dict:
+    """``target`` and ``dekf`` blocks: drift, a slow sinusoid, ranges every 1 or 2 s."""
+    speeds = st.lists(st.floats(-0.5, 0.5), min_size=dim, max_size=dim)
+    target = {
+        "velocity": draw(speeds),
+        "amplitude": draw(st.lists(st.floats(0, 20), min_size=dim, max_size=dim)),
+        "frequency": draw(st.lists(st.floats(0, 0.02), min_size=dim, max_size=dim)),
+        "phase": draw(st.lists(st.floats(-math.pi, math.pi), min_size=dim, max_size=dim)),
+    }
+    sigma = draw(st.floats(0.1, 1.0))
+    q = [1e-3] * dim + [1e-4] * dim
+    dekf = {"Ts": draw(st.sampled_from([1, 2])), "sigma": sigma, "V": 1 / sigma**2}
+    dekf["Q"] = np.diag(q).tolist()
+    return {"target": target, "dekf": dekf}
+
+
+def simulated_pursuit_cases(
+    *,
+    max_trackers: int = 3,
+    dims: tuple[int, ...] = (2, 3),
+    controllers: tuple[str, ...] = ("I", "II"),
+) -> st.SearchStrategy[Case]:
+    """:func:`simulated_pursuit_blocks`, parsed into cases.
+
+    Parameters
+    ----------
+    max_trackers : int
+        Largest number of trackers (≥ 1).
+    dims : tuple of int
+        Dimensions to draw from (2 and/or 3).
+    controllers : tuple of str
+        Controller types to draw from (``I`` and/or ``II``).
+    """
+    blocks = simulated_pursuit_blocks(max_trackers=max_trackers, dims=dims, controllers=controllers)
+    return blocks.map(
+        lambda block: parse_case({"name": "random-simulated", "kind": "pursuit", "pursuit": block})
+    )
+
+
+@st.composite
+def simulated_pursuit_blocks(
+    draw: st.DrawFn,
+    *,
+    max_trackers: int = 3,
+    dims: tuple[int, ...] = (2, 3),
+    controllers: tuple[str, ...] = ("I", "II"),
+) -> dict:
+    """``pursuit:`` blocks (plain data) of simulatable cases every ISS condition holds for
+    (seed 003 §V–VI).
+
+    1 to ``max_trackers`` trackers on a random strongly connected digraph
+    (:func:`theory.strategies.digraph_laplacians`), gains, ε, ω̄ and paths in
+    :data:`SIMULATED_BOUNDS`, a target drifting at up to 0.5 m/s with a slow sinusoid, DEKF
+    settings (uniform fusion weights), and initial tracker positions within 30 m of the target,
+    random attitudes and path parameters.
+
+    Parameters
+    ----------
+    max_trackers : int
+        Largest number of trackers (≥ 1).
+    dims : tuple of int
+        Dimensions to draw from (2 and/or 3).
+    controllers : tuple of str
+        Controller types to draw from (``I`` and/or ``II``).
+    """
+    from theory.strategies import digraph_laplacians
+
+    if max_trackers < 1:
+        raise InvalidArgument(f"max_trackers={max_trackers} must be at least 1")
+    _check_choices(dims, controllers)
+    n = draw(st.integers(1, max_trackers))
+    dim, controller = draw(st.sampled_from(dims)), draw(st.sampled_from(controllers))
+    block = _pursuit_block(draw, n, dim, controller, SIMULATED_BOUNDS)
+    if n > 1:
+        laplacian = draw(digraph_laplacians(min_agents=n, max_agents=n, max_extra_edges=n))
+        receives = np.argwhere(laplacian < 0)
+        block["edges"] = [[int(j) + 1, int(i) + 1] for i, j in receives]
+    block |= _target_and_filter(draw, dim)
+    target = block["target"]
+    start = np.array(target["amplitude"]) * np.sin(target["phase"])  # q(0), eq. of TargetMotion
+    for tracker in block["trackers"]:
+        offset = draw(_vectors(dim, 30.0))
+        tracker["initial"] = {
+            "position": (start + offset).tolist(),
+            "euler": draw(_vectors(1 if dim == 2 else 3, 1.5)).tolist(),
+            "gamma": draw(st.floats(-math.pi, math.pi)),
+        }
+    return block
 
 
 @st.composite

@@ -4,7 +4,6 @@
 * ``seed000.sec4.4.b-tradeoff`` — as ``b`` grows, distance travelled falls, covariance norms grow.
 * ``seed000.sec5.3.sim-examples`` — Examples 1–2: P bounded for ``W_g``, unbounded for ``W_b``.
 * ``seed000.lemA.1.2`` — inequality (A.24) with ``α`` of (A.35) along a run.
-* ``seed003.thm2.sim-trajectories`` — the ISS estimate along simulated DEC trajectories.
 """
 
 from __future__ import annotations
@@ -22,7 +21,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from theory.consensus.kalman_filter import ORDERS, ch5_examples, simulate_consensus_kf
-from theory.core.claims import ClaimResult, NotApplicable, register
+from theory.core.claims import ClaimResult, register
 from theory.sim.figures import save_figure
 from theory.tdoa.appendix_a import lemma_a12_along
 from theory.tdoa.crb import crb_trace, optimal_crb_trace, platonic_solids
@@ -31,7 +30,6 @@ from theory.tdoa.scenario import run_tdoa_scenario
 __all__ = [
     "check_b_tradeoff",
     "check_ch5_examples",
-    "check_iss_along_runs",
     "check_lemma_a12",
     "check_platonic",
 ]
@@ -261,64 +259,3 @@ def check_lemma_a12(case: Any) -> list[ClaimResult]:
             ),
         )
     ]
-
-
-ISS_STEPS = 1500
-ISS_SEEDS = (0, 1)
-
-
-@register(
-    "seed003.thm2.sim-trajectories",
-    source="seed 003, Theorem 2 (with the corrected constants of theory.pursuit.iss)",
-    statement="Along every trajectory of the DEC, ‖μ(t)‖ ≤ β(‖μ(0)‖, t) + γ(sup‖x̃‖).",
-    kinds=("pursuit",),
-)
-def check_iss_along_runs(case: Any) -> list[ClaimResult]:
-    """Simulate the 2-D DEC loop (seeds :data:`ISS_SEEDS`) and evaluate both sides of the ISS
-    estimate at every step.
-
-    Parameters
-    ----------
-    case : Case
-        A ``kind: pursuit`` case.
-    """
-    from theory.core.errors import CaseError
-    from theory.pursuit.iss_check import iss_margin_along
-    from theory.pursuit.simulation import check_pursuit_case, run_pursuit_case
-
-    def result(status: str, message: str, **evidence: Any) -> list[ClaimResult]:
-        return [
-            ClaimResult(
-                claim="seed003.thm2.sim-trajectories",
-                case=case.name,
-                method="simulation",
-                status=status,
-                evidence=evidence,
-                margin=evidence.get("margin"),
-                message=message,
-            )
-        ]
-
-    try:
-        check_pursuit_case(case.spec)
-    except CaseError as error:
-        raise NotApplicable(f"nothing to simulate: {error.field} is not {error.expected}") from None
-    checks = []
-    for seed in ISS_SEEDS:
-        run = run_pursuit_case(case.spec, np.random.default_rng(seed), steps=ISS_STEPS)
-        try:
-            checks.append(iss_margin_along(case.spec, run))
-        except ValueError as error:
-            return result("inconclusive", f"no ISS estimate: {error}")
-    margin = min(c["margin"] for c in checks)
-    return result(
-        "verified" if margin >= 0 else "refuted",
-        "bound evaluated at every 0.1 s step of forward-Euler runs",
-        margin=margin,
-        gain=checks[0]["gain"],
-        seeds=list(ISS_SEEDS),
-        steps=ISS_STEPS,
-        worst_time=[c["worst_time"] for c in checks],
-        final_mu=[float(c["mu"][-1]) for c in checks],
-        final_bound=[float(c["bound"][-1]) for c in checks],
-    )
