@@ -25,7 +25,7 @@ from theory.core.case_file import load_case
 from theory.core.claims import get_claim
 from theory.core.errors import CaseError
 
-__all__ = ["iss_report", "register"]
+__all__ = ["SCOPE", "iss_report", "register"]
 
 
 def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
@@ -62,21 +62,17 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
         raise CaseError(
             "kind", "pursuit (trackcert iss analyses seed 003 cases)", case.kind, file=case.file
         )
-    if margin_tol is not None and not margin_tol > 0:
-        raise CaseError("--margin-tol", "a number > 0", margin_tol, file=case.file)
-    tol = margin_tol if margin_tol is not None else case.tolerances.get("margin_tol")
-    tol = DEFAULT_MARGIN_TOL if tol is None else float(tol)
+    tol = _margin_tol(case, margin_tol, DEFAULT_MARGIN_TOL)
     spec = case.spec
     conditions = iss_conditions(spec, margin_tol=tol)
-    pursuit = pursuit_iss(spec)
-    coordination = coordination_iss(spec)
-    identity = lyapunov_derivative_check(spec.dim, spec.controller, True)
+    pursuit, coordination = pursuit_iss(spec), coordination_iss(spec)
     statuses = {c.status for c in conditions}
     holds = "fails" not in statuses and "inconclusive" not in statuses
     gains: dict[str, Any] = {"pursuit": pursuit.gain, "pursuit_paper": pursuit.paper_gain}
     gains["coordination"] = coordination.gain
     gains["cascade"] = iss_bound(spec).gain if "fails" not in statuses else None
     r = [float(x) for x in coordination.r] if coordination.r else None
+    identity = lyapunov_derivative_check(spec.dim, spec.controller, True)
     return {
         "case": case.name,
         "source": case.source,
@@ -84,17 +80,8 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
         "dim": spec.dim,
         "n_trackers": spec.n_trackers,
         "holds": holds,
-        "lyapunov": {
-            "pursuit": {
-                "function": "V_e = ½‖e‖² = eᵀ P_e e, e = col(e_p^[i], e_γ^[i])",
-                "P_e": 0.5 * np.eye(len(pursuit.K) * spec.n_trackers),
-                "derivative_identity_eq70": identity.holds,
-            },
-            "coordination": {
-                "function": "V_c = ½ ξᵀ R ξ, ξ = (I − 1rᵀ)γ, R = diag(r)",
-                "R": np.diag(r) if r else None,
-            },
-        },
+        "scope": SCOPE,
+        "lyapunov": _lyapunov(spec, len(pursuit.K), r, identity.holds),
         "decay_rate": {
             "pursuit": pursuit.decay_rate,
             "pursuit_lyapunov": 2 * pursuit.decay_rate,
@@ -103,24 +90,57 @@ def iss_report(case: Any, *, margin_tol: float | None = None) -> dict[str, Any]:
             "coordination_printed_eq75": coordination.printed_decay_coefficient,
         },
         "iss_gain": gains,
-        "constants": {
-            "lambda_min_K": pursuit.lambda_min,
-            "norm_K": pursuit.norm_K,
-            "mu": pursuit.mu,
-            "mu_is_supremum": pursuit.mu_is_supremum,
-            "c_paper": pursuit.cross_gain,
-            "c_sharp": pursuit.sharp_cross_gain,
-            "printed_region_eq72_argument_sound": pursuit.printed_region_sound,
-            "printed_region_eq72_holds_by_sharp_bound": pursuit.printed_region_holds,
-            "a_L": coordination.a_L,
-            "r": r,
-            "kappa": coordination.kappa,
-            "b": coordination.b,
-        },
+        "constants": _constants(pursuit, coordination, r),
         "conditions": [c.to_json(tol) for c in conditions],
         "expectations": _expectations(case.expect, holds, conditions),
         "claims": [r.to_json(get_claim(r.claim).source) for r in run_case_claims(case)],
         "tolerances": {"margin_tol": tol},
+    }
+
+
+SCOPE = (
+    "the pursuit and coordination errors μ = (ξ, e) are ISS with respect to the DEKF's "
+    "estimation error x̃ (Theorem 2, corrected); x̃ is the input: whether the DEKF keeps it "
+    "bounded in closed loop is not part of the certificate"
+)
+"""What a ``holds`` verdict of ``trackcert iss`` covers (and what it does not)."""
+
+
+def _margin_tol(case: Any, margin_tol: float | None, default: float) -> float:
+    if margin_tol is not None and not margin_tol > 0:
+        raise CaseError("--margin-tol", "a number > 0", margin_tol, file=case.file)
+    tol = margin_tol if margin_tol is not None else case.tolerances.get("margin_tol")
+    return default if tol is None else float(tol)
+
+
+def _lyapunov(spec: Any, size: int, r: list[float] | None, identity: bool) -> dict[str, Any]:
+    return {
+        "pursuit": {
+            "function": "V_e = ½‖e‖² = eᵀ P_e e, e = col(e_p^[i], e_γ^[i])",
+            "P_e": 0.5 * np.eye(size * spec.n_trackers),
+            "derivative_identity_eq70": identity,
+        },
+        "coordination": {
+            "function": "V_c = ½ ξᵀ R ξ, ξ = (I − 1rᵀ)γ, R = diag(r)",
+            "R": np.diag(r) if r else None,
+        },
+    }
+
+
+def _constants(pursuit: Any, coordination: Any, r: list[float] | None) -> dict[str, Any]:
+    return {
+        "lambda_min_K": pursuit.lambda_min,
+        "norm_K": pursuit.norm_K,
+        "mu": pursuit.mu,
+        "mu_is_supremum": pursuit.mu_is_supremum,
+        "c_paper": pursuit.cross_gain,
+        "c_sharp": pursuit.sharp_cross_gain,
+        "printed_region_eq72_argument_sound": pursuit.printed_region_sound,
+        "printed_region_eq72_holds_by_sharp_bound": pursuit.printed_region_holds,
+        "a_L": coordination.a_L,
+        "r": r,
+        "kappa": coordination.kappa,
+        "b": coordination.b,
     }
 
 
@@ -165,7 +185,7 @@ def _print_table(record: dict[str, Any]) -> None:
     console.print(
         f"decay rates: pursuit {rates['pursuit']}, coordination {rates['coordination']}\n"
         f"ISS gains: pursuit {gains['pursuit']}, coordination {gains['coordination']}, "
-        f"cascade {gains['cascade']}",
+        f"cascade {gains['cascade']}\nscope: {record['scope']}",
         markup=False,
         highlight=False,
     )

@@ -749,37 +749,8 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
     if undecided:
         raise InconclusiveError(f"no ISS certificate: conditions {undecided} are inconclusive")
     pursuit = pursuit_iss(spec)
-    data: dict[str, Any] = {
-        "dim": spec.dim,
-        "controller": spec.controller,
-        "n_trackers": spec.n_trackers,
-        "epsilon": [exact_fraction(x) for x in spec.epsilon],
-        "K": [[exact_fraction(x) for x in row] for row in pursuit.K],
-        "K_p": [[exact_fraction(x) for x in row] for row in spec.K_p],
-        "P_e": [
-            [Fraction(1, 2) if i == j else Fraction(0) for j in range(len(pursuit.K))]
-            for i in range(len(pursuit.K))
-        ],
-        "paths": [
-            {"r_x": exact_fraction(p.r_x), "r_y": exact_fraction(p.r_y)}
-            | (
-                {"r_z": exact_fraction(p.r_z), "c": exact_fraction(p.c)}
-                if p.r_z is not None
-                else {}
-            )
-            for p in spec.trackers
-        ],
-    }
-    kp_bar = _rational_above(pursuit.norm_K_p)
-    needed = kp_bar * kp_bar + 1 + (pursuit.mu_r if spec.controller == "II" else 0)
-    witness: dict[str, Any] = {
-        "lambda": _rational_below(pursuit.lambda_min),
-        "kp_bar": kp_bar,
-        "mu_r": pursuit.mu_r,
-        "s": _sqrt_above(needed),
-    }
-    witness["g_e"] = witness["s"] / witness["lambda"]
-    witness["gain"] = witness["g_e"]
+    data = _pursuit_data(spec, pursuit)
+    witness = _pursuit_witness(spec, pursuit)
     numeric: dict[str, Any] = {"K": pursuit.K, "lambda_min": pursuit.lambda_min}
     if spec.n_trackers > 1:
         _coordination_certificate(spec, data, witness, numeric)
@@ -792,6 +763,40 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
         "inequalities": list(CERTIFICATE_INEQUALITIES),
         "numeric": numeric,
     }
+
+
+def _pursuit_data(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
+    """The pursuit part of a certificate's ``data``: the case's numbers as exact rationals."""
+    size = len(pursuit.K)
+    return {
+        "dim": spec.dim,
+        "controller": spec.controller,
+        "n_trackers": spec.n_trackers,
+        "epsilon": [exact_fraction(x) for x in spec.epsilon],
+        "K": [[exact_fraction(x) for x in row] for row in pursuit.K],
+        "K_p": [[exact_fraction(x) for x in row] for row in spec.K_p],
+        "P_e": [[Fraction(int(i == j), 2) for j in range(size)] for i in range(size)],
+        "paths": [
+            {"r_x": exact_fraction(p.r_x), "r_y": exact_fraction(p.r_y)}
+            | ({} if p.r_z is None else {"r_z": exact_fraction(p.r_z), "c": exact_fraction(p.c)})
+            for p in spec.trackers
+        ],
+    }
+
+
+def _pursuit_witness(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
+    """λ below λ_min(K), k̄ above ‖K_p‖, μ_r, s ≥ √(k̄² + 1 (+ μ_r)) and g_e = s/λ (E1–E5)."""
+    kp_bar = _rational_above(pursuit.norm_K_p)
+    needed = kp_bar * kp_bar + 1 + (pursuit.mu_r if spec.controller == "II" else 0)
+    witness: dict[str, Any] = {
+        "lambda": _rational_below(pursuit.lambda_min),
+        "kp_bar": kp_bar,
+        "mu_r": pursuit.mu_r,
+        "s": _sqrt_above(needed),
+    }
+    witness["g_e"] = witness["s"] / witness["lambda"]
+    witness["gain"] = witness["g_e"]
+    return witness
 
 
 def _coordination_certificate(

@@ -1,0 +1,100 @@
+"""Speed of ``trackcert simulate`` on the seed 003 pursuit cases, with a same-run baseline.
+
+For each case it prints
+
+* the wall time of ``trackcert simulate CASE --seed 2`` in a fresh process (start-up, the 450 s
+  run, files and figures), and the start-up alone (``python -c "import theory.cli"``);
+* the time of one library run (:func:`theory.pursuit.simulation.run_pursuit_case`) with the
+  vectorized vector field, and with the per-tracker field of the regression oracle
+  (``tests/pursuit/dec_oracle.py``: every tracker through ``model.closed_loop_rates`` in a Python
+  loop, the pre-vectorization form), both over ``--seconds`` of simulated time, and their ratio.
+
+Every time is the best of ``--repeat`` runs (the machine is shared). Usage:
+``python benchmarks/bench_pursuit.py [--seconds 100] [--repeat 3] [--cases NAME ...]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "tests" / "pursuit"))
+
+from dec_oracle import per_tracker_field  # noqa: E402
+
+from theory.core.case_file import load_case  # noqa: E402
+from theory.pursuit.closed_loop import build_loop, simulate_dec  # noqa: E402
+from theory.pursuit.simulation import RECORD_INTERVAL, dec_arguments  # noqa: E402
+
+CASES = (
+    "pursuit-table1-n1",
+    "pursuit-table1-n3",
+    "pursuit-table2-n1",
+    "pursuit-table2-n3",
+    "pursuit-table2-n3-kgamma5",
+)
+
+
+def _best(function, repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def _cli(name: str) -> None:
+    with tempfile.TemporaryDirectory() as folder:
+        command = [sys.executable, "-m", "theory.cli", "simulate", name, "--seed", "2"]
+        subprocess.run([*command, "-o", folder], cwd=ROOT, check=True, capture_output=True)
+
+
+def _startup() -> None:
+    subprocess.run([sys.executable, "-c", "import theory.cli"], cwd=ROOT, check=True)
+
+
+def _library_runs(name: str, seconds: float, repeat: int) -> tuple[float, float, int]:
+    """Best times of the vectorized and the per-tracker run, and the integration steps."""
+    spec = load_case(name).spec
+    arguments = dec_arguments(spec, round(seconds / RECORD_INTERVAL))
+    loop = build_loop(arguments["settings"], arguments["paths"], arguments["in_neighbours"], spec.dim)
+    oracle = per_tracker_field(loop, arguments["paths"], spec.controller)
+    steps = simulate_dec(rng=np.random.default_rng(2), **arguments).steps
+    fast = _best(lambda: simulate_dec(rng=np.random.default_rng(2), **arguments), repeat)
+    slow = _best(
+        lambda: simulate_dec(rng=np.random.default_rng(2), field=oracle, **arguments), repeat
+    )
+    return fast, slow, steps
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seconds", type=float, default=100.0, help="simulated s per library run")
+    parser.add_argument("--repeat", type=int, default=3, help="repetitions (best is printed)")
+    parser.add_argument("--cases", nargs="*", default=list(CASES), help="bundled case names")
+    args = parser.parse_args()
+    startup = _best(_startup, args.repeat)
+    print(f"start-up (import theory.cli): {startup:.2f} s")
+    header = (
+        f"{'case':28} {'simulate (s)':>12} {'vectorized (s)':>15} {'per-tracker (s)':>16} "
+        f"{'ratio':>6} {'steps':>7}"
+    )
+    print(f"library runs over {args.seconds:g} s simulated; simulate runs 450 s with --seed 2")
+    print(header)
+    for name in args.cases:
+        wall = _best(lambda name=name: _cli(name), args.repeat)
+        fast, slow, steps = _library_runs(name, args.seconds, args.repeat)
+        print(f"{name:28} {wall:12.2f} {fast:15.3f} {slow:16.3f} {slow / fast:6.1f} {steps:7d}")
+
+
+if __name__ == "__main__":
+    main()
