@@ -9,6 +9,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -144,3 +145,23 @@ def test_full_gain_and_process_matrices_are_used() -> None:
     np.testing.assert_array_equal(arguments["settings"].Kp, full.K_p)
     np.testing.assert_array_equal(arguments["settings"].Q, full.dekf.Q)
     assert case.spec.dim == 2
+
+
+def _held_input_radius(k_gamma: float, k_p: float, r_prime_sq: float, h: float) -> float:
+    """Spectral radius of the former held-input step linearized at e = 0 along Rᵀr′:
+    x⁺ = (1 − hk_p)x − h‖r′‖y, y⁺ = e^{−k_γh}y + ((1 − e^{−k_γh})/k_γ)‖r′‖x (x = e_p·Rᵀr′/‖r′‖,
+    y = e_γ; e_p by forward Euler, e_γ exactly with its input held)."""
+    a, b = math.exp(-k_gamma * h), math.sqrt(r_prime_sq)
+    step = np.array([[1 - h * k_p, -h * b], [(1 - a) / k_gamma * b, a]])
+    return float(np.max(np.abs(np.linalg.eigvals(step))))
+
+
+def test_held_input_scheme_linearization_explains_the_blowup() -> None:
+    """docs/theory/pursuit-iss.md §8: Table II (sup‖r′‖² = 80² + 25² = 7025, k_p = 0.2) with
+    k_γ = 5 and h = 0.02 s has radius 1.89 (the NaN run), with k_γ = 200 it has 0.84 (why Table II
+    ran at 0.02 s) and 1.87 at h = 0.1 s (why 3-D needed 0.02 s); stability needs h below about
+    (k_γ + k_p)/sup‖r′‖² = 7.4e-4 s for k_γ = 5."""
+    assert _held_input_radius(5.0, 0.2, 7025.0, 0.02) == pytest.approx(1.891, abs=1e-3)
+    assert _held_input_radius(200.0, 0.2, 7025.0, 0.02) == pytest.approx(0.841, abs=1e-3)
+    assert _held_input_radius(200.0, 0.2, 7025.0, 0.1) == pytest.approx(1.874, abs=1e-3)
+    assert _held_input_radius(5.0, 0.2, 7025.0, 6e-4) < 1 < _held_input_radius(5.0, 0.2, 7025.0, 1e-3)
