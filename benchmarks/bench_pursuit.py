@@ -66,7 +66,9 @@ def _library_runs(name: str, seconds: float, repeat: int) -> tuple[float, float,
     """Best times of the vectorized and the per-tracker run, and the integration steps."""
     spec = load_case(name).spec
     arguments = dec_arguments(spec, round(seconds / RECORD_INTERVAL))
-    loop = build_loop(arguments["settings"], arguments["paths"], arguments["in_neighbours"], spec.dim)
+    loop = build_loop(
+        arguments["settings"], arguments["paths"], arguments["in_neighbours"], spec.dim
+    )
     oracle = per_tracker_field(loop, arguments["paths"], spec.controller)
     steps = simulate_dec(rng=np.random.default_rng(2), **arguments).steps
     fast = _best(lambda: simulate_dec(rng=np.random.default_rng(2), **arguments), repeat)

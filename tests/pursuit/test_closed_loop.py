@@ -16,7 +16,13 @@ import pytest
 from dec_oracle import dop853_interval, per_tracker_field
 
 from theory.core.case_file import load_case, parse_case
-from theory.pursuit.closed_loop import LoopState, build_loop, integrate_until, simulate_dec
+from theory.pursuit.closed_loop import (
+    LoopState,
+    StepControl,
+    build_loop,
+    integrate_until,
+    simulate_dec,
+)
 from theory.pursuit.simulation import dec_arguments
 
 TABLES = ("pursuit-table1-n1", "pursuit-table1-n3", "pursuit-table2-n1", "pursuit-table2-n3")
@@ -30,7 +36,9 @@ def _type_i(spec):
 
 def _loop(spec, steps=20):
     arguments = dec_arguments(spec, steps)
-    loop = build_loop(arguments["settings"], arguments["paths"], arguments["in_neighbours"], spec.dim)
+    loop = build_loop(
+        arguments["settings"], arguments["paths"], arguments["in_neighbours"], spec.dim
+    )
     return arguments, loop
 
 
@@ -92,10 +100,10 @@ def test_one_interval_agrees_with_dop853(name: str) -> None:
     )
     x_hat = np.broadcast_to(arguments["x0"], (spec.n_trackers, 2 * spec.dim)).copy()
     reference = dop853_interval(loop, state, 0.0, 2.0, (x_hat, 0.0))
-    h, current = settings.dt, state
+    control, current = StepControl(settings.dt, settings.dt), state
     for k in range(20):
-        current, h, _, _, _ = integrate_until(
-            loop, loop.rates, 0.1 * k, 0.1 * (k + 1), current, (x_hat, 0.0), h, settings
+        current, _, _, _ = integrate_until(
+            loop, loop.rates, 0.1 * k, 0.1 * (k + 1), current, (x_hat, 0.0), control, settings
         )
     assert np.abs(current.p - reference.p).max() <= settings.rtol * loop.scale
     assert np.abs(current.R - reference.R).max() <= 2 * settings.rtol
@@ -164,4 +172,6 @@ def test_held_input_scheme_linearization_explains_the_blowup() -> None:
     assert _held_input_radius(5.0, 0.2, 7025.0, 0.02) == pytest.approx(1.891, abs=1e-3)
     assert _held_input_radius(200.0, 0.2, 7025.0, 0.02) == pytest.approx(0.841, abs=1e-3)
     assert _held_input_radius(200.0, 0.2, 7025.0, 0.1) == pytest.approx(1.874, abs=1e-3)
-    assert _held_input_radius(5.0, 0.2, 7025.0, 6e-4) < 1 < _held_input_radius(5.0, 0.2, 7025.0, 1e-3)
+    assert (
+        _held_input_radius(5.0, 0.2, 7025.0, 6e-4) < 1 < _held_input_radius(5.0, 0.2, 7025.0, 1e-3)
+    )

@@ -204,9 +204,9 @@ def skew(omega: np.ndarray) -> np.ndarray:
 def exp_skew(omega: np.ndarray) -> np.ndarray:
     """exp(S(ω)) stacked (Rodrigues in 3D): the rotation of a rotation vector ω, (…, k) → (…, d, d).
 
-    exp(S(ω)) = I + (sin θ/θ) S(ω) + ((1 − cos θ)/θ²) S(ω)² with θ = ‖ω‖, S(ω)² = ωωᵀ − θ²I,
-    (1 − cos θ)/θ² = 2 sin²(θ/2)/θ² (no cancellation for small θ); in 2D the rotation by the angle
-    ω.
+    exp(S(ω)) = I + a S(ω) + b S(ω)² with θ = ‖ω‖, a = sin θ/θ, b = (1 − cos θ)/θ²
+    = 2 sin²(θ/2)/θ² (no cancellation for small θ) and S(ω)² = ωωᵀ − θ²I; in 2D the rotation by
+    the angle ω.
 
     Parameters
     ----------
@@ -221,12 +221,16 @@ def exp_skew(omega: np.ndarray) -> np.ndarray:
     if omega.shape[-1] == 1:
         angle = omega[..., None]
         return np.cos(angle) * _EYE[2] + np.sin(angle) * _UNIT_TURN
-    theta_sq = np.einsum("...i,...i->...", omega, omega)[..., None, None]
+    theta_sq = (omega * omega).sum(axis=-1)[..., None, None]
     theta = np.maximum(np.sqrt(theta_sq), 1e-150)  # below it, a = 1 and b = ½ to the last bit
-    a = np.sin(theta) / theta
-    b = 2.0 * (np.sin(0.5 * theta) / theta) ** 2
-    square = omega[..., :, None] * omega[..., None, :] - theta_sq * _EYE[3]
-    return _EYE[3] + a * skew(omega) + b * square
+    half_sin, half_cos = np.sin(0.5 * theta), np.cos(0.5 * theta)
+    a = 2.0 * half_sin * half_cos / theta
+    b = 2.0 * (half_sin / theta) ** 2
+    return (
+        (1.0 - b * theta_sq) * _EYE[3]
+        + a * skew(omega)
+        + b * (omega[..., :, None] * omega[..., None, :])
+    )
 
 
 def euler_rotation(angles: np.ndarray) -> np.ndarray:

@@ -317,7 +317,7 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper right")
     paths.append(save_figure(fig, folder / "trajectories.png"))
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     for name, ax in zip(("pursuit_errors", "localization_errors"), axes, strict=True):
@@ -326,7 +326,7 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
             ax.plot(run.times, values[:, i], lw=1, label=f"tracker {i + 1}")
         ax.set_yscale("log")
         ax.set_ylabel(name.replace("_", " ") + " (m)")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper right")
     axes[-1].set_xlabel("time (s)")
     paths.append(save_figure(fig, folder / "errors.png"))
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
