@@ -128,13 +128,7 @@ def _lyapunov(spec: Any, size: int, r: list[float] | None, identity: bool) -> di
 
 
 def _constants(pursuit: Any, coordination: Any, r: list[float] | None) -> dict[str, Any]:
-    return {
-        "lambda_min_K": pursuit.lambda_min,
-        "norm_K": pursuit.norm_K,
-        "mu": pursuit.mu,
-        "mu_is_supremum": pursuit.mu_is_supremum,
-        "c_paper": pursuit.cross_gain,
-        "c_sharp": pursuit.sharp_cross_gain,
+    return pursuit.constants() | {
         "printed_region_eq72_argument_sound": pursuit.printed_region_sound,
         "printed_region_eq72_holds_by_sharp_bound": pursuit.printed_region_holds,
         "a_L": coordination.a_L,

@@ -172,6 +172,17 @@ class PursuitIss:
     printed_region_sound: bool
     printed_region_holds: bool
 
+    def constants(self) -> dict[str, Any]:
+        """λ_min(K), ‖K‖, μ (and whether it is the supremum), c and c♯, as reported."""
+        return {
+            "lambda_min_K": self.lambda_min,
+            "norm_K": self.norm_K,
+            "mu": self.mu,
+            "mu_is_supremum": self.mu_is_supremum,
+            "c_paper": self.cross_gain,
+            "c_sharp": self.sharp_cross_gain,
+        }
+
 
 def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
     """The corrected constants of (72)/(78) for ``spec``.

@@ -246,13 +246,7 @@ def check_theorem1(case: Any) -> list[ClaimResult]:
     pursuit = pursuit_iss(spec)
     if "delta_full_rank" in _failing(case):
         return [_refuted_delta("seed003.thm1", case)]
-    evidence = {
-        "lambda_min_K": pursuit.lambda_min,
-        "norm_K": pursuit.norm_K,
-        "mu": pursuit.mu,
-        "mu_is_supremum": pursuit.mu_is_supremum,
-        "c_paper": pursuit.cross_gain,
-        "c_sharp": pursuit.sharp_cross_gain,
+    evidence = pursuit.constants() | {
         "decay_rate": pursuit.decay_rate,
         "iss_gain": pursuit.gain,
         "iss_gain_paper_constants": pursuit.paper_gain,

@@ -270,28 +270,18 @@ def helix_samples(
     return times, relative
 
 
-def helix_fim_rank(
-    c: float,
-    *,
-    r_x: float = TABLE_II_PATH["r_x"],
-    r_y: float = TABLE_II_PATH["r_y"],
-    r_z: float = TABLE_II_PATH["r_z"],
-    gamma0: float = 0.0,
-    omega_bar: float = TABLE_II_PATH["omega_bar"],
-    sampling_period: float = SAMPLING_PERIOD,
-    steps: int = STEPS,
-    rank_tol: float = RANK_TOL,
-) -> RankResult:
+def helix_fim_rank(c: float, *, rank_tol: float = RANK_TOL, **path: Any) -> RankResult:
     """Rank of the stacked range Jacobian (= rank of the FIM) of a tracker on the helix.
 
     Parameters
     ----------
     c : float
         The constant of eq. (15).
-    r_x, r_y, r_z, gamma0, omega_bar, sampling_period, steps : float or int
-        As in :func:`helix_samples`.
     rank_tol : float
         Relative rank tolerance (σ counts as zero when σ ≤ ``rank_tol`` · σ_max).
+    **path
+        ``r_x``, ``r_y``, ``r_z``, ``gamma0``, ``omega_bar``, ``sampling_period``, ``steps`` as in
+        :func:`helix_samples` (Table II by default).
 
     Returns
     -------
@@ -302,16 +292,7 @@ def helix_fim_rank(
     ----------
     seed 003, eqs. (9), (15), (17); §III-B Result 1.
     """
-    times, relative = helix_samples(
-        c,
-        r_x=r_x,
-        r_y=r_y,
-        r_z=r_z,
-        gamma0=gamma0,
-        omega_bar=omega_bar,
-        sampling_period=sampling_period,
-        steps=steps,
-    )
+    times, relative = helix_samples(c, **path)
     return numeric_rank(range_jacobian(relative, times), rank_tol=rank_tol)
 
 

@@ -283,12 +283,8 @@ def simulated_pursuit_cases(
 
     Parameters
     ----------
-    max_trackers : int
-        Largest number of trackers (≥ 1).
-    dims : tuple of int
-        Dimensions to draw from (2 and/or 3).
-    controllers : tuple of str
-        Controller types to draw from (``I`` and/or ``II``).
+    max_trackers, dims, controllers
+        As in :func:`simulated_pursuit_blocks`.
     """
     blocks = simulated_pursuit_blocks(max_trackers=max_trackers, dims=dims, controllers=controllers)
     return blocks.map(
