@@ -342,7 +342,9 @@ class StepControl:
     cap: float
 
     def update(self, step: float, error: float, accepted: bool, reached_end: bool) -> None:
-        """Propose the next step after a step of length ``step`` with scaled error ``error``."""
+        """Propose the next step after a step of length ``step`` with scaled error ``error``,
+        ``accepted`` or not, that ``reached_end`` of its interval (then it may have been
+        shortened to land there, and the proposal is kept)."""
         if not math.isfinite(error):
             self.h = 0.2 * step
             return
