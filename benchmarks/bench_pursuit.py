@@ -3,19 +3,22 @@
 For each case it prints
 
 * the wall time of ``trackcert simulate CASE --seed 2`` in a fresh process (start-up, the 450 s
-  run, files and figures), and the start-up alone (``python -c "import theory.cli"``);
+  run, files and figures) and its exit code, and the start-up alone
+  (``python -c "import theory.cli"``);
 * the time of one library run (:func:`theory.pursuit.simulation.run_pursuit_case`) with the
   vectorized vector field, and with the per-tracker field of the regression oracle
   (``tests/pursuit/dec_oracle.py``: every tracker through ``model.closed_loop_rates`` in a Python
   loop, the pre-vectorization form), both over ``--seconds`` of simulated time, and their ratio.
 
-Every time is the best of ``--repeat`` runs (the machine is shared). Usage:
+Every time is the best of ``--repeat`` runs; CPU time (user + system, this process and its
+children) is printed beside wall time because the machine is shared. Usage:
 ``python benchmarks/bench_pursuit.py [--seconds 100] [--repeat 3] [--cases NAME ...]``
 """
 
 from __future__ import annotations
 
 import argparse
+import resource
 import subprocess
 import sys
 import tempfile
@@ -43,19 +46,30 @@ CASES = (
 )
 
 
-def _best(function, repeat: int) -> float:
-    times = []
+def _best(function, repeat: int) -> tuple[float, float]:
+    """Best wall time and best CPU time (this process and its children) of ``repeat`` calls."""
+    walls, cpus = [], []
     for _ in range(repeat):
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), _cpu()
         function()
-        times.append(time.perf_counter() - start)
-    return min(times)
+        walls.append(time.perf_counter() - start)
+        cpus.append(_cpu() - cpu)
+    return min(walls), min(cpus)
 
 
-def _cli(name: str) -> None:
+def _cpu() -> float:
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+def _cli(name: str, seed: int, codes: list[int]) -> None:
+    """One ``trackcert simulate`` in a fresh process; its exit code is appended to ``codes`` (1
+    when the run leaves the case's ``simulation_bounded`` expectation, e.g. a runaway)."""
     with tempfile.TemporaryDirectory() as folder:
-        command = [sys.executable, "-m", "theory.cli", "simulate", name, "--seed", "2"]
-        subprocess.run([*command, "-o", folder], cwd=ROOT, check=True, capture_output=True)
+        command = [sys.executable, "-m", "theory.cli", "simulate", name, "--seed", str(seed)]
+        done = subprocess.run([*command, "-o", folder], cwd=ROOT, capture_output=True)
+        codes.append(done.returncode)
 
 
 def _startup() -> None:
@@ -63,7 +77,7 @@ def _startup() -> None:
 
 
 def _library_runs(name: str, seconds: float, repeat: int) -> tuple[float, float, int]:
-    """Best times of the vectorized and the per-tracker run, and the integration steps."""
+    """Best CPU times of the vectorized and the per-tracker run, and the integration steps."""
     spec = load_case(name).spec
     arguments = dec_arguments(spec, round(seconds / RECORD_INTERVAL))
     loop = build_loop(
@@ -71,8 +85,8 @@ def _library_runs(name: str, seconds: float, repeat: int) -> tuple[float, float,
     )
     oracle = per_tracker_field(loop, arguments["paths"], spec.controller)
     steps = simulate_dec(rng=np.random.default_rng(2), **arguments).steps
-    fast = _best(lambda: simulate_dec(rng=np.random.default_rng(2), **arguments), repeat)
-    slow = _best(
+    _, fast = _best(lambda: simulate_dec(rng=np.random.default_rng(2), **arguments), repeat)
+    _, slow = _best(
         lambda: simulate_dec(rng=np.random.default_rng(2), field=oracle, **arguments), repeat
     )
     return fast, slow, steps
@@ -83,19 +97,25 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=100.0, help="simulated s per library run")
     parser.add_argument("--repeat", type=int, default=3, help="repetitions (best is printed)")
     parser.add_argument("--cases", nargs="*", default=list(CASES), help="bundled case names")
+    parser.add_argument("--seed", type=int, default=2, help="--seed of trackcert simulate")
     args = parser.parse_args()
-    startup = _best(_startup, args.repeat)
-    print(f"start-up (import theory.cli): {startup:.2f} s")
+    wall, cpu = _best(_startup, args.repeat)
+    print(f"start-up (import theory.cli): wall {wall:.2f} s, CPU {cpu:.2f} s")
     header = (
-        f"{'case':28} {'simulate (s)':>12} {'vectorized (s)':>15} {'per-tracker (s)':>16} "
+        f"{'case':28} {'wall (s)':>9} {'CPU (s)':>8} {'vectorized':>11} {'per-tracker':>12} "
         f"{'ratio':>6} {'steps':>7}"
     )
-    print(f"library runs over {args.seconds:g} s simulated; simulate runs 450 s with --seed 2")
-    print(header)
+    print(
+        f"trackcert simulate: 450 s, --seed {args.seed} (wall and CPU); library runs: CPU s over "
+        f"{args.seconds:g} s simulated"
+    )
+    print(header + " exit")
     for name in args.cases:
-        wall = _best(lambda name=name: _cli(name), args.repeat)
+        codes: list[int] = []
+        wall, cpu = _best(lambda name=name, codes=codes: _cli(name, args.seed, codes), args.repeat)
         fast, slow, steps = _library_runs(name, args.seconds, args.repeat)
-        print(f"{name:28} {wall:12.2f} {fast:15.3f} {slow:16.3f} {slow / fast:6.1f} {steps:7d}")
+        row = f"{name:28} {wall:9.2f} {cpu:8.2f} {fast:11.3f} {slow:12.3f} {slow / fast:6.1f}"
+        print(f"{row} {steps:7d} {codes[0]:4d}")
 
 
 if __name__ == "__main__":
