@@ -9,8 +9,7 @@ a certificate the kind could have is missing. Today:
   column (:mod:`theory.tdoa.case_certificates`);
 * ``dkf``: ``s-detectability`` with the gains of the LMI witness and, when the case fixes gains,
   with those gains (:mod:`theory.consensus.case_certificates`);
-* ``pursuit``: ``iss`` (:mod:`theory.pursuit.certificates`), wired through
-  :data:`INTERIM_CERTIFIERS` until that module registers itself.
+* ``pursuit``: ``iss`` (:mod:`theory.pursuit.certificates`).
 
 A case whose property is decided false raises :class:`~theory.core.errors.PropertyFails`:
 ``trackcert certify`` exits 1 and the certificate claims do not apply to it
@@ -31,7 +30,6 @@ from theory.core.discovery import role_modules
 from theory.core.errors import InconclusiveError, PropertyFails, SolverError
 
 __all__ = [
-    "INTERIM_CERTIFIERS",
     "Certified",
     "case_certificates",
     "certificate_bundle",
@@ -46,12 +44,6 @@ Certified = tuple[list[dict[str, Any]], list[str]]
 """What a certifier returns: the certificates, and why any the kind could have is missing."""
 
 Certifier = Callable[[Case, int], Certified]
-
-INTERIM_CERTIFIERS: dict[str, tuple[str, str]] = {
-    "pursuit": ("theory.pursuit.certificates", "pursuit_certificates"),
-}
-"""Kind → (module, function) of certifiers not yet registered with :func:`register_certifier`
-(interim: the pursuit engineer registers ``pursuit_certificates`` and removes this entry)."""
 
 _CERTIFIERS: dict[str, list[Certifier]] = {}
 
@@ -86,10 +78,7 @@ def certifiers() -> dict[str, tuple[Certifier, ...]]:
     """
     for module in role_modules("certificates"):
         importlib.import_module(module)
-    found = {kind: tuple(builds) for kind, builds in _CERTIFIERS.items()}
-    for kind, (module, name) in INTERIM_CERTIFIERS.items():
-        found.setdefault(kind, (getattr(importlib.import_module(module), name),))
-    return dict(sorted(found.items()))
+    return dict(sorted((kind, tuple(builds)) for kind, builds in _CERTIFIERS.items()))
 
 
 def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:

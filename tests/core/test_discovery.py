@@ -12,10 +12,10 @@ from pathlib import Path
 import pytest
 
 import theory
-from theory.certify import INTERIM_CERTIFIERS, certifiers
+from theory.certify import certifiers
 from theory.core import discovery
 from theory.core.case_file import kind_spec, known_kinds
-from theory.core.claims import INTERIM_CLAIM_MODULES, all_claims, claim_modules
+from theory.core.claims import all_claims, claim_modules
 from theory.core.discovery import ROLES, domain_packages, kind_index, role_modules
 
 CLAIM_IDS = (
@@ -102,22 +102,22 @@ def test_the_discovered_claims_are_exactly_the_registered_ones() -> None:
     assert len(CLAIM_IDS) == 64
 
 
-def test_only_the_two_interim_modules_break_the_convention() -> None:
-    assert INTERIM_CLAIM_MODULES == ("theory.pursuit.certificates", "theory.pursuit.observability")
-    assert set(claim_modules()) == set(role_modules("claims")) | set(INTERIM_CLAIM_MODULES)
+def test_the_claim_modules_are_exactly_those_named_by_the_convention() -> None:
+    assert set(claim_modules()) == set(role_modules("claims"))
+    assert "theory.pursuit.observability" not in claim_modules()
 
 
 @pytest.mark.parametrize("role", ROLES)
 def test_every_module_that_registers_is_named_by_its_role(role: str) -> None:
     """Read every domain module's source: a registration outside a role module is a bug (the
-    registry would miss it), except the interim pursuit claim modules."""
+    registry would miss it)."""
     found = set()
     for path in sorted(ROOT.glob("*/*.py")):
         if path.parent.name in discovery.SKIPPED_PACKAGES:
             continue
         if REGISTRATIONS[role].search(path.read_text(encoding="utf-8")):
             found.add(f"theory.{path.parent.name}.{path.stem}")
-    allowed = set(role_modules(role)) | (set(INTERIM_CLAIM_MODULES) if role == "claims" else set())
+    allowed = set(role_modules(role))
     assert found <= allowed, sorted(found - allowed)
     assert found, f"no module registers {role}: the pattern is wrong"
 
@@ -156,10 +156,10 @@ def test_every_kind_with_an_observer_resolves_it() -> None:
     assert kind_spec("pf").observe is None  # its claims observe its keys
 
 
-def test_certifiers_are_found_by_domain_and_pursuit_is_interim() -> None:
+def test_certifiers_are_found_by_domain() -> None:
     found = certifiers()
     assert set(found) == {"tdoa", "dkf", "pursuit"}
-    assert set(INTERIM_CERTIFIERS) == {"pursuit"}
+    assert found["pursuit"][0].__module__ == "theory.pursuit.certificates"
     assert found["tdoa"][0].__module__ == "theory.tdoa.case_certificates"
     assert found["dkf"][0].__module__ == "theory.consensus.case_certificates"
 

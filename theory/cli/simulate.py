@@ -2,16 +2,15 @@
 
 A shell over :func:`theory.simulate.simulate_case` with the case kind's simulator
 (:func:`theory.simulate.simulator_for`: ``kind: tdoa-sim`` in :mod:`theory.tdoa.sim_summary`,
-``kind: dkf`` in :mod:`theory.consensus.dkf_report`); ``kind: pf`` cases are handed to
-:func:`theory.cli.pf.run_pf_case`, as ``trackcert pf`` runs them. Interim: 2-D ``kind: pursuit``
-cases (seed 003, :mod:`theory.pursuit.simulation`) still use the backend below until the pursuit
-kind registers its simulator. Exit code (:mod:`theory.core.verdicts`): the expectations'
-verdict, 0 all met (or none stated), 1 one unmet, 3 one inconclusive or unchecked.
+``kind: dkf`` in :mod:`theory.consensus.dkf_report`, ``kind: pursuit`` in
+:mod:`theory.pursuit.simulation`); ``kind: pf`` cases are handed to
+:func:`theory.cli.pf.run_pf_case`, as ``trackcert pf`` runs them. Exit code
+(:mod:`theory.core.verdicts`): the expectations' verdict, 0 all met (or none stated), 1 one
+unmet, 3 one inconclusive or unchecked.
 """
 
 from __future__ import annotations
 
-import functools
 from pathlib import Path
 from typing import Any
 
@@ -19,7 +18,7 @@ import typer
 from rich.progress import Progress
 
 from theory.cli.common import console, error_console, print_json, reports_errors
-from theory.core.case_file import Case, load_case
+from theory.core.case_file import load_case
 from theory.core.errors import CaseError
 from theory.core.verdicts import exit_code
 
@@ -73,11 +72,7 @@ def register(app: typer.Typer) -> None:
 
             raise typer.Exit(run_pf_case(loaded, runs, seed, output, as_json))
         runs, seed = runs or 1, seed or 0
-        chosen = (
-            _interim_pursuit(loaded, steps)
-            if loaded.kind == "pursuit"
-            else simulator_for(loaded, steps)
-        )
+        chosen = simulator_for(loaded, steps)
         workers = workers or default_workers()
         with Progress(console=error_console, transient=True) as progress:
             task = progress.add_task(f"simulating {loaded.name}", total=runs)
@@ -92,57 +87,13 @@ def register(app: typer.Typer) -> None:
                 progress=lambda done: progress.update(task, completed=done),
             )
         report = simulation.to_json()
+        for warning in report.get("warnings", []):
+            error_console.print(f"warning: {warning}", markup=False)
         if as_json:
             print_json(report)
         else:
             _print_table(report)
         raise typer.Exit(exit_code(simulation.verdict))
-
-
-def _interim_pursuit(case: Case, steps: int | None) -> Any:
-    """The pursuit backend below as a :class:`theory.simulate.Simulator` (interim)."""
-    from theory.simulate import Finished, Simulator
-
-    spec, simulate_one, header = _pursuit_backend(case, steps)
-
-    def finish(case: Case, spec: Any, results: list, folder: Path, figures: bool) -> Finished:
-        summary, _, files = header["finish"](case, spec, results, folder, figures)
-        return Finished(summary, files)
-
-    return Simulator(spec, simulate_one, header["fields"], finish)
-
-
-def _pursuit_backend(case: Case, steps: int | None) -> tuple[Any, Any, dict]:
-    from theory.pursuit.simulation import (
-        check_pursuit_case,
-        default_steps,
-        integration_step,
-        run_pursuit_case,
-    )
-
-    try:
-        check_pursuit_case(case.spec)
-    except CaseError as error:
-        raise error.in_file(case.file) from None
-    steps = steps or default_steps(case.spec.dim)
-    dt = integration_step(case.spec.dim)
-    fields = {"controller": case.spec.controller, "dim": case.spec.dim, "steps": steps, "dt": dt}
-    simulate_one = functools.partial(run_pursuit_case, steps=steps)
-    return case.spec, simulate_one, {"fields": fields, "finish": _finish_pursuit}
-
-
-def _finish_pursuit(case: Case, spec: Any, results: list, folder: Path, figures: bool):
-    from theory.pursuit.simulation import (
-        summarize_pursuit,
-        write_pursuit_data,
-        write_pursuit_figures,
-    )
-
-    summary = summarize_pursuit(spec, results)
-    files = write_pursuit_data(results, summary, folder)
-    if figures:
-        files += write_pursuit_figures(results, folder)
-    return summary, {}, files
 
 
 def _print_table(report: dict) -> None:

@@ -34,10 +34,10 @@ from theory.consensus.operators import (
     spectral_radius,
 )
 from theory.core.rationalize import stochastic_matrix
+from theory.core.tolerances import RADIUS_TOL
 
 __all__ = [
     "EXACT_DIM",
-    "RADIUS_TOL",
     "exact_lyapunov",
     "exact_operator_matrix",
     "gains_stabilize",
@@ -48,9 +48,6 @@ __all__ = [
 EXACT_DIM = 200
 """Largest ``N n²`` for which the exact decision is attempted (a 200 × 200 rational solve takes
 about 0.3 s); larger problems are left to the rounded certificates."""
-RADIUS_TOL = 1e-6
-"""Above :data:`EXACT_DIM`, the float ``r_σ`` decides only outside ``ρ(1 ± RADIUS_TOL)``: an
-eigenvalue of a non-normal matrix can move by ``√ε ≈ 1e-8`` for a 2 × 2 Jordan block."""
 
 
 def exact_operator_matrix(operator: str, W: Matrix, gammas: Sequence[Matrix]) -> Matrix:

@@ -37,11 +37,11 @@ from theory.consensus.properties import dkf_case
 from theory.consensus.riccati import coupled_riccati_step
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.consensus.strategies import DkfProblem, dkf_problems
+from theory.core.tolerances import PSD_TOL
 from theory.falsify import Property, register_property
 
 __all__ = [
     "HORIZON",
-    "PSD_TOL",
     "RiccatiAgreement",
     "bound_iteration",
     "riccati_agreement",
@@ -49,8 +49,6 @@ __all__ = [
 
 HORIZON = 40
 """Steps of the Riccati and bound iterations compared (fewer if the iterates pass BLOWUP)."""
-PSD_TOL = 1e-9
-"""Relative slack of each matrix inequality, ``λ ≥ −PSD_TOL · max(1, ‖P^L(k)‖)``."""
 BLOWUP = 1e12
 """A diverging iteration is followed until ``max_i ‖P_i(k)‖`` exceeds this (beyond it
 ``C_i P C_iᵀ + R_i`` loses ``R_i`` to rounding)."""

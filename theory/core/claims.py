@@ -22,7 +22,6 @@ from theory.core.discovery import role_modules
 
 __all__ = [
     "DOCUMENT_KEY",
-    "INTERIM_CLAIM_MODULES",
     "METHODS",
     "STATUSES",
     "Claim",
@@ -47,14 +46,6 @@ the failure, always ``inconclusive``)."""
 DOCUMENT_KEY = "certificate_document"
 """Evidence key of a certificate a result carries as a JSON object; the report writes it as a file
 and re-checks it with ``proofs_check`` (:mod:`theory.report.artifacts`)."""
-
-INTERIM_CLAIM_MODULES: tuple[str, ...] = (
-    "theory.pursuit.certificates",
-    "theory.pursuit.observability",
-)
-"""Interim exception to the naming convention: these two pursuit modules still register claims
-beside their mathematics. The pursuit engineer splits them into ``*_claims.py`` modules; then this
-tuple goes (``tests/core/test_discovery.py`` pins the claim ids either way)."""
 
 _REGISTRY: dict[str, Claim] = {}
 
@@ -211,14 +202,14 @@ def applicable_results(claim: Claim, case: Any) -> list[ClaimResult]:
 
 def claim_modules() -> tuple[str, ...]:
     """The modules that register claims: every ``claims.py`` / ``*_claims.py`` of the domain
-    packages, then :data:`INTERIM_CLAIM_MODULES`.
+    packages (:func:`theory.core.discovery.role_modules`).
 
     Returns
     -------
     tuple of str
         Dotted module names.
     """
-    return (*role_modules("claims"), *INTERIM_CLAIM_MODULES)
+    return tuple(role_modules("claims"))
 
 
 def all_claims() -> list[Claim]:

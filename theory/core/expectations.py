@@ -264,7 +264,11 @@ def evaluate(
 
 
 def judge(case: Any, observed: Observed, *, source: str) -> list[Expectation]:
-    """The verdicts on ``case``'s ``expect`` block from one observer's answer.
+    """The verdicts on the keys of ``case``'s ``expect`` block that one observer answers.
+
+    Keys the observer does not report are left to the analyses that do (the report judges
+    every key against every claim's observations, :func:`evaluate`): ``trackcert iss`` does not
+    vouch for ``simulation_bounded``, nor ``trackcert simulate`` for ``iss``.
 
     Parameters
     ----------
@@ -282,7 +286,8 @@ def judge(case: Any, observed: Observed, *, source: str) -> list[Expectation]:
     from theory.core.case_file import kind_spec
 
     found = observations_from(source, observed.evidence(), "verified")
-    return evaluate(case.name, case.expect, found, kind_spec(case.kind).expect_rules)
+    answered = {k: v for k, v in case.expect.items() if k in observed.values}
+    return evaluate(case.name, answered, found, kind_spec(case.kind).expect_rules)
 
 
 def observe_case(case: Any, **computed: Any) -> Observed:

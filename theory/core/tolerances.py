@@ -39,7 +39,10 @@ __all__ = [
     "GROWTH",
     "HYPOTHESIS_TOL",
     "INCONCLUSIVE_FACTOR",
+    "INEQUALITY_RTOL",
+    "ISS_BOUND_RTOL",
     "KERNEL_RTOL",
+    "KINEMATICS_RTOL",
     "LMI_MARGIN",
     "MARGIN_TOL",
     "MAX_ITER",
@@ -49,6 +52,7 @@ __all__ = [
     "PF_TOLERANCES",
     "PSD_RTOL",
     "PSD_TOL",
+    "RADIUS_TOL",
     "RANK_TOL",
     "ROUNDING_TOL",
     "TOLERANCES",
@@ -216,7 +220,8 @@ MIRROR_TOL = _named(
     "mirror_tol",
     1e-9,
     "relative to the scene's size",
-    "two TDOA vectors this close are equal (a target and its mirror image)",
+    "two TDOA (or range) vectors this close are equal (a target and its mirror image; seed 003's "
+    "helix mirror pairs)",
     "TDOA differences are differences of distances of order the scene size",
 )
 UNIQUENESS_TOL = _named(
@@ -331,14 +336,46 @@ MARGIN_TOL = _named(
     "relative (each condition's margin is scaled, e.g. |ε₁|/‖ε‖, λ_min(K)/λ_max(K))",
     "an ISS condition of seed 003 whose relative margin is below margin_tol is inconclusive",
     "the conditions are exact where they can be (ΔΔᵀ, the Laplacian): the margin guards the "
-    "float ones; theory.pursuit.iss.DEFAULT_MARGIN_TOL is this value until it imports it",
+    "float ones",
 )
 VIOLATION_TOL = _named(
     "violation_tol",
     1e-6,
     "absolute, on V̇",
     "a printed inequality of seed 003 is violated at a point when it fails by more than this",
-    "far above the float error of V̇; seed003.eq72 writes this value literally until it imports it",
+    "far above the float error of V̇",
+)
+INEQUALITY_RTOL = _named(
+    "inequality_rtol",
+    1e-9,
+    "relative to the magnitude of the inequality's terms",
+    "a coordination inequality of seed 003 ((74), (75), Lemma 3) holds at a point when it fails "
+    "by at most inequality_rtol times its scale (falsify's seed 003 wordings)",
+    "the terms are a few products of small matrices: float error is ~1e-15 of the scale",
+)
+KINEMATICS_RTOL = _named(
+    "kinematics_rtol",
+    1e-6,
+    "relative to the magnitude of the inequality's terms",
+    "a pursuit inequality of seed 003 ((72), Theorem 1) holds at a point when V̇, computed from "
+    "the kinematics, exceeds its bound by at most kinematics_rtol times the scale",
+    "V̇ goes through rotations, path evaluations and the controller: float error grows to ~1e-10",
+)
+ISS_BOUND_RTOL = _named(
+    "iss_bound_rtol",
+    1e-3,
+    "relative to the certified bound",
+    "a simulated pursuit run leaves Theorem 2's estimate when ‖μ(t)‖ > bound·(1 + iss_bound_rtol) "
+    "at a record (seed003.thm2.sim-trajectories, trackcert simulate's iss_agreement)",
+    "the integrator's local error control is 3e-4 per step (theory.pursuit.closed_loop)",
+)
+RADIUS_TOL = _named(
+    "radius_tol",
+    1e-6,
+    "relative, on the spectral radius",
+    "above the exact-arithmetic size limit, a float r_σ(T) decides 'r_σ < ρ' only outside "
+    "ρ(1 ± radius_tol) (theory.consensus.exact_radius)",
+    "an eigenvalue of a non-normal matrix can move by √ε ≈ 1e-8 (2 × 2 Jordan block)",
 )
 PF_TOLERANCES = {
     "converge_tol": _named(

@@ -78,7 +78,7 @@ TRACKER_FIELDS_3D = ("r_x", "r_y", "r_z", "c", "gamma0", "initial")
 INITIAL_FIELDS = ("position", "euler", "gamma", "gamma_dot")
 TARGET_FIELDS = ("offset", "velocity", "amplitude", "frequency", "phase")
 DEKF_FIELDS = ("Ts", "sigma", "V", "Q", "weights", "x0", "P0")
-EXPECT_KEYS = ("iss", "delta_full_rank", "strongly_connected")
+EXPECT_KEYS = ("iss", "delta_full_rank", "strongly_connected", "simulation_bounded")
 TOLERANCE_KEYS = ("margin_tol", "weight_sum_tol")
 
 
@@ -396,4 +396,11 @@ def _initial_covariances(raw: object, n: int, size: int, field: str) -> np.ndarr
     return np.broadcast_to(matrix, (n, size, size)).copy()
 
 
-register_kind("pursuit", parse_pursuit, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+register_kind(
+    "pursuit",
+    parse_pursuit,
+    expect_keys=EXPECT_KEYS,
+    tolerance_keys=TOLERANCE_KEYS,
+    observe="theory.pursuit.iss_report:observe_iss",
+    simulate="theory.pursuit.simulation:pursuit_simulator",
+)

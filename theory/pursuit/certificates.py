@@ -1,14 +1,12 @@
 """Exact ``iss`` certificates of pursuit cases (seed 003), in the format of docs/certificates.md.
 
 :func:`iss_certificate` turns :func:`theory.pursuit.iss.iss_certificate_data` (exact rationals,
-already
-verified by theory's own :func:`theory.pursuit.iss.verify_certificate`) into the JSON certificate
-and
-re-checks it with the independent checker :mod:`proofs_check` before returning it.
-:func:`pursuit_certificates` is the ``pursuit`` entry of
-:data:`theory.certify.CERTIFIERS`: a case whose conditions fail (a graph that is not
+already verified by theory's own :func:`theory.pursuit.iss.verify_certificate`) into the JSON
+certificate and re-checks it with the independent checker :mod:`proofs_check` before returning
+it. :func:`pursuit_certificates` is the ``pursuit`` kind's certifier
+(:func:`theory.certify.register_certifier`): a case whose conditions fail (a graph that is not
 strongly connected, ``ε₁ = 0``) gets no certificate, and the reason says which condition.
-The claim ``seed003.thm2.certified`` reports the certificate (method ``exact``).
+The claim ``seed003.thm2.certified`` (:mod:`theory.pursuit.certificate_claims`) reports it.
 """
 
 from __future__ import annotations
@@ -17,13 +15,13 @@ from fractions import Fraction
 from typing import Any
 
 import proofs_check
+from theory.certify import register_certifier
 from theory.core.case_file import Case
-from theory.core.claims import DOCUMENT_KEY, ClaimResult, NotApplicable, register
-from theory.core.errors import InconclusiveError, PropertyFails
+from theory.core.errors import InconclusiveError
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.iss import iss_certificate_data
 
-__all__ = ["iss_certificate", "iss_certificate_claim", "pursuit_certificates"]
+__all__ = ["STATEMENT", "iss_certificate", "pursuit_certificates"]
 
 STATEMENT = (
     "seed 003 Theorem 2 (corrected): ‖ξ(t)‖ + ‖e(t)‖ ≤ β(‖μ(0)‖, t) + gain·sup‖x̃‖ with "
@@ -103,6 +101,7 @@ def iss_certificate(spec: PursuitSpec, *, case: str | None = None) -> dict[str, 
     return cert
 
 
+@register_certifier("pursuit")
 def pursuit_certificates(case: Case, seed: int) -> tuple[list[dict[str, Any]], list[str]]:
     """The ``iss`` certificate of a ``pursuit`` case, or the reason there is none.
 
@@ -128,46 +127,3 @@ def pursuit_certificates(case: Case, seed: int) -> tuple[list[dict[str, Any]], l
         return [iss_certificate(case.spec, case=case.name)], []
     except InconclusiveError as error:
         return [], [str(error)]
-
-
-@register(
-    "seed003.thm2.certified",
-    source="seed 003, Theorem 2 and Lemmas 1–4 (corrected, docs/theory/pursuit-iss.md §5, §7)",
-    statement="the corrected ISS estimate of the pursuit and coordination errors is certified by "
-    "exact inequalities E1–E5, C1–C6 re-derived by proofs_check (kind iss)",
-    kinds=("pursuit",),
-)
-def iss_certificate_claim(case: Case) -> list[ClaimResult]:
-    """Build the ``iss`` certificate of a pursuit case and report it (method ``exact``).
-
-    Parameters
-    ----------
-    case : Case
-        A ``pursuit`` case.
-
-    Returns
-    -------
-    list of ClaimResult
-        ``verified`` with the certified constants as evidence, or ``inconclusive`` naming the
-        conditions inside their tolerance.
-
-    Raises
-    ------
-    NotApplicable
-        If a condition fails: the corrected Theorem 2 says nothing about the case (``trackcert
-        iss`` and claim ``seed003.thm2`` report the failure).
-    """
-    claim_id = "seed003.thm2.certified"
-    try:
-        cert = iss_certificate(case.spec, case=case.name)
-    except InconclusiveError as error:
-        return [ClaimResult(claim_id, case.name, "exact", "inconclusive", message=str(error))]
-    except PropertyFails as error:
-        raise NotApplicable(str(error)) from error
-    witness = cert["witness"]
-    keys = [k for k in ("lambda", "alpha", "kappa", "g_e", "g_xi", "gain") if k in witness]
-    evidence = {k: witness[k] for k in keys} | {
-        f"{k}_approx": float(Fraction(witness[k])) for k in keys
-    }
-    evidence[DOCUMENT_KEY] = cert
-    return [ClaimResult(claim_id, case.name, "exact", "verified", evidence, message=STATEMENT)]

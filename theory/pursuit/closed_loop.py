@@ -1,42 +1,65 @@
-"""Seed 003: the distributed estimation and control (DEC) loop of §V, in 2-D and 3-D.
+"""Seed 003: the distributed estimation and control (DEC) loop of §V, simulated in continuous time.
 
-Trackers (2)–(5) with ``v = [v₁, 0(, 0)]``: ``ṗ = R[v₁, 0(, 0)]ᵀ``, ``Ṙ = R S(ω)`` with
-``S(ω) = [ω]×`` (the printed S of eq. (4) swaps p and q; only ``[ω]×`` reproduces Δ of (22),
-see docs/errata.md), inputs ``u = (v₁, r)`` in 2-D and ``(v₁, p, q, r)`` in 3-D. Each tracker
-runs the DEKF of Algorithm 2 on a range every ``T_s``, tracks its S-T curve ``p_d = r(γ) + q̂``
-with (48), (51) (``Δ̄ = Δᵀ(ΔΔᵀ)⁻¹``), coordinates its path parameter with (45)–(47) and uses
-Controller Type I (49) or Type II (50), (52).
+Trackers (2)–(5) with ``v = [v₁, 0(, 0)]``: ``ṗ = R[v₁, 0(, 0)]ᵀ``, ``Ṙ = R S(ω)``, inputs
+``u = (v₁, r)`` in 2-D and ``(v₁, p, q, r)`` in 3-D. Each tracker runs the DEKF of Algorithm 2
+(:func:`theory.pursuit.dekf.dekf_step`) on a range every ``T_s``, tracks its S-T curve with
+(48), (51), coordinates its path parameter with (45)–(47) and uses Controller Type I (49) or
+Type II (50), (52). Every formula comes from :mod:`theory.pursuit.model`, evaluated on all
+trackers at once.
 
-Choices (not given in the text, see ``docs/simulation.md``): between samples the controller uses
-``q̂(t) = q̂_{k|k} + (t − t_k) v̂``; ``p`` advances by forward Euler and ``R`` by the exact
-rotation ``R exp(S(ω) dt)`` with the input held over ``dt``; the stiff speed error
-``e_γ = γ̇ − ω_d`` of Type II obeys ``ė_γ = −k_γ e_γ + ê_pᵀRᵀr'(γ)`` (from (47), (50b), (52))
-and is advanced exactly over ``dt`` with its input frozen.
+The controllers are continuous-time laws and Theorem 2 is a continuous-time statement, so the loop
+is integrated as an ODE with error control, not with inputs held over a fixed step: a held-input
+(sampled-data) step of 0.02 s is unstable for Table II with k_γ = 5 and stalls Table I's tracker
+at 0.1 s (docs/simulation.md, docs/theory/pursuit-iss.md §8). The state of tracker i is
+(p, R, γ, e_γ) with ``e_γ = γ̇ − ω_d`` obeying ``ė_γ = −k_γ e_γ + ê_pᵀRᵀr′(γ)`` ((47), (50b), (52),
+i.e. (62)); e_γ ≡ 0 for Type I. One step of length h (:func:`heun_step`) is a predictor–corrector
+pair of orders 1 and 2: positions by Euler/Heun, the attitude by R(I + hS(ω₀)) and then exactly on
+SO(3) by R·exp(½hS(ω₀ + ω₁)) (Runge–Kutta–Munthe-Kaas), and (γ, e_γ) by exponential time
+differencing (ETD1/ETD2RK: exact for the decay −k_γ e_γ whatever k_γh). Their difference estimates
+the local error, and the step adapts (:class:`StepControl`) so that it stays below ``rtol``
+(positions relative to the paths' size, attitude entries and γ absolute). Between sampling
+instants the controller uses ``q̂(t) = q̂_{k|k} + (t − t_k)v̂``. Outputs are recorded every
+``dt``; steps never cross a record or a sampling instant.
 """
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["DecRun", "DecSettings", "delta_matrix", "euler_rotation", "simulate_dec"]
+from theory.pursuit import model
+from theory.pursuit.dekf import dekf_step, transition_matrix
+
+__all__ = [
+    "DecLoop",
+    "DecRun",
+    "DecSettings",
+    "LoopState",
+    "StepControl",
+    "build_loop",
+    "heun_step",
+    "integrate_until",
+    "simulate_dec",
+]
 
 
 @dataclass(frozen=True)
 class DecSettings:
-    """Parameters of the 2-D DEC loop (defaults: seed 003 Table I).
+    """Parameters of the DEC loop (defaults: seed 003 Table I, 2-D).
 
     Attributes
     ----------
     omega_bar : float
         Nominal path speed ``ω̄`` (rad/s).
     radii : tuple of float
-        ``(r_x, r_y)`` of (16).
+        ``(r_x, r_y)`` of (16), used when no ``paths`` are given.
     epsilon : tuple of float
-        ``ε`` of (19); ``ε₁ ≠ 0`` makes ``Δ`` of (22) invertible.
-    Kp : tuple of float
-        Diagonal of ``K_p``.
+        ``ε`` of (19); ``ε₁ ≠ 0`` makes ``Δ`` of (22) of full row rank.
+    Kp : tuple of float or ndarray
+        Diagonal of ``K_p``, or the symmetric positive-definite matrix.
     k_gamma : float
         ``k_γ`` of (50b).
     k_c : float
@@ -45,40 +68,49 @@ class DecSettings:
         ``"I"`` or ``"II"``.
     V : float
         DEKF inverse range variance.
-    Q : tuple of float
-        Diagonal of the DEKF's process covariance.
+    Q : tuple of float or ndarray
+        Diagonal of the DEKF's process covariance, or the matrix (W = Q⁻¹).
     fusion_weight : float
         ``π^[i,j]`` for the self and the in-neighbour.
     Ts : float
         Range sampling period (s).
     dt : float
-        Integration step (s); ``Ts/dt`` must be an integer.
+        Recording interval (s); ``Ts/dt`` must be an integer.
     sigma : float
         Standard deviation of the simulated range noise (m).
+    rtol : float
+        Local error allowed per integration step: positions relative to the largest path semi-axis,
+        attitude entries and γ absolute (rad).
+    min_step : float
+        Steps shorter than this (s) stop the run (the loop is too stiff or diverges).
     """
 
     omega_bar: float = 0.05
     radii: tuple[float, float] = (30.0, 30.0)
     epsilon: tuple[float, float] = (-0.5, 0.0)
-    Kp: tuple[float, float] = (0.4, 0.2)
+    Kp: tuple[float, ...] | np.ndarray = (0.4, 0.2)
     k_gamma: float = 500.0
     k_c: float = 0.2
     controller: str = "II"
     V: float = 10.0
-    Q: tuple[float, float, float, float] = (1e-3, 1e-3, 1e-4, 1e-4)
+    Q: tuple[float, ...] | np.ndarray = (1e-3, 1e-3, 1e-4, 1e-4)
     fusion_weight: float = 0.5
     Ts: float = 2.0
     dt: float = 0.1
     sigma: float = 0.5
+    rtol: float = 3e-4
+    min_step: float = 1e-5
 
 
 @dataclass(frozen=True, eq=False)
 class DecRun:
-    """Arrays every ``dt``: ``times`` (M+1,), ``positions`` (M+1, N, 2), ``headings``,
+    """Arrays every ``dt``: ``times`` (M+1,), ``positions`` (M+1, N, d), ``headings`` (yaw),
     ``gammas``, ``gamma_rates``, ``gamma_errors`` ``e_γ = γ̇ − ω_d`` (M+1, N),
     ``pursuit_errors`` ``‖e_p‖`` with the true target (M+1, N), ``localization_errors``
     ``‖q̂ − q‖`` and ``estimation_errors`` ``‖x̂ − x‖`` (state used by the controller at that
-    instant) (M+1, N), ``target`` (M+1, 4)."""
+    instant) (M+1, N), ``target`` (M+1, 2d); ``steps`` and ``rejected`` count the integration
+    steps taken and refused; ``stopped_at`` is the time the integration stopped early (records
+    after it are NaN) or ``None``, with the reason in ``stop_reason``."""
 
     times: np.ndarray
     positions: np.ndarray
@@ -90,94 +122,448 @@ class DecRun:
     localization_errors: np.ndarray
     estimation_errors: np.ndarray
     target: np.ndarray
+    steps: int = 0
+    rejected: int = 0
+    stopped_at: float = math.nan
+    stop_reason: str = ""
+
+    @property
+    def completed(self) -> bool:
+        """Whether the integration reached the last record."""
+        return math.isnan(self.stopped_at)
 
 
-def _skew(omega: np.ndarray, dim: int) -> np.ndarray:
-    """``S(ω) = [ω]×`` with ``Ṙ = R S(ω)`` (3-D, ``ω = (p, q, r)``; the correct form, see
-    docs/errata.md) or ``[[0, −r], [r, 0]]`` (2-D, ``ω = r``), stacked over trackers."""
-    out = np.zeros((omega.shape[0], dim, dim))
-    if dim == 2:
-        out[:, 0, 1], out[:, 1, 0] = -omega[:, 0], omega[:, 0]
-        return out
-    p, q, r = omega[:, 0], omega[:, 1], omega[:, 2]
-    out[:, 0, 1], out[:, 0, 2], out[:, 1, 2] = -r, q, -p
-    out[:, 1, 0], out[:, 2, 0], out[:, 2, 1] = r, -q, p
-    return out
-
-
-def _exp_skew(S: np.ndarray) -> np.ndarray:
-    """``exp(S)`` of stacked skew-symmetric 2×2 or 3×3 matrices (Rodrigues)."""
-    dim = S.shape[1]
-    if dim == 2:
-        angle = S[:, 1, 0]
-        c, s = np.cos(angle), np.sin(angle)
-        return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
-    axis = np.stack([S[:, 2, 1], S[:, 0, 2], S[:, 1, 0]], -1)
-    theta = np.linalg.norm(axis, axis=1)[:, None, None]
-    safe = np.where(theta > 1e-12, theta, 1.0)
-    a = np.where(theta > 1e-12, np.sin(safe) / safe, 1.0)
-    b = np.where(theta > 1e-12, (1 - np.cos(safe)) / safe**2, 0.5)
-    return np.eye(3) + a * S + b * S @ S
-
-
-def euler_rotation(euler: np.ndarray) -> np.ndarray:
-    """``R(η)`` from roll–pitch–yaw ``η = (φ, θ, ψ)`` (ZYX convention), stacked (N, 3, 3).
+class LoopState:
+    """(p, R, γ, e_γ) of every tracker; p, γ and e_γ are views of one flat vector ``z``.
 
     Parameters
     ----------
-    euler : ndarray, shape (N, 3)
+    z : ndarray, shape (N·d + 2N,)
+        [p (N × d, row-major), γ (N), e_γ (N)].
+    R : ndarray, shape (N, d, d)
+        Attitudes.
+    n, d : int
+        Number of trackers and dimension.
+    """
+
+    __slots__ = ("R", "e_gamma", "gamma", "p", "z")
+
+    def __init__(self, z: np.ndarray, R: np.ndarray, n: int, d: int) -> None:
+        self.z, self.R = z, R
+        self.p = z[: n * d].reshape(n, d)
+        self.gamma = z[n * d : n * d + n]
+        self.e_gamma = z[n * d + n :]
+
+    @classmethod
+    def of(cls, p: np.ndarray, R: np.ndarray, gamma: np.ndarray, e_gamma: np.ndarray):
+        """From the separate arrays (copied)."""
+        n, d = p.shape
+        return cls(np.concatenate([p.ravel(), gamma, e_gamma]).astype(float), R.copy(), n, d)
+
+
+Rates = tuple[np.ndarray, np.ndarray]
+"""(ż, ω): ż = [ṗ, γ̇, ê_pᵀRᵀr′] (the path feedback in e_γ's slot) and the body rates ω."""
+
+
+@dataclass(frozen=True, eq=False)
+class DecLoop:
+    """The closed loop's constants, precomputed once (seed 003 eqs. (45)–(52)).
+
+    Attributes
+    ----------
+    dim, n : int
+        Dimension and number of trackers.
+    epsilon, K_p, delta_bar, laplacian : ndarray
+        ε, K_p, Δ̄ = Δᵀ(ΔΔᵀ)⁻¹ and L = D_in − A.
+    omega_bar, k_c, k_gamma : float
+        ω̄, k_c and k_γ (0 for Type I, where e_γ ≡ 0).
+    paths : PathHarmonics
+        The trackers' paths (15)/(16), one row each.
+    scale : float
+        Largest path semi-axis (m): positions are controlled relative to the larger of it and
+        the largest coordinate of any tracker, γ and the attitude entries absolutely.
+    """
+
+    dim: int
+    n: int
+    epsilon: np.ndarray
+    K_p: np.ndarray
+    delta_bar: np.ndarray
+    laplacian: np.ndarray
+    omega_bar: float
+    k_c: float
+    k_gamma: float
+    paths: model.PathHarmonics
+    scale: float
+
+    def rates(self, t: float, state: LoopState, x_hat: np.ndarray, t_hat: float) -> Rates:
+        """Kinematic rates of every tracker under controller (49)/(50), estimate ``x_hat``.
+
+        Parameters
+        ----------
+        t : float
+            Time (s).
+        state : LoopState
+        x_hat : ndarray, shape (N, 2d)
+            Filtered estimates x̂_{k|k} of the last sampling instant ``t_hat``.
+        t_hat : float
+            That instant: q̂(t) = q̂_{k|k} + (t − t_hat) v̂.
+
+        Returns
+        -------
+        (ż, ω) : tuple of ndarray
+            ż = [ṗ, γ̇, ê_pᵀRᵀr′] (flat, as ``state.z``) and ω (N, k).
+
+        References
+        ----------
+        seed 003, eqs. (2)–(5), (45)–(51), (50b).
+        """
+        d = self.dim
+        v_hat = x_hat[:, d:]
+        q_hat = x_hat[:, :d] + (t - t_hat) * v_hat
+        r_gamma, r_prime = self.paths.jet(state.gamma)
+        omega_d = model.desired_speed(self.omega_bar, self.laplacian, state.gamma, self.k_c)
+        e_hat = model.body_error(state.R, state.p, r_gamma, q_hat, self.epsilon)
+        u = model.tracking_input(state.R, r_prime, omega_d, v_hat, e_hat, self.delta_bar, self.K_p)
+        position_dot, omega = model.tracker_rates(state.R, u)
+        feedback = model.path_feedback(e_hat, state.R, r_prime) if self.k_gamma else 0 * omega_d
+        return np.concatenate([position_dot.ravel(), omega_d + state.e_gamma, feedback]), omega
+
+
+Field = Callable[[float, LoopState, np.ndarray, float], Rates]
+"""``field(t, state, x_hat, t_hat)``: :meth:`DecLoop.rates` or a per-tracker equivalent."""
+
+
+def _etd_weights(k: float, h: float) -> tuple[float, ...]:
+    """Exact weights for γ̇ = ω_d + e, ė = −ke + f over a step h with ω_d, f linear in time.
+
+    Returns (E, w₁, w₂, g₁, g₂): E = e^{−kh}; w₁ = ∫₀ʰ e^{−ks}ds = (1 − E)/k;
+    w₂ = ∫₀ʰ e^{−k(h−s)} s/h ds = (E − 1 + kh)/(k²h); g₁ = ∫₀ʰ w₁(s)ds = (h − w₁)/k;
+    g₂ = h/(2k) − (h − w₁)/(k²h) (the γ-weight of the slope of f). Series in z = kh below 1e-3
+    (k → 0: 1, h, h/2, h²/2, h²/6).
+    """
+    z = k * h
+    if z < 1e-3:
+        return (
+            math.exp(-z),
+            h * (1 - z / 2 + z * z / 6 - z**3 / 24),
+            h * (0.5 - z / 6 + z * z / 24 - z**3 / 120),
+            h * h * (0.5 - z / 6 + z * z / 24 - z**3 / 120),
+            h * h * (1 / 6 - z / 24 + z * z / 120 - z**3 / 720),
+        )
+    decay = math.exp(-z)
+    w1 = -math.expm1(-z) / k
+    return decay, w1, (decay - 1.0 + z) / (k * z), (h - w1) / k, h / (2 * k) - (h - w1) / (k * z)
+
+
+def heun_step(
+    loop: DecLoop,
+    field: Field,
+    t: float,
+    h: float,
+    state: LoopState,
+    rates: Rates,
+    estimate: tuple[np.ndarray, float],
+) -> tuple[LoopState, float]:
+    """One predictor–corrector step of length ``h`` and its scaled local error estimate.
+
+    (γ, e_γ) obey γ̇ = ω_d + e_γ, ė_γ = −k_γe_γ + f (f = ê_pᵀRᵀr′) and are advanced exactly for
+    ω_d, f constant (predictor, order 1: ETD1) or linear in time (corrector, order 2: ETD2RK),
+    with the weights of :func:`_etd_weights`, so the stiff decay −k_γ costs nothing whatever k_γh.
+    Positions: p + hṗ₀, then p + ½h(ṗ₀ + ṗ₁); attitude: R(I + hS(ω₀)) (only feeds the rates at
+    the predicted state, need not be a rotation), then R exp(½hS(ω₀ + ω₁)) (exact on SO(3)).
+
+    Parameters
+    ----------
+    loop : DecLoop
+    field : callable
+        The vector field (:data:`Field`).
+    t, h : float
+        Time and step (s).
+    state : LoopState
+    rates : tuple
+        ``field`` at (t, state).
+    estimate : (ndarray, float)
+        (x̂_{k|k}, t_k) used by the controller.
 
     Returns
     -------
-    ndarray, shape (N, 3, 3)
+    (LoopState, float)
+        The corrected state and the error estimate (≤ rtol: accept): the largest difference
+        between corrector and predictor in p (relative to :attr:`DecLoop.scale` or the largest
+        coordinate), γ and R.
+
+    References
+    ----------
+    Cox & Matthews, J. Comput. Phys. 176 (2002) (ETD2RK); Munthe-Kaas, BIT 38 (1998) (RKMK).
     """
-    phi, theta, psi = euler[:, 0], euler[:, 1], euler[:, 2]
-    cf, sf, ct, st, cp, sp = (np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta),
-                              np.cos(psi), np.sin(psi))  # fmt: skip
-    return np.stack(
+    z_dot, omega = rates
+    n, d = loop.n, loop.dim
+    a, b = n * d, n * d + n  # z = [p (:a), γ (a:b), e_γ (b:)]
+    decay, w1, w2, g1, g2 = _etd_weights(loop.k_gamma, h)
+    z, half = state.z, 0.5 * h
+    e, f0, speed0 = z[b:], z_dot[b:], z_dot[a:b] - z[b:]  # speed = ω_d
+    gamma_free = z[a:b] + w1 * e + g1 * f0
+    z1 = np.concatenate([z[:a] + h * z_dot[:a], gamma_free + h * speed0, decay * e + w1 * f0])
+    R1 = state.R + h * (state.R @ model.skew(omega))
+    z_dot1, omega1 = field(t + h, LoopState(z1, R1, n, d), *estimate)
+    slope = z_dot1[b:] - f0
+    z2 = np.concatenate(
         [
-            np.stack([cp * ct, cp * st * sf - sp * cf, cp * st * cf + sp * sf], -1),
-            np.stack([sp * ct, sp * st * sf + cp * cf, sp * st * cf - cp * sf], -1),
-            np.stack([-st, ct * sf, ct * cf], -1),
-        ],
-        -2,
+            z[:a] + half * (z_dot[:a] + z_dot1[:a]),
+            gamma_free + half * (speed0 + z_dot1[a:b] - z1[b:]) + g2 * slope,
+            z1[b:] + w2 * slope,
+        ]
+    )
+    R2 = state.R @ model.exp_skew(half * (omega + omega1))
+    length = max(loop.scale, abs(z[:a]).max())
+    error = max(
+        abs(z2[:a] - z1[:a]).max() / length, abs(z2[a:b] - z1[a:b]).max(), abs(R2 - R1).max()
+    )
+    return LoopState(z2, R2, n, d), float(error)
+
+
+@dataclass
+class StepControl:
+    """The adaptive step's state: the proposed step ``h`` (s).
+
+    After a step of scaled error ``err`` (≤ 1: accepted) the step is multiplied by
+    0.9·err^{−1/2} (at most 1 after a rejection), within [0.2, 2], and kept at most ``cap``. (A
+    proportional–integral controller halved the rejections but took 20–90 % more steps here.)
+
+    Parameters
+    ----------
+    h : float
+        First proposed step (s).
+    cap : float
+        Largest step (s), the recording interval.
+    """
+
+    h: float
+    cap: float
+
+    def update(self, step: float, error: float, accepted: bool, reached_end: bool) -> None:
+        """Propose the next step after a step of length ``step`` with scaled error ``error``,
+        ``accepted`` or not, that ``reached_end`` of its interval (then it may have been
+        shortened to land there, and the proposal is kept)."""
+        if not math.isfinite(error):
+            self.h = 0.2 * step
+            return
+        factor = 2.0 if error == 0 else 0.9 / math.sqrt(error)
+        proposal = step * min(2.0 if accepted else 1.0, max(0.2, factor))
+        if accepted and reached_end:  # a step shortened to land on a record says nothing of h
+            proposal = max(proposal, self.h)
+        self.h = min(proposal, self.cap)
+
+
+def integrate_until(
+    loop: DecLoop,
+    field: Field,
+    t: float,
+    t_end: float,
+    state: LoopState,
+    estimate: tuple[np.ndarray, float],
+    control: StepControl,
+    settings: DecSettings,
+    rates: Rates | None = None,
+) -> tuple[LoopState, Rates, int, int]:
+    """Adaptive steps from ``t`` to ``t_end`` (the last one lands on ``t_end``).
+
+    Parameters
+    ----------
+    loop : DecLoop
+    field : callable
+        :data:`Field`.
+    t, t_end : float
+        Interval (s).
+    state : LoopState
+    estimate : (ndarray, float)
+        (x̂_{k|k}, t_k).
+    control : StepControl
+        The step size, updated in place.
+    settings : DecSettings
+        ``rtol`` and ``min_step``.
+    rates : tuple, optional
+        ``field`` at (t, state), if known.
+
+    Returns
+    -------
+    (LoopState, tuple, int, int)
+        State at ``t_end``, the rates there, accepted and rejected steps.
+
+    Raises
+    ------
+    FloatingPointError
+        If the step falls below ``settings.min_step`` (the message gives the time).
+    """
+    accepted = rejected = 0
+    rates = field(t, state, *estimate) if rates is None else rates
+    while t_end - t > 1e-12 * max(1.0, abs(t_end)):
+        last = control.h >= t_end - t
+        step = t_end - t if last else control.h
+        candidate, error = heun_step(loop, field, t, step, state, rates, estimate)
+        error /= settings.rtol
+        ok = error <= 1.0
+        if ok:
+            t, state = (t_end if last else t + step), candidate
+            accepted += 1
+            rates = field(t, state, *estimate)
+        else:
+            rejected += 1
+        control.update(step, error, ok, last)
+        if control.h < settings.min_step:
+            raise FloatingPointError(f"integration step below {settings.min_step} s at t = {t:g} s")
+    return state, rates, accepted, rejected
+
+
+def _matrix(values: tuple[float, ...] | np.ndarray) -> np.ndarray:
+    """A matrix given as itself or by its diagonal."""
+    values = np.asarray(values, dtype=float)
+    return np.diag(values) if values.ndim == 1 else values
+
+
+def _laplacian(in_neighbours: list[list[int]], n: int) -> np.ndarray:
+    adjacency = np.zeros((n, n))
+    for i, neighbours in enumerate(in_neighbours):
+        adjacency[i, neighbours] = 1.0
+    return np.diag(adjacency.sum(axis=1)) - adjacency
+
+
+def _path_harmonics(paths: np.ndarray) -> model.PathHarmonics:
+    """Rows (r_x, r_y, γ0) or (r_x, r_y, r_z, c, γ0) as :class:`model.PathHarmonics`."""
+    if paths.shape[1] == 5:
+        r_x, r_y, r_z, c, gamma0 = paths.T
+        return model.PathHarmonics.of(r_x, r_y, gamma0, r_z, c)
+    return model.PathHarmonics.of(paths[:, 0], paths[:, 1], paths[:, 2])
+
+
+def build_loop(
+    settings: DecSettings, paths: np.ndarray, in_neighbours: list[list[int]], dim: int
+) -> DecLoop:
+    """The :class:`DecLoop` of ``settings`` for trackers on ``paths``.
+
+    Parameters
+    ----------
+    settings : DecSettings
+        Gains (``epsilon``, ``Kp``, ``k_gamma``, ``k_c``, ``omega_bar``, ``controller``).
+    paths : ndarray, shape (N, 3) or (N, 5)
+        Rows as in :func:`simulate_dec`.
+    in_neighbours : list of list of int
+        0-based in-neighbours of each tracker (L = D_in − A).
+    dim : int
+        2 or 3.
+
+    Returns
+    -------
+    DecLoop
+
+    Raises
+    ------
+    ValueError
+        If ``Δ`` of (22) is not of full row rank (ε₁ = 0, Remark 6) or the controller is unknown.
+    """
+    if settings.controller not in ("I", "II"):
+        raise ValueError(f"controller must be 'I' or 'II', got {settings.controller!r}")
+    epsilon = np.asarray(settings.epsilon, dtype=float)
+    n, scale = paths.shape[0], float(np.max(paths[:, : 3 if dim == 3 else 2]))
+    return DecLoop(
+        dim=dim,
+        n=n,
+        epsilon=epsilon,
+        K_p=_matrix(settings.Kp),
+        delta_bar=model.delta_bar(epsilon),
+        laplacian=_laplacian(in_neighbours, n),
+        omega_bar=settings.omega_bar,
+        k_c=settings.k_c,
+        k_gamma=float(settings.k_gamma) if settings.controller == "II" else 0.0,
+        paths=_path_harmonics(paths),
+        scale=scale,
     )
 
 
-def delta_matrix(epsilon: np.ndarray) -> np.ndarray:
-    """``Δ`` of eq. (22): ``Δu = v − S(ω)ε`` for ``u = (v₁, ω)``.
+def _initial_state(
+    positions: np.ndarray, headings: np.ndarray, gammas: np.ndarray, e_gamma: np.ndarray | None
+) -> LoopState:
+    n, d = positions.shape
+    headings = np.asarray(headings, dtype=float).reshape(n, -1)
+    rotation = model.exp_skew(headings) if d == 2 else model.euler_rotation(headings)
+    start = np.zeros(n) if e_gamma is None else np.asarray(e_gamma, dtype=float)
+    return LoopState.of(positions.astype(float), rotation, gammas.astype(float), start)
 
-    Parameters
-    ----------
-    epsilon : ndarray, shape (d,)
 
-    Returns
-    -------
-    ndarray, shape (2, 2) or (3, 4)
+def _outputs(loop: DecLoop, times, z, R, estimates, target) -> dict[str, np.ndarray]:
+    """The arrays of :class:`DecRun` from the recorded states, all records at once.
+
+    ``z`` (M+1, N·d + 2N) and ``R`` (M+1, N, d, d) are the states, ``estimates`` (M+1, N, 2d) the
+    filtered x̂_{k|k} in force and their ages t − t_k on the last axis' extra column.
     """
-    e = np.asarray(epsilon, dtype=float)
-    if e.shape[0] == 2:
-        return np.array([[1.0, e[1]], [0.0, -e[0]]])
-    return np.array([[1.0, 0.0, -e[2], e[1]], [0.0, e[2], 0.0, -e[0]], [0.0, -e[1], e[0], 0.0]])
+    n, d = loop.n, loop.dim
+    p = z[:, : n * d].reshape(-1, n, d)
+    gamma, e_gamma = z[:, n * d : n * d + n], z[:, n * d + n :]
+    x_hat, age = estimates[..., :-1], estimates[..., -1:]
+    q_hat = x_hat[..., :d] + age * x_hat[..., d:]
+    truth = target[: len(times), None, :]
+    e_true = model.body_error(R, p, loop.paths.derivative(gamma), truth[..., :d], loop.epsilon)
+    omega_d = loop.omega_bar + model.correction_speed(loop.laplacian, gamma.T, loop.k_c).T
+    return {
+        "positions": p,
+        "headings": np.arctan2(R[..., 1, 0], R[..., 0, 0]),
+        "gammas": gamma,
+        "gamma_rates": omega_d + e_gamma,
+        "gamma_errors": e_gamma,
+        "pursuit_errors": np.linalg.norm(e_true, axis=-1),
+        "localization_errors": np.linalg.norm(q_hat - truth[..., :d], axis=-1),
+        "estimation_errors": np.linalg.norm(
+            np.concatenate([q_hat, x_hat[..., d:]], axis=-1) - truth, axis=-1
+        ),
+    }
 
 
-def _path(gamma: np.ndarray, paths: np.ndarray) -> np.ndarray:
-    """``r^[i](γ^[i])`` of (15)/(16); ``paths`` rows ``(r_x, r_y, γ0)`` or
-    ``(r_x, r_y, r_z, c, γ0)``."""
-    phase = gamma + paths[:, -1]
-    columns = [paths[:, 0] * np.cos(phase), paths[:, 1] * np.sin(phase)]
-    if paths.shape[1] == 5:
-        columns.append(paths[:, 2] * np.sin(gamma / paths[:, 3] + paths[:, -1]))
-    return np.column_stack(columns)
+def _sample(loop, state, truth, filter_state, dekf, rng, settings):
+    """Ranges (9)–(10) at the tracker positions and one DEKF step; returns (x̂, Ω, x̂_pred)."""
+    x_pred, Omega = filter_state
+    ranges = np.linalg.norm(state.p - truth[: loop.dim], axis=1)
+    ranges = ranges + settings.sigma * rng.standard_normal(loop.n)
+    x_hat, _, Omega, x_pred = dekf_step(
+        x_pred, Omega, state.p, ranges, fusion=dekf["fusion"], F=dekf["F"], W=dekf["W"],
+        V=settings.V,
+    )  # fmt: skip
+    return x_hat, (x_pred, Omega)
 
 
-def _path_derivative(gamma: np.ndarray, paths: np.ndarray) -> np.ndarray:
-    """``r'^[i](γ^[i])``."""
-    phase = gamma + paths[:, -1]
-    columns = [-paths[:, 0] * np.sin(phase), paths[:, 1] * np.cos(phase)]
-    if paths.shape[1] == 5:
-        columns.append(paths[:, 2] / paths[:, 3] * np.cos(gamma / paths[:, 3] + paths[:, -1]))
-    return np.column_stack(columns)
+def _run(
+    loop: DecLoop, field: Field, target: np.ndarray, state: LoopState, dekf: dict, steps: int,
+    rng: np.random.Generator, settings: DecSettings,
+) -> DecRun:  # fmt: skip
+    """Sample, record and integrate record by record; stop early (NaN records) on a step failure."""
+    every, dt = round(settings.Ts / settings.dt), settings.dt
+    z = np.full((steps + 1, state.z.size), np.nan)
+    R = np.full((steps + 1, *state.R.shape), np.nan)
+    estimates = np.full((steps + 1, loop.n, 2 * loop.dim + 1), np.nan)
+    counts, control, stopped, reason = [0, 0], StepControl(dt, dt), math.nan, ""
+    filter_state = (dekf["x_pred"], dekf["Omega"])
+    for m in range(steps + 1):
+        if m % every == 0:
+            x_hat, filter_state = _sample(loop, state, target[m], filter_state, dekf, rng, settings)
+            t_hat, rates = m * dt, None
+        z[m], R[m] = state.z, state.R
+        estimates[m, :, :-1], estimates[m, :, -1] = x_hat, m * dt - t_hat
+        if m == steps:
+            break
+        try:
+            state, rates, accepted, refused = integrate_until(
+                loop, field, m * dt, (m + 1) * dt, state, (x_hat, t_hat), control, settings, rates
+            )
+        except FloatingPointError as error:
+            stopped, reason = m * dt, str(error)
+            break
+        counts[0] += accepted
+        counts[1] += refused
+    times = dt * np.arange(steps + 1)
+    return DecRun(
+        times, **_outputs(loop, times, z, R, estimates, target), target=target[: steps + 1],
+        steps=counts[0], rejected=counts[1], stopped_at=stopped, stop_reason=reason,
+    )  # fmt: skip
 
 
 def simulate_dec(
@@ -194,8 +580,10 @@ def simulate_dec(
     *,
     paths: np.ndarray | None = None,
     fusion: np.ndarray | None = None,
+    initial_gamma_errors: np.ndarray | None = None,
+    field: Field | None = None,
 ) -> DecRun:
-    """Simulate the DEC system of seed 003 §V (2-D or 3-D) for ``steps`` steps of ``settings.dt``.
+    """Simulate the DEC system of seed 003 §V (2-D or 3-D), recording every ``settings.dt``.
 
     Parameters
     ----------
@@ -212,20 +600,26 @@ def simulate_dec(
     P0 : ndarray, shape (2d, 2d) or (N, 2d, 2d)
         Initial covariances ``P_{1|0}``.
     steps : int
+        Number of records after the first (the run lasts ``steps·dt``).
     rng : numpy.random.Generator
         Source of the range noise.
     settings : DecSettings
-        Gains and DEKF settings (``epsilon``, ``Kp`` and ``Q`` of matching dimension).
+        Gains, DEKF and integration settings (``epsilon``, ``Kp``, ``Q`` of matching dimension).
     paths : ndarray, shape (N, 3) or (N, 5), optional
         Rows ``(r_x, r_y, γ0)`` (16) or ``(r_x, r_y, r_z, c, γ0)`` (15); default (2-D)
         ``settings.radii`` and ``γ0^[i] = 2π(i−1)/N``.
     fusion : ndarray, shape (N, N), optional
         Fusion weights ``π^[i,j]``; default ``settings.fusion_weight`` on each in-edge and the
         rest on the tracker itself.
+    initial_gamma_errors : ndarray, shape (N,), optional
+        ``e_γ(0) = γ̇(0) − ω_d(0)`` (Type II; default 0).
+    field : callable, optional
+        Replaces :meth:`DecLoop.rates` (a reference implementation, for tests and benchmarks).
 
     Returns
     -------
     DecRun
+        ``completed`` is false when a step fell below ``settings.min_step``.
 
     Raises
     ------
@@ -239,99 +633,24 @@ def simulate_dec(
     """
     s = settings
     n, d = initial_positions.shape
-    delta = delta_matrix(np.array(s.epsilon))
-    if np.linalg.matrix_rank(delta) < d:
-        raise ValueError("epsilon gives a rank-deficient Delta of (22) (Remark 6)")
-    if s.controller not in ("I", "II"):
-        raise ValueError(f"controller must be 'I' or 'II', got {s.controller!r}")
     every = round(s.Ts / s.dt)
-    if abs(every * s.dt - s.Ts) > 1e-9 * s.Ts:
+    if every < 1 or abs(every * s.dt - s.Ts) > 1e-9 * s.Ts:
         raise ValueError("Ts must be an integer multiple of dt")
-    delta_bar = delta.T @ np.linalg.inv(delta @ delta.T)
-    Kp, eps = np.diag(s.Kp), np.array(s.epsilon)
     if paths is None:
-        paths = np.column_stack(
-            [np.tile(s.radii, (n, 1)), 2 * np.pi * np.arange(n) / n if n > 1 else np.zeros(1)]
-        )
-    adjacency = np.zeros((n, n))
-    for i, nbrs in enumerate(in_neighbours):
-        adjacency[i, nbrs] = 1.0
-    laplacian = np.diag(adjacency.sum(axis=1)) - adjacency
+        phases = 2 * np.pi * np.arange(n) / n if n > 1 else np.zeros(1)
+        paths = np.column_stack([np.tile(s.radii, (n, 1)), phases])
+    loop = build_loop(s, np.asarray(paths, dtype=float), in_neighbours, d)
+    adjacency = -loop.laplacian + np.diag(np.diag(loop.laplacian))
     if fusion is None:
         fusion = np.diag(1 - s.fusion_weight * adjacency.sum(axis=1)) + s.fusion_weight * adjacency
-    F = np.block([[np.eye(d), s.Ts * np.eye(d)], [np.zeros((d, d)), np.eye(d)]])
-    W_proc = np.diag(1.0 / np.array(s.Q))
-    p = initial_positions.astype(float).copy()
-    headings = np.asarray(initial_headings, dtype=float)
-    R = _exp_skew(_skew(headings[:, None], 2)) if d == 2 else euler_rotation(headings)
-    gamma, e_gamma = initial_gammas.astype(float).copy(), np.zeros(n)
-    Omega = np.linalg.inv(np.broadcast_to(P0, (n, 2 * d, 2 * d)))
-    x_pred = np.broadcast_to(x0, (n, 2 * d)).astype(float)
-    x_hat, t_hat = x_pred.copy(), 0.0
-    record = {k: [] for k in ("p", "yaw", "g", "gd", "ge", "pe", "le", "xe")}
-    surge = np.zeros((n, d))
-    for m in range(steps + 1):
-        t = m * s.dt
-        if m % every == 0:
-            x_hat, Omega, x_pred = _dekf_step(
-                x_pred, Omega, p, target[m], fusion, F, W_proc, s, rng
-            )
-            t_hat = t
-        q_hat = x_hat[:, :d] + (t - t_hat) * x_hat[:, d:]
-        path, dpath = _path(gamma, paths), _path_derivative(gamma, paths)
-        omega_d = s.omega_bar - s.k_c * laplacian @ gamma
-        gamma_rate = omega_d + e_gamma
-        e_hat = np.einsum("nji,nj->ni", R, p - path - q_hat) - eps
-        e_true = np.einsum("nji,nj->ni", R, p - path - target[m, :d]) - eps
-        for key, value in zip(
-            record,
-            (p.copy(), np.arctan2(R[:, 1, 0], R[:, 0, 0]), gamma.copy(), gamma_rate,
-             e_gamma.copy(), np.linalg.norm(e_true, axis=1),
-             np.linalg.norm(q_hat - target[m, :d], axis=1),
-             np.linalg.norm(np.hstack([q_hat, x_hat[:, d:]]) - target[m], axis=1)),
-            strict=True,
-        ):  # fmt: skip
-            record[key].append(value)
-        if m == steps:
-            break
-        feed = np.einsum("nji,nj->ni", R, dpath * omega_d[:, None] + x_hat[:, d:])
-        u = (feed - e_hat @ Kp.T) @ delta_bar.T
-        surge[:, 0] = u[:, 0]
-        p = p + s.dt * np.einsum("nij,nj->ni", R, surge)
-        R = R @ _exp_skew(s.dt * _skew(u[:, 1:], d))
-        gamma = gamma + s.dt * gamma_rate
-        if s.controller == "II":
-            drive = np.einsum("ni,nji,nj->n", e_hat, R, dpath)
-            decay = np.exp(-s.k_gamma * s.dt)
-            e_gamma = decay * e_gamma + (1 - decay) / s.k_gamma * drive
-    return DecRun(
-        times=s.dt * np.arange(steps + 1),
-        positions=np.array(record["p"]),
-        headings=np.array(record["yaw"]),
-        gammas=np.array(record["g"]),
-        gamma_rates=np.array(record["gd"]),
-        gamma_errors=np.array(record["ge"]),
-        pursuit_errors=np.array(record["pe"]),
-        localization_errors=np.array(record["le"]),
-        estimation_errors=np.array(record["xe"]),
-        target=target[: steps + 1],
+    dekf = {
+        "F": transition_matrix(d, s.Ts),
+        "W": np.linalg.inv(_matrix(s.Q)),
+        "fusion": fusion,
+        "Omega": np.linalg.inv(np.broadcast_to(P0, (n, 2 * d, 2 * d))),
+        "x_pred": np.broadcast_to(x0, (n, 2 * d)).astype(float),
+    }
+    state = _initial_state(
+        initial_positions, initial_headings, initial_gammas, initial_gamma_errors
     )
-
-
-def _dekf_step(x_pred, Omega, positions, truth, fusion, F, W_proc, s, rng):
-    """Correction (41), fusion (43), prediction (44) at one sampling instant."""
-    n, d = positions.shape
-    y = np.linalg.norm(positions - truth[:d], axis=1) + s.sigma * rng.standard_normal(n)
-    z_tilde = np.einsum("nij,nj->ni", Omega, x_pred)
-    Omega_tilde = Omega.copy()
-    for i in range(n):
-        diff = x_pred[i, :d] - positions[i]
-        predicted = np.linalg.norm(diff)
-        C = np.concatenate([diff / predicted, np.zeros(d)])
-        z_tilde[i] += C * s.V * (y[i] - predicted + C @ x_pred[i])
-        Omega_tilde[i] += s.V * np.outer(C, C)
-    Omega_post = np.einsum("ij,jkl->ikl", fusion, Omega_tilde)
-    x_hat = np.linalg.solve(Omega_post, (fusion @ z_tilde)[..., None])[..., 0]
-    inner = np.linalg.inv(Omega_post + F.T @ W_proc @ F)
-    Omega_next = W_proc - W_proc @ F @ inner @ F.T @ W_proc
-    return x_hat, Omega_next, x_hat @ F.T
+    return _run(loop, field or loop.rates, target, state, dekf, steps, rng, s)

@@ -8,9 +8,11 @@
 * Tables I–II: the targets' trajectories and the S-T curves (15)–(16) the trackers follow
   once tracking and coordination (38)–(39) have converged.
 
-The trackers' under-actuated kinematics and the Type I/II controllers with coordination
-(45)–(52) are not implemented here: :func:`encircling_paths` places the trackers on their desired
-S-T curves around the *true* target, the steady state those controllers are designed to reach.
+:func:`dekf_step` is the one implementation of the filter, vectorized over trackers: the closed
+loop (:mod:`theory.pursuit.closed_loop`) calls it at every sampling instant, and
+:func:`range_dekf` runs it on given trajectories, e.g. :func:`encircling_paths`, which places the
+trackers on their desired S-T curves around the *true* target (the steady state the controllers
+(45)–(52) are designed to reach).
 """
 
 from __future__ import annotations
@@ -19,12 +21,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from theory.pursuit.model import path
+
 __all__ = [
     "RangeDekfRun",
+    "dekf_step",
     "encircling_paths",
     "range_dekf",
     "st_curve",
     "table_target",
+    "transition_matrix",
 ]
 
 
@@ -78,11 +84,8 @@ def st_curve(gamma: np.ndarray, radii: tuple[float, ...], gamma0: float, c: floa
     -------
     ndarray, shape (..., d)
     """
-    gamma = np.asarray(gamma, dtype=float)
-    columns = [radii[0] * np.cos(gamma + gamma0), radii[1] * np.sin(gamma + gamma0)]
-    if len(radii) == 3:
-        columns.append(radii[2] * np.sin(gamma / c + gamma0))
-    return np.stack(columns, axis=-1)
+    r_z = radii[2] if len(radii) == 3 else None
+    return path(gamma, radii[0], radii[1], gamma0, r_z, c if r_z is not None else None)
 
 
 def encircling_paths(
@@ -185,7 +188,7 @@ def range_dekf(
     seed 003, eqs. (7)–(10), (33)–(35), (41)–(44), Algorithms 1–2.
     """
     steps, n, d = trackers.shape
-    F = np.block([[np.eye(d), Ts * np.eye(d)], [np.zeros((d, d)), np.eye(d)]])
+    F = transition_matrix(d, Ts)
     W = np.linalg.inv(Q)
     Omega = np.tile(np.linalg.inv(P0), (n, 1, 1))
     x = np.tile(x0, (n, 1))
@@ -194,20 +197,87 @@ def range_dekf(
     for k in range(steps):
         ranges = np.linalg.norm(trackers[k] - target[k, :d], axis=1)
         y = ranges + np.sqrt(noise_var) * rng.standard_normal(n)
-        z_tilde = np.einsum("nij,nj->ni", Omega, x)
-        Omega_tilde = Omega.copy()
-        for i in range(n):
-            diff = x[i, :d] - trackers[k, i]
-            predicted = np.linalg.norm(diff)
-            C = np.concatenate([diff / predicted, np.zeros(d)])
-            y_lin = y[i] - predicted + C @ x[i]
-            z_tilde[i] += C * V * y_lin
-            Omega_tilde[i] += V * np.outer(C, C)
-        z = fusion @ z_tilde
-        Omega = np.einsum("ij,jkl->ikl", fusion, Omega_tilde)
-        x = np.linalg.solve(Omega, z[..., None])[..., 0]
-        estimates[k], information[k] = x, Omega
-        inner = np.linalg.inv(Omega + F.T @ W @ F)
-        Omega = W - W @ F @ inner @ F.T @ W
-        x = x @ F.T
+        estimates[k], information[k], Omega, x = dekf_step(
+            x, Omega, trackers[k], y, fusion=fusion, F=F, W=W, V=V
+        )
     return RangeDekfRun(estimates, information)
+
+
+def transition_matrix(dim: int, Ts: float) -> np.ndarray:
+    """F = [I, T_s I; 0, I] of eq. (8) (Remark 3 in 2-D).
+
+    Parameters
+    ----------
+    dim : int
+        2 or 3.
+    Ts : float
+        Sampling period (s).
+
+    References
+    ----------
+    seed 003, eqs. (7)–(8), Remark 3.
+    """
+    eye = np.eye(dim)
+    return np.block([[eye, Ts * eye], [np.zeros((dim, dim)), eye]])
+
+
+def dekf_step(
+    x_pred: np.ndarray,
+    Omega: np.ndarray,
+    positions: np.ndarray,
+    ranges: np.ndarray,
+    *,
+    fusion: np.ndarray,
+    F: np.ndarray,
+    W: np.ndarray,
+    V: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """One sampling instant of Algorithm 2 for every tracker: correction, fusion, prediction.
+
+    Correction (41) with C_k = ∂d/∂x at x̂_{k|k−1} = [(q̂ − p)ᵀ/‖q̂ − p‖, 0] and the linearized
+    range ỹ = y − d(x̂) + Cx̂; one fusion round (43) z_{k|k} = Σ_j π^[i,j] z̃^[j],
+    Ω_{k|k} = Σ_j π^[i,j] Ω̃^[j]; prediction (44) Ω_{k+1|k} = W − WF(Ω_{k|k} + FᵀWF)⁻¹FᵀW,
+    x̂_{k+1|k} = F x̂_{k|k}.
+
+    Parameters
+    ----------
+    x_pred : ndarray, shape (N, 2d)
+        Prior estimates x̂_{k|k−1}.
+    Omega : ndarray, shape (N, 2d, 2d)
+        Prior information matrices Ω_{k|k−1}.
+    positions : ndarray, shape (N, d)
+        Tracker positions at the instant.
+    ranges : ndarray, shape (N,)
+        Measured ranges y_k (eq. (10)).
+    fusion : ndarray, shape (N, N)
+        Row-stochastic weights π^[i,j].
+    F : ndarray, shape (2d, 2d)
+        :func:`transition_matrix`.
+    W : ndarray, shape (2d, 2d)
+        The filter's inverse process covariance.
+    V : float
+        Inverse range variance V^[i].
+
+    Returns
+    -------
+    x_hat, Omega_post : ndarray
+        Posterior estimates x̂_{k|k} (N, 2d) and information Ω_{k|k} (N, 2d, 2d).
+    Omega_next, x_next : ndarray
+        Priors of the next instant, Ω_{k+1|k} and x̂_{k+1|k}.
+
+    References
+    ----------
+    seed 003, eqs. (41)–(44), Algorithm 2.
+    """
+    d = positions.shape[1]
+    diff = x_pred[:, :d] - positions
+    predicted = np.linalg.norm(diff, axis=1)
+    C = np.concatenate([diff / predicted[:, None], np.zeros_like(diff)], axis=1)
+    linearized = ranges - predicted + np.sum(C * x_pred, axis=1)
+    z_tilde = np.matmul(Omega, x_pred[..., None])[..., 0] + C * (V * linearized)[:, None]
+    Omega_tilde = Omega + V * (C[:, :, None] * C[:, None, :])
+    Omega_post = np.einsum("ij,jkl->ikl", fusion, Omega_tilde)
+    x_hat = np.linalg.solve(Omega_post, (fusion @ z_tilde)[..., None])[..., 0]
+    inner = np.linalg.inv(Omega_post + F.T @ W @ F)
+    Omega_next = W - W @ F @ inner @ F.T @ W
+    return x_hat, Omega_post, Omega_next, x_hat @ F.T

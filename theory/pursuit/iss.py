@@ -41,16 +41,16 @@ import scipy.linalg
 import sympy as sp
 
 from theory.core.errors import InconclusiveError, PropertyFails
+from theory.core.rationalize import exact_decimal
+from theory.core.tolerances import MARGIN_TOL
 from theory.pursuit.case import PursuitSpec, TrackerPath
 
 __all__ = [
-    "DEFAULT_MARGIN_TOL",
     "Condition",
     "CoordinationIss",
     "IssBound",
     "PursuitIss",
     "coordination_iss",
-    "exact_fraction",
     "gain_matrix",
     "generalized_algebraic_connectivity",
     "is_psd_exact",
@@ -62,21 +62,6 @@ __all__ = [
     "pursuit_iss",
     "verify_certificate",
 ]
-
-DEFAULT_MARGIN_TOL = 1e-9
-"""Relative margin under which a condition is reported inconclusive (scale-aware, see callers)."""
-
-
-def exact_fraction(value: float) -> Fraction:
-    """The rational a case number denotes: its shortest decimal representation (0.2 → 1/5).
-
-    Parameters
-    ----------
-    value : float
-        A number read from a case file.
-    """
-    return Fraction(repr(float(value)))
-
 
 # ---------------------------------------------------------------------------------------------
 # pursuit subsystem (Theorem 1, Lemma 4)
@@ -111,11 +96,11 @@ def path_mu(path: TrackerPath) -> tuple[Fraction, bool]:
     ----------
     seed 003, eqs. (15), (16), (71).
     """
-    rx, ry = exact_fraction(path.r_x), exact_fraction(path.r_y)
+    rx, ry = exact_decimal(path.r_x), exact_decimal(path.r_y)
     bound = max(rx, ry) ** 2
     if path.r_z is None:
         return bound, True
-    rz, c = exact_fraction(path.r_z), exact_fraction(path.c)
+    rz, c = exact_decimal(path.r_z), exact_decimal(path.c)
     return bound + (rz / c) ** 2, rx == ry
 
 
@@ -171,6 +156,17 @@ class PursuitIss:
     gain: float
     printed_region_sound: bool
     printed_region_holds: bool
+
+    def constants(self) -> dict[str, Any]:
+        """λ_min(K), ‖K‖, μ (and whether it is the supremum), c and c♯, as reported."""
+        return {
+            "lambda_min_K": self.lambda_min,
+            "norm_K": self.norm_K,
+            "mu": self.mu,
+            "mu_is_supremum": self.mu_is_supremum,
+            "c_paper": self.cross_gain,
+            "c_sharp": self.sharp_cross_gain,
+        }
 
 
 def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
@@ -533,7 +529,7 @@ class Condition:
 
 
 def _delta_condition(spec: PursuitSpec, tol: float) -> Condition:
-    eps = [exact_fraction(x) for x in spec.epsilon]
+    eps = [exact_decimal(x) for x in spec.epsilon]
     det = eps[0] ** 2 * (sum(x * x for x in eps) if spec.dim == 3 else 1)
     norm = math.sqrt(float(sum(x * x for x in eps)))
     margin = abs(float(eps[0])) / norm if norm > 0 else 0.0
@@ -547,7 +543,7 @@ def _delta_condition(spec: PursuitSpec, tol: float) -> Condition:
     return Condition("delta_full_rank", source, status, str(det), margin, detail)
 
 
-def iss_conditions(spec: PursuitSpec, *, margin_tol: float = DEFAULT_MARGIN_TOL) -> list[Condition]:
+def iss_conditions(spec: PursuitSpec, *, margin_tol: float = MARGIN_TOL) -> list[Condition]:
     """Every condition the corrected analysis needs, with its status.
 
     Parameters
@@ -711,12 +707,12 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
     """Plain data for an exact ISS certificate of ``spec`` (see docs/theory/pursuit-iss.md).
 
     ``data`` holds the case's matrices and constants as exact rationals (``fractions.Fraction``;
-    a case number denotes its shortest decimal, :func:`exact_fraction`), ``witness`` the
-    certificate's constants, rounded in the safe direction at 9 significant digits (λ below
-    λ_min(K), k̄ above ‖K‖, s above √μ, a below a(L), b above ‖R^{1/2}W‖, ρ below √r_min,
-    κ above √(r_max/r_min)). Every inequality of :data:`CERTIFICATE_INEQUALITIES` is re-verified
-    exactly by :func:`verify_certificate` before the data is returned; ``numeric`` repeats the
-    matrices as numpy arrays for convenience.
+    a case number denotes its shortest decimal, :func:`theory.core.rationalize.exact_decimal`),
+    ``witness`` the certificate's constants, rounded in the safe direction at 9 significant
+    digits (λ below λ_min(K), k̄ above ‖K‖, s above √μ, a below a(L), b above ‖R^{1/2}W‖,
+    ρ below √r_min, κ above √(r_max/r_min)). Every inequality of
+    :data:`CERTIFICATE_INEQUALITIES` is re-verified exactly by :func:`verify_certificate` before
+    the data is returned; ``numeric`` repeats the matrices as numpy arrays for convenience.
 
     Parameters
     ----------
@@ -749,37 +745,8 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
     if undecided:
         raise InconclusiveError(f"no ISS certificate: conditions {undecided} are inconclusive")
     pursuit = pursuit_iss(spec)
-    data: dict[str, Any] = {
-        "dim": spec.dim,
-        "controller": spec.controller,
-        "n_trackers": spec.n_trackers,
-        "epsilon": [exact_fraction(x) for x in spec.epsilon],
-        "K": [[exact_fraction(x) for x in row] for row in pursuit.K],
-        "K_p": [[exact_fraction(x) for x in row] for row in spec.K_p],
-        "P_e": [
-            [Fraction(1, 2) if i == j else Fraction(0) for j in range(len(pursuit.K))]
-            for i in range(len(pursuit.K))
-        ],
-        "paths": [
-            {"r_x": exact_fraction(p.r_x), "r_y": exact_fraction(p.r_y)}
-            | (
-                {"r_z": exact_fraction(p.r_z), "c": exact_fraction(p.c)}
-                if p.r_z is not None
-                else {}
-            )
-            for p in spec.trackers
-        ],
-    }
-    kp_bar = _rational_above(pursuit.norm_K_p)
-    needed = kp_bar * kp_bar + 1 + (pursuit.mu_r if spec.controller == "II" else 0)
-    witness: dict[str, Any] = {
-        "lambda": _rational_below(pursuit.lambda_min),
-        "kp_bar": kp_bar,
-        "mu_r": pursuit.mu_r,
-        "s": _sqrt_above(needed),
-    }
-    witness["g_e"] = witness["s"] / witness["lambda"]
-    witness["gain"] = witness["g_e"]
+    data = _pursuit_data(spec, pursuit)
+    witness = _pursuit_witness(spec, pursuit)
     numeric: dict[str, Any] = {"K": pursuit.K, "lambda_min": pursuit.lambda_min}
     if spec.n_trackers > 1:
         _coordination_certificate(spec, data, witness, numeric)
@@ -794,13 +761,47 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
     }
 
 
+def _pursuit_data(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
+    """The pursuit part of a certificate's ``data``: the case's numbers as exact rationals."""
+    size = len(pursuit.K)
+    return {
+        "dim": spec.dim,
+        "controller": spec.controller,
+        "n_trackers": spec.n_trackers,
+        "epsilon": [exact_decimal(x) for x in spec.epsilon],
+        "K": [[exact_decimal(x) for x in row] for row in pursuit.K],
+        "K_p": [[exact_decimal(x) for x in row] for row in spec.K_p],
+        "P_e": [[Fraction(int(i == j), 2) for j in range(size)] for i in range(size)],
+        "paths": [
+            {"r_x": exact_decimal(p.r_x), "r_y": exact_decimal(p.r_y)}
+            | ({} if p.r_z is None else {"r_z": exact_decimal(p.r_z), "c": exact_decimal(p.c)})
+            for p in spec.trackers
+        ],
+    }
+
+
+def _pursuit_witness(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
+    """λ below λ_min(K), k̄ above ‖K_p‖, μ_r, s ≥ √(k̄² + 1 (+ μ_r)) and g_e = s/λ (E1–E5)."""
+    kp_bar = _rational_above(pursuit.norm_K_p)
+    needed = kp_bar * kp_bar + 1 + (pursuit.mu_r if spec.controller == "II" else 0)
+    witness: dict[str, Any] = {
+        "lambda": _rational_below(pursuit.lambda_min),
+        "kp_bar": kp_bar,
+        "mu_r": pursuit.mu_r,
+        "s": _sqrt_above(needed),
+    }
+    witness["g_e"] = witness["s"] / witness["lambda"]
+    witness["gain"] = witness["g_e"]
+    return witness
+
+
 def _coordination_certificate(
     spec: PursuitSpec, data: dict[str, Any], witness: dict[str, Any], numeric: dict[str, Any]
 ) -> None:
     coordination = coordination_iss(spec)
     r = list(coordination.r)
     n = len(r)
-    k_c = exact_fraction(spec.k_c)
+    k_c = exact_decimal(spec.k_c)
     data.update({"laplacian": spec.laplacian.astype(int).tolist(), "k_c": k_c})
     witness.update(
         {

@@ -14,8 +14,8 @@ from __future__ import annotations
 from typing import Any
 
 from theory.core.claims import ClaimResult, applicable_results, get_claim, register
+from theory.core.tolerances import MARGIN_TOL, VIOLATION_TOL
 from theory.pursuit.iss import (
-    DEFAULT_MARGIN_TOL,
     coordination_iss,
     iss_bound,
     iss_conditions,
@@ -174,11 +174,11 @@ def check_eq72(case: object = None) -> list[ClaimResult]:
     """Counterexample (closed-loop V̇ from the kinematics) to the region printed in (72)."""
     evidence = eq72_printed_region()
     evidence["corrected"] = "‖e‖ ≥ (√μ + ‖K‖)‖x̃‖/(θ λ_min(K)), as printed in (78)"
-    status = "corrected" if evidence["violation"] > 1e-6 else "inconclusive"
+    status = "corrected" if evidence["violation"] > VIOLATION_TOL else "inconclusive"
     return [
         ClaimResult(
             "seed003.eq72", "-", "numeric", status, evidence, margin=evidence["violation"],
-            tolerance={"violation_tol": 1e-6}, message="(72) lacks the factor 1/λ_min(K)",
+            tolerance={"violation_tol": VIOLATION_TOL}, message="(72) lacks the factor 1/λ_min(K)",
         )
     ]  # fmt: skip
 
@@ -220,7 +220,7 @@ def check_eq75(case: object = None) -> list[ClaimResult]:
 
 
 def _tol(case: Any) -> float:
-    return float(case.tolerances.get("margin_tol", DEFAULT_MARGIN_TOL))
+    return float(case.tolerances.get("margin_tol", MARGIN_TOL))
 
 
 def _failing(case: Any) -> list[str]:
@@ -239,13 +239,7 @@ def check_theorem1(case: Any) -> list[ClaimResult]:
     pursuit = pursuit_iss(spec)
     if "delta_full_rank" in _failing(case):
         return [_refuted_delta("seed003.thm1", case)]
-    evidence = {
-        "lambda_min_K": pursuit.lambda_min,
-        "norm_K": pursuit.norm_K,
-        "mu": pursuit.mu,
-        "mu_is_supremum": pursuit.mu_is_supremum,
-        "c_paper": pursuit.cross_gain,
-        "c_sharp": pursuit.sharp_cross_gain,
+    evidence = pursuit.constants() | {
         "decay_rate": pursuit.decay_rate,
         "iss_gain": pursuit.gain,
         "iss_gain_paper_constants": pursuit.paper_gain,

@@ -20,7 +20,8 @@ from typing import Any
 import numpy as np
 
 from theory.pursuit.iss import left_eigenvector
-from theory.pursuit.model import closed_loop_rates, path_numeric, rotation_numeric
+from theory.pursuit.model import closed_loop_rates, exp_skew
+from theory.pursuit.model import path as path_numeric
 
 __all__ = [
     "eq71_strict_inequality",
@@ -106,7 +107,7 @@ def eq72_printed_region(theta: float = 0.5) -> dict[str, Any]:
     e_p = np.array([1.0, 0.0])
     x_norm = 0.99 * theta * float(np.linalg.norm(e_p)) / c  # strictly inside the printed region
     scale = x_norm / math.sqrt(1.0 + k * k)
-    rotation = rotation_numeric([0.3])
+    rotation = exp_skew([0.3])
     v_err = rotation @ e_p * scale
     q_err = rotation @ e_p * (k * scale)
     path = {"r_x": 1.0, "r_y": 1.0, "gamma0": 0.0}

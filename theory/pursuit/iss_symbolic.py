@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from theory.pursuit.model import (
+from theory.pursuit.model_symbolic import (
     cayley_rotation,
     delta_from_skew,
     delta_matrix,

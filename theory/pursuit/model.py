@@ -1,15 +1,26 @@
-"""Tracker kinematics, S-T curves, errors and controllers of seed 003, symbolic and numeric.
+"""The seed 003 pursuit model, once: S(ω), Δ, the paths, the errors, the controllers, kinematics.
 
-Symbolic (sympy) objects reproduce the paper's equations in 2D and 3D:
+Every formula of the model is written here once and evaluated on stacked numpy arrays (leading
+axes are trackers, or states, and broadcast):
 
-* kinematics (2)–(5): ṗ = R(η) v, Ṙ = R S(ω), v = [v₁, 0, 0], u = [v₁, p, q, r];
-* the path (15)/(16) and the S-T curve (17);
-* the errors (19)–(23) and the matrix Δ of (22);
-* the controllers (24)–(30) (Type I and II, with the true or the estimated target).
+* kinematics (2)–(5): ṗ = R[v₁, 0(, 0)]ᵀ, Ṙ = R S(ω), u = (v₁, ω) (:func:`tracker_rates`);
+* S(ω) = [ω]ₓ (:func:`skew`, the form consistent with Δ, see :func:`skew_rows`) and the
+  rotation exp(S(ω)) (:func:`exp_skew`); Z-Y-X Euler rotations (:func:`euler_rotation`);
+* the path (15)/(16) as harmonics a cos(fγ + φ) and its derivatives (:func:`path_harmonics`,
+  :class:`PathHarmonics`, :func:`path`, :func:`path_derivative`, :func:`path_second_derivative`);
+* the errors (19)/(27)/(48)/(59) (:func:`body_error`) and Δ, Δ̄ of (22), (26)
+  (:func:`delta_matrix`, :func:`delta_bar`);
+* the tracking input (26)/(30)/(51) (:func:`tracking_input`), the path-parameter feedback of
+  (25)/(29)/(50b) (:func:`path_feedback`, :func:`gamma_acceleration`) and the coordination
+  law (45), (46), (52) (:func:`correction_speed`, :func:`desired_speed`).
 
-Numeric (numpy) functions evaluate the same closed loop at a state, *from the kinematics* (not from
-the error equations derived in the paper), so that the falsification tests and the simulation can
-measure V̇ independently of the algebra being checked.
+The entries of S, Δ and the Euler rotation (``*_rows``) and the path's harmonics take scalar
+components of any number type, so
+:mod:`theory.pursuit.model_symbolic` builds the sympy matrices of the exact checks from the very
+same formulas. :func:`closed_loop_rates`
+evaluates one tracker's closed loop *from the kinematics* (not from the error equations derived in
+the paper), so properties and counterexamples measure V̇ independently of the algebra they check;
+the simulator (:mod:`theory.pursuit.closed_loop`) uses the same functions on all trackers at once.
 
 References
 ----------
@@ -19,288 +30,522 @@ multiple autonomous vehicles for range-based underwater target localization and 
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
-import sympy as sp
 
 __all__ = [
     "ClosedLoopRates",
-    "cayley_rotation",
+    "PathHarmonics",
+    "body_error",
     "closed_loop_rates",
-    "delta_from_skew",
+    "correction_speed",
+    "delta_bar",
     "delta_matrix",
-    "delta_numeric",
-    "euler_rates",
+    "delta_rows",
+    "desired_speed",
     "euler_rotation",
+    "euler_rotation_rows",
+    "exp_skew",
+    "gamma_acceleration",
     "path",
-    "path_derivative_numeric",
-    "path_numeric",
-    "rotation_numeric",
+    "path_derivative",
+    "path_feedback",
+    "path_harmonics",
+    "path_second_derivative",
+    "rotate_back",
     "skew",
-    "skew_numeric",
-    "skew_printed",
+    "skew_rows",
+    "tracker_rates",
+    "tracking_input",
 ]
 
 
-def skew(omega: sp.Matrix) -> sp.Matrix:
-    """S(ω) = [ω]ₓ, the matrix with S(ω)x = ω × x (3D), or [[0, −r], [r, 0]] (2D, Remark 2).
+# ---------------------------------------------------------------------------------------------
+# the formulas, on scalar components (shared with theory.pursuit.model_symbolic)
+
+
+def skew_rows(omega: Sequence[Any]) -> tuple[tuple[Any, ...], ...]:
+    """Rows of S(ω) = [ω]ₓ for ω = (p, q, r) (3D), or [[0, −r], [r, 0]] for ω = (r,) (2D).
+
+    This is the matrix for which Ṙ = R S(ω) holds with body rates ω (checked exactly by
+    :func:`theory.pursuit.iss_symbolic.rotation_rate_check`); eq. (4) prints another matrix
+    (:func:`theory.pursuit.model_symbolic.skew_printed`).
 
     Parameters
     ----------
-    omega : sympy.Matrix
-        [p, q, r] (3D) or [r] (2D).
-
-    Returns
-    -------
-    sympy.Matrix
-        The skew-symmetric matrix for which Ṙ = R S(ω) holds (checked by
-        :func:`theory.pursuit.iss.rotation_rate_residual`).
+    omega : sequence
+        One component (2D) or three (3D): numbers, arrays or sympy expressions.
 
     References
     ----------
-    seed 003, eq. (3) and Remark 2; eq. (4) prints a different matrix (see :func:`skew_printed`).
+    seed 003, eq. (3), Remark 2; docs/errata.md (eq. (4)).
     """
     if len(omega) == 1:
-        r = omega[0]
-        return sp.Matrix([[0, -r], [r, 0]])
+        (r,) = omega
+        return ((0, -r), (r, 0))
     p, q, r = omega
-    return sp.Matrix([[0, -r, q], [r, 0, -p], [-q, p, 0]])
+    return ((0, -r, q), (r, 0, -p), (-q, p, 0))
 
 
-def skew_printed(omega: sp.Matrix) -> sp.Matrix:
-    """S(ω) exactly as printed in seed 003 eq. (4): [[0, −r, p], [r, 0, −q], [−p, q, 0]].
+def delta_rows(epsilon: Sequence[Any]) -> tuple[tuple[Any, ...], ...]:
+    """Rows of Δ exactly as printed in seed 003 eq. (22) (2 × 2 in 2D, 3 × 4 in 3D).
 
-    It is skew-symmetric but equals [ω']ₓ with ω' = [q, p, r]: roll and pitch rates are swapped.
+    Δu = −S(ω)ε + [v₁, 0(, 0)]ᵀ for u = (v₁, ω) with S of :func:`skew_rows`.
 
     Parameters
     ----------
-    omega : sympy.Matrix
-        [p, q, r] (3D) or [r] (2D, where it equals :func:`skew`).
+    epsilon : sequence
+        ε of eq. (19), 2 or 3 components.
 
     References
     ----------
-    seed 003, eq. (4).
-    """
-    if len(omega) == 1:
-        return skew(omega)
-    p, q, r = omega
-    return sp.Matrix([[0, -r, p], [r, 0, -q], [-p, q, 0]])
-
-
-def delta_matrix(epsilon: sp.Matrix) -> sp.Matrix:
-    """Δ exactly as printed in seed 003 eq. (22) (3 × 4 in 3D, 2 × 2 in 2D).
-
-    Parameters
-    ----------
-    epsilon : sympy.Matrix
-        ε of eq. (19), 2 or 3 entries.
-
-    References
-    ----------
-    seed 003, eq. (22).
+    seed 003, eqs. (21), (22).
     """
     if len(epsilon) == 2:
         e1, e2 = epsilon
-        return sp.Matrix([[1, e2], [0, -e1]])
+        return ((1, e2), (0, -e1))
     e1, e2, e3 = epsilon
-    return sp.Matrix([[1, 0, -e3, e2], [0, e3, 0, -e1], [0, -e2, e1, 0]])
+    return ((1, 0, -e3, e2), (0, e3, 0, -e1), (0, -e2, e1, 0))
 
 
-def delta_from_skew(skew_fn, epsilon: sp.Matrix) -> sp.Matrix:
-    """The matrix Δ with Δu = −S(ω)ε + v for u = [v₁, ω], derived from a given S.
+def path_harmonics(
+    r_x: Any, r_y: Any, gamma0: Any, r_z: Any = None, c: Any = None, *, pi: Any = np.pi
+) -> tuple[tuple[Any, Any, Any], ...]:
+    """r(γ) of eq. (15) (3D, ``r_z`` given) or eq. (16) (2D) as harmonics (a_k, f_k, φ_k):
+    r_k(γ) = a_k cos(f_k γ + φ_k).
+
+    r(γ) = [r_x cos(γ + γ₀), r_y sin(γ + γ₀)(, r_z sin(γ/c + γ₀))], i.e. (r_x, 1, γ₀),
+    (r_y, 1, γ₀ − π/2) and (r_z, 1/c, γ₀ − π/2); every derivative follows from
+    d/dγ a cos(fγ + φ) = a f cos(fγ + φ + π/2).
 
     Parameters
     ----------
-    skew_fn : callable
-        :func:`skew` or :func:`skew_printed`.
-    epsilon : sympy.Matrix
-        ε (2 or 3 entries).
-
-    Returns
-    -------
-    sympy.Matrix
-        The Jacobian of −S(ω)ε + [v₁, 0, …]ᵀ with respect to u (the expression is linear in u).
+    r_x, r_y, gamma0, r_z, c : numbers, arrays or sympy expressions
+        Path constants (``r_z``, ``c`` only in 3D; ``None`` in 2D).
+    pi : number
+        π of the number type (``sympy.pi`` for exact expressions).
 
     References
     ----------
-    seed 003, eqs. (5), (21), (22).
+    seed 003, eqs. (15), (16).
     """
-    dim = len(epsilon)
-    u = sp.symbols("v1 p q r") if dim == 3 else sp.symbols("v1 r")
-    omega = sp.Matrix(u[1:])
-    body_velocity = sp.Matrix([u[0]] + [0] * (dim - 1))
-    expression = -skew_fn(omega) * epsilon + body_velocity
-    return expression.jacobian(sp.Matrix(u))
-
-
-def euler_rotation(angles: sp.Matrix) -> sp.Matrix:
-    """R(η): yaw rotation in 2D, Z-Y-X (yaw-pitch-roll) Euler rotation in 3D (seed 003 eq. (2)).
-
-    Parameters
-    ----------
-    angles : sympy.Matrix
-        [ψ] (2D) or [φ, θ, ψ] (3D).
-    """
-    if len(angles) == 1:
-        psi = angles[0]
-        return sp.Matrix([[sp.cos(psi), -sp.sin(psi)], [sp.sin(psi), sp.cos(psi)]])
-    phi, theta, psi = angles
-    rz = sp.Matrix([[sp.cos(psi), -sp.sin(psi), 0], [sp.sin(psi), sp.cos(psi), 0], [0, 0, 1]])
-    ry = sp.Matrix(
-        [[sp.cos(theta), 0, sp.sin(theta)], [0, 1, 0], [-sp.sin(theta), 0, sp.cos(theta)]]
-    )
-    rx = sp.Matrix([[1, 0, 0], [0, sp.cos(phi), -sp.sin(phi)], [0, sp.sin(phi), sp.cos(phi)]])
-    return rz * ry * rx
-
-
-def euler_rates(angles: sp.Matrix, omega: sp.Matrix) -> sp.Matrix:
-    """η̇ = T(η) ω for Z-Y-X Euler angles and body rates ω = [p, q, r] (ψ̇ = r in 2D).
-
-    Parameters
-    ----------
-    angles : sympy.Matrix
-        [φ, θ, ψ] (3D) or [ψ] (2D).
-    omega : sympy.Matrix
-        Body rates [p, q, r] (3D) or [r] (2D).
-    """
-    if len(angles) == 1:
-        return sp.Matrix([omega[0]])
-    phi, theta, _ = angles
-    p, q, r = omega
-    return sp.Matrix(
-        [
-            p + (q * sp.sin(phi) + r * sp.cos(phi)) * sp.tan(theta),
-            q * sp.cos(phi) - r * sp.sin(phi),
-            (q * sp.sin(phi) + r * sp.cos(phi)) / sp.cos(theta),
-        ]
-    )
-
-
-def cayley_rotation(params: sp.Matrix) -> sp.Matrix:
-    """Rotation R = (I − A)⁻¹(I + A) for the skew A built from ``params`` (1 in 2D, 3 in 3D).
-
-    Its entries are rational in ``params`` and RRᵀ = I holds as a rational identity, so identities
-    that use orthogonality can be checked by exact cancellation. Covers every rotation except the
-    half-turns (a set of measure zero, so polynomial identities extend by continuity).
-
-    Parameters
-    ----------
-    params : sympy.Matrix
-        One parameter (2D) or three (3D).
-    """
-    dim = 2 if len(params) == 1 else 3
-    a = skew(params)
-    eye = sp.eye(dim)
-    return sp.simplify((eye - a).inv() * (eye + a))
-
-
-def path(gamma: sp.Symbol, r_x, r_y, gamma0, r_z=None, c=None) -> sp.Matrix:
-    """r(γ) of seed 003 eq. (15) (3D, when ``r_z`` and ``c`` are given) or eq. (16) (2D).
-
-    Parameters
-    ----------
-    gamma : sympy.Symbol
-        Path parameter γ.
-    r_x, r_y, gamma0, r_z, c : sympy expressions or numbers
-        Path constants of eq. (15); ``r_z`` and ``c`` only in 3D.
-    """
-    planar = [r_x * sp.cos(gamma + gamma0), r_y * sp.sin(gamma + gamma0)]
+    planar = ((r_x, 1, gamma0), (r_y, 1, gamma0 - pi / 2))
     if r_z is None:
-        return sp.Matrix(planar)
-    return sp.Matrix([*planar, r_z * sp.sin(gamma / c + gamma0)])
+        return planar
+    return (*planar, (r_z, 1 / c, gamma0 - pi / 2))
+
+
+def euler_rotation_rows(
+    angles: Sequence[Any], *, cos: Callable, sin: Callable
+) -> tuple[tuple[Any, ...], ...]:
+    """Rows of R(η): yaw rotation (2D, η = (ψ,)) or Z-Y-X R_z(ψ)R_y(θ)R_x(φ) (3D, η = (φ, θ, ψ)).
+
+    Parameters
+    ----------
+    angles : sequence
+        (ψ,) or (φ, θ, ψ): numbers, arrays or sympy expressions.
+    cos, sin : callable
+        The trigonometric functions of the number type.
+
+    References
+    ----------
+    seed 003, eq. (2).
+    """
+    if len(angles) == 1:
+        (psi,) = angles
+        return ((cos(psi), -sin(psi)), (sin(psi), cos(psi)))
+    phi, theta, psi = angles
+    cf, sf, ct, st, cp, sp_ = cos(phi), sin(phi), cos(theta), sin(theta), cos(psi), sin(psi)
+    return (
+        (cp * ct, cp * st * sf - sp_ * cf, cp * st * cf + sp_ * sf),
+        (sp_ * ct, sp_ * st * sf + cp * cf, sp_ * st * cf - cp * sf),
+        (-st, ct * sf, ct * cf),
+    )
+
+
+def _stack_rows(rows: tuple[tuple[Any, ...], ...], shape: tuple[int, ...]) -> np.ndarray:
+    """A (…, m, n) array from rows of scalars/arrays broadcast to ``shape``."""
+    return np.stack(
+        [np.stack([np.broadcast_to(np.asarray(x, float), shape) for x in row], -1) for row in rows],
+        -2,
+    )
 
 
 # ---------------------------------------------------------------------------------------------
-# numeric closed loop (numpy), evaluated from the kinematics
+# rotations
 
 
-def skew_numeric(omega: np.ndarray) -> np.ndarray:
-    """Numeric S(ω) = [ω]ₓ (3D) or [[0, −r], [r, 0]] (2D).
+def _generators(k: int) -> np.ndarray:
+    """G with S(ω) = Σ_k ω_k G_k (S is linear in ω), from :func:`skew_rows` on unit vectors."""
+    return np.array([np.array(skew_rows(tuple(np.eye(k)[i])), dtype=float) for i in range(k)])
+
+
+_GENERATORS = {k: _generators(k).reshape(k, -1) for k in (1, 3)}
+_EYE = {2: np.eye(2), 3: np.eye(3)}
+_UNIT_TURN = _GENERATORS[1].reshape(2, 2)
+
+
+def skew(omega: np.ndarray) -> np.ndarray:
+    """S(ω) of :func:`skew_rows`, stacked: shape (…, k) → (…, d, d), k = 1 (d = 2) or 3.
 
     Parameters
     ----------
     omega : array_like
-        [p, q, r] or [r].
+        Body rates, last axis (r,) or (p, q, r).
     """
     omega = np.asarray(omega, dtype=float)
-    if omega.size == 1:
-        r = float(omega.reshape(-1)[0])
-        return np.array([[0.0, -r], [r, 0.0]])
-    p, q, r = omega
-    return np.array([[0.0, -r, q], [r, 0.0, -p], [-q, p, 0.0]])
+    d = 2 if omega.shape[-1] == 1 else 3
+    return (omega @ _GENERATORS[omega.shape[-1]]).reshape(*omega.shape[:-1], d, d)
 
 
-def delta_numeric(epsilon: np.ndarray) -> np.ndarray:
-    """Numeric Δ of eq. (22).
+def exp_skew(omega: np.ndarray) -> np.ndarray:
+    """exp(S(ω)) stacked (Rodrigues in 3D): the rotation of a rotation vector ω, (…, k) → (…, d, d).
+
+    exp(S(ω)) = I + a S(ω) + b S(ω)² with θ = ‖ω‖, a = sin θ/θ, b = (1 − cos θ)/θ²
+    = 2 sin²(θ/2)/θ² (no cancellation for small θ) and S(ω)² = ωωᵀ − θ²I; in 2D the rotation by
+    the angle ω.
+
+    Parameters
+    ----------
+    omega : array_like
+        Last axis (angle,) in 2D or a rotation vector axis·angle in 3D.
+
+    References
+    ----------
+    seed 003, eq. (3): R(t + h) = R(t) exp(h S(ω)) for ω constant over h.
+    """
+    omega = np.asarray(omega, dtype=float)
+    if omega.shape[-1] == 1:
+        angle = omega[..., None]
+        return np.cos(angle) * _EYE[2] + np.sin(angle) * _UNIT_TURN
+    theta_sq = (omega * omega).sum(axis=-1)[..., None, None]
+    theta = np.maximum(np.sqrt(theta_sq), 1e-150)  # below it, a = 1 and b = ½ to the last bit
+    half_sin, half_cos = np.sin(0.5 * theta), np.cos(0.5 * theta)
+    a = 2.0 * half_sin * half_cos / theta
+    b = 2.0 * (half_sin / theta) ** 2
+    return (
+        (1.0 - b * theta_sq) * _EYE[3]
+        + a * skew(omega)
+        + b * (omega[..., :, None] * omega[..., None, :])
+    )
+
+
+def euler_rotation(angles: np.ndarray) -> np.ndarray:
+    """R(η) of :func:`euler_rotation_rows`, stacked: (…, 1) or (…, 3) → (…, d, d).
+
+    Parameters
+    ----------
+    angles : array_like
+        Last axis (ψ,) or (φ, θ, ψ).
+    """
+    angles = np.asarray(angles, dtype=float)
+    rows = euler_rotation_rows(np.moveaxis(angles, -1, 0), cos=np.cos, sin=np.sin)
+    return _stack_rows(rows, angles.shape[:-1])
+
+
+def rotate_back(rotation: np.ndarray, vector: np.ndarray) -> np.ndarray:
+    """Rᵀx for stacked R (…, d, d) and x (…, d): a vector of {I} expressed in the body frame {B}.
+
+    Parameters
+    ----------
+    rotation, vector : ndarray
+        Broadcasting stacks.
+    """
+    return np.matmul(vector[..., None, :], rotation)[..., 0, :]
+
+
+# ---------------------------------------------------------------------------------------------
+# Δ, paths, errors and controllers
+
+
+def delta_matrix(epsilon: np.ndarray) -> np.ndarray:
+    """Δ of eq. (22) (:func:`delta_rows`) as a float array, 2 × 2 or 3 × 4.
 
     Parameters
     ----------
     epsilon : array_like
         ε, 2 or 3 entries.
     """
-    e = np.asarray(epsilon, dtype=float)
-    if e.size == 2:
-        return np.array([[1.0, e[1]], [0.0, -e[0]]])
-    return np.array([[1.0, 0.0, -e[2], e[1]], [0.0, e[2], 0.0, -e[0]], [0.0, -e[1], e[0], 0.0]])
+    return np.array(delta_rows(np.asarray(epsilon, dtype=float)), dtype=float)
 
 
-def rotation_numeric(params: np.ndarray) -> np.ndarray:
-    """Numeric rotation matrix (Rodrigues' formula in 3D).
+def delta_bar(epsilon: np.ndarray) -> np.ndarray:
+    """Δ̄ = Δᵀ(ΔΔᵀ)⁻¹ of eq. (26), the right inverse of Δ (ΔΔ̄ = I).
 
     Parameters
     ----------
-    params : array_like
-        The angle ψ (one entry, 2D) or a rotation vector axis·angle (three entries, 3D).
+    epsilon : array_like
+        ε with ε₁ ≠ 0 (det ΔΔᵀ = ε₁² in 2D, ε₁²‖ε‖² in 3D).
+
+    Raises
+    ------
+    ValueError
+        If ε₁ = 0: Δ is not of full row rank and Δ̄ does not exist (Remark 6, corrected).
+
+    References
+    ----------
+    seed 003, eqs. (22), (26), Remark 6; docs/errata.md.
     """
-    params = np.asarray(params, dtype=float).reshape(-1)
-    if params.size == 1:
-        c, s = np.cos(params[0]), np.sin(params[0])
-        return np.array([[c, -s], [s, c]])
-    angle = float(np.linalg.norm(params))
-    if angle == 0.0:
-        return np.eye(3)
-    k = skew_numeric(params / angle)
-    return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * (k @ k)
+    epsilon = np.asarray(epsilon, dtype=float)
+    if epsilon[0] == 0:
+        raise ValueError(
+            f"epsilon = {epsilon.tolist()}: ε₁ = 0 makes Δ of (22) rank deficient and Δ̄ does not "
+            "exist (Remark 6)"
+        )
+    delta = delta_matrix(epsilon)
+    return delta.T @ np.linalg.inv(delta @ delta.T)
 
 
-def path_numeric(
-    gamma: float, r_x: float, r_y: float, gamma0: float, r_z=None, c=None
+@dataclass(frozen=True, eq=False)
+class PathHarmonics:
+    """Stacked harmonics of :func:`path_harmonics`: r_k(γ) = a_k cos(f_k γ + φ_k), arrays (…, d).
+
+    Attributes
+    ----------
+    amplitude, frequency, phase : ndarray
+        a_k, f_k and φ_k, one row per tracker (or broadcasting).
+    """
+
+    amplitude: np.ndarray
+    frequency: np.ndarray
+    phase: np.ndarray
+
+    @classmethod
+    def of(cls, r_x: Any, r_y: Any, gamma0: Any, r_z: Any = None, c: Any = None):
+        """From path constants (floats or per-tracker arrays) of eqs. (15)/(16)."""
+        terms = path_harmonics(r_x, r_y, gamma0, r_z, c)
+        a, f, phi = (np.stack(np.broadcast_arrays(*(np.asarray(t[k], float) for t in terms)), -1)
+                     for k in range(3))  # fmt: skip
+        return cls(a, f, phi)
+
+    def jet(self, gamma: Any) -> tuple[np.ndarray, np.ndarray]:
+        """(r(γ), r′(γ)) at ``gamma`` (…) → two (…, d) arrays, from one evaluation of the angles."""
+        angle = np.asarray(gamma, float)[..., None] * self.frequency + self.phase
+        return self.amplitude * np.cos(angle), self.slope * -np.sin(angle)
+
+    @property
+    def slope(self) -> np.ndarray:
+        """a_k f_k: the amplitudes of r′."""
+        return self.amplitude * self.frequency
+
+    def derivative(self, gamma: Any, order: int = 0) -> np.ndarray:
+        """d^order r/dγ^order at ``gamma`` (…) → (…, d): a f^n cos(fγ + φ + nπ/2)."""
+        angle = np.asarray(gamma, float)[..., None] * self.frequency + self.phase
+        return self.amplitude * self.frequency**order * np.cos(angle + order * (np.pi / 2))
+
+
+def path(gamma: Any, r_x: Any, r_y: Any, gamma0: Any, r_z: Any = None, c: Any = None) -> np.ndarray:
+    """r(γ) of eqs. (15)/(16) (:func:`path_harmonics`), coordinates on the last axis.
+
+    Parameters
+    ----------
+    gamma, r_x, r_y, gamma0, r_z, c : float or ndarray
+        Broadcasting path parameter and constants (``r_z``, ``c`` only in 3D).
+    """
+    return PathHarmonics.of(r_x, r_y, gamma0, r_z, c).derivative(gamma)
+
+
+def path_derivative(
+    gamma: Any, r_x: Any, r_y: Any, gamma0: Any, r_z: Any = None, c: Any = None
 ) -> np.ndarray:
-    """r(γ), eqs. (15)/(16).
+    """r′(γ) = ∂r/∂γ of eqs. (15)/(16):
+    (−r_x sin(γ + γ₀), r_y cos(γ + γ₀)(, (r_z/c) cos(γ/c + γ₀))).
 
     Parameters
     ----------
-    gamma : float
-        Path parameter.
-    r_x, r_y, gamma0, r_z, c : float
-        Path constants (``r_z``, ``c`` only in 3D).
+    gamma, r_x, r_y, gamma0, r_z, c : float or ndarray
+        As in :func:`path`.
     """
-    planar = [r_x * np.cos(gamma + gamma0), r_y * np.sin(gamma + gamma0)]
-    if r_z is None:
-        return np.array(planar)
-    return np.array([*planar, r_z * np.sin(gamma / c + gamma0)])
+    return PathHarmonics.of(r_x, r_y, gamma0, r_z, c).derivative(gamma, 1)
 
 
-def path_derivative_numeric(
-    gamma: float, r_x: float, r_y: float, gamma0: float, r_z=None, c=None
+def path_second_derivative(
+    gamma: Any, r_x: Any, r_y: Any, gamma0: Any, r_z: Any = None, c: Any = None
 ) -> np.ndarray:
-    """r′(γ) = ∂r/∂γ of eqs. (15)/(16).
+    """r″(γ) of eqs. (15)/(16): −(r_x cos, r_y sin(, r_z sin(γ/c)/c²)).
 
     Parameters
     ----------
-    gamma, r_x, r_y, gamma0, r_z, c : float
-        As in :func:`path_numeric`.
+    gamma, r_x, r_y, gamma0, r_z, c : float or ndarray
+        As in :func:`path`.
     """
-    planar = [-r_x * np.sin(gamma + gamma0), r_y * np.cos(gamma + gamma0)]
-    if r_z is None:
-        return np.array(planar)
-    return np.array([*planar, (r_z / c) * np.cos(gamma / c + gamma0)])
+    return PathHarmonics.of(r_x, r_y, gamma0, r_z, c).derivative(gamma, 2)
+
+
+def body_error(
+    rotation: np.ndarray,
+    position: np.ndarray,
+    path_point: np.ndarray,
+    target: np.ndarray,
+    epsilon: np.ndarray,
+) -> np.ndarray:
+    """e_p = Rᵀ(p − r(γ) − q) − ε, stacked.
+
+    With the true target this is e_p of eqs. (19)/(59); with an estimate q̂ it is ê_p of
+    eqs. (27)/(48).
+
+    Parameters
+    ----------
+    rotation : ndarray (…, d, d)
+    position, path_point, target : ndarray (…, d)
+        p, r(γ) and q (or q̂).
+    epsilon : ndarray (d,)
+        ε of eq. (19).
+
+    References
+    ----------
+    seed 003, eqs. (19), (27), (48), (59).
+    """
+    return rotate_back(rotation, position - path_point - target) - epsilon
+
+
+def tracking_input(
+    rotation: np.ndarray,
+    r_prime: np.ndarray,
+    omega_d: np.ndarray,
+    velocity: np.ndarray,
+    e_hat: np.ndarray,
+    delta_bar_matrix: np.ndarray,
+    K_p: np.ndarray,
+) -> np.ndarray:
+    """u = k(x̂) = Δ̄(Rᵀ(r′(γ)ω_d + v̂) − K_p ê_p), eq. (51) ((26)/(30) with one tracker).
+
+    Parameters
+    ----------
+    rotation : ndarray (…, d, d)
+    r_prime : ndarray (…, d)
+        r′(γ).
+    omega_d : ndarray (…,)
+        ω_d of eq. (18)/(46).
+    velocity : ndarray (…, d)
+        v̂ (or the true v in Lemma 2).
+    e_hat : ndarray (…, d)
+        ê_p (or e_p).
+    delta_bar_matrix : ndarray (m, d)
+        Δ̄ of :func:`delta_bar`.
+    K_p : ndarray (d, d)
+
+    Returns
+    -------
+    ndarray (…, m)
+        u = (v₁, ω): surge speed and body rates.
+
+    References
+    ----------
+    seed 003, eqs. (26), (30), (51).
+    """
+    command = rotate_back(rotation, r_prime * np.asarray(omega_d)[..., None] + velocity)
+    return (command - e_hat @ K_p.T) @ delta_bar_matrix.T
+
+
+def tracker_rates(rotation: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """ṗ = R[v₁, 0(, 0)]ᵀ and the body rates ω of u = (v₁, ω) (the under-actuated model).
+
+    Parameters
+    ----------
+    rotation : ndarray (…, d, d)
+    u : ndarray (…, m)
+        Input of eq. (5) (m = 4 in 3D, 2 in 2D).
+
+    Returns
+    -------
+    position_dot : ndarray (…, d)
+    omega : ndarray (…, m − 1)
+        Ṙ = R S(ω).
+
+    References
+    ----------
+    seed 003, eqs. (2)–(5), Remark 2.
+    """
+    return rotation[..., :, 0] * u[..., :1], u[..., 1:]
+
+
+def path_feedback(e_hat: np.ndarray, rotation: np.ndarray, r_prime: np.ndarray) -> np.ndarray:
+    """ê_pᵀRᵀr′(γ): the feedback term of the path-parameter law (25)/(29)/(50b).
+
+    Parameters
+    ----------
+    e_hat : ndarray (…, d)
+    rotation : ndarray (…, d, d)
+    r_prime : ndarray (…, d)
+
+    References
+    ----------
+    seed 003, eqs. (25), (29), (50b), (62).
+    """
+    return np.sum(e_hat * rotate_back(rotation, r_prime), axis=-1)
+
+
+def gamma_acceleration(
+    k_gamma: float, e_gamma: np.ndarray, feedback: np.ndarray, v_c_dot: np.ndarray
+) -> np.ndarray:
+    """γ̈ = −k_γ e_γ + ê_pᵀRᵀr′(γ) + v̇_c, eq. (50b) (v̇_c = 0 for one tracker, eq. (29)).
+
+    With v̇_c of (52), ė_γ = γ̈ − v̇_c = −k_γ e_γ + ê_pᵀRᵀr′ (eq. (62)).
+
+    Parameters
+    ----------
+    k_gamma : float
+    e_gamma : ndarray
+        e_γ = γ̇ − ω_d, eq. (47).
+    feedback : ndarray
+        :func:`path_feedback`.
+    v_c_dot : ndarray
+        v̇_c of eq. (52).
+
+    References
+    ----------
+    seed 003, eqs. (29), (50b), (52), (62).
+    """
+    return -k_gamma * e_gamma + feedback + v_c_dot
+
+
+def correction_speed(laplacian: np.ndarray, values: np.ndarray, k_c: float) -> np.ndarray:
+    """−k_c Σ_{j∈N_in} (x_i − x_j) = −k_c (L x)_i for x = γ (v_c, eq. (45)) or x = γ̇ (v̇_c, (52)).
+
+    Parameters
+    ----------
+    laplacian : ndarray (N, N)
+        L = D_in − A.
+    values : ndarray (N,)
+        γ or γ̇.
+    k_c : float
+        Coupling gain.
+
+    References
+    ----------
+    seed 003, eqs. (45), (52).
+    """
+    return -k_c * (laplacian @ values)
+
+
+def desired_speed(omega_bar: float, laplacian: np.ndarray, gamma: np.ndarray, k_c: float):
+    """ω_d = ω̄ + v_c, eqs. (45)–(46) (ω_d = ω̄ for one tracker, eq. (18)).
+
+    Parameters
+    ----------
+    omega_bar : float
+    laplacian : ndarray (N, N)
+    gamma : ndarray (N,)
+    k_c : float
+
+    References
+    ----------
+    seed 003, eqs. (18), (45), (46).
+    """
+    return omega_bar + correction_speed(laplacian, gamma, k_c)
+
+
+# ---------------------------------------------------------------------------------------------
+# one tracker's closed loop, from the kinematics
 
 
 @dataclass(frozen=True)
 class ClosedLoopRates:
-    """Tracking errors and their time derivatives at one state of one tracker.
+    """Tracking errors, their time derivatives and the kinematic rates of one tracker at one state.
 
     Attributes
     ----------
@@ -310,6 +555,12 @@ class ClosedLoopRates:
         Their time derivatives, computed from the kinematics (2)–(5) and the controller.
     u : ndarray
         The input [v₁, ω] applied.
+    position_dot : ndarray
+        ṗ = R[v₁, 0(, 0)]ᵀ.
+    gamma_dot : float
+        γ̇ (ω_d for Type I).
+    feedback : float
+        ê_pᵀRᵀr′(γ) of eq. (50b) (0 for Type I).
     """
 
     e_p: np.ndarray
@@ -317,6 +568,9 @@ class ClosedLoopRates:
     de_p: np.ndarray
     de_gamma: float
     u: np.ndarray
+    position_dot: np.ndarray
+    gamma_dot: float
+    feedback: float
 
     @property
     def v_dot(self) -> float:
@@ -344,10 +598,10 @@ def closed_loop_rates(
 ) -> ClosedLoopRates:
     """Errors and error rates of one tracker under controller (49)/(50) with estimates.
 
-    The input is u = Δ̄(Rᵀ(r′ω_d + v̂) − K_p ê_p) (eq. (30)/(51)); γ̈ follows (29)/(50b) for Type II
-    (with ``omega_d_dot`` = v̇_c), while Type I imposes γ̇ = ω_d (so e_γ = 0 and ``gamma_dot`` is
-    ignored). The error rates are obtained by differentiating e_p = Rᵀ(p − r(γ) − q) − ε with
-    ṗ = R[v₁, 0, …]ᵀ, Ṙ = R S(ω), q̇ = v — the kinematics, not eq. (21).
+    The input is u = k(x̂) (eq. (51)); γ̈ follows (50b) for Type II (with ``omega_d_dot`` = v̇_c),
+    while Type I imposes γ̇ = ω_d (so e_γ = 0 and ``gamma_dot`` is ignored). The error rates are
+    obtained by differentiating e_p = Rᵀ(p − r(γ) − q) − ε with ṗ = R[v₁, 0, …]ᵀ, Ṙ = R S(ω),
+    q̇ = v — the kinematics, not eq. (21).
 
     Parameters
     ----------
@@ -363,7 +617,7 @@ def closed_loop_rates(
     omega_d, omega_d_dot : float
         Desired speed ω_d (eq. (18)/(46)) and its derivative v̇_c (eq. (52)).
     path_params : dict
-        Keyword arguments of :func:`path_numeric` except ``gamma``.
+        Keyword arguments of :func:`path` except ``gamma``.
 
     Returns
     -------
@@ -373,27 +627,26 @@ def closed_loop_rates(
     ----------
     seed 003, eqs. (2)–(5), (19)–(30), (46)–(52).
     """
-    dim = len(position)
-    r_gamma = path_numeric(gamma, **path_params)
-    r_prime = path_derivative_numeric(gamma, **path_params)
+    r_gamma = path(gamma, **path_params)
+    r_prime = path_derivative(gamma, **path_params)
     if controller == "I":
         gamma_dot = omega_d
-    e_p = rotation.T @ (position - r_gamma - target_position) - epsilon
-    e_hat = rotation.T @ (position - r_gamma - estimate_position) - epsilon
-    delta = delta_numeric(epsilon)
-    delta_bar = delta.T @ np.linalg.inv(delta @ delta.T)
-    u = delta_bar @ (rotation.T @ (r_prime * omega_d + estimate_velocity) - K_p @ e_hat)
-    body_velocity = np.zeros(dim)
-    body_velocity[0] = u[0]
-    rotation_dot = rotation @ skew_numeric(u[1:])
-    position_dot = rotation @ body_velocity
+    e_p = body_error(rotation, position, r_gamma, target_position, epsilon)
+    e_hat = body_error(rotation, position, r_gamma, estimate_position, epsilon)
+    u = tracking_input(
+        rotation, r_prime, omega_d, estimate_velocity, e_hat, delta_bar(epsilon), K_p
+    )
+    position_dot, omega = tracker_rates(rotation, u)
+    rotation_dot = rotation @ skew(omega)
     de_p = rotation_dot.T @ (position - r_gamma - target_position) + rotation.T @ (
         position_dot - r_prime * gamma_dot - target_velocity
     )
     e_gamma = gamma_dot - omega_d
-    if controller == "I":
-        de_gamma = 0.0
-    else:
-        gamma_ddot = -k_gamma * e_gamma + e_hat @ rotation.T @ r_prime + omega_d_dot
-        de_gamma = gamma_ddot - omega_d_dot
-    return ClosedLoopRates(e_p, float(e_gamma), de_p, float(de_gamma), u)
+    feedback = 0.0
+    de_gamma = 0.0
+    if controller == "II":
+        feedback = float(path_feedback(e_hat, rotation, r_prime))
+        de_gamma = float(gamma_acceleration(k_gamma, e_gamma, feedback, omega_d_dot)) - omega_d_dot
+    return ClosedLoopRates(
+        e_p, float(e_gamma), de_p, de_gamma, u, position_dot, float(gamma_dot), feedback
+    )

@@ -4,34 +4,38 @@ Adapts a :class:`~theory.pursuit.case.PursuitSpec` to
 :func:`theory.pursuit.closed_loop.simulate_dec`.
 Defaults where the case leaves the simulation unspecified (documented in
 ``docs/simulation.md``): tracker ``i`` (0-based) starts at ``q(0) + (−40 + 5i, −40 − 5i[, 0])``
-m with zero Euler angles and ``γ^[i](0) = i`` rad; estimates start at
-``[q(0) + (5, −5[, 0]); 0]`` with ``P = 10 I``; steps of ``dt = 0.1`` s.
+m with zero Euler angles, ``γ^[i](0) = i`` rad and γ̇(0) = ω_d(0) (a case's ``gamma_dot``
+sets e_γ(0) = γ̇(0) − ω_d(0), Type II); estimates start at ``[q(0) + (5, −5[, 0]); 0]`` with
+``P = 10 I``. The loop is integrated with error control and recorded every 0.1 s.
 """
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 
+from theory.core.case_file import Case
 from theory.core.errors import CaseError
+from theory.core.expectations import Observed
 from theory.pursuit.case import PursuitSpec
-from theory.pursuit.closed_loop import DecRun, DecSettings, delta_matrix, simulate_dec
-from theory.sim.figures import save_figure
+from theory.pursuit.closed_loop import DecRun, DecSettings, simulate_dec
+from theory.pursuit.model import desired_speed
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
+from theory.simulate import Finished, Simulator
 
 __all__ = [
     "DEFAULT_DURATION",
+    "RECORD_INTERVAL",
     "check_pursuit_case",
+    "dec_arguments",
     "default_steps",
-    "integration_step",
+    "pursuit_simulator",
     "run_pursuit_case",
+    "simulation_observed",
     "summarize_pursuit",
     "write_pursuit_data",
     "write_pursuit_figures",
@@ -41,26 +45,14 @@ DEFAULT_DURATION = 450.0
 """Seconds simulated by default (the paper's runs; 4501 samples of 0.1 s in 2-D)."""
 
 
-def integration_step(dim: int) -> float:
-    """Forward-Euler step: 0.1 s in 2-D; 0.02 s in 3-D, where 0.1 s makes the loop blow up
-    (turn rates of tens of rad/s early on) and 0.02 s agrees with 0.005 s to 1e-2 m.
-
-    Parameters
-    ----------
-    dim : int
-        2 or 3.
-
-    Returns
-    -------
-    float
-    """
-    return 0.1 if dim == 2 else 0.02
+RECORD_INTERVAL = 0.1
+"""Seconds between recorded samples (both dimensions): the integrator adapts its own steps
+(:mod:`theory.pursuit.closed_loop`) and lands on every record."""
 
 
-def default_steps(dim: int) -> int:
-    """Steps in ``DEFAULT_DURATION``: ``round(DEFAULT_DURATION / integration_step(dim))``, an
-    int, for ``dim`` 2 or 3."""
-    return round(DEFAULT_DURATION / integration_step(dim))
+def default_steps() -> int:
+    """Records after the first in ``DEFAULT_DURATION``: 4500 of ``RECORD_INTERVAL``."""
+    return round(DEFAULT_DURATION / RECORD_INTERVAL)
 
 
 def check_pursuit_case(spec: PursuitSpec) -> None:
@@ -79,7 +71,7 @@ def check_pursuit_case(spec: PursuitSpec) -> None:
         raise CaseError("pursuit.target", "a target motion to simulate", "nothing")
     if spec.dekf is None:
         raise CaseError("pursuit.dekf", "DEKF settings (Ts, sigma, V, Q) to simulate", "nothing")
-    if np.linalg.matrix_rank(delta_matrix(spec.epsilon)) < spec.dim:
+    if spec.epsilon[0] == 0:
         raise CaseError(
             "pursuit.epsilon",
             "an ε making Δ of (22) full row rank (ε₁ ≠ 0 in 2-D)",
@@ -88,54 +80,66 @@ def check_pursuit_case(spec: PursuitSpec) -> None:
 
 
 def _target_states(spec: PursuitSpec, steps: int) -> np.ndarray:
-    times = integration_step(spec.dim) * np.arange(steps + 1)
+    times = RECORD_INTERVAL * np.arange(steps + 1)
     motion = spec.target
     return np.array([np.concatenate([motion.position(t), motion.velocity_at(t)]) for t in times])
 
 
-def run_pursuit_case(
-    spec: PursuitSpec, rng: np.random.Generator, steps: int | None = None
-) -> DecRun:
-    """One run of the 2-D DEC loop for a pursuit case.
+def _initial_trackers(spec: PursuitSpec, start: np.ndarray) -> dict[str, np.ndarray]:
+    """Initial positions, headings, γ and e_γ = γ̇(0) − ω_d(0) (defaults: module docstring)."""
+    d, laplacian = spec.dim, spec.laplacian.astype(float)
+    positions, headings, gammas, rates = [], [], [], []
+    for i, tracker in enumerate(spec.trackers):
+        initial = tracker.initial
+        default = start + np.array([-40.0 + 5 * i, -40.0 - 5 * i, 0.0][:d])
+        positions.append(initial.get("position", default))
+        euler = np.asarray(initial.get("euler", np.zeros(1 if d == 2 else 3)), dtype=float)
+        headings.append(euler[0] if d == 2 else euler)
+        gammas.append(initial.get("gamma", float(i)))
+        rates.append(initial.get("gamma_dot"))
+    gammas = np.array(gammas, float)
+    omega_d = desired_speed(spec.omega_bar, laplacian, gammas, spec.k_c or 0.0)
+    e_gamma = np.array([0.0 if r is None else r - w for r, w in zip(rates, omega_d, strict=True)])
+    return {
+        "initial_positions": np.array(positions, float),
+        "initial_headings": np.array(headings),
+        "initial_gammas": gammas,
+        "initial_gamma_errors": e_gamma if spec.controller == "II" else None,
+    }
+
+
+def dec_arguments(spec: PursuitSpec, steps: int | None = None) -> dict[str, Any]:
+    """The keyword arguments of :func:`theory.pursuit.closed_loop.simulate_dec` for a case
+    (all but ``rng``).
 
     Parameters
     ----------
     spec : PursuitSpec
         A case accepted by :func:`check_pursuit_case`.
-    rng : numpy.random.Generator
-        Source of the range noise.
     steps : int, optional
-        Number of :func:`integration_step` steps (default :func:`default_steps`).
+        Number of records after the first, every :data:`RECORD_INTERVAL` (default
+        :func:`default_steps`).
 
     Returns
     -------
-    DecRun
+    dict
     """
-    steps = default_steps(spec.dim) if steps is None else steps
+    steps = default_steps() if steps is None else steps
     dekf, d = spec.dekf, spec.dim
     target = _target_states(spec, steps)
-    positions, headings, gammas = [], [], []
-    for i, tracker in enumerate(spec.trackers):
-        initial = tracker.initial
-        default = target[0, :d] + np.array([-40.0 + 5 * i, -40.0 - 5 * i, 0.0][:d])
-        positions.append(initial.get("position", default))
-        euler = np.asarray(initial.get("euler", np.zeros(1 if d == 2 else 3)), dtype=float)
-        headings.append(euler[0] if d == 2 else euler)
-        gammas.append(initial.get("gamma", float(i)))
     offset = np.array([5.0, -5.0, 0.0][:d])
     x0 = dekf.x0 if dekf.x0 is not None else np.concatenate([target[0, :d] + offset, np.zeros(d)])
-    P0 = dekf.P0 if dekf.P0 is not None else 10.0 * np.eye(2 * d)
     settings = DecSettings(
         omega_bar=spec.omega_bar,
         epsilon=tuple(float(e) for e in spec.epsilon),
-        Kp=tuple(float(k) for k in np.diag(spec.K_p)),
-        k_gamma=spec.k_gamma if spec.k_gamma is not None else 1.0,
+        Kp=spec.K_p,
+        k_gamma=spec.k_gamma if spec.k_gamma is not None else 0.0,
         k_c=spec.k_c if spec.k_c is not None else 0.0,
         controller=spec.controller,
         V=dekf.V,
-        Q=tuple(float(q) for q in np.diag(dekf.Q)),
+        Q=dekf.Q,
         Ts=dekf.Ts,
-        dt=integration_step(spec.dim),
+        dt=RECORD_INTERVAL,
         sigma=dekf.sigma,
     )
     paths = np.array(
@@ -144,11 +148,39 @@ def run_pursuit_case(
             for t in spec.trackers
         ]
     )
-    in_neighbours = [list(np.flatnonzero(row)) for row in spec.adjacency]
-    return simulate_dec(
-        target, np.array(positions, float), np.array(headings), np.array(gammas, float),
-        in_neighbours, x0, P0, steps, rng, settings, paths=paths, fusion=dekf.weights,
-    )  # fmt: skip
+    return {
+        "target": target,
+        **_initial_trackers(spec, target[0, :d]),
+        "in_neighbours": [list(np.flatnonzero(row)) for row in spec.adjacency],
+        "x0": x0,
+        "P0": dekf.P0 if dekf.P0 is not None else 10.0 * np.eye(2 * d),
+        "steps": steps,
+        "settings": settings,
+        "paths": paths,
+        "fusion": dekf.weights,
+    }
+
+
+def run_pursuit_case(
+    spec: PursuitSpec, rng: np.random.Generator, steps: int | None = None
+) -> DecRun:
+    """One run of the DEC loop (2-D or 3-D) for a pursuit case.
+
+    Parameters
+    ----------
+    spec : PursuitSpec
+        A case accepted by :func:`check_pursuit_case`.
+    rng : numpy.random.Generator
+        Source of the range noise.
+    steps : int, optional
+        Number of records after the first, every :data:`RECORD_INTERVAL` (default
+        :func:`default_steps`).
+
+    Returns
+    -------
+    DecRun
+    """
+    return simulate_dec(rng=rng, **dec_arguments(spec, steps))
 
 
 def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, Any]:
@@ -164,7 +196,11 @@ def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, An
     dict
         ``{"agents": [{"id", "final_localization_error", "mean_localization_error",
         "final_pursuit_error", "mean_pursuit_error"}], "final_gamma_spread",
-        "final_gamma_rate_error", "omega_bar"}`` (means over runs; errors in m, γ in rad).
+        "final_gamma_rate_error", "omega_bar", "integration_steps", "stopped_at",
+        "iss_agreement"}`` (means over runs; errors in m, γ in rad; ``stopped_at`` per run,
+        ``None`` when the run completed; ``iss_agreement``: run 0 against the certified
+        estimate, :func:`theory.pursuit.iss_check.simulation_agreement`, or ``None`` when
+        ``trackcert iss`` certifies nothing).
     """
     loc = np.mean([r.localization_errors for r in runs], axis=0)
     pur = np.mean([r.pursuit_errors for r in runs], axis=0)
@@ -185,7 +221,87 @@ def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, An
             np.mean([np.abs(r.gamma_rates[-1] - spec.omega_bar).max() for r in runs])
         ),
         "omega_bar": spec.omega_bar,
+        "integration_steps": [r.steps for r in runs],
+        "stopped_at": [None if r.completed else r.stopped_at for r in runs],
+        "iss_agreement": _agreement(spec, runs[0]),
     }
+
+
+def _agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any] | None:
+    from theory.pursuit.iss import iss_conditions
+    from theory.pursuit.iss_check import simulation_agreement
+
+    statuses = {c.status for c in iss_conditions(spec)} - {"not-applicable"}
+    if statuses != {"holds"}:
+        return None
+    return simulation_agreement(spec, run)
+
+
+def simulation_observed(summary: dict[str, Any]) -> Observed:
+    """The ``simulation_bounded`` key as run 0 of ``summary`` decides it.
+
+    Parameters
+    ----------
+    summary : dict
+        From :func:`summarize_pursuit`.
+
+    Returns
+    -------
+    Observed
+        ``simulation_bounded`` (undecided when ``trackcert iss`` certifies nothing, so there is
+        no certified estimate to stay within).
+    """
+    agreement = summary["iss_agreement"]
+    got = None if agreement is None else agreement["simulation_bounded"]
+    undecided = frozenset() if got is not None else frozenset({"simulation_bounded"})
+    return Observed({"simulation_bounded": got}, undecided)
+
+
+def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
+    """The simulator of a ``kind: pursuit`` case for :func:`theory.simulate.simulate_case`.
+
+    Parameters
+    ----------
+    case : Case
+        A pursuit case with ``target`` and ``dekf`` blocks.
+    steps : int, optional
+        Recorded 0.1 s steps (default :func:`default_steps`).
+
+    Returns
+    -------
+    Simulator
+
+    Raises
+    ------
+    CaseError
+        If the case cannot be simulated (no target or DEKF block), naming its file.
+    """
+    try:
+        check_pursuit_case(case.spec)
+    except CaseError as error:
+        raise error.in_file(case.file) from None
+    steps = steps or default_steps()
+    fields = {
+        "controller": case.spec.controller,
+        "dim": case.spec.dim,
+        "steps": steps,
+        "dt": RECORD_INTERVAL,
+    }
+    return Simulator(case.spec, functools.partial(run_pursuit_case, steps=steps), fields, _finish)
+
+
+def _finish(case: Case, spec: Any, results: list, folder: Path, figures: bool) -> Finished:
+    del case
+    summary = summarize_pursuit(spec, results)
+    files = write_pursuit_data(results, summary, folder)
+    if figures:
+        files += write_pursuit_figures(results, folder)
+    summary["warnings"] = [
+        f"a run's integration stopped at t = {stopped:g} s (step below the floor)"
+        for stopped in summary["stopped_at"]
+        if stopped is not None
+    ]
+    return Finished(summary, files, simulation_observed(summary))
 
 
 def write_pursuit_data(runs: Sequence[DecRun], summary: dict[str, Any], folder: Path) -> list[Path]:
@@ -232,6 +348,13 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
     -------
     list of pathlib.Path
     """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from theory.sim.figures import save_figure
+
     run = runs[0]
     paths = []
     fig, ax = plt.subplots(figsize=(6, 6))
@@ -241,7 +364,7 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper right")
     paths.append(save_figure(fig, folder / "trajectories.png"))
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     for name, ax in zip(("pursuit_errors", "localization_errors"), axes, strict=True):
@@ -250,7 +373,7 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
             ax.plot(run.times, values[:, i], lw=1, label=f"tracker {i + 1}")
         ax.set_yscale("log")
         ax.set_ylabel(name.replace("_", " ") + " (m)")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper right")
     axes[-1].set_xlabel("time (s)")
     paths.append(save_figure(fig, folder / "errors.png"))
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)

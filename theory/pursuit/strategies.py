@@ -1,0 +1,374 @@
+"""Hypothesis strategies for seed 003 pursuit: parameters, cases, tracker states, simulated cases.
+
+Re-exported by :mod:`theory.strategies` (the public strategies module, STYLE.md *Adopt* 11).
+Names are plural nouns, bounds are keyword-only, conditioning is bounded, and impossible
+arguments raise :class:`hypothesis.errors.InvalidArgument` with the offending value.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from hypothesis import strategies as st
+from hypothesis.errors import InvalidArgument
+
+from theory.core.case_file import Case, parse_case
+from theory.pursuit.case import PursuitSpec
+from theory.pursuit.model import closed_loop_rates, exp_skew
+from theory.pursuit.model import path as path_point
+
+__all__ = [
+    "SIMULATED_BOUNDS",
+    "PursuitParameters",
+    "TrackerState",
+    "pursuit_cases",
+    "pursuit_parameters",
+    "simulated_pursuit_blocks",
+    "simulated_pursuit_cases",
+    "tracker_states",
+]
+
+
+@dataclass(frozen=True)
+class PursuitParameters:
+    """Seed 003 tracking/coordination parameters (ranges of its Tables I–II).
+
+    Attributes
+    ----------
+    dim : int
+        2 or 3.
+    radius : tuple of float
+        Semi-axes of the path, one per dimension.
+    omega_bar : float
+        Nominal path-parameter speed ω̄ (rad/s), eqs. (18), (46).
+    epsilon : tuple of float
+        Offset ε of eq. (19): first entry < 0, last entry 0.
+    K_p : tuple of float
+        Diagonal of the positive-definite position gain ``K_p``.
+    k_gamma : float
+        Path-parameter gain k_γ > 0, eq. (50b).
+    k_c : float
+        Coordination gain k_c > 0, eq. (45).
+    """
+
+    dim: int
+    radius: tuple[float, ...]
+    omega_bar: float
+    epsilon: tuple[float, ...]
+    K_p: tuple[float, ...]
+    k_gamma: float
+    k_c: float
+
+
+
+@st.composite
+def pursuit_parameters(draw: st.DrawFn, *, dim: int = 2) -> PursuitParameters:
+    """Parameters in ``dim`` dimensions in the ranges of seed 003 Tables I (2D) and II (3D),
+    widened by about 2×."""
+    if dim not in (2, 3):
+        raise InvalidArgument(f"dim={dim}; expected 2 or 3")
+    positive = st.floats(0.05, 1.0)
+    radius = tuple(draw(st.floats(10.0, 100.0)) for _ in range(dim))
+    epsilon_head = draw(st.floats(-2.0, -0.1))
+    epsilon = (epsilon_head, *(draw(st.floats(-2.0, 0.0)) for _ in range(dim - 2)), 0.0)
+    return PursuitParameters(
+        dim=dim,
+        radius=radius,
+        omega_bar=draw(st.floats(0.01, 0.2)),
+        epsilon=epsilon,
+        K_p=tuple(draw(positive) for _ in range(dim)),
+        k_gamma=draw(st.floats(50.0, 1000.0)),
+        k_c=draw(st.floats(0.05, 1.0)),
+    )
+
+
+
+@dataclass(frozen=True, eq=False)
+class TrackerState:
+    """One tracker's state and the estimation errors it acts on (seed 003 §IV, eqs. (19)–(31)).
+
+    Attributes
+    ----------
+    e_p : ndarray, shape (dim,)
+        Position tracking error e_p in the body frame, eq. (19).
+    e_gamma : float
+        Path-parameter error e_γ = γ̇ − ω_d (0 for controller Type I).
+    rotation : ndarray, shape (dim, dim)
+        Attitude R(η).
+    gamma : float
+        Path parameter γ.
+    q_err, v_err : ndarray, shape (dim,)
+        Target position and velocity estimation errors q̃, ṽ, eq. (67).
+    omega_d, omega_d_dot : float
+        Desired path-parameter speed ω_d = ω̄ + v_c and its derivative.
+    target, target_v : ndarray, shape (dim,)
+        Target position q and velocity v.
+    """
+
+    e_p: np.ndarray
+    e_gamma: float
+    rotation: np.ndarray
+    gamma: float
+    q_err: np.ndarray
+    v_err: np.ndarray
+    omega_d: float
+    omega_d_dot: float
+    target: np.ndarray
+    target_v: np.ndarray
+
+    def rates(self, spec: PursuitSpec, *, tracker: int = 0):
+        """The closed-loop rates (V̇, ė_p, ė_γ, u) of tracker ``tracker`` of ``spec`` in this
+        state, from the kinematics (:func:`theory.pursuit.model.closed_loop_rates`).
+
+        Parameters
+        ----------
+        spec : PursuitSpec
+            The case: gains, offset ε and the tracker's path.
+        tracker : int
+            0-based tracker whose path is used.
+        """
+        path = spec.trackers[tracker]
+        params = {"r_x": path.r_x, "r_y": path.r_y, "gamma0": path.gamma0}
+        params |= {"r_z": path.r_z, "c": path.c} if spec.dim == 3 else {}
+        position = (
+            self.rotation @ (self.e_p + spec.epsilon)
+            + path_point(self.gamma, **params)
+            + self.target
+        )
+        return closed_loop_rates(
+            position=position,
+            rotation=self.rotation,
+            gamma=self.gamma,
+            gamma_dot=self.omega_d + self.e_gamma,
+            target_position=self.target,
+            target_velocity=self.target_v,
+            estimate_position=self.target + self.q_err,
+            estimate_velocity=self.target_v + self.v_err,
+            epsilon=spec.epsilon,
+            K_p=spec.K_p,
+            k_gamma=spec.k_gamma,
+            controller=spec.controller,
+            omega_d=self.omega_d,
+            omega_d_dot=self.omega_d_dot,
+            path_params=params,
+        )
+
+
+def _check_interval(name: str, interval: tuple[float, float]) -> None:
+    low, high = interval
+    if not 0 < low <= high < math.inf:
+        raise InvalidArgument(f"{name}={interval} must satisfy 0 < low ≤ high < ∞")
+
+
+def _vectors(dim: int, bound: float) -> st.SearchStrategy[np.ndarray]:
+    return st.lists(st.floats(-bound, bound), min_size=dim, max_size=dim).map(np.array)
+
+
+def _check_choices(dims: tuple[int, ...], controllers: tuple[str, ...]) -> None:
+    if not dims or not set(dims) <= {2, 3}:
+        raise InvalidArgument(f"dims={dims}; expected a non-empty subset of (2, 3)")
+    if not controllers or not set(controllers) <= {"I", "II"}:
+        raise InvalidArgument(f"controllers={controllers}; expected a subset of ('I', 'II')")
+
+
+def _pursuit_block(draw: st.DrawFn, n: int, dim: int, controller: str, bounds: dict) -> dict:
+    """A ``pursuit:`` block's gains, ε, ω̄ and paths (no graph, target or DEKF)."""
+    positive_gains, sizes = st.floats(*bounds["gains"]), st.floats(*bounds["path_sizes"])
+    eigen = draw(st.lists(positive_gains, min_size=dim, max_size=dim))
+    q_rot = exp_skew(draw(_vectors(1 if dim == 2 else 3, 3.0)))
+    K_p = q_rot @ np.diag(eigen) @ q_rot.T
+    eps1 = draw(st.floats(*bounds["epsilon_1"])) * draw(st.sampled_from([-1, 1]))
+    epsilon = [eps1, *draw(st.lists(st.floats(-3, 3), min_size=dim - 1, max_size=dim - 1))]
+    trackers = []
+    for _ in range(n):
+        path = {"r_x": draw(sizes), "r_y": draw(sizes)}
+        path["gamma0"] = draw(st.floats(-math.pi, math.pi))
+        if dim == 3:
+            path["r_z"] = draw(sizes)
+            path["c"] = draw(st.floats(1.2, 5)) * draw(st.sampled_from([-1, 1]))
+        trackers.append(path)
+    block = {
+        "dim": dim,
+        "controller": controller,
+        "omega_bar": draw(st.floats(*bounds["omega_bar"])),
+        "epsilon": epsilon,
+        "K_p": ((K_p + K_p.T) / 2).tolist(),
+        "k_gamma": draw(st.floats(*bounds.get("k_gamma", bounds["gains"]))),
+        "trackers": trackers,
+    }
+    if n > 1:
+        block["k_c"] = draw(positive_gains)
+    return block
+
+
+@st.composite
+def pursuit_cases(
+    draw: st.DrawFn,
+    *,
+    n_trackers: int = 1,
+    dims: tuple[int, ...] = (2, 3),
+    controllers: tuple[str, ...] = ("I", "II"),
+    gains: tuple[float, float] = (0.05, 5.0),
+    path_sizes: tuple[float, float] = (0.5, 50.0),
+) -> Case:
+    """Valid ``kind: pursuit`` cases (parsed) with ``n_trackers`` trackers on a directed ring.
+
+    Symmetric ``K_p`` with eigenvalues in ``gains`` (condition number ≤ high/low) and a random
+    eigenbasis; ``k_γ`` and ``k_c`` in ``gains``; ε₁ ≠ 0 (|ε₁| ≥ 0.1, so Δ̄ exists); path
+    semi-axes in ``path_sizes`` and, in 3D, |c| ∈ [1.2, 5].
+
+    Parameters
+    ----------
+    n_trackers : int
+        Number of trackers (≥ 1); with more than one, a directed ring and ``k_c``.
+    dims : tuple of int
+        Dimensions to draw from (2 and/or 3).
+    controllers : tuple of str
+        Controller types to draw from (``I`` and/or ``II``).
+    gains : (float, float)
+        Interval of the gains.
+    path_sizes : (float, float)
+        Interval of the path semi-axes r_x, r_y, r_z.
+    """
+    if n_trackers < 1:
+        raise InvalidArgument(f"n_trackers={n_trackers} must be at least 1")
+    _check_choices(dims, controllers)
+    _check_interval("gains", gains)
+    _check_interval("path_sizes", path_sizes)
+    bounds = {"gains": gains, "path_sizes": path_sizes, "epsilon_1": (0.1, 3.0)}
+    bounds["omega_bar"] = (-1.0, 1.0)
+    dim, controller = draw(st.sampled_from(dims)), draw(st.sampled_from(controllers))
+    block = _pursuit_block(draw, n_trackers, dim, controller, bounds)
+    if n_trackers > 1:
+        block["edges"] = [[(i + 1) % n_trackers + 1, i + 1] for i in range(n_trackers)]
+    return parse_case({"name": "random", "kind": "pursuit", "pursuit": block})
+
+
+SIMULATED_BOUNDS = {
+    "gains": (0.1, 1.0),
+    "k_gamma": (1.0, 500.0),
+    "path_sizes": (5.0, 40.0),
+    "epsilon_1": (0.3, 2.0),
+    "omega_bar": (-0.2, 0.2),
+}
+"""Ranges of :func:`simulated_pursuit_cases`: Tables I–II widened (k_γ down to 1, where the
+path-parameter loop is weakly damped), kept where a short run integrates in well under a second."""
+
+
+def _target_and_filter(draw: st.DrawFn, dim: int) -> dict:
+    """``target`` and ``dekf`` blocks: drift, a slow sinusoid, ranges every 1 or 2 s."""
+    speeds = st.lists(st.floats(-0.5, 0.5), min_size=dim, max_size=dim)
+    target = {
+        "velocity": draw(speeds),
+        "amplitude": draw(st.lists(st.floats(0, 20), min_size=dim, max_size=dim)),
+        "frequency": draw(st.lists(st.floats(0, 0.02), min_size=dim, max_size=dim)),
+        "phase": draw(st.lists(st.floats(-math.pi, math.pi), min_size=dim, max_size=dim)),
+    }
+    sigma = draw(st.floats(0.1, 1.0))
+    q = [1e-3] * dim + [1e-4] * dim
+    dekf = {"Ts": draw(st.sampled_from([1, 2])), "sigma": sigma, "V": 1 / sigma**2}
+    dekf["Q"] = np.diag(q).tolist()
+    return {"target": target, "dekf": dekf}
+
+
+def simulated_pursuit_cases(
+    *,
+    max_trackers: int = 3,
+    dims: tuple[int, ...] = (2, 3),
+    controllers: tuple[str, ...] = ("I", "II"),
+) -> st.SearchStrategy[Case]:
+    """:func:`simulated_pursuit_blocks`, parsed into cases.
+
+    Parameters
+    ----------
+    max_trackers, dims, controllers
+        As in :func:`simulated_pursuit_blocks`.
+    """
+    blocks = simulated_pursuit_blocks(max_trackers=max_trackers, dims=dims, controllers=controllers)
+    return blocks.map(
+        lambda block: parse_case({"name": "random-simulated", "kind": "pursuit", "pursuit": block})
+    )
+
+
+@st.composite
+def simulated_pursuit_blocks(
+    draw: st.DrawFn,
+    *,
+    max_trackers: int = 3,
+    dims: tuple[int, ...] = (2, 3),
+    controllers: tuple[str, ...] = ("I", "II"),
+) -> dict:
+    """``pursuit:`` blocks (plain data) of simulatable cases every ISS condition holds for
+    (seed 003 §V–VI).
+
+    1 to ``max_trackers`` trackers on a random strongly connected digraph
+    (:func:`theory.strategies.digraph_laplacians`), gains, ε, ω̄ and paths in
+    :data:`SIMULATED_BOUNDS`, a target drifting at up to 0.5 m/s with a slow sinusoid, DEKF
+    settings (uniform fusion weights), and initial tracker positions within 30 m of the target,
+    random attitudes and path parameters.
+
+    Parameters
+    ----------
+    max_trackers : int
+        Largest number of trackers (≥ 1).
+    dims : tuple of int
+        Dimensions to draw from (2 and/or 3).
+    controllers : tuple of str
+        Controller types to draw from (``I`` and/or ``II``).
+    """
+    from theory.strategies import digraph_laplacians
+
+    if max_trackers < 1:
+        raise InvalidArgument(f"max_trackers={max_trackers} must be at least 1")
+    _check_choices(dims, controllers)
+    n = draw(st.integers(1, max_trackers))
+    dim, controller = draw(st.sampled_from(dims)), draw(st.sampled_from(controllers))
+    block = _pursuit_block(draw, n, dim, controller, SIMULATED_BOUNDS)
+    if n > 1:
+        laplacian = draw(digraph_laplacians(min_agents=n, max_agents=n, max_extra_edges=n))
+        receives = np.argwhere(laplacian < 0)
+        block["edges"] = [[int(j) + 1, int(i) + 1] for i, j in receives]
+    block |= _target_and_filter(draw, dim)
+    target = block["target"]
+    start = np.array(target["amplitude"]) * np.sin(target["phase"])  # q(0), eq. of TargetMotion
+    for tracker in block["trackers"]:
+        offset = draw(_vectors(dim, 30.0))
+        tracker["initial"] = {
+            "position": (start + offset).tolist(),
+            "euler": draw(_vectors(1 if dim == 2 else 3, 1.5)).tolist(),
+            "gamma": draw(st.floats(-math.pi, math.pi)),
+        }
+    return block
+
+
+@st.composite
+def tracker_states(draw: st.DrawFn, *, spec: PursuitSpec, bound: float = 10.0) -> TrackerState:
+    """States of one tracker of ``spec``: errors, attitude, γ, estimation errors, ω_d, target.
+
+    Vectors have entries in ``[−bound, bound]``; e_γ = 0 for controller Type I.
+
+    Parameters
+    ----------
+    spec : PursuitSpec
+        The case (gives the dimension and the controller).
+    bound : float
+        Bound on the entries of the error, estimation-error and target vectors (> 0).
+    """
+    if not 0 < bound < math.inf:
+        raise InvalidArgument(f"bound={bound} must be positive and finite")
+    dim = spec.dim
+    reals = st.floats(-bound, bound)
+    return TrackerState(
+        e_p=draw(_vectors(dim, bound)),
+        e_gamma=draw(reals) if spec.controller == "II" else 0.0,
+        rotation=exp_skew(draw(_vectors(1 if dim == 2 else 3, 3.1))),
+        gamma=draw(st.floats(-20, 20)),
+        q_err=draw(_vectors(dim, bound)),
+        v_err=draw(_vectors(dim, bound)),
+        omega_d=draw(st.floats(-2, 2)),
+        omega_d_dot=draw(st.floats(-2, 2)),
+        target=draw(_vectors(dim, bound)),
+        target_v=draw(_vectors(dim, bound)),
+    )
