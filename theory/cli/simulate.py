@@ -59,7 +59,7 @@ def register(app: typer.Typer) -> None:
         as_json: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
     ) -> None:
         """Simulate the closed loop; write runs.npz, CSV tables, PNG figures and summary.json."""
-        from theory.sim.runner import default_workers
+        from theory.core.parallel import default_workers
         from theory.simulate import simulate_case, simulator_for
 
         loaded = load_case(case)

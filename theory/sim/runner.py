@@ -1,7 +1,7 @@
-"""Monte Carlo over local cores, deterministic by seed, for any simulation.
+"""Monte Carlo on the task engine (:mod:`theory.core.parallel`), deterministic by seed.
 
 Run ``i`` of ``runs`` uses the ``i``-th child of ``numpy.random.SeedSequence(seed)``, so its
-result does not depend on the number of worker processes nor on the order they finish. The
+result does not depend on the number of Dask workers nor on the order they finish. The
 engine knows no model: it calls ``simulate(spec, rng)`` — e.g. the TDOA closed loop
 :func:`theory.tdoa.scenario.run_tdoa_scenario`, the consensus filter or the pursuit loop — and
 returns what it returns.
@@ -9,19 +9,15 @@ returns what it returns.
 
 from __future__ import annotations
 
-import os
+import functools
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor
 from typing import Any
 
 import numpy as np
 
-__all__ = ["default_workers", "monte_carlo", "run_seeds"]
+from theory.core.parallel import TaskRunner, default_workers, engine
 
-
-def default_workers() -> int:
-    """All local cores (``os.cpu_count()``), at least 1."""
-    return max(1, os.cpu_count() or 1)
+__all__ = ["monte_carlo", "run_seeds"]
 
 
 def run_seeds(seed: int, runs: int) -> list[np.random.SeedSequence]:
@@ -53,23 +49,27 @@ def monte_carlo(
     runs: int = 1,
     seed: int = 0,
     workers: int | None = None,
+    runner: TaskRunner | None = None,
     progress: Callable[[int], None] | None = None,
 ) -> list[Any]:
-    """Run ``simulate(spec, rng)`` ``runs`` times, in parallel over ``workers`` processes.
+    """Run ``simulate(spec, rng)`` ``runs`` times, as tasks on the engine.
 
     Parameters
     ----------
     spec : object
-        The scenario, passed unchanged to ``simulate`` (picklable when ``workers > 1``).
+        The scenario, passed unchanged to ``simulate`` (picklable when run on workers).
     simulate : callable
         ``simulate(spec, rng) -> run``: one run from a ``numpy.random.Generator``; a picklable
-        module-level function (or ``functools.partial`` of one) when ``workers > 1``.
+        module-level function (or ``functools.partial`` of one).
     runs : int
         Number of independent runs (≥ 1).
     seed : int
         Root seed; run ``i`` uses ``SeedSequence(seed).spawn(runs)[i]``.
     workers : int, optional
-        Worker processes; default all local cores; 1 runs in this process.
+        Local Dask workers when no ``runner`` is given; default all local cores; 1 runs in this
+        process.
+    runner : TaskRunner, optional
+        An open engine (:func:`theory.core.parallel.engine`) to run on.
     progress : callable, optional
         Called with the number of runs finished so far, after each run.
 
@@ -81,24 +81,13 @@ def monte_carlo(
     Raises
     ------
     ValueError
-        If ``runs < 1`` or ``workers < 1``.
+        If ``runs < 1``.
     """
     if runs < 1:
         raise ValueError(f"runs must be ≥ 1, got {runs}")
-    workers = min(default_workers() if workers is None else workers, runs)
-    if workers < 1:
-        raise ValueError(f"workers must be ≥ 1, got {workers}")
+    task = functools.partial(_one, simulate, spec)
     sequences = run_seeds(seed, runs)
-    results: list[Any] = []
-    if workers == 1:
-        for sequence in sequences:
-            results.append(_one(simulate, spec, sequence))
-            if progress:
-                progress(len(results))
-        return results
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        for run in pool.map(_one, [simulate] * runs, [spec] * runs, sequences):
-            results.append(run)
-            if progress:
-                progress(len(results))
-    return results
+    if runner is not None:
+        return runner.map(task, sequences, progress=progress)
+    with engine(min(default_workers() if workers is None else workers, runs)) as local:
+        return local.map(task, sequences, progress=progress)

@@ -1,0 +1,228 @@
+"""Independent tasks on ``dask.distributed``, with results in task order whatever the worker count.
+
+Every embarrassingly parallel piece of trackcert (the report's checks, Monte Carlo runs, sweep
+points, falsify examples) goes through :func:`engine`: a context that yields a :class:`TaskRunner`
+whose :meth:`~TaskRunner.map` runs ``fn(item)`` for each item and returns the results **in item
+order**, so that a caller seeding each item explicitly gets identical results with 1, 2 or 64
+workers and whatever the order in which they finish.
+
+Where the tasks run:
+
+* ``workers=1`` (and no scheduler): in this process, one after the other (the debugging path;
+  no Dask at all);
+* by default: an in-process ``distributed.LocalCluster`` of one single-threaded worker process per
+  local core, started on the first :meth:`~TaskRunner.map` of more than one task and closed when
+  the context ends;
+* ``scheduler="tcp://host:8786"`` (or the ``TRACKCERT_SCHEDULER`` setting): an existing Dask
+  cluster, whose workers must have trackcert installed.
+
+Inside a task (on a Dask worker) :func:`engine` always runs serially: nested parallelism would
+only oversubscribe the cores.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from typing import Any, TypeVar
+
+from theory.core.errors import CaseError
+
+__all__ = [
+    "SCHEDULER_SETTING",
+    "TaskRunner",
+    "default_workers",
+    "engine",
+    "in_worker",
+    "scheduler_address",
+]
+
+SCHEDULER_SETTING = "TRACKCERT_SCHEDULER"
+"""Environment setting naming a Dask scheduler address (``--scheduler`` overrides it)."""
+
+CONNECT_TIMEOUT = 10.0
+"""Seconds to wait for a scheduler given by address before reporting it unreachable."""
+
+WORKER_MEMORY = "2GiB"
+"""Memory limit of each LocalCluster worker (Dask pauses, then restarts, a worker above it)."""
+
+T = TypeVar("T")
+R = TypeVar("R")
+
+
+def default_workers() -> int:
+    """All local cores (``os.cpu_count()``), at least 1."""
+    return max(1, os.cpu_count() or 1)
+
+
+def scheduler_address(option: str | None = None) -> str | None:
+    """The scheduler to use: ``option`` (``--scheduler``), else ``$TRACKCERT_SCHEDULER``, else none.
+
+    Parameters
+    ----------
+    option : str, optional
+        The command-line value.
+
+    Returns
+    -------
+    str or None
+    """
+    return option or os.environ.get(SCHEDULER_SETTING) or None
+
+
+def in_worker() -> bool:
+    """Whether this code runs inside a task on a Dask worker."""
+    try:
+        from distributed import get_worker
+    except ImportError:  # pragma: no cover - distributed is a dependency
+        return False
+    try:
+        get_worker()
+    except ValueError:
+        return False
+    return True
+
+
+class TaskRunner:
+    """Runs independent tasks; made by :func:`engine`.
+
+    Attributes
+    ----------
+    workers : int
+        Local worker processes (ignored with a scheduler); 1 is the serial path.
+    scheduler : str or None
+        Address of an existing scheduler.
+    """
+
+    def __init__(self, workers: int, scheduler: str | None) -> None:
+        self.workers = workers
+        self.scheduler = scheduler
+        self._client: Any = None
+        self._cluster: Any = None
+
+    @property
+    def serial(self) -> bool:
+        """Whether tasks run in this process, one after the other."""
+        return (self.workers == 1 and self.scheduler is None) or in_worker()
+
+    def map(
+        self,
+        fn: Callable[[T], R],
+        items: Sequence[T],
+        *,
+        progress: Callable[[int], None] | None = None,
+    ) -> list[R]:
+        """``[fn(item) for item in items]``, the calls spread over the workers.
+
+        Parameters
+        ----------
+        fn : callable
+            A picklable function of one argument (module level, or a ``functools.partial`` of
+            one); it must not depend on state of this process other than its argument.
+        items : sequence
+            The arguments (picklable).
+        progress : callable, optional
+            Called with the number of tasks finished so far, after each one finishes.
+
+        Returns
+        -------
+        list
+            ``fn(item)`` for each item, in item order.
+
+        Raises
+        ------
+        Exception
+            The first (in item order) exception a task raised, re-raised here.
+        """
+        if self.serial or len(items) <= 1:
+            return _serial(fn, items, progress)
+        from distributed import as_completed
+
+        client = self._connect()
+        futures = client.map(fn, list(items), pure=False)
+        index = {future.key: i for i, future in enumerate(futures)}
+        results: list[Any] = [None] * len(futures)
+        for done, future in enumerate(as_completed(futures), start=1):
+            if future.status == "finished":
+                results[index[future.key]] = future.result()
+            if progress is not None:
+                progress(done)
+        for future in futures:
+            if future.status == "error":
+                future.result()  # re-raises the task's exception
+        return results
+
+    def _connect(self) -> Any:
+        if self._client is not None:
+            return self._client
+        from distributed import Client, LocalCluster
+
+        if self.scheduler is not None:
+            try:
+                self._client = Client(self.scheduler, timeout=CONNECT_TIMEOUT)
+            except (OSError, TimeoutError) as error:
+                raise CaseError(
+                    "--scheduler",
+                    "the address of a running Dask scheduler",
+                    self.scheduler,
+                    hint=f"{error}; start one with `dask scheduler` and `dask worker ADDRESS`",
+                ) from None
+            return self._client
+        self._cluster = LocalCluster(
+            n_workers=self.workers,
+            threads_per_worker=1,
+            processes=True,
+            memory_limit=WORKER_MEMORY,
+            dashboard_address=None,
+        )
+        self._client = Client(self._cluster)
+        return self._client
+
+    def close(self) -> None:
+        """Close the client and the local cluster, if they were started."""
+        if self._client is not None:
+            self._client.close()
+        if self._cluster is not None:
+            self._cluster.close()
+        self._client = self._cluster = None
+
+
+def _serial(fn: Callable[[T], R], items: Sequence[T], progress: Callable[[int], None] | None):
+    results = []
+    for item in items:
+        results.append(fn(item))
+        if progress is not None:
+            progress(len(results))
+    return results
+
+
+@contextmanager
+def engine(workers: int | None = None, scheduler: str | None = None) -> Iterator[TaskRunner]:
+    """A :class:`TaskRunner` for the ``with`` block; its cluster (if any) is closed at the end.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Local worker processes; default all local cores; 1 runs every task in this process.
+    scheduler : str, optional
+        Address of an existing Dask scheduler (default ``$TRACKCERT_SCHEDULER``); its workers
+        run the tasks and ``workers`` is ignored.
+
+    Yields
+    ------
+    TaskRunner
+
+    Raises
+    ------
+    CaseError
+        If ``workers < 1`` (field ``--workers``), or the scheduler cannot be reached.
+    """
+    count = default_workers() if workers is None else workers
+    if count < 1:
+        raise CaseError("--workers", "an integer ≥ 1", workers)
+    runner = TaskRunner(count, scheduler_address(scheduler))
+    try:
+        yield runner
+    finally:
+        runner.close()
