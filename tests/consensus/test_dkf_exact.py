@@ -79,7 +79,7 @@ def test_never_both_certificates(problem) -> None:
         return
     assert check_certificate(cert).valid
     found, _, reasons = primal_certificate(
-        A, C, W, order="consensus-then-filter", candidates=[("drawn", problem.L)], lmi_margin=1e-8
+        A, C, W, order="consensus-then-filter", candidates=[("drawn", problem.L)]
     )
     assert found is None and reasons
 

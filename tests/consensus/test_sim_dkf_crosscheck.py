@@ -17,12 +17,12 @@ from theory.consensus.case import ORDERS
 from theory.consensus.riccati import coupled_riccati
 from theory.consensus.riccati_properties import (
     EXAMPLES,
-    HORIZON,
     bound_iteration,
     riccati_agreement,
 )
 from theory.consensus.strategies import DkfProblem
 from theory.core.case_file import load_case
+from theory.core.tolerances import RICCATI_HORIZON
 from theory.falsify import falsify, properties_for
 
 
@@ -60,10 +60,10 @@ def test_the_bound_comes_from_the_certified_gains() -> None:
     zero = [np.zeros((2, c.shape[0])) for c in spec.C]
     P0 = np.zeros((3, 2, 2))
     bound = bound_iteration(
-        spec.A, spec.C, spec.W, spec.Q, spec.R, zero, P0, order=ORDERS[0], steps=HORIZON
+        spec.A, spec.C, spec.W, spec.Q, spec.R, zero, P0, order=ORDERS[0], steps=RICCATI_HORIZON
     )
     run = coupled_riccati(
-        spec.A, spec.C, spec.W, spec.Q, spec.R, P0, order=ORDERS[0], max_iter=HORIZON,
+        spec.A, spec.C, spec.W, spec.Q, spec.R, P0, order=ORDERS[0], max_iter=RICCATI_HORIZON,
         fixed_steps=True,
     )  # fmt: skip
     assert run.norms[-1] < 1e3 < np.linalg.norm(bound[-1], 2, axis=(1, 2)).max()

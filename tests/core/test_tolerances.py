@@ -52,7 +52,7 @@ def test_modules_use_the_table_values() -> None:
     from theory.tdoa import networked_observability, spectral_rank, uniqueness
 
     assert s_detectability.LMI_MARGIN == tolerances.LMI_MARGIN
-    assert certificates.LMI_MARGIN == tolerances.CERTIFICATE_MARGIN
+    assert certificates.CERTIFICATE_MARGIN == tolerances.CERTIFICATE_MARGIN
     assert properties.UNIT_CIRCLE_TOL == networked_observability.UNIT_CIRCLE_TOL == 1e-6
     assert conditions.VALUE_TOL == tolerances.VALUE_TOL
     assert spectral_rank.CLUSTER_TOL == tolerances.CLUSTER_TOL

@@ -2,7 +2,7 @@
 
 Each builder takes the data of a claim (floats are read as the decimals they print as, or exact
 ``Fraction`` entries), a floating witness from a solver, checks that the witness is strictly
-feasible with a relative margin above ``lmi_margin``, rounds it to rationals
+feasible with a relative margin above ``certificate_margin``, rounds it to rationals
 (:mod:`theory.core.rationalize`) and keeps the first rounding that the independent checker
 :mod:`proofs_check` accepts. The result is a certificate dict in the format of
 ``docs/certificates.md`` (``"format": "trackcert-certificate/1"``). Nothing weaker is ever
@@ -28,7 +28,6 @@ from proofs_check.linalg import Matrix, matmul, scale, sub
 from proofs_check.operators import apply_operator as exact_operator
 from theory.consensus.operators import apply_operator
 from theory.core.certificate_format import (
-    bundle,
     checked,
     envelope,
     rational_bound,
@@ -43,13 +42,11 @@ from theory.core.rationalize import (
     stochastic_matrix,
     symmetric_projection,
 )
-from theory.core.tolerances import CERTIFICATE_MARGIN as LMI_MARGIN
+from theory.core.tolerances import CERTIFICATE_MARGIN
 
 __all__ = [
-    "LMI_MARGIN",
     "ORDERS",
     "SOURCES",
-    "bundle",
     "decrease_strings",
     "exact_s_detectability_certificate",
     "float_margin",
@@ -142,7 +139,7 @@ def mjls_stability_certificate(
     *,
     operator: str = "L",
     spectral_radius_below: float | Fraction = 1,
-    lmi_margin: float = LMI_MARGIN,
+    certificate_margin: float = CERTIFICATE_MARGIN,
     precisions: Sequence[int] = PRECISIONS,
     case: str | None = None,
 ) -> dict:
@@ -160,8 +157,9 @@ def mjls_stability_certificate(
         Which of the four equivalent operators ``P`` is a Lyapunov matrix for.
     spectral_radius_below : float or Fraction
         ``ρ ∈ (0, 1]`` (limited to denominators ≤ 10⁶).
-    lmi_margin : float
-        Relative margin (:func:`float_margin`) the float witness must exceed.
+    certificate_margin : float
+        Relative margin (:func:`float_margin`) the float witness must exceed before it is rounded
+        (the exact check decides; this only skips futile roundings).
     precisions : sequence of int
         Significant bits tried when rounding ``P``.
     case : str, optional
@@ -202,7 +200,7 @@ def mjls_stability_certificate(
         build,
         {"P": [symmetric_projection(p) for p in P]},
         margin=margin,
-        lmi_margin=lmi_margin,
+        lmi_margin=certificate_margin,
         precisions=precisions,
         what="mjls-stability",
     )
@@ -218,7 +216,7 @@ def s_detectability_certificate(
     *,
     dual: bool = False,
     rho: float | Fraction = 1,
-    lmi_margin: float = LMI_MARGIN,
+    certificate_margin: float = CERTIFICATE_MARGIN,
     precisions: Sequence[int] = PRECISIONS,
     case: str | None = None,
 ) -> dict:
@@ -250,7 +248,7 @@ def s_detectability_certificate(
         Whether ``Ps`` is the dual tuple ``Y`` (operator ``L-adjoint``).
     rho : float or Fraction
         ``ρ ∈ (0, 1]``: the claim is ``r_σ(L) < ρ`` (1 for S-detectability).
-    lmi_margin : float
+    certificate_margin : float
         As in :func:`mjls_stability_certificate`.
     precisions : sequence of int
         As in :func:`mjls_stability_certificate`.
@@ -290,7 +288,7 @@ def s_detectability_certificate(
         build,
         matrices,
         margin=margin,
-        lmi_margin=lmi_margin,
+        lmi_margin=certificate_margin,
         precisions=precisions,
         what="s-detectability",
     )

@@ -14,7 +14,9 @@ from typing import Any
 
 import numpy as np
 
+from theory.consensus.case import ORDERS
 from theory.consensus.conditions import VALUE_TOL, NecessaryConditions, necessary_conditions
+from theory.consensus.exact_radius import gains_stabilize
 from theory.consensus.operators import (
     B_matrix,
     J_matrix,
@@ -26,6 +28,7 @@ from theory.consensus.operators import (
     vec_tuple,
 )
 from theory.consensus.riccati import (
+    AveragedBoundCheck,
     RiccatiRun,
     check_averaged_bound,
     check_covariance_bound,
@@ -50,7 +53,7 @@ from theory.core.claims import (
 )
 from theory.core.expectations import matches
 from theory.core.observability import RANK_TOL
-from theory.core.tolerances import HYPOTHESIS_TOL
+from theory.core.tolerances import EXACT_DIM, MAP_RTOL, PSD_TOL, RADIUS_TOL
 
 __all__ = ["DkfAnalysis", "analyze_dkf", "dkf_claim_results", "printed_match"]
 
@@ -369,41 +372,37 @@ def _claim_lemma_522(case: Case, analysis: DkfAnalysis | None = None) -> list[Cl
     map_error = float(np.linalg.norm(M @ vec_tuple(V) - vec_tuple(L_map(spec.W, Gamma, V))))
     scale = float(np.linalg.norm(M) * np.linalg.norm(V)) + 1.0
     rL, rJ = analysis.radius_L, analysis.radius_J
-    lyapunov = _lyapunov_side(M, rL, spec.n_agents, spec.n)
-    ok = map_error <= 1e-10 * scale and abs(rL - rJ) <= 1e-8 * max(1.0, rL)
-    ok = ok and lyapunov is not False
+    lyapunov = gains_stabilize(spec.A, spec.C, spec.W, analysis.gains, order=ORDERS[0])
+    identities = map_error <= MAP_RTOL * scale and abs(rL - rJ) <= RADIUS_TOL * max(1.0, rL)
+    ok = _lyapunov_agrees(identities, lyapunov, rL)
     evidence = {
         "gains_source": analysis.gains_source,
         "map_vs_kronecker_error": map_error / scale,
         "spectral_radius_L": rL,
         "spectral_radius_J": rJ,
         "lyapunov_characterization": lyapunov,
+        "lyapunov_exact": spec.n_agents * spec.n**2 <= EXACT_DIM,
         "vec_convention": "column-stacking vec; tuple = [vec V_1; ...; vec V_N]",
         "seed": 0,
     }
-    return [_result("seed000.lem5.2.2", case, "numeric", ok, evidence)]
+    tolerance = {"map_rtol": MAP_RTOL, "radius_tol": RADIUS_TOL, "exact_dim": EXACT_DIM}
+    return [_result("seed000.lem5.2.2", case, "numeric", ok, evidence, tolerance=tolerance)]
 
 
-def _lyapunov_side(M: np.ndarray, radius: float, N: int, n: int, gap: float = 1e-6) -> bool | None:
-    """Lemma 5.2.2's "iff", on the side the radius is on (None within ``gap`` of 1).
+def _lyapunov_agrees(identities: bool, lyapunov: bool | None, radius: float) -> bool | None:
+    """Lemma 5.2.2 on the case: the float identities hold and the float radius lies on the side
+    of 1 that the Lyapunov decision says (None when that decision is undecided).
 
-    ``r < 1``: the solution of ``X − L(X) = (I, …, I)`` must be positive definite. ``r > 1``: the
-    Perron eigenvector ``Y ⪰ 0`` of the adjoint (``L*(Y) = r Y``) must exist, which rules out any
-    ``P > 0`` with ``P − L(P) > 0`` since ``⟨P − L(P), Y⟩ = (1 − r)⟨P, Y⟩ < 0``.
+    ``lyapunov`` is :func:`~theory.consensus.exact_radius.gains_stabilize`: whether
+    ``X − T(X) = I`` has a positive definite solution, decided exactly (rational solve, LDLᵀ)
+    when ``N n² ≤ exact_dim``; by Lemma 1 of ``docs/theory/s-detectability.md`` that is
+    ``r_σ(T) < 1``. A float radius within ``radius_tol`` of 1 agrees with either answer.
     """
-    if abs(radius - 1) <= gap:
+    if not identities:
+        return False
+    if lyapunov is None:
         return None
-    if radius < 1:
-        rhs = vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
-        X = unvec_tuple(np.linalg.solve(np.eye(M.shape[0]) - M, rhs), N, n)
-        return bool(np.linalg.eigvalsh((X + X.transpose(0, 2, 1)) / 2).min() > 0)
-    values, vectors = np.linalg.eig(M.T)
-    top = int(np.argmax(values.real))
-    Y = unvec_tuple(np.real(vectors[:, top]), N, n)
-    Y = (Y + Y.transpose(0, 2, 1)) / 2
-    Y = Y if np.trace(Y.sum(axis=0)) >= 0 else -Y
-    low = float(np.linalg.eigvalsh(Y).min())
-    return bool(abs(values[top] - radius) <= 1e-8 * radius and low >= -1e-8 * np.abs(Y).max())
+    return radius < 1 + RADIUS_TOL if lyapunov else radius > 1 - RADIUS_TOL
 
 
 @register(
@@ -451,65 +450,46 @@ def _claim_lemma_523(case: Case, analysis: DkfAnalysis | None = None) -> list[Cl
 )
 def _claim_lemma_a21(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
     analysis = analysis or analyze_dkf(case, search_self_weight=False)
-    spec = case.spec
-    radius = analysis.radius_J
-    if radius is None:
+    if analysis.gains is None:
         raise NotApplicable("no gains: the case fixes none and the LMI found no witness")
-    if radius >= 1 + HYPOTHESIS_TOL:
+    spec = case.spec
+    holds = gains_stabilize(spec.A, spec.C, spec.W, analysis.gains, order="filter-then-consensus")
+    tol = {"radius_tol": RADIUS_TOL, "exact_dim": EXACT_DIM, "psd_tol": PSD_TOL}
+    evidence = {"gains_source": analysis.gains_source, "spectral_radius_J": analysis.radius_J}
+    if holds is False:
         raise NotApplicable(
-            f"hypothesis r_σ(J) < 1 fails with the {analysis.gains_source} gains "
-            f"(r_σ(J) = {radius:.6g})"
+            f"hypothesis r_σ(J) < 1 fails with the {analysis.gains_source} gains (decided "
+            f"exactly when N n² ≤ {EXACT_DIM}; float r_σ(J) = {analysis.radius_J:.6g})"
         )
-    if radius >= 1 - HYPOTHESIS_TOL:
-        message = f"r_σ(J) = {radius!r} is within {HYPOTHESIS_TOL:g} of 1: hypothesis undecided"
-        evidence = {"gains_source": analysis.gains_source, "spectral_radius_J": radius}
-        tolerance = {"hypothesis_tol": HYPOTHESIS_TOL}
-        return [
-            _result(
-                "seed000.lemA.2.1",
-                case,
-                "numeric",
-                None,
-                evidence,
-                tolerance=tolerance,
-                message=message,
-            )
-        ]
-    M = closed_loop(spec.A, spec.C, analysis.gains)
+    if holds is None:
+        message = f"r_σ(J) = {analysis.radius_J!r} is within radius_tol of 1: hypothesis undecided"
+        return [_result(_A21, case, "numeric", None, evidence, tolerance=tol, message=message)]
+    check = _averaged_bound(spec, analysis.gains)
+    evidence |= {
+        "r": check.r, "alpha": check.alpha, "mu": check.mu, "decay_ok": check.decay_ok,
+        "bound_ok": check.bound_ok, "worst_ratio": check.worst_ratio, "steps": check.steps,
+    }  # fmt: skip
+    if not check.r < 1 - RADIUS_TOL:  # r_σ(J) < 1 exactly, but too close to 1 for floats
+        message = f"r = {check.r!r} of the float X is within radius_tol of 1: conclusion undecided"
+        return [_result(_A21, case, "numeric", None, evidence, tolerance=tol, message=message)]
+    ok = check.decay_ok and check.bound_ok
+    margin = 1 - check.worst_ratio
+    return [_result(_A21, case, "numeric", ok, evidence, margin=margin, tolerance=tol)]
+
+
+_A21 = "seed000.lemA.2.1"
+
+
+def _averaged_bound(spec: Any, gains: tuple[np.ndarray, ...]) -> AveragedBoundCheck:
+    """Lemma A.2.1's conclusions along the iteration, with ``X`` solving ``X − J(X) = I``
+    (``M^j = Γ_j``, ``U_i = Q + L_i R_i L_iᵀ``, ``P_0 = 10 I``; seed 000 eqs. (A.53)–(A.54))."""
+    M = closed_loop(spec.A, spec.C, gains)
     n, N = spec.n, spec.n_agents
-    dim = N * n * n
-    X = unvec_tuple(
-        np.linalg.solve(
-            np.eye(dim) - J_matrix(spec.W, M), vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
-        ),
-        N,
-        n,
-    )
+    identity = vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
+    X = unvec_tuple(np.linalg.solve(np.eye(N * n * n) - J_matrix(spec.W, M), identity), N, n)
     X = (X + X.transpose(0, 2, 1)) / 2
-    U = np.stack([spec.Q + Li @ Ri @ Li.T for Li, Ri in zip(analysis.gains, spec.R, strict=True)])
-    check = check_averaged_bound(spec.W, M, X, np.broadcast_to(10 * np.eye(n), (N, n, n)), U)
-    evidence = {
-        "gains_source": analysis.gains_source,
-        "r": check.r,
-        "alpha": check.alpha,
-        "mu": check.mu,
-        "decay_ok": check.decay_ok,
-        "bound_ok": check.bound_ok,
-        "worst_ratio": check.worst_ratio,
-        "steps": check.steps,
-    }
-    ok = check.r < 1 and check.decay_ok and check.bound_ok
-    return [
-        _result(
-            "seed000.lemA.2.1",
-            case,
-            "numeric",
-            ok,
-            evidence,
-            margin=1 - check.worst_ratio,
-            tolerance={"psd_tol": check.psd_tol},
-        )
-    ]
+    U = np.stack([spec.Q + Li @ Ri @ Li.T for Li, Ri in zip(gains, spec.R, strict=True)])
+    return check_averaged_bound(spec.W, M, X, np.broadcast_to(10 * np.eye(n), (N, n, n)), U)
 
 
 @register(

@@ -34,20 +34,15 @@ from theory.consensus.operators import (
     spectral_radius,
 )
 from theory.core.rationalize import stochastic_matrix
-from theory.core.tolerances import RADIUS_TOL
+from theory.core.tolerances import EXACT_DIM, RADIUS_TOL
 
 __all__ = [
-    "EXACT_DIM",
     "exact_lyapunov",
     "exact_operator_matrix",
     "gains_stabilize",
     "nonnegative_radius_below",
     "radius_below",
 ]
-
-EXACT_DIM = 200
-"""Largest ``N n²`` for which the exact decision is attempted (a 200 × 200 rational solve takes
-about 0.3 s); larger problems are left to the rounded certificates."""
 
 
 def exact_operator_matrix(operator: str, W: Matrix, gammas: Sequence[Matrix]) -> Matrix:
@@ -139,7 +134,7 @@ def radius_below(
     Raises
     ------
     ValueError
-        If ``N n²`` exceeds :data:`EXACT_DIM` or ``W`` has a negative entry.
+        If ``N n²`` exceeds :data:`~theory.core.tolerances.EXACT_DIM` or ``W`` has a negative entry.
 
     References
     ----------

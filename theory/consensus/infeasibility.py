@@ -37,9 +37,9 @@ from proofs_check.linalg import matmul
 from theory.consensus.exact_linalg import Matrix, null_basis, rational_eigenvalues, rational_matrix
 from theory.core.certificate_format import checked, envelope, rational_bound, strings
 from theory.core.rationalize import RationalizationError, fraction_strings, stochastic_matrix
+from theory.core.tolerances import MAX_FLATS, PERRON_BITS, bits_ladder
 
 __all__ = [
-    "MAX_FLATS",
     "SOURCE",
     "blind_flats",
     "blind_set_witness",
@@ -47,10 +47,6 @@ __all__ = [
 ]
 
 SOURCE = "seed 000, Definition 5.2.4; docs/theory/s-detectability.md, Theorems 3 and 4"
-MAX_FLATS = 2000
-"""Most flats (intersections of an eigenspace with kernels of the ``C_i``) explored."""
-PERRON_BITS = (16, 32, 52)
-"""Precisions (bits) tried when rounding a float Perron vector."""
 
 
 def blind_flats(
@@ -71,7 +67,7 @@ def blind_flats(
     ------
     (list of Fraction, tuple of int)
         A vector of the flat and the 0-based agents ``S`` blind to the whole flat (S non-empty),
-        once per distinct S (at most :data:`MAX_FLATS` flats are explored).
+        once per distinct S (at most :data:`~theory.core.tolerances.MAX_FLATS` flats are explored).
     """
     n = len(A)
     shifted = [[A[r][c] - (lam if r == c else 0) for c in range(n)] for r in range(n)]
@@ -127,7 +123,7 @@ def _class_vectors(block: Matrix, rho: Fraction) -> Iterator[list[Fraction]]:
     if values[top].real < float(rho) or abs(values[top].imag) > 0:
         return
     perron = np.abs(np.real(vectors[:, top]))
-    for bits in PERRON_BITS:
+    for bits in bits_ladder(PERRON_BITS):
         yield [Fraction(float(x)).limit_denominator(2**bits) for x in perron / perron.max()]
 
 

@@ -29,7 +29,7 @@ from theory.consensus.certificates import (
     s_detectability_certificate,
 )
 from theory.consensus.exact_linalg import Matrix, fractions_of, rational_matrix, to_fmpq
-from theory.consensus.exact_radius import EXACT_DIM, exact_lyapunov
+from theory.consensus.exact_radius import exact_lyapunov
 from theory.consensus.operators import (
     closed_loop,
     covariance_operator_matrix,
@@ -38,9 +38,9 @@ from theory.consensus.operators import (
 )
 from theory.core.certificate_format import rational_bound
 from theory.core.rationalize import RationalizationError, dyadic_matrix, stochastic_matrix
+from theory.core.tolerances import EXACT_DIM, ROUNDING_BITS, bits_ladder
 
 __all__ = [
-    "ROUNDING_BITS",
     "certificate_gains",
     "exact_gain_certificate",
     "primal_certificate",
@@ -48,8 +48,6 @@ __all__ = [
     "projection_gains",
 ]
 
-ROUNDING_BITS = (24, 48, 96)
-"""Significant bits tried when rounding float gains and exact Lyapunov tuples."""
 
 
 def primal_lyapunov(
@@ -175,7 +173,7 @@ def exact_gain_certificate(
     Raises
     ------
     RationalizationError
-        If ``N n²`` exceeds :data:`~theory.consensus.exact_radius.EXACT_DIM`, ``r_σ(T) ≥ ρ`` for
+        If ``N n²`` exceeds :data:`~theory.core.tolerances.EXACT_DIM`, ``r_σ(T) ≥ ρ`` for
         these gains (no positive definite solution), or no rounding of it checks.
     """
     n, N = np.asarray(A).shape[0], np.asarray(W).shape[0]
@@ -191,7 +189,7 @@ def exact_gain_certificate(
     if X is None:
         raise RationalizationError("I − T/ρ is singular for these gains: r_σ(T) ≥ ρ")
     reasons = []
-    for P in ([_dyadic_exact(x, b) for x in X] for b in ROUNDING_BITS):
+    for P in ([_dyadic_exact(x, b) for x in X] for b in bits_ladder(ROUNDING_BITS)):
         try:
             return exact_s_detectability_certificate(
                 A, C, W, gains, P, operator=ORDERS[order], rho=bound, case=case
@@ -205,10 +203,11 @@ def _exact_candidates(
     A: np.ndarray, C: Sequence[np.ndarray], candidates: Sequence[tuple[str, Sequence[np.ndarray]]]
 ) -> list[tuple[str, list[Matrix]]]:
     out = [("projection gains L_i = A C_i⁺", projection_gains(A, C))]
+    bits = bits_ladder(ROUNDING_BITS)[0]
     for label, gains in candidates:
         floats = [np.asarray(g, float) for g in gains]
         if len(floats) == len(C) and all(np.all(np.isfinite(g)) for g in floats):
-            rounded = [dyadic_matrix(g, ROUNDING_BITS[0]) if g.size else [] for g in floats]
+            rounded = [dyadic_matrix(g, bits) if g.size else [] for g in floats]
             out.append((label, rounded))
     return out
 
@@ -222,7 +221,6 @@ def primal_certificate(
     rho: float = 1.0,
     witness: tuple[Sequence[np.ndarray], np.ndarray] | None = None,
     candidates: Sequence[tuple[str, Sequence[np.ndarray]]] = (),
-    lmi_margin: float,
     case: str | None = None,
 ) -> tuple[dict | None, str, list[str]]:
     """The first checked ``s-detectability`` certificate the routes of the module docstring give.
@@ -239,8 +237,6 @@ def primal_certificate(
         The LMI's float witness, when its margin cleared ``lmi_margin``.
     candidates : sequence of (label, gains)
         Further float gains to try with exact Lyapunov tuples.
-    lmi_margin : float
-        Least float margin worth rounding.
     case : str, optional
         Case name recorded in the certificate.
 
@@ -261,9 +257,8 @@ def primal_certificate(
                 continue
             try:
                 cert = s_detectability_certificate(
-                    A, C, W, order, gains, list(tuple_), dual=dual, rho=rho,
-                    lmi_margin=lmi_margin, case=case,
-                )  # fmt: skip
+                    A, C, W, order, gains, list(tuple_), dual=dual, rho=rho, case=case
+                )
                 return cert, f"LMI witness, {'dual Y' if dual else 'primal X'} rounded", reasons
             except RationalizationError as error:
                 reasons.append(f"LMI witness: {error}")

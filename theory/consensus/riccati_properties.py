@@ -31,28 +31,20 @@ import numpy as np
 
 from theory.consensus.case import ORDERS
 from theory.consensus.certificates import ORDERS as OPERATOR_OF
-from theory.consensus.exact_radius import EXACT_DIM, gains_stabilize
+from theory.consensus.exact_radius import gains_stabilize
 from theory.consensus.operators import E_map, apply_operator, closed_loop
 from theory.consensus.properties import dkf_case
 from theory.consensus.riccati import coupled_riccati_step
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.consensus.strategies import DkfProblem, dkf_problems
-from theory.core.tolerances import PSD_TOL
+from theory.core.tolerances import BLOWUP, EXACT_DIM, PSD_TOL, RICCATI_HORIZON
 from theory.falsify import Property, register_property
 
 __all__ = [
-    "HORIZON",
     "RiccatiAgreement",
     "bound_iteration",
     "riccati_agreement",
 ]
-
-HORIZON = 40
-"""Steps of the Riccati and bound iterations compared (fewer if the iterates pass BLOWUP)."""
-BLOWUP = 1e12
-"""A diverging iteration is followed until ``max_i ‖P_i(k)‖`` exceeds this (beyond it
-``C_i P C_iᵀ + R_i`` loses ``R_i`` to rounding)."""
-
 
 @dataclass(frozen=True)
 class RiccatiAgreement:
@@ -121,7 +113,7 @@ def bound_iteration(
 
 def _riccati(problem: DkfProblem, Q, R, P0, order: str) -> tuple[np.ndarray, list]:
     P, gains = [np.asarray(P0, float)], []
-    while len(gains) < HORIZON and np.linalg.norm(P[-1], 2, axis=(1, 2)).max() <= BLOWUP:
+    while len(gains) < RICCATI_HORIZON and np.linalg.norm(P[-1], 2, axis=(1, 2)).max() <= BLOWUP:
         g, nxt = coupled_riccati_step(problem.A, problem.C, problem.W, Q, R, P[-1], order=order)
         P.append(nxt)
         gains.append(g)

@@ -258,7 +258,7 @@ def decide_s_detectability(
     floats = [("LMI candidate gains", lmi_gains)] if lmi_gains else []
     cert, route, reasons = primal_certificate(
         A, C, W, order=order, rho=rho, witness=witness, candidates=[*floats, *candidate_gains],
-        lmi_margin=lmi_margin, case=case,
+        case=case,
     )  # fmt: skip
     if cert is not None:
         gains = certificate_gains(cert, C)

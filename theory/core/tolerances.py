@@ -36,24 +36,30 @@ __all__ = [
     "CONV_TOL",
     "EIGEN_TOL",
     "ERROR_BOUND_SIGMAS",
+    "EXACT_DIM",
     "GROWTH",
-    "HYPOTHESIS_TOL",
     "INCONCLUSIVE_FACTOR",
     "INEQUALITY_RTOL",
     "ISS_BOUND_RTOL",
+    "ISS_DIGITS",
     "KERNEL_RTOL",
     "KINEMATICS_RTOL",
     "LMI_MARGIN",
+    "MAP_RTOL",
     "MARGIN_TOL",
+    "MAX_FLATS",
     "MAX_ITER",
     "MIN_CONDITIONING",
     "MIRROR_TOL",
     "PERIOD_TOL",
+    "PERRON_BITS",
     "PF_TOLERANCES",
     "PSD_RTOL",
     "PSD_TOL",
     "RADIUS_TOL",
     "RANK_TOL",
+    "RICCATI_HORIZON",
+    "ROUNDING_BITS",
     "ROUNDING_TOL",
     "TOLERANCES",
     "UNIQUENESS_TOL",
@@ -65,6 +71,7 @@ __all__ = [
     "WEIGHT_TOL",
     "Z_TOL",
     "Tolerance",
+    "bits_ladder",
     "defaults",
     "table",
 ]
@@ -179,13 +186,6 @@ WEIGHT_TOL = _named(
     "absolute, on a weight",
     "bracket width at which the bisection for the largest self-weight stops (seed 000 §5.3)",
     "the paper prints self-weight bounds to 4 decimals",
-)
-HYPOTHESIS_TOL = _named(
-    "hypothesis_tol",
-    1e-9,
-    "absolute, on a spectral radius",
-    "distance of r_σ(J) from 1 within which Lemma A.2.1's hypothesis counts as undecided",
-    "a radius that close to 1 cannot be told from 1 at the data's precision",
 )
 WEIGHT_SUM_TOL = _named(
     "weight_sum_tol",
@@ -377,6 +377,96 @@ RADIUS_TOL = _named(
     "ρ(1 ± radius_tol) (theory.consensus.exact_radius)",
     "an eigenvalue of a non-normal matrix can move by √ε ≈ 1e-8 (2 × 2 Jordan block)",
 )
+MAP_RTOL = _named(
+    "map_rtol",
+    1e-10,
+    "relative to ‖mat(T)‖·‖V‖",
+    "an operator applied blockwise and its Kronecker matrix agree on a tuple when their "
+    "difference is within map_rtol of the scale (seed 000 Lemma 5.2.2's vectorization)",
+    "both are a few products of small matrices: float error is ~1e-15 of the scale",
+)
+# --- budgets of the exact consensus decisions (integers; the exact check decides, they only
+# --- bound the work or the precision tried)
+EXACT_DIM = int(
+    _named(
+        "exact_dim",
+        200.0,
+        "N·n² (size of the operator's matrix)",
+        "largest size for which r_σ(T) < ρ is decided by an exact rational Lyapunov solve "
+        "(theory.consensus.exact_radius); above it the float radius decides outside radius_tol",
+        "a budget: a 200 × 200 rational solve takes about 0.3 s",
+    )
+)
+MAX_FLATS = int(
+    _named(
+        "max_flats",
+        2000.0,
+        "flats",
+        "most intersections of an eigenspace of A with kernels of the C_i explored when "
+        "searching blind sets for an infeasibility certificate (theory.consensus.infeasibility)",
+        "a budget: the lattice of flats of the bundled cases has fewer than 20 elements",
+    )
+)
+PERRON_BITS = int(
+    _named(
+        "perron_bits",
+        52.0,
+        "bits",
+        "finest rounding of a float Perron vector into a Farkas witness; bits_ladder(52) = "
+        "13, 26, 52 bits are tried in turn (theory.consensus.infeasibility)",
+        "a float Perron vector has no more than 52 correct bits",
+    )
+)
+ROUNDING_BITS = int(
+    _named(
+        "rounding_bits",
+        96.0,
+        "significant bits",
+        "finest dyadic rounding of float gains and exact Lyapunov tuples into an "
+        "s-detectability certificate; bits_ladder(96) = 24, 48, 96 are tried in turn "
+        "(theory.consensus.primal_certificates)",
+        "an exact tuple has margin I, so 24 bits usually suffice; 96 covers ill-conditioned X",
+    )
+)
+RICCATI_HORIZON = int(
+    _named(
+        "riccati_horizon",
+        40.0,
+        "iterations",
+        "steps of the Riccati and fixed-gain bound iterations compared by seed000.fn5's "
+        "property (fewer if the iterates pass blowup)",
+        "a budget: the property's examples converge or double within 40 steps",
+    )
+)
+# --- pursuit certificates
+ISS_DIGITS = int(
+    _named(
+        "iss_digits",
+        9.0,
+        "significant decimal digits",
+        "rounding of the ISS witness constants (λ, k̄_p, s, a, b, ρ, κ) in the safe direction; "
+        "a constant whose exact check fails is halved or doubled until it passes",
+        "short decimals a reader can check by hand; the exact check in proofs_check decides",
+    )
+)
+
+
+def bits_ladder(top: int) -> tuple[int, int, int]:
+    """The precisions tried in turn up to ``top`` bits: a quarter, a half, all of it.
+
+    Parameters
+    ----------
+    top : int
+        The finest precision (``PERRON_BITS`` or ``ROUNDING_BITS``).
+
+    Returns
+    -------
+    tuple of int
+        ``(top // 4, top // 2, top)``: coarser roundings give shorter certificates.
+    """
+    return (top // 4, top // 2, top)
+
+
 PF_TOLERANCES = {
     "converge_tol": _named(
         "converge_tol",

@@ -10,8 +10,8 @@ from __future__ import annotations
 from typing import Any
 
 from theory.certify import certificates_or_inconclusive, certified_result
-from theory.consensus.certificates import bundle
 from theory.core.case_file import Case
+from theory.core.certificate_format import bundle
 from theory.core.claims import ClaimResult, register
 
 __all__ = ["generic_rank_claim"]

@@ -15,7 +15,7 @@ from fractions import Fraction
 import numpy as np
 
 from proofs_check.linalg import Matrix, identity, matmul, sub
-from theory.consensus.certificates import LMI_MARGIN, decrease_strings, float_margin
+from theory.consensus.certificates import decrease_strings, float_margin
 from theory.core.certificate_format import envelope, rational_bound, rounded, strings
 from theory.core.rationalize import (
     PRECISIONS,
@@ -24,6 +24,7 @@ from theory.core.rationalize import (
     stochastic_matrix,
     symmetric_projection,
 )
+from theory.core.tolerances import CERTIFICATE_MARGIN
 
 __all__ = ["covariance_bound_certificate", "ekf_covariance_bound_certificate"]
 
@@ -36,7 +37,7 @@ def covariance_bound_certificate(
     X: Sequence[np.ndarray],
     *,
     rate: float | Fraction = 1,
-    lmi_margin: float = LMI_MARGIN,
+    lmi_margin: float = CERTIFICATE_MARGIN,
     precisions: Sequence[int] = PRECISIONS,
     case: str | None = None,
 ) -> dict:
@@ -90,7 +91,7 @@ def ekf_covariance_bound_certificate(
     X: Sequence[np.ndarray],
     *,
     rate: float | Fraction = 1,
-    lmi_margin: float = LMI_MARGIN,
+    lmi_margin: float = CERTIFICATE_MARGIN,
     precisions: Sequence[int] = PRECISIONS,
     case: str | None = None,
 ) -> dict:
