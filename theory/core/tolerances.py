@@ -42,6 +42,7 @@ __all__ = [
     "INEQUALITY_RTOL",
     "ISS_BOUND_RTOL",
     "ISS_DIGITS",
+    "ISS_SAFE_STEPS",
     "KERNEL_RTOL",
     "KINEMATICS_RTOL",
     "LMI_MARGIN",
@@ -447,6 +448,16 @@ ISS_DIGITS = int(
         "rounding of the ISS witness constants (λ, k̄_p, s, a, b, ρ, κ) in the safe direction; "
         "a constant whose exact check fails is halved or doubled until it passes",
         "short decimals a reader can check by hand; the exact check in proofs_check decides",
+    )
+)
+ISS_SAFE_STEPS = int(
+    _named(
+        "iss_safe_steps",
+        64.0,
+        "halvings or doublings",
+        "most moves of a rounded ISS witness constant in its safe direction before the "
+        "certificate is reported inconclusive (theory.pursuit.iss_exact.safe_constant)",
+        "2⁻⁶⁴ of a float estimate is far below any rounding error of it",
     )
 )
 

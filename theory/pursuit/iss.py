@@ -42,8 +42,15 @@ import sympy as sp
 
 from theory.core.errors import InconclusiveError, PropertyFails
 from theory.core.rationalize import exact_decimal
-from theory.core.tolerances import MARGIN_TOL
+from theory.core.tolerances import INEQUALITY_RTOL, ISS_DIGITS, MARGIN_TOL
 from theory.pursuit.case import PursuitSpec, TrackerPath
+from theory.pursuit.iss_exact import (
+    exact_gain_matrix,
+    gain_matrix_definite,
+    r_perp_connectivity_positive,
+    region_argument_sound,
+    safe_constant,
+)
 
 __all__ = [
     "Condition",
@@ -134,10 +141,11 @@ class PursuitIss:
         c♯/λ, the linear ISS gain from ‖x̃‖ to ‖e‖ used by :func:`iss_bound`.
     printed_region_sound : bool
         Whether the printed argument for the region of eq. (72), ‖e‖ ≥ c‖x̃‖/θ, works (iff
-        λ_min(K) ≥ 1; eq. (78) has the correct c/(θλ_min)).
+        λ_min(K) ≥ 1, decided exactly: K − I ⪰ 0; eq. (78) has the correct c/(θλ_min)).
     printed_region_holds : bool
         Whether the statement (72) is shown to hold for this case by the sufficient test
-        c♯ ≤ λ_min·c (``False`` means not shown this way; see
+        c♯ ≤ λ_min·c·(1 − inequality_rtol) (floats, so the test keeps that band from equality;
+        ``False`` means not shown this way; see
         :func:`theory.pursuit.iss_counterexamples.eq72_case_search` for the exact criterion).
     """
 
@@ -194,7 +202,7 @@ def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
     sharp = math.sqrt(sharp_sq)
     return PursuitIss(
         spec.controller, K, lam, norm_k, norm_kp, mu_r, mu, is_sup, c, c / lam, sharp, lam,
-        sharp / lam, lam >= 1.0, sharp <= lam * c,
+        sharp / lam, region_argument_sound(K), sharp <= lam * c * (1 - INEQUALITY_RTOL),
     )  # fmt: skip
 
 
@@ -560,19 +568,7 @@ def iss_conditions(spec: PursuitSpec, *, margin_tol: float = MARGIN_TOL) -> list
     ----------
     seed 003, Remark 6, Lemma 1, Definition 1, Lemmas 2–4.
     """
-    pursuit = pursuit_iss(spec)
-    conditions = [_delta_condition(spec, margin_tol)]
-    ratio = pursuit.lambda_min / pursuit.norm_K
-    conditions.append(
-        Condition(
-            "K_positive_definite",
-            "seed 003 eq. (66)",
-            "holds" if ratio >= margin_tol else "inconclusive",
-            pursuit.lambda_min,
-            ratio,
-            "λ_min(K) > 0; margin λ_min/λ_max",
-        )
-    )
+    conditions = [_delta_condition(spec, margin_tol), _gain_condition(pursuit_iss(spec))]
     if spec.n_trackers == 1:
         conditions.append(
             Condition(
@@ -603,8 +599,24 @@ def iss_conditions(spec: PursuitSpec, *, margin_tol: float = MARGIN_TOL) -> list
             detail="exact: RL + LᵀR symmetric, off-diagonal ≤ 0, zero row sums",
         )
     )
-    conditions.append(_connectivity_condition(coordination, margin_tol))
+    conditions.append(_connectivity_condition(coordination))
     return conditions
+
+
+def _gain_condition(pursuit: PursuitIss) -> Condition:
+    symmetric, definite = gain_matrix_definite(pursuit.K)
+    ratio = pursuit.lambda_min / pursuit.norm_K if pursuit.norm_K > 0 else 0.0
+    status = "holds" if definite and symmetric else "fails" if not definite else "inconclusive"
+    detail = {
+        "holds": "exact Sylvester test of K (Bareiss on the decimals as written)",
+        "fails": "exact Sylvester test: the symmetric part of K is not positive definite",
+        "inconclusive": "sym(K) ≻ 0 exactly, but K is not exactly symmetric (the analysis and "
+        "the iss certificate state a symmetric K)",
+    }[status]
+    return Condition(
+        "K_positive_definite", "seed 003 eq. (66)", status, pursuit.lambda_min, ratio,
+        detail + "; margin λ_min/λ_max (float, informative)",
+    )  # fmt: skip
 
 
 def _left_vector_condition(coordination: CoordinationIss) -> Condition:
@@ -622,17 +634,18 @@ def _left_vector_condition(coordination: CoordinationIss) -> Condition:
     )  # fmt: skip
 
 
-def _connectivity_condition(coordination: CoordinationIss, tol: float) -> Condition:
+def _connectivity_condition(coordination: CoordinationIss) -> Condition:
     source = "seed 003 Definition 1"
     if coordination.a_L is None:
         return Condition("algebraic_connectivity_positive", source, "not-applicable",
                          detail="a(L) needs a positive left eigenvector")  # fmt: skip
     scale = max(1.0, float(np.max(np.abs(coordination.laplacian))))
-    margin = coordination.a_L / scale
-    status = "holds" if margin >= tol else ("inconclusive" if margin > -tol else "fails")
+    positive = r_perp_connectivity_positive(coordination.laplacian, coordination.r)
     return Condition(
-        "algebraic_connectivity_positive", source, status, coordination.a_L, margin,
-        detail="a(L) = λ_min(BᵀMB, 2BᵀRB) on r⊥ (scipy eigh); margin a(L)/max|L_ij|",
+        "algebraic_connectivity_positive", source, "holds" if positive else "fails",
+        coordination.a_L, coordination.a_L / scale,
+        detail="exact: BᵀMB ≻ 0 on r⊥ (Sylvester), equivalent to a(L) > 0; a(L) = "
+        "λ_min(BᵀMB, 2BᵀRB) by scipy eigh, margin a(L)/max|L_ij| (informative)",
     )  # fmt: skip
 
 
@@ -645,13 +658,13 @@ def _grid(x: float, digits: int) -> int:
     return digits - math.floor(math.log10(abs(x))) if x != 0 else digits
 
 
-def _rational_above(x: float, *, digits: int = 9) -> Fraction:
+def _rational_above(x: float, *, digits: int = ISS_DIGITS) -> Fraction:
     """A short decimal rational ≥ x (rounded up at ``digits`` significant digits)."""
     k = _grid(x, digits)
     return Fraction(math.ceil(x * 10**k), 10**k) + Fraction(1, 10**k)
 
 
-def _rational_below(x: float, *, digits: int = 9) -> Fraction:
+def _rational_below(x: float, *, digits: int = ISS_DIGITS) -> Fraction:
     """A short decimal rational ≤ x (rounded down at ``digits`` significant digits)."""
     k = _grid(x, digits)
     return Fraction(math.floor(x * 10**k), 10**k) - Fraction(1, 10**k)
@@ -661,7 +674,7 @@ def _sqrt_above(value: Fraction) -> Fraction:
     """A short decimal rational s ≥ √value (checked exactly)."""
     s = _rational_above(math.sqrt(float(value)))
     while s * s < value:
-        s += Fraction(1, 10 ** _grid(float(s), 9))
+        s += Fraction(1, 10 ** _grid(float(s), ISS_DIGITS))
     return s
 
 
@@ -708,9 +721,10 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
 
     ``data`` holds the case's matrices and constants as exact rationals (``fractions.Fraction``;
     a case number denotes its shortest decimal, :func:`theory.core.rationalize.exact_decimal`),
-    ``witness`` the certificate's constants, rounded in the safe direction at 9 significant
-    digits (λ below λ_min(K), k̄ above ‖K‖, s above √μ, a below a(L), b above ‖R^{1/2}W‖,
-    ρ below √r_min, κ above √(r_max/r_min)). Every inequality of
+    ``witness`` the certificate's constants, rounded in the safe direction at ``iss_digits``
+    significant digits (λ below λ_min(K), k̄ above ‖K‖, s above √μ, a below a(L), b above
+    ‖R^{1/2}W‖, ρ below √r_min, κ above √(r_max/r_min)) and moved further that way until their
+    exact checks pass. Every inequality of
     :data:`CERTIFICATE_INEQUALITIES` is re-verified exactly by :func:`verify_certificate` before
     the data is returned; ``numeric`` repeats the matrices as numpy arrays for convenience.
 
@@ -781,15 +795,24 @@ def _pursuit_data(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
 
 
 def _pursuit_witness(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
-    """λ below λ_min(K), k̄ above ‖K_p‖, μ_r, s ≥ √(k̄² + 1 (+ μ_r)) and g_e = s/λ (E1–E5)."""
-    kp_bar = _rational_above(pursuit.norm_K_p)
+    """λ below λ_min(K), k̄ above ‖K_p‖, μ_r, s ≥ √(k̄² + 1 (+ μ_r)) and g_e = s/λ (E1–E5).
+
+    λ and k̄ are the float values rounded in the safe direction, then halved (λ) or doubled (k̄)
+    until their exact checks E2, E3 pass (:func:`~theory.pursuit.iss_exact.safe_constant`).
+    """
+    K = exact_gain_matrix(pursuit.K)
+    K_p = exact_gain_matrix(spec.K_p)
+    lam = safe_constant(
+        _rational_below(pursuit.lambda_min), lambda x: _e2_holds(K, x), towards_zero=True
+    )
+    kp_bar = safe_constant(
+        _rational_above(pursuit.norm_K_p), lambda x: _e3_holds(K_p, x), towards_zero=False
+    )
+    if lam is None or kp_bar is None:
+        raise InconclusiveError("no rational λ or k̄_p passes its exact check (E2, E3)")
     needed = kp_bar * kp_bar + 1 + (pursuit.mu_r if spec.controller == "II" else 0)
-    witness: dict[str, Any] = {
-        "lambda": _rational_below(pursuit.lambda_min),
-        "kp_bar": kp_bar,
-        "mu_r": pursuit.mu_r,
-        "s": _sqrt_above(needed),
-    }
+    witness: dict[str, Any] = {"lambda": lam, "kp_bar": kp_bar, "mu_r": pursuit.mu_r}
+    witness["s"] = _sqrt_above(needed)
     witness["g_e"] = witness["s"] / witness["lambda"]
     witness["gain"] = witness["g_e"]
     return witness
@@ -803,15 +826,7 @@ def _coordination_certificate(
     n = len(r)
     k_c = exact_decimal(spec.k_c)
     data.update({"laplacian": spec.laplacian.astype(int).tolist(), "k_c": k_c})
-    witness.update(
-        {
-            "r": r,
-            "a": _rational_below(coordination.a_L),
-            "b": _rational_above(coordination.b),
-            "rho": _rational_below(math.sqrt(coordination.r_min)),
-            "kappa": _rational_above(coordination.kappa),
-        }
-    )
+    witness.update({"r": r, **_coordination_constants(data["laplacian"], r, coordination)})
     witness["alpha"] = k_c * witness["a"]
     two_stage = spec.controller == "II"
     witness["g_xi"] = (
@@ -829,6 +844,26 @@ def _coordination_certificate(
     )
 
 
+def _coordination_constants(
+    laplacian: list[list[int]], r: list[Fraction], coordination: CoordinationIss
+) -> dict[str, Fraction]:
+    """a, b, ρ, κ rounded in the safe direction and moved until C3, C4, C5 pass exactly."""
+    L = [[Fraction(x) for x in row] for row in laplacian]
+    estimates = {
+        "a": (_rational_below(coordination.a_L), lambda x: _c3_holds(L, r, x), True),
+        "b": (_rational_above(coordination.b), lambda x: _c4_holds(r, x), False),
+        "rho": (_rational_below(math.sqrt(coordination.r_min)), lambda x: _rho_holds(r, x), True),
+        "kappa": (_rational_above(coordination.kappa), lambda x: _kappa_holds(r, x), False),
+    }
+    out = {}
+    for name, (estimate, holds, towards_zero) in estimates.items():
+        value = safe_constant(estimate, holds, towards_zero=towards_zero)
+        if value is None:
+            raise InconclusiveError(f"no rational {name} passes its exact check (C3–C5)")
+        out[name] = value
+    return out
+
+
 def _matmul(a: list[list[Fraction]], b: list[list[Fraction]]) -> list[list[Fraction]]:
     return [[sum((a[i][k] * b[k][j] for k in range(len(b))), Fraction(0)) for j in range(len(b[0]))]
             for i in range(len(a))]  # fmt: skip
@@ -836,6 +871,46 @@ def _matmul(a: list[list[Fraction]], b: list[list[Fraction]]) -> list[list[Fract
 
 def _transpose(a: list[list[Fraction]]) -> list[list[Fraction]]:
     return [list(col) for col in zip(*a, strict=True)]
+
+
+def _e2_holds(K: list[list[Fraction]], lam: Fraction) -> bool:
+    """E2: λ > 0 and K − λI ⪰ 0 (K symmetric)."""
+    return lam > 0 and is_psd_exact(_shifted(K, lam))
+
+
+def _e3_holds(K_p: list[list[Fraction]], kp_bar: Fraction) -> bool:
+    """E3: k̄_p I − K_p ⪰ 0."""
+    n = len(K_p)
+    return is_psd_exact([[(kp_bar if i == j else 0) - K_p[i][j] for j in range(n)]
+                         for i in range(n)])  # fmt: skip
+
+
+def _c3_holds(L: list[list[Fraction]], r: list[Fraction], a: Fraction) -> bool:
+    """C3: a > 0 and Bᵀ(M − 2aR)B ⪰ 0, M = RL + LᵀR, B the rational basis of r⊥."""
+    n = len(r)
+    M = [[r[i] * L[i][j] + L[j][i] * r[j] for j in range(n)] for i in range(n)]
+    B = [[Fraction(int(i == j)) if i < n - 1 else -r[j] / r[n - 1] for j in range(n - 1)]
+         for i in range(n)]  # fmt: skip
+    return a > 0 and is_psd_exact(_matmul(_matmul(_transpose(B), _shifted(M, 2 * a, r)), B))
+
+
+def _c4_holds(r: list[Fraction], b: Fraction) -> bool:
+    """C4: b ≥ 0 and b²I − WᵀRW ⪰ 0, W = I − 1rᵀ."""
+    n = len(r)
+    W = [[Fraction(int(i == j)) - r[j] for j in range(n)] for i in range(n)]
+    RW = [[r[i] * W[i][j] for j in range(n)] for i in range(n)]
+    gap = _shifted(_matmul(_transpose(W), RW), b * b)  # WᵀRW − b²I, must be ⪯ 0
+    return b >= 0 and is_psd_exact([[-x for x in row] for row in gap])
+
+
+def _rho_holds(r: list[Fraction], rho: Fraction) -> bool:
+    """C5, first half: ρ > 0 and ρ² ≤ min r_i."""
+    return rho > 0 and rho * rho <= min(r)
+
+
+def _kappa_holds(r: list[Fraction], kappa: Fraction) -> bool:
+    """C5, second half: κ² min r_i ≥ max r_i."""
+    return kappa * kappa * min(r) >= max(r)
 
 
 def verify_certificate(data: dict[str, Any], witness: dict[str, Any]) -> list[tuple[str, bool]]:
@@ -864,12 +939,10 @@ def verify_certificate(data: dict[str, Any], witness: dict[str, Any]) -> list[tu
     ]
     mu_r = max(mu_paths)
     needed = kp_bar * kp_bar + 1 + (mu_r if data["controller"] == "II" else 0)
-    n_p = len(K_p)
-    kp_gap = [[(kp_bar if i == j else 0) - K_p[i][j] for j in range(n_p)] for i in range(n_p)]
     results = [
         ("E1", eps[0] != 0),
-        ("E2", lam > 0 and is_psd_exact(_shifted(K, lam))),
-        ("E3", is_psd_exact(kp_gap)),
+        ("E2", _e2_holds(K, lam)),
+        ("E3", _e3_holds(K_p, kp_bar)),
         ("E4", witness["mu_r"] == mu_r and s >= 0 and s * s >= needed),
         ("E5", witness["g_e"] == s / lam),
     ]
@@ -887,19 +960,13 @@ def _verify_coordination(data: dict[str, Any], witness: dict[str, Any]) -> list[
     M = [[r[i] * L[i][j] + L[j][i] * r[j] for j in range(n)] for i in range(n)]
     c2 = all(M[i][j] == M[j][i] and (i == j or M[i][j] <= 0) for i in range(n) for j in range(n))
     c2 = c2 and all(sum(row) == 0 for row in M)
-    B = [[Fraction(int(i == j)) if i < n - 1 else -r[j] / r[n - 1] for j in range(n - 1)]
-         for i in range(n)]  # fmt: skip
-    c3 = a > 0 and is_psd_exact(_matmul(_matmul(_transpose(B), _shifted(M, 2 * a, r)), B))
-    W = [[Fraction(int(i == j)) - r[j] for j in range(n)] for i in range(n)]
-    RW = [[r[i] * W[i][j] for j in range(n)] for i in range(n)]
-    gap = _shifted(_matmul(_transpose(W), RW), b * b)  # WᵀRW − b²I, must be ⪯ 0
-    c4 = b >= 0 and is_psd_exact([[-x for x in row] for row in gap])
-    c5 = rho > 0 and rho * rho <= min(r) and kappa * kappa * min(r) >= max(r)
+    c5 = _rho_holds(r, rho) and _kappa_holds(r, kappa)
     alpha = data["k_c"] * a
     g_xi = b / (rho * alpha) if data["controller"] == "II" else Fraction(0)
     c6 = data["k_c"] > 0 and witness["alpha"] == alpha and witness["g_xi"] == g_xi
     c6 = c6 and witness["gain"] == witness["g_e"] * (1 + g_xi)
-    return [("C1", c1), ("C2", c2), ("C3", c3), ("C4", c4), ("C5", c5), ("C6", c6)]
+    checks = [("C1", c1), ("C2", c2), ("C3", _c3_holds(L, r, a)), ("C4", _c4_holds(r, b))]
+    return [*checks, ("C5", c5), ("C6", c6)]
 
 
 CERTIFICATE_INEQUALITIES = (

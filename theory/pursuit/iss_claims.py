@@ -223,8 +223,8 @@ def _tol(case: Any) -> float:
     return float(case.tolerances.get("margin_tol", MARGIN_TOL))
 
 
-def _failing(case: Any) -> list[str]:
-    return [c.name for c in iss_conditions(case.spec, margin_tol=_tol(case)) if c.status == "fails"]
+def _failing(case: Any, status: str = "fails") -> list[str]:
+    return [c.name for c in iss_conditions(case.spec, margin_tol=_tol(case)) if c.status == status]
 
 
 @register(
@@ -369,6 +369,16 @@ def check_theorem2(case: Any) -> list[ClaimResult]:
         return [
             ClaimResult("seed003.thm2", case.name, "numeric", "refuted", evidence, message=message)
         ]
+    undecided = _failing(case, "inconclusive")
+    if undecided:
+        evidence = {"inconclusive_conditions": undecided}
+        message = f"conditions {undecided} are inconclusive (margin below margin_tol)"
+        return [
+            ClaimResult(
+                "seed003.thm2", case.name, "numeric", "inconclusive", evidence,
+                tolerance={"margin_tol": _tol(case)}, message=message,
+            )
+        ]  # fmt: skip
     bound = iss_bound(case.spec)
     evidence = {
         "gain": bound.gain,
