@@ -18,6 +18,7 @@ import proofs_check
 from theory.certify import register_certifier
 from theory.core.case_file import Case
 from theory.core.errors import InconclusiveError
+from theory.core.tolerances import ISS_DIGITS
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.iss import iss_certificate_data
 
@@ -91,7 +92,8 @@ def iss_certificate(spec: PursuitSpec, *, case: str | None = None) -> dict[str, 
         "witness": _text(exact["witness"]),
         "produced_by": {
             "module": "theory.pursuit.certificates",
-            "rounding": "9 significant digits",
+            "rounding": f"{ISS_DIGITS} significant digits, then moved in the safe direction "
+            "until each exact check passes",
         },
     }
     verdict = proofs_check.check_certificate(cert)

@@ -37,6 +37,7 @@ __all__ = [
     "symmetric_part",
 ]
 
+
 def exact_gain_matrix(K: np.ndarray) -> list[list[Fraction]]:
     """``K`` with every entry read as its shortest decimal.
 
