@@ -261,12 +261,7 @@ def decide_s_detectability(
         case=case,
     )  # fmt: skip
     if cert is not None:
-        gains = certificate_gains(cert, C)
-        found = {"gains": gains, "X": primal_lyapunov(A, C, W, gains, order), "Y": None}
-        found |= {"witness_margin": None, "radius_bound": None}
-        if route.startswith("LMI witness"):  # the margin of the rounded gains, not the float ones
-            m = witness_margin(A, C, W, gains, lmi_Y, rho=rho)
-            found |= {"Y": lmi_Y, "witness_margin": m, "radius_bound": rho * (1 - m)}
+        found = _certified_gains(A, C, W, cert, route, lmi_Y, rho=rho, order=order)
         reason = f"certificate verified exactly (proofs_check): {route}"
         return SDetectability(True, reason, **(base | found), certificate=cert, route=route)
     try:
@@ -277,6 +272,33 @@ def decide_s_detectability(
         route = "Farkas multipliers from the blind set " + str(cert["produced_by"]["agents"])
         reason = f"infeasibility certificate verified exactly (proofs_check): {route}"
         return SDetectability(False, reason, **base, certificate=cert, route=route)
+    return SDetectability(None, _inconclusive_reason(base, reasons, cert_tol), **base)
+
+
+def _certified_gains(
+    A: np.ndarray,
+    C: list[np.ndarray],
+    W: np.ndarray,
+    cert: dict[str, Any],
+    route: str,
+    lmi_Y: np.ndarray | None,
+    *,
+    rho: float,
+    order: str,
+) -> dict[str, Any]:
+    """The gains of a checked ``s-detectability`` certificate, their primal tuple ``X`` and, on
+    the LMI route, the margin of the rounded gains (not of the float ones)."""
+    gains = certificate_gains(cert, C)
+    found = {"gains": gains, "X": primal_lyapunov(A, C, W, gains, order), "Y": None}
+    found |= {"witness_margin": None, "radius_bound": None}
+    if route.startswith("LMI witness"):
+        m = witness_margin(A, C, W, gains, lmi_Y, rho=rho)
+        found |= {"Y": lmi_Y, "witness_margin": m, "radius_bound": rho * (1 - m)}
+    return found
+
+
+def _inconclusive_reason(base: dict[str, Any], reasons: list[str], cert_tol: float) -> str:
+    """Why no exact certificate decided, with the float dual's hint (which proves nothing)."""
     hint = base.get("cert_epsilon")
     suggests = (
         f"; the float dual suggests infeasibility (ε_cert = {hint:.3g} ≤ cert_tol) but proves "
@@ -284,8 +306,7 @@ def decide_s_detectability(
         if hint is not None and hint <= cert_tol
         else ""
     )
-    reason = "no exact certificate either way" + suggests + ": " + "; ".join(reasons)
-    return SDetectability(None, reason, **base)
+    return "no exact certificate either way" + suggests + ": " + "; ".join(reasons)
 
 
 def _float_evidence(

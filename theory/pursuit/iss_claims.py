@@ -333,18 +333,7 @@ def check_lemma3(case: Any) -> list[ClaimResult]:
                 "seed003.lem3", case.name, "numeric", "corrected", evidence, message=message
             )
         ]
-    evidence.update(
-        {
-            "a_L": coordination.a_L,
-            "r_min": coordination.r_min,
-            "decay_rate_R_norm": coordination.decay_rate,
-            "printed_decay_coefficient": coordination.printed_decay_coefficient,
-            "corrected_decay_coefficient": coordination.decay_rate * coordination.r_min,
-            "input_gain": coordination.gain,
-            "printed_input_gain": coordination.printed_input_gain,
-            "kappa": coordination.kappa,
-        }
-    )
+    evidence.update(_lemma3_constants(coordination))
     return [
         ClaimResult(
             "seed003.lem3", case.name, "numeric", "corrected", evidence, margin=coordination.a_L,
@@ -352,6 +341,20 @@ def check_lemma3(case: Any) -> list[ClaimResult]:
             message=f"decay k_c a(L) = {coordination.decay_rate:.6g} (paper: k_c r_min)",
         )
     ]  # fmt: skip
+
+
+def _lemma3_constants(coordination: Any) -> dict[str, Any]:
+    """The corrected constants of Lemma 3 beside the printed ones (rates, gains, κ)."""
+    return {
+        "a_L": coordination.a_L,
+        "r_min": coordination.r_min,
+        "decay_rate_R_norm": coordination.decay_rate,
+        "printed_decay_coefficient": coordination.printed_decay_coefficient,
+        "corrected_decay_coefficient": coordination.decay_rate * coordination.r_min,
+        "input_gain": coordination.gain,
+        "printed_input_gain": coordination.printed_input_gain,
+        "kappa": coordination.kappa,
+    }
 
 
 @register(
