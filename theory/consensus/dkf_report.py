@@ -25,7 +25,14 @@ from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, Observed, judge
 from theory.simulate import Finished, Simulator
 
-__all__ = ["DkfReport", "dkf_observed", "dkf_report", "dkf_simulator", "observe_dkf"]
+__all__ = [
+    "DkfReport",
+    "dkf_observed",
+    "dkf_report",
+    "dkf_simulator",
+    "observe_dkf",
+    "riccati_converges",
+]
 
 SOURCE = "trackcert dkf"
 """The observations' source in the command's verdict records."""
@@ -51,8 +58,36 @@ def dkf_observed(analysis: Any) -> Observed:
     """
     data = analysis.to_json()
     values = {key: data.get(key) for key in EXPECT_KEYS}
-    values["riccati_converges"] = data["riccati"]["status"] == "converged"
+    values["riccati_converges"] = riccati_converges(data["riccati"]["status"], data["s_detectable"])
     return Observed(values, frozenset(k for k, v in values.items() if v is None))
+
+
+def riccati_converges(status: str, s_detectable: bool | None) -> bool | None:
+    """Whether the coupled Riccati iteration converges, never read off a float budget alone.
+
+    Footnote 5 holds both ways for boundedness (``docs/theory/s-detectability.md`` §7): not
+    S-detectable ⇒ unbounded from every ``P0 ⪰ 0``, so an exact negative verdict answers False
+    whatever the iteration did within ``max_iter`` (e.g. Example 1's ``W_c``, ``r_σ = 1``, whose
+    iterates grow only linearly); S-detectable ⇒ bounded, and the answer is True when the
+    iteration met ``conv_tol``. Anything else — the budget ran out, a float "diverged" against a
+    positive certificate, or an inconclusive decision — is None.
+
+    Parameters
+    ----------
+    status : str
+        :attr:`theory.consensus.riccati.RiccatiRun.status`.
+    s_detectable : bool or None
+        The exact S-detectability verdict.
+
+    Returns
+    -------
+    bool or None
+    """
+    if s_detectable is False:
+        return False
+    if s_detectable is True and status == "converged":
+        return True
+    return None
 
 
 def observe_dkf(case: Case, analysis: Any = None) -> Observed:
