@@ -235,7 +235,7 @@ def scaling_consistent(example: ScaledProblem) -> bool:
     return len({v for v in verdicts if v is not None}) <= 1
 
 
-PROPERTIES = (
+_ROWS = (
     (
         "seed000.def5.2.4.boundary/corrected",
         "seed000.def5.2.4",
@@ -279,16 +279,11 @@ PROPERTIES = (
     ),
 )
 
-for _id, _claim, _statement, _examples, _holds, _to_case in PROPERTIES:
-    register_property(
-        Property(
-            id=_id,
-            claim=_claim,
-            wording="corrected",
-            statement=_statement,
-            examples=_examples,
-            holds=_holds,
-            to_case=_to_case,
-            expected_to_hold=True,
-        )
-    )
+PROPERTIES = tuple(
+    Property(id=i, claim=c, wording="corrected", statement=s, examples=e, holds=h, to_case=t)
+    for i, c, s, e, h, t in _ROWS
+)
+"""The registered properties (corrected wordings, expected to hold)."""
+
+for _prop in PROPERTIES:
+    register_property(_prop)

@@ -200,7 +200,7 @@ def _offsets() -> st.SearchStrategy[float]:
     return st.one_of(st.just(0.0), st.just(-0.5), tiny)
 
 
-PROPERTIES = (
+_ROWS = (
     (
         "seed003.thm1.boundary/corrected",
         "seed003.thm1",
@@ -222,16 +222,11 @@ PROPERTIES = (
     ),
 )
 
-for _id, _claim, _statement, _examples, _holds, _to_case in PROPERTIES:
-    register_property(
-        Property(
-            id=_id,
-            claim=_claim,
-            wording="corrected",
-            statement=_statement,
-            examples=_examples,
-            holds=_holds,
-            to_case=_to_case,
-            expected_to_hold=True,
-        )
-    )
+PROPERTIES = tuple(
+    Property(id=i, claim=c, wording="corrected", statement=s, examples=e, holds=h, to_case=t)
+    for i, c, s, e, h, t in _ROWS
+)
+"""The registered properties (corrected wordings, expected to hold)."""
+
+for _prop in PROPERTIES:
+    register_property(_prop)
