@@ -4,47 +4,27 @@ inconclusive, never wrong.
 The truth comes from exact arguments (docs/theory/s-detectability.md, "Boundary sweeps"): seed 000
 Example 1 with self-weight w on agents 1 and 2 is S-detectable iff w < 1/4, Example 2 with
 self-weight w on agent 3 iff w · 1.7205² < 1 (blind-set necessity, Theorem 4; sufficiency with the
-projection gains). Both are evaluated on the data the certificates are about: the decimals as
-written, each row of W projected to sum exactly 1.
+projection gains). The sweeps toward both thresholds, and the radius of fixed gains through 1, are
+the registered properties of :mod:`theory.consensus.boundary_properties`
+(``tests/consensus/test_dkf_boundary_properties.py``); here: the weights of issue 17, the
+self-weight bisection and the scaling invariances.
 """
 
 from __future__ import annotations
-
-from fractions import Fraction
 
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.consensus.exact_radius import gains_stabilize
 from theory.consensus.riccati import coupled_riccati
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.consensus.self_weight import max_self_weight
 from theory.consensus.strategies import (
     SELF_WEIGHT_THRESHOLDS,
-    boundary_values,
     dkf_problems,
     self_weight_examples,
 )
-from theory.core.rationalize import stochastic_matrix
-
-AGENT = {"example 1": 0, "example 2": 2}
-"""The agent whose (exact, row-projected) self-weight decides each example."""
-
-
-def _truth(example: str, W: np.ndarray) -> bool:
-    w = stochastic_matrix(W)[AGENT[example]][AGENT[example]]
-    return w < SELF_WEIGHT_THRESHOLDS[example]
-
-
-@pytest.mark.parametrize("example", sorted(SELF_WEIGHT_THRESHOLDS))
-@given(data=st.data())
-def test_self_weight_sweep_is_never_wrong(example: str, data) -> None:
-    w = data.draw(boundary_values(SELF_WEIGHT_THRESHOLDS[example]))
-    A, C, W = self_weight_examples(example, w)
-    verdict = decide_s_detectability(A, C, W).verdict
-    assert verdict in (_truth(example, W), None), (w, verdict)
 
 
 @pytest.mark.parametrize("w", [0.249999999, 0.2499999999, 0.25, 0.2500000001])
@@ -66,16 +46,6 @@ def test_bisection_brackets_the_exact_threshold(example: str) -> None:
     search = max_self_weight(A, C, W, agents, weight_tol=1e-3)
     assert search.status == "found"
     assert search.low < SELF_WEIGHT_THRESHOLDS[example] <= search.high
-
-
-@given(w=boundary_values(Fraction(1, 4), max_exponent=16))
-def test_radius_of_fixed_gains_near_one_is_never_wrong(w: float) -> None:
-    """With the gains [2; 0], [0; 2], 2I of Example 1, r_σ(L) = r_σ(J) = 4w exactly: the radius
-    decision (exact here) says r_σ < 1 iff 4w < 1, on both sides of 1 and on it."""
-    A, C, W = self_weight_examples("example 1", w)
-    gains = [np.array([[2.0], [0.0]]), np.array([[0.0], [2.0]]), 2 * np.eye(2)]
-    for order in ("consensus-then-filter", "filter-then-consensus"):
-        assert gains_stabilize(A, C, W, gains, order=order) is _truth("example 1", W)
 
 
 @given(
