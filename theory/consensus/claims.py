@@ -386,7 +386,9 @@ def _claim_lemma_522(case: Case, analysis: DkfAnalysis | None = None) -> list[Cl
         "seed": 0,
     }
     tolerance = {"map_rtol": MAP_RTOL, "radius_tol": RADIUS_TOL, "exact_dim": EXACT_DIM}
-    return [_result("seed000.lem5.2.2", case, "numeric", ok, evidence, tolerance=tolerance)]
+    margin = abs(1 - rL)  # how far the float radius is from the threshold it is compared with
+    claim, tol = "seed000.lem5.2.2", tolerance
+    return [_result(claim, case, "numeric", ok, evidence, margin=margin, tolerance=tol)]
 
 
 def _lyapunov_agrees(identities: bool, lyapunov: bool | None, radius: float) -> bool | None:

@@ -383,6 +383,8 @@ def check_theorem2(case: Any) -> list[ClaimResult]:
             )
         ]  # fmt: skip
     bound = iss_bound(case.spec)
+    conditions = iss_conditions(case.spec, margin_tol=_tol(case))
+    margins = [c.margin for c in conditions if c.margin is not None]
     evidence = {
         "gain": bound.gain,
         "constants": bound.constants,
@@ -392,7 +394,8 @@ def check_theorem2(case: Any) -> list[ClaimResult]:
     return [
         ClaimResult(
             "seed003.thm2", case.name, "numeric", "verified", evidence,
-            tolerance={"margin_tol": _tol(case)}, message=f"ISS gain {bound.gain:.6g}",
+            margin=min(margins, default=None), tolerance={"margin_tol": _tol(case)},
+            message=f"ISS gain {bound.gain:.6g}",
         )
     ]  # fmt: skip
 

@@ -23,7 +23,7 @@ from theory.core.case_file import Case
 from theory.core.claims import get_claim
 from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, Observed, judge
-from theory.core.tolerances import MARGIN_TOL
+from theory.core.tolerances import INEQUALITY_RTOL, MARGIN_TOL
 from theory.core.verdicts import Verdict
 
 __all__ = ["SCOPE", "IssReport", "iss_observed", "iss_report", "observe_iss"]
@@ -148,7 +148,7 @@ def iss_record(case: Case, *, margin_tol: float | None = None) -> dict[str, Any]
         "iss_gain": gains,
         "constants": _constants(pursuit, coordination, r),
         "conditions": [c.to_json(tol) for c in conditions],
-        "tolerances": {"margin_tol": tol},
+        "tolerances": {"margin_tol": tol, "inequality_rtol": INEQUALITY_RTOL},
     }
 
 
