@@ -45,6 +45,10 @@ __all__ = [
 
 BASE_CASE = "pursuit-table1-n3"
 """The bundled case the examples vary (2-D, Type II, three trackers, r_x = r_y = 30)."""
+SHARP_THRESHOLD = Fraction(951340728979, 981035254257)
+"""≈ 0.969731439161695, the root of v(30 + v) = √(v² + 901): with K_p = vI and k_γ = v the
+sufficient test c♯ ≤ λ_min(K)·c of (72) holds iff v is at least this root (an irrational
+number; the sweep is around this rational approximation, the truth is decided exactly)."""
 
 
 def _decimal(x: float) -> Fraction:
@@ -75,8 +79,10 @@ class RegionPoint:
     ----------
     form : str
         ``diagonal`` (``K_p = diag(v, 2)``), ``coupled`` (``[[2, v], [v, 2]]``, eigenvalues
-        ``2 ± v``) or ``rotated`` (``Q diag(v, 2) Qᵀ`` with the 3-4-5 rotation ``Q``, entries
-        computed in floats: a matrix whose float eigenvalues land on 1 while its decimals do not).
+        ``2 ± v``), ``rotated`` (``Q diag(v, 2) Qᵀ`` with the 3-4-5 rotation ``Q``, entries
+        computed in floats: a matrix whose float eigenvalues land on 1 while its decimals do not),
+        all with ``k_γ = 5``; or ``equal`` (``K_p = vI``, ``k_γ = v``, swept through the threshold
+        ``v(30 + v) = √(v² + 901)`` of the sufficient test of (72), :data:`SHARP_THRESHOLD`).
     value : float
         The swept ``v``.
     """
@@ -87,6 +93,8 @@ class RegionPoint:
 
 def _gains(point: RegionPoint) -> list[list[float]]:
     v = float(point.value)
+    if point.form == "equal":
+        return [[v, 0.0], [0.0, v]]
     if point.form == "diagonal":
         return [[v, 0.0], [0.0, 2.0]]
     if point.form == "coupled":
@@ -94,20 +102,25 @@ def _gains(point: RegionPoint) -> list[list[float]]:
     return [[0.36 * v + 1.28, 0.48 * v - 0.96], [0.48 * v - 0.96, 0.64 * v + 0.72]]
 
 
+def _k_gamma(point: RegionPoint) -> float:
+    return float(point.value) if point.form == "equal" else 5.0
+
+
 def region_case(point: RegionPoint) -> dict[str, Any]:
-    """The pursuit case of ``point`` (``k_γ = 5``, ``ε = (−0.5, 0)``)."""
-    return _case(_gains(point), 5.0, -0.5, f"region-{point.form}")
+    """The pursuit case of ``point`` (``ε = (−0.5, 0)``)."""
+    return _case(_gains(point), _k_gamma(point), -0.5, f"region-{point.form}")
 
 
 def _region_truth(point: RegionPoint) -> tuple[bool, bool | None]:
     """(λ_min(K) ≥ 1, c♯ ≤ λ_min(K)·c) in exact rationals (module docstring); the second is
     None for the rotated form, whose eigenvalues are irrational."""
     (a, c), (_, d) = ((_decimal(x) for x in row) for row in _gains(point))
-    sound = a >= 1 and d >= 1 and (a - 1) * (d - 1) >= c * c  # k_γ = 5 ≥ 1
+    k_gamma = _decimal(_k_gamma(point))
+    sound = k_gamma >= 1 and a >= 1 and d >= 1 and (a - 1) * (d - 1) >= c * c
     if point.form == "rotated":
         return sound, None
-    kp = [a, d] if point.form == "diagonal" else [2 - abs(c), 2 + abs(c)]
-    lam, top = min(*kp, Fraction(5)), max(*kp, Fraction(5))
+    kp = [2 - abs(c), 2 + abs(c)] if point.form == "coupled" else [a, d]
+    lam, top = min(*kp, k_gamma), max(*kp, k_gamma)
     shown = lam > 0 and max(kp) ** 2 + 1 + 900 <= (lam * (30 + top)) ** 2
     return sound, shown
 
@@ -136,11 +149,13 @@ def region_sound(point: RegionPoint) -> bool:
 
 
 def _region_points() -> st.SearchStrategy[RegionPoint]:
-    return st.builds(
+    at_one = st.builds(
         RegionPoint,
         st.sampled_from(["diagonal", "coupled", "rotated"]),
         boundary_values(Fraction(1)),
     )
+    at_sharp = boundary_values(SHARP_THRESHOLD).map(lambda v: RegionPoint("equal", v))
+    return st.one_of(at_one, at_sharp)
 
 
 @dataclass(frozen=True)
@@ -204,9 +219,10 @@ _ROWS = (
     (
         "seed003.thm1.boundary/corrected",
         "seed003.thm1",
-        "Swept through λ_min(K) = 1 (diagonal and coupled K_p), the verdict 'the printed region "
-        "(72) follows from the argument' is exact, K ≻ 0 is decided exactly, and the sufficient "
-        "test c♯ ≤ λ_min(K)·c is never claimed when false.",
+        "Swept through λ_min(K) = 1 (diagonal, coupled and rotated K_p) and through the "
+        "threshold of the sufficient test c♯ ≤ λ_min(K)·c, the verdict 'the printed region (72) "
+        "follows from the argument' is exact, K ≻ 0 is decided exactly, and the sufficient test "
+        "is never claimed when false.",
         _region_points(),
         region_sound,
         region_case,
