@@ -112,3 +112,20 @@ def test_lemma_a21_hypothesis_is_exact_on_the_boundary() -> None:
     'within hypothesis_tol of 1: undecided')."""
     with pytest.raises(NotApplicable, match="decided exactly"):
         get_claim("seed000.lemA.2.1").run(_case([[0.25, 0.75, 0], [0.75, 0.25, 0], [0, 0, 1]]))
+
+
+@pytest.mark.parametrize(
+    ("status", "verdict", "expected"),
+    [
+        ("converged", True, True),
+        ("max_iter", True, None),  # a budget that ran out decides nothing
+        ("diverged", True, None),  # against a positive certificate: a float artifact
+        ("max_iter", False, False),  # footnote 5: not S-detectable ⇒ unbounded
+        ("converged", False, False),
+        ("converged", None, None),
+    ],
+)
+def test_riccati_converges_rests_on_the_exact_verdict(status, verdict, expected) -> None:
+    from theory.consensus.dkf_report import riccati_converges
+
+    assert riccati_converges(status, verdict) is expected
