@@ -7,11 +7,13 @@ impossible request is refused the same way everywhere (STYLE.md, *Adopt* 11).
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import numpy as np
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-__all__ = ["check_range", "generators", "orthonormal_matrix"]
+__all__ = ["boundary_values", "check_range", "generators", "orthonormal_matrix"]
 
 
 def check_range(name_low: str, low: int, name_high: str, high: int, floor: int) -> None:
@@ -58,3 +60,33 @@ def orthonormal_matrix(rng: np.random.Generator, n: int) -> np.ndarray:
     """
     q, r = np.linalg.qr(rng.standard_normal((n, n)))
     return q * np.sign(np.diag(r))
+
+
+def boundary_values(
+    threshold: Fraction, *, min_exponent: int = 1, max_exponent: int = 17
+) -> st.SearchStrategy[float]:
+    """Floats ``t (1 ± 10^{-k})`` for ``k`` in ``[min_exponent, max_exponent]``, and ``t`` itself.
+
+    Parameters
+    ----------
+    threshold : Fraction
+        The threshold ``t > 0``.
+    min_exponent, max_exponent : int
+        Bounds on ``k`` (``1 ≤ min_exponent ≤ max_exponent``); ``k = 17`` is below float
+        resolution, so such draws land on or next to ``t``.
+
+    Returns
+    -------
+    SearchStrategy of float
+
+    Raises
+    ------
+    InvalidArgument
+        For a non-positive threshold or impossible bounds.
+    """
+    if not threshold > 0:
+        raise InvalidArgument(f"threshold={threshold} must be positive")
+    check_range("min_exponent", min_exponent, "max_exponent", max_exponent, 1)
+    t = float(threshold)
+    offsets = st.tuples(st.sampled_from((-1, 1)), st.integers(min_exponent, max_exponent))
+    return st.one_of(st.just(t), offsets.map(lambda o: t * (1 + o[0] * 10.0 ** -o[1])))

@@ -1,7 +1,7 @@
 """Never wrong near a threshold (issue 17): seed 000 ch. 5's verdicts swept toward each boundary.
 
 Each property draws parameters ever closer to a known threshold, on both sides and on it
-(:func:`theory.consensus.strategies.boundary_values`: ``t(1 ± 10^{-k})``, ``k = 1 … 17``, and
+(:func:`theory.strategy_helpers.boundary_values`: ``t(1 ± 10^{-k})``, ``k = 1 … 17``, and
 ``t``), and asserts that the decision is **correct or inconclusive**. "Correct" is computed here,
 independently of the decision procedure, from the closed-form truths of
 ``docs/theory/s-detectability.md`` (§8) on the data as the decimals it prints as
@@ -38,11 +38,11 @@ from theory.consensus.s_detectability import decide_s_detectability
 from theory.consensus.strategies import (
     SELF_WEIGHT_THRESHOLDS,
     DkfProblem,
-    boundary_values,
     dkf_problems,
     self_weight_examples,
 )
 from theory.falsify import Property, register_property
+from theory.strategy_helpers import boundary_values
 
 __all__ = [
     "ScaledProblem",

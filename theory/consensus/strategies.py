@@ -1,9 +1,10 @@
 """Public hypothesis strategies for consensus-filter problems (seed 000 ch. 5).
 
 Re-exported by :mod:`theory.strategies`. :func:`dkf_problems` draws random systems, measurements
-and networks from one seed; :func:`boundary_values` draws parameters approaching a threshold from
-both sides (and on it), the sweeps that test that verdicts near a boundary are correct or
-inconclusive; :func:`self_weight_examples` builds seed 000 Examples 1–2 with a given self-weight.
+and networks from one seed; :func:`theory.strategy_helpers.boundary_values` draws parameters
+approaching a threshold from both sides (and on it), the sweeps that test that verdicts near a
+boundary are correct or inconclusive; :func:`self_weight_examples` builds seed 000 Examples 1–2
+with a given self-weight.
 """
 
 from __future__ import annotations
@@ -21,7 +22,6 @@ from theory.strategy_helpers import check_range
 __all__ = [
     "SELF_WEIGHT_THRESHOLDS",
     "DkfProblem",
-    "boundary_values",
     "dkf_problems",
     "self_weight_examples",
 ]
@@ -135,36 +135,6 @@ SELF_WEIGHT_THRESHOLDS = {
 """Exact self-weight thresholds of seed 000 §5.3: ``1/r_σ(A_iᵘ)²`` with ``r_σ = 2`` and
 ``1.7205 = 3441/2000`` (S-detectable iff the varied self-weight is below it; proofs in
 ``docs/theory/s-detectability.md``, "Boundary sweeps")."""
-
-
-def boundary_values(
-    threshold: Fraction, *, min_exponent: int = 1, max_exponent: int = 17
-) -> st.SearchStrategy[float]:
-    """Floats ``t (1 ± 10^{-k})`` for ``k`` in ``[min_exponent, max_exponent]``, and ``t`` itself.
-
-    Parameters
-    ----------
-    threshold : Fraction
-        The threshold ``t > 0``.
-    min_exponent, max_exponent : int
-        Bounds on ``k`` (``1 ≤ min_exponent ≤ max_exponent``); ``k = 17`` is below float
-        resolution, so such draws land on or next to ``t``.
-
-    Returns
-    -------
-    SearchStrategy of float
-
-    Raises
-    ------
-    InvalidArgument
-        For a non-positive threshold or impossible bounds.
-    """
-    if not threshold > 0:
-        raise InvalidArgument(f"threshold={threshold} must be positive")
-    check_range("min_exponent", min_exponent, "max_exponent", max_exponent, 1)
-    t = float(threshold)
-    offsets = st.tuples(st.sampled_from((-1, 1)), st.integers(min_exponent, max_exponent))
-    return st.one_of(st.just(t), offsets.map(lambda o: t * (1 + o[0] * 10.0 ** -o[1])))
 
 
 def self_weight_examples(example: str, w: float) -> tuple[np.ndarray, list[np.ndarray], np.ndarray]:

@@ -28,12 +28,12 @@ import yaml
 from hypothesis import strategies as st
 
 import proofs_check
-from theory.consensus.strategies import boundary_values
 from theory.core.case_file import bundled_cases, parse_case
 from theory.core.errors import InconclusiveError, PropertyFails
 from theory.falsify import Property, register_property
 from theory.pursuit.certificates import iss_certificate
 from theory.pursuit.iss import iss_conditions, pursuit_iss
+from theory.strategy_helpers import boundary_values
 
 __all__ = [
     "CertificatePoint",
