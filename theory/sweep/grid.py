@@ -30,8 +30,8 @@ from theory.core.errors import CaseError
 
 __all__ = [
     "MAX_POINTS",
-    "Param",
     "SCALES",
+    "Param",
     "check_size",
     "grid_points",
     "grid_size",
@@ -80,7 +80,12 @@ class Param:
 
     def to_json(self) -> dict[str, object]:
         """``path``, ``spec``, ``scale`` and ``values``."""
-        return {"path": self.path, "spec": self.spec, "scale": self.scale, "values": list(self.values)}
+        return {
+            "path": self.path,
+            "spec": self.spec,
+            "scale": self.scale,
+            "values": list(self.values),
+        }
 
 
 def _bad(given: str, why: str = "") -> CaseError:

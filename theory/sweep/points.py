@@ -127,7 +127,9 @@ def _judge(case: Case) -> Judgement | None:
         return Judgement(None, None, {}, f"inconclusive: {error}")
 
 
-def simulate_point(case: Case, steps: int | None, seed: int) -> tuple[dict[str, Any], Observed | None]:
+def simulate_point(
+    case: Case, steps: int | None, seed: int
+) -> tuple[dict[str, Any], Observed | None]:
     """One run of ``case``'s simulator and its summary.
 
     Parameters
