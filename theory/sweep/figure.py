@@ -130,7 +130,14 @@ def write_sweep_figure(sweep: Any, path: Path) -> Path:
     paths = [p.path for p in sweep.params]
     groups, x, error = _series(records, paths), paths[0], error_column(columns)
     panels = 3 if error else 2
-    fig, axes = plt.subplots(panels, 1, figsize=(7, 2.2 + 2.2 * panels), sharex=True)
+    strip = min(2.0, 0.5 + 0.15 * len(groups))
+    fig, axes = plt.subplots(
+        panels,
+        1,
+        figsize=(7, 1.5 + strip + 2.2 * (panels - 1)),
+        sharex=True,
+        gridspec_kw={"height_ratios": [strip] + [2.2] * (panels - 1)},
+    )
     _verdict_strip(axes[0], groups, x)
     _lines(axes[1], groups, x, "margin")
     axes[1].set_yscale("log")
