@@ -8,7 +8,6 @@ import json
 import pytest
 
 from theory.core.errors import CaseError
-from theory.core.expectations import Observed
 from theory.sweep.kinds import agreement
 from theory.sweep.outputs import write_sweep
 from theory.sweep.points import Row
@@ -114,28 +113,30 @@ def test_sweep_verdict_policy(rows: list[Row], verdict) -> None:
     assert sweep.exit_code == {True: 0, False: 1, None: 3}[verdict]
 
 
+def checked(status: str) -> dict:
+    return {"iss_agreement": {"status": status, "message": f"run {status}"}}
+
+
 @pytest.mark.parametrize(
-    ("verdict", "observed", "expected"),
+    ("verdict", "summary", "expected"),
     [
-        (True, Observed({"simulation_bounded": True}), "agree"),
-        (True, Observed({"simulation_bounded": False}), "disagree"),
-        (
-            True,
-            Observed({"simulation_bounded": None}, frozenset({"simulation_bounded"})),
-            "inconclusive",
-        ),
-        (None, Observed({"simulation_bounded": True}), "inconclusive"),
-        (False, Observed({"simulation_bounded": None}), "n/a"),
+        (True, checked("verified"), "agree"),
+        (True, checked("refuted"), "disagree"),
+        (True, checked("inconclusive"), "inconclusive"),
+        (True, {"iss_agreement": None}, "inconclusive"),
+        (None, checked("verified"), "inconclusive"),
+        (False, {"iss_agreement": None}, "n/a"),
         (True, None, "n/a"),
     ],
 )
-def test_pursuit_agreement(verdict, observed, expected) -> None:
-    """Theorem 2 (seed 003): a holding ISS verdict predicts the simulation stays bounded."""
-    assert agreement("pursuit", verdict, observed) == expected
+def test_pursuit_agreement(verdict, summary, expected) -> None:
+    """Theorem 2 (seed 003): a holding ISS verdict predicts μ stays within the certified
+    estimate; a run stopped inside it (x̃ ran away) contradicts nothing."""
+    assert agreement("pursuit", verdict, summary)[0] == expected
 
 
 def test_kinds_without_a_prediction_never_disagree() -> None:
-    assert agreement("dkf", True, Observed({"anything": False})) == "n/a"
+    assert agreement("dkf", True, {"agents": []}) == ("n/a", "")
 
 
 def test_files_csv_json_png(pursuit_sweep: Sweep, tmp_path) -> None:

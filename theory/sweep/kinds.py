@@ -23,19 +23,21 @@ function (nothing is re-derived here):
 * ``tdoa-sim`` (and any kind not listed in :data:`ANALYSES`) — ``trackcert simulate``: the case's
   ``expect`` block judged against the point's own simulation.
 
-:data:`PREDICTIONS` says which simulated key a holding verdict predicts: for ``pursuit``,
-Theorem 2 (seed 003) certifies that the pursuit errors stay within the ISS estimate, which the
-simulation checks as ``simulation_bounded``
-(:func:`theory.pursuit.iss_check.simulation_agreement`). :func:`agreement` compares them.
+:data:`PREDICTIONS` says what a holding verdict predicts of the simulation: for ``pursuit``,
+Theorem 2 (seed 003) certifies that the pursuit and coordination errors μ stay within the ISS
+estimate β(‖μ(0)‖, t) + γ(sup‖x̃‖), which the pursuit simulator checks on every run
+(:func:`theory.pursuit.iss_check.simulation_agreement`, its summary's ``iss_agreement``).
+:func:`agreement` compares them; the other kinds predict nothing of their simulation (the dkf
+simulation runs the optimal-gain filter, whose convergence S-detectability does not decide).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 from theory.core.case_file import Case
-from theory.core.expectations import Observed
 from theory.core.verdicts import Verdict
 
 __all__ = [
@@ -48,6 +50,7 @@ __all__ = [
     "dkf_judgement",
     "pf_judgement",
     "pursuit_judgement",
+    "pursuit_prediction",
     "tdoa_judgement",
 ]
 
@@ -186,8 +189,36 @@ ANALYSES: dict[str, Callable[[Case], Judgement]] = {
 }
 """Kind → its analysis verdict; a kind not listed is judged by its simulation alone."""
 
-PREDICTIONS: dict[str, str] = {"pursuit": "simulation_bounded"}
-"""Kind → the simulated key that a holding verdict predicts to be True."""
+
+def pursuit_prediction(summary: Mapping[str, Any]) -> tuple[Verdict, str]:
+    """Whether a pursuit run stayed within the ISS estimate its verdict certifies (Theorem 2).
+
+    Parameters
+    ----------
+    summary : mapping
+        The pursuit simulator's summary (:func:`theory.pursuit.simulation.summarize_pursuit`),
+        whose ``iss_agreement`` is :func:`theory.pursuit.iss_check.simulation_agreement` of the
+        run (``None`` when the analysis certifies nothing).
+
+    Returns
+    -------
+    (bool or None, str)
+        True within the estimate at every record, False when ‖μ‖ leaves it, None when the
+        integration stopped inside it (the DEKF's x̃, the estimate's input, ran away: the
+        certificate is not contradicted) or nothing is certified; and the checker's message.
+    """
+    found = summary.get("iss_agreement")
+    if not found:
+        return None, ""
+    status = {"verified": True, "refuted": False}.get(found["status"])
+    return status, found["message"]
+
+
+PREDICTIONS: dict[str, Callable[[Mapping[str, Any]], tuple[Verdict, str]]] = {
+    "pursuit": pursuit_prediction,
+}
+"""Kind → what a holding verdict predicts of the simulation: ``check(summary) -> (verdict,
+message)``, True when the simulation bears the prediction out."""
 
 
 def analysis_for(kind: str) -> Callable[[Case], Judgement] | None:
@@ -205,7 +236,7 @@ def analysis_for(kind: str) -> Callable[[Case], Judgement] | None:
     return ANALYSES.get(kind)
 
 
-def agreement(kind: str, verdict: Verdict, observed: Observed | None) -> str:
+def agreement(kind: str, verdict: Verdict, summary: Mapping[str, Any] | None) -> tuple[str, str]:
     """Whether a point's simulation agrees with its verdict (one of :data:`AGREEMENTS`).
 
     Parameters
@@ -214,23 +245,23 @@ def agreement(kind: str, verdict: Verdict, observed: Observed | None) -> str:
         The case kind.
     verdict : bool or None
         The analysis verdict.
-    observed : Observed or None
-        What the point's simulation observed (``None``: not simulated, or the simulation
-        observes no expect key).
+    summary : mapping or None
+        The point's simulation summary (``None``: not simulated).
 
     Returns
     -------
-    str
-        ``agree`` / ``disagree`` when the verdict holds and the simulation decided the predicted
-        key (:data:`PREDICTIONS`) True / False; ``inconclusive`` when the verdict or that key is
-        undecided; ``n/a`` when nothing is predicted: the kind predicts no simulated key, the
-        point was not simulated, or the verdict fails (the conditions are sufficient, so a
-        failing verdict predicts nothing).
+    (str, str)
+        ``agree`` / ``disagree`` when the verdict holds and the simulation bears its prediction
+        (:data:`PREDICTIONS`) out / contradicts it; ``inconclusive`` when the verdict or the
+        comparison is undecided; ``n/a`` when nothing is predicted: the kind predicts nothing of
+        its simulation, the point was not simulated, or the verdict fails (the conditions are
+        sufficient, so a failing verdict predicts nothing). And the comparison's message.
     """
-    key = PREDICTIONS.get(kind)
-    if key is None or observed is None or verdict is False:
-        return "n/a"
-    got = observed.values.get(key)
-    if verdict is None or key in observed.undecided or got is None:
-        return "inconclusive"
-    return "agree" if got is True else "disagree"
+    check = PREDICTIONS.get(kind)
+    if check is None or summary is None or verdict is False:
+        return "n/a", ""
+    if verdict is None:
+        return "inconclusive", "the verdict is inconclusive"
+    bears_out, message = check(summary)
+    word = {True: "agree", False: "disagree", None: "inconclusive"}[bears_out]
+    return word, message

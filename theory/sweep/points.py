@@ -224,6 +224,7 @@ def evaluate_point(setup: SweepSetup, point: int, values: Sequence[Any]) -> Row:
         notes += list(summary.get("warnings") or [])
     if judgement is None:
         judgement = _by_simulation(case, observed, summary)
+    agrees, why = agreement(case.kind, judgement.verdict, summary if seed is not None else None)
     return Row(
         point,
         values,
@@ -232,8 +233,8 @@ def evaluate_point(setup: SweepSetup, point: int, values: Sequence[Any]) -> Row:
         judgement.tolerances,
         seed,
         _simulated(summary, observed),
-        agreement(case.kind, judgement.verdict, observed if seed is not None else None),
-        "; ".join([judgement.message, *notes]),
+        agrees,
+        "; ".join(m for m in [judgement.message, why, *notes] if m),
     )
 
 
