@@ -58,7 +58,8 @@ class Sweep:
     params : tuple of Param
         The swept parameters, in ``--param`` order.
     settings : dict
-        ``steps``, ``simulate``, ``seed`` (the simulation seed rule), ``max_points``.
+        ``steps``, ``simulate``, ``runs_per_point``, ``seed`` (the simulation's root seed,
+        ``None`` when swept), ``seed_swept``, ``max_points``.
     rows : tuple of Row
         One per point, in grid order.
     """
@@ -252,7 +253,8 @@ def _settings(setup: SweepSetup, max_points: int) -> dict[str, Any]:
         "steps": setup.steps,
         "simulate": simulated,
         "runs_per_point": 1 if simulated else 0,
-        "seed": "the point's seed" if swept_seed else setup.seed,
+        "seed": None if swept_seed else setup.seed,
+        "seed_swept": swept_seed,
         "max_points": max_points,
     }
 
