@@ -74,6 +74,10 @@ def main() -> None:
     print(f"ideal (serial / {args.workers}):     {ideal:8.2f} s")
     print(f"ratio parallel / ideal: {p_wall / ideal:8.2f}   (target ≤ 1.10)")
     print(
+        f"  without the cluster's start-up (parallel − 2-point sweep): "
+        f"{(p_wall - startup) / ideal:.2f}"
+    )
+    print(
         f"CPU: workers' CPU / serial CPU = {p_workers / s_cpu:.2f} (work added by going parallel); "
         f"ideal from CPU = serial CPU / {args.workers} = {s_cpu / args.workers:.2f} s"
     )

@@ -40,7 +40,7 @@ from theory.sweep.points import INVALID, Row, SweepSetup, evaluate_batch
 
 __all__ = ["TASKS_PER_WORKER", "Sweep", "sweep_case"]
 
-TASKS_PER_WORKER = 32
+TASKS_PER_WORKER = 64
 """Engine tasks per worker: enough for the last tasks to balance, few enough that Dask's
 per-task overhead (a few ms) stays small against a batch of points."""
 
