@@ -4,12 +4,14 @@ The x-axis is the first ``--param`` (logarithmic for a ``log`` spec); every comb
 other parameters is one *series*. Panels, top to bottom:
 
 1. **verdict** — one strip per series, each point coloured by its status (verified, refuted,
-   inconclusive, invalid) and crossed when its simulation disagrees with the verdict: with two
-   parameters this is a heat map of the verdict;
-2. **margin** — the verdict's margin (log scale), one line per series;
+   inconclusive, invalid), crossed when its simulation disagrees with the verdict and circled
+   when the comparison is inconclusive: with two parameters this is a heat map of the verdict;
+2. **margin** — the verdict's margin, one line per series;
 3. **simulated error** — the worst agent's final error of the simulation
    (:data:`ERROR_COLUMNS`: the pursuit error for pursuit cases, else the localization error), one
    line per series, or for more than :data:`MAX_LINES` series their median with the min–max band.
+
+A y-axis is logarithmic when its values span more than a decade.
 
 This is the figure that shows where the analysis verdict and the simulation part.
 """
@@ -22,7 +24,14 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["ERROR_COLUMNS", "MAX_LINES", "STATUS_COLOURS", "error_column", "write_sweep_figure"]
+__all__ = [
+    "AGREEMENT_MARKERS",
+    "ERROR_COLUMNS",
+    "MAX_LINES",
+    "STATUS_COLOURS",
+    "error_column",
+    "write_sweep_figure",
+]
 
 ERROR_COLUMNS = ("sim_final_pursuit_error", "sim_final_localization_error")
 """The simulated error drawn, the first one present."""
@@ -36,6 +45,22 @@ STATUS_COLOURS = {
     "inconclusive": "tab:orange",
     "invalid": "tab:gray",
 }
+
+AGREEMENT_MARKERS = {"disagree": "x", "inconclusive": "o"}
+"""How a point's agreement is marked on its verdict square (``agree`` and ``n/a`` unmarked)."""
+
+AGREEMENT_LABELS = {"disagree": "simulation disagrees", "inconclusive": "comparison inconclusive"}
+MARKER_STYLE = {
+    "disagree": {"c": "black"},
+    "inconclusive": {"facecolors": "none", "edgecolors": "black"},
+}
+
+
+def _scale(ax: Any, values: list[float]) -> None:
+    """A log y-axis when the positive values span more than a decade."""
+    finite = [v for v in values if np.isfinite(v) and v > 0]
+    if finite and max(finite) > 10 * min(finite):
+        ax.set_yscale("log")
 
 
 def error_column(columns: Sequence[str]) -> str | None:
@@ -92,16 +117,19 @@ def _verdict_strip(ax: Any, groups: dict[str, list[dict]], x: str) -> None:
         xs = [r[x] for r in rows]
         colours = [STATUS_COLOURS[r["status"]] for r in rows]
         ax.scatter(xs, [level] * len(rows), c=colours, s=18, marker="s")
-        bad = [r[x] for r in rows if r["agreement"] == "disagree"]
-        ax.scatter(bad, [level] * len(bad), c="black", s=30, marker="x")
+        for word, marker in AGREEMENT_MARKERS.items():
+            marked = [r[x] for r in rows if r["agreement"] == word]
+            ax.scatter(marked, [level] * len(marked), s=42, marker=marker, **MARKER_STYLE[word])
     labels = list(groups)
+    ax.set_ylim(-0.6, len(labels) - 0.4)
     ax.set_yticks(range(len(labels)) if len(labels) <= MAX_LINES else [])
     if len(labels) <= MAX_LINES:
         ax.set_yticklabels(labels, fontsize=6)
     for status, colour in STATUS_COLOURS.items():
         ax.scatter([], [], c=colour, marker="s", label=status)
-    ax.scatter([], [], c="black", marker="x", label="simulation disagrees")
-    ax.legend(fontsize=6, ncol=5, loc="upper center", bbox_to_anchor=(0.5, 1.35))
+    for word, marker in AGREEMENT_MARKERS.items():
+        ax.scatter([], [], marker=marker, label=AGREEMENT_LABELS[word], **MARKER_STYLE[word])
+    ax.legend(fontsize=6, ncol=6, loc="lower center", bbox_to_anchor=(0.5, 1.0))
     ax.set_ylabel("verdict")
 
 
@@ -140,14 +168,14 @@ def write_sweep_figure(sweep: Any, path: Path) -> Path:
     )
     _verdict_strip(axes[0], groups, x)
     _lines(axes[1], groups, x, "margin")
-    axes[1].set_yscale("log")
+    _scale(axes[1], [_number(r["margin"]) for r in records])
     axes[1].set_ylabel("verdict margin")
     if error:
         _lines(axes[2], groups, x, error)
-        axes[2].set_yscale("log")
+        _scale(axes[2], [_number(r[error]) for r in records])
         axes[2].set_ylabel(error.removeprefix("sim_").replace("_", " ") + " (worst agent)")
     if sweep.params[0].scale == "log":
         axes[-1].set_xscale("log")
     axes[-1].set_xlabel(x)
-    axes[0].set_title(f"{sweep.case}: {len(records)} points", fontsize=9, pad=28)
+    axes[0].set_title(f"{sweep.case}: {len(records)} points", fontsize=9, pad=22)
     return save_figure(fig, path)
