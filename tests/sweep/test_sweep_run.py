@@ -53,6 +53,26 @@ def test_invalid_points_are_rows_with_the_loader_message() -> None:
     assert sweep.exit_code == 0  # an invalid point is a finding, not an error of the sweep
 
 
+def test_a_point_the_simulator_refuses_keeps_its_verdict() -> None:
+    """ε₁ = 0: Δ of seed 003 eq. (22) loses rank, the verdict fails and nothing is simulated."""
+    sweep = sweep_case("pursuit-table1-n3", ["epsilon.0=0,-0.5"], steps=5, workers=1)
+    singular, regular = sweep.rows
+    assert singular.status == "refuted" and singular.exit_code == 1
+    assert "delta_full_rank fails" in singular.message and "not simulated" in singular.message
+    assert singular.sim_seed is None and singular.simulated == {} and singular.agreement == "n/a"
+    assert regular.status == "verified" and regular.agreement == "agree"
+    assert sweep.exit_code == 0
+
+
+def test_tdoa_sweep_states_margin_and_tolerances() -> None:
+    """Moving agent 3 of Fig. 4.3 (d) along x keeps the path graph localizing (Cor. 4.2.4)."""
+    sweep = sweep_case("fig43-case-d", ["agents.2.0=-10,0,10"], workers=1)
+    for row in sweep.rows:
+        assert row.status == "verified"
+        assert row.margin > row.tolerances["inconclusive_factor"]
+        assert row.sim_seed is None
+
+
 def test_a_grid_of_invalid_points_only_is_bad_input() -> None:
     """Any one change of a row of W breaks its row sum: every point is invalid."""
     with pytest.raises(CaseError) as caught:
