@@ -92,7 +92,7 @@ def test_bad_specs_name_param_the_forms_and_the_text(text: str) -> None:
         parse_param(text)
     error = caught.value
     assert error.field == "--param"
-    assert "a:b:logN" in error.expected
+    assert "FROM:TO:logN" in error.expected
     assert error.got == text
 
 

@@ -25,9 +25,10 @@ from theory.cli.common import console, error_console, json_option, print_json, r
 __all__ = ["register"]
 
 PARAM_HELP = (
-    "PATH=SPEC, repeatable (the grid is the product): a:b integers a…b−1 (half-open), "
-    "a:b:linN or a:b:logN (N points, ends included), v1,v2,… or one value. PATH is a dotted "
-    "path to a numeric case field (k_gamma, trackers.0.r_x, W.0.1) or seed."
+    "PATH=SPEC, repeatable (the grid is the product). SPEC: FROM:TO integers FROM…TO−1 "
+    "(half-open), FROM:TO:linN or FROM:TO:logN (N points, ends included), v1,v2,… or one value "
+    "(e.g. k_gamma=1:400:log20, seed=0:50). PATH is a dotted path to a numeric case field "
+    "(k_gamma, trackers.0.r_x, W.0.1) or seed."
 )
 
 

@@ -47,9 +47,10 @@ SCALES = ("range", "lin", "log", "list", "value")
 
 FIELD = "--param"
 EXPECTED = (
-    "PATH=SPEC with SPEC one of a:b (integers a…b−1), a:b:linN, a:b:logN (N ≥ 2 points, "
-    "ends included), v1,v2,… or a single number"
+    "PATH=SPEC with SPEC one of FROM:TO (integers FROM…TO−1), FROM:TO:linN, FROM:TO:logN "
+    "(N ≥ 2 points, ends included), v1,v2,… or a single number"
 )
+"""(Written FROM:TO rather than a:b: rich renders ``:b:`` in a message as an emoji.)"""
 
 _SPACED = re.compile(r"^(?P<kind>lin|log)(?P<count>\d+)$")
 _INTEGER = re.compile(r"^[+-]?\d+$")
@@ -141,9 +142,9 @@ def parse_spec(spec: str, given: str | None = None) -> tuple[str, tuple[Number, 
 def _integer_range(parts: Sequence[str], given: str) -> tuple[int, ...]:
     start, stop = (_number(p, given) for p in parts)
     if not (isinstance(start, int) and isinstance(stop, int)):
-        raise _bad(given, "a:b takes integers (use a:b:linN for other numbers)")
+        raise _bad(given, "FROM:TO takes integers (FROM:TO:linN takes any numbers)")
     if stop <= start:
-        raise _bad(given, f"a:b is half-open and needs a < b ({start}:{stop} is empty)")
+        raise _bad(given, f"FROM:TO is half-open and needs FROM < TO ({start}:{stop} is empty)")
     return tuple(range(start, stop))
 
 
@@ -156,10 +157,10 @@ def _spaced(parts: Sequence[str], given: str) -> tuple[str, tuple[float, ...]]:
         raise _bad(given, f"{kind}N needs N ≥ 2 (a single value is written alone)")
     start, stop = (float(_number(p, given)) for p in parts[:2])
     if start == stop:
-        raise _bad(given, "a and b are equal")
+        raise _bad(given, "FROM and TO are equal")
     if kind == "log":
         if start <= 0 or stop <= 0:
-            raise _bad(given, "logN needs a > 0 and b > 0")
+            raise _bad(given, "logN needs FROM > 0 and TO > 0")
         values = np.geomspace(start, stop, count)
     else:
         values = np.linspace(start, stop, count)
