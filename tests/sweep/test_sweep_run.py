@@ -188,3 +188,16 @@ def test_nothing_is_written_when_the_figure_fails(
     with pytest.raises(RuntimeError):
         write_sweep(pursuit_sweep, tmp_path / "out")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_rows_do_not_depend_on_the_batching(monkeypatch) -> None:
+    """One batch of every point, or one batch per point: the same rows in grid order."""
+    import theory.sweep.run as run
+
+    args = ("fig43-case-d", ["agents.2.0=-10:10:lin4", "agents.1.1=-2,2"])
+    monkeypatch.setattr(run, "TASKS_PER_WORKER", 1)
+    one_batch = sweep_case(*args, workers=1)
+    monkeypatch.setattr(run, "TASKS_PER_WORKER", 64)
+    many = sweep_case(*args, workers=1)
+    assert one_batch.to_json() == many.to_json()
+    assert [r.point for r in many.rows] == list(range(8))
