@@ -170,7 +170,7 @@ def test_files_csv_json_png(pursuit_sweep: Sweep, tmp_path) -> None:
     assert float(table[2]["margin"]) == pursuit_sweep.rows[2].margin  # repr round-trips
     record = json.loads(files[1].read_text())
     assert record["summary"]["exit_code"] == 0
-    assert record["tolerances"] == {"margin_tol": pursuit_sweep.rows[0].tolerances["margin_tol"]}
+    assert record["tolerances"]["margin_tol"] == pursuit_sweep.rows[0].tolerances["margin_tol"]
     assert [r["point"] for r in record["rows"]] == [0, 1, 2, 3]
     assert files[2].read_bytes()[:8] == PNG
     assert not [p for p in tmp_path.iterdir() if p.name != "out"]  # no staging folder left

@@ -102,8 +102,8 @@ def projected_self_weight(point: SelfWeightPoint) -> Fraction:
 
 
 def self_weight_truth(point: SelfWeightPoint) -> bool:
-    """Whether the swept system is S-detectable: ``λ² w < 1`` for the eigenvalue λ the agent is
-    blind to (2 in Example 1; ``0.8147 + 0.9058`` in Example 2, read from the printed ``A``)."""
+    """Whether the swept ``point`` is S-detectable: ``λ² w < 1`` for the eigenvalue λ the agent
+    is blind to (2 in Example 1; ``0.8147 + 0.9058`` in Example 2, read from the printed ``A``)."""
     if point.example == "example 1":
         lam = Fraction(2)
     else:

@@ -54,7 +54,7 @@ def exact_gain_matrix(K: np.ndarray) -> list[list[Fraction]]:
 
 
 def symmetric_part(matrix: list[list[Fraction]]) -> list[list[Fraction]]:
-    """``(K + Kᵀ)/2`` (exact)."""
+    """The symmetric part ``(K + Kᵀ)/2`` of a square rational ``matrix`` K (exact)."""
     n = len(matrix)
     return [[(matrix[i][j] + matrix[j][i]) / 2 for j in range(n)] for i in range(n)]
 
