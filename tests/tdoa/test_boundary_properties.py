@@ -14,6 +14,8 @@ from theory.tdoa.boundary_properties import (
     BoundaryScene,
     _sqrt_sum_is_zero,
     boundary_scenes,
+    invariant,
+    moved_scenes,
     never_wrong,
     scene_block,
     truth,
@@ -92,3 +94,8 @@ def test_oracle_sums_of_square_roots() -> None:
     assert _sqrt_sum_is_zero([(F(1), F(2 * p * p)), (F(-p), F(2))])
     assert not _sqrt_sum_is_zero([(F(1), F(2)), (F(1), F(3)), (F(-1), F(5))])
     assert not _sqrt_sum_is_zero([(F(1), F(10**24 + 1, 10**24)), (F(-1), F(1))])
+
+
+@given(moved_scenes())
+def test_rational_motions_keep_every_boundary_verdict(example) -> None:
+    assert invariant(example)

@@ -10,7 +10,9 @@ at offsets ``±10⁻³, ±10⁻⁹, ±10⁻¹²`` and ``0`` (on the boundary):
 * ``mirror`` (3-D): the target approaching the plane of coplanar receivers (the mirror-image
   ambiguity, and at ``0`` the loss of rank: the directions lie on a great circle);
 * ``split`` (3-D): two clusters whose bridging pair sits at the communication range ± offset
-  (strict ``<``, seed 000 §4.4): the network's components split at ``offset ≤ 0``.
+  (strict ``<``, seed 000 §4.4): the network's components split at ``offset ≤ 0``;
+* ``invariance``: any of these scenes translated, rotated by a rational rotation and scaled
+  keeps every verdict.
 
 Each property asserts "correct or inconclusive": the exactly decided fields (components, the
 paper's heuristic, the mirror ambiguity) always equal the truth, and the ranks (``observable``,
@@ -36,12 +38,16 @@ from hypothesis import strategies as st
 
 from theory.falsify import Property, register_property
 from theory.tdoa.case import parse_tdoa
+from theory.tdoa.strategies import rational_rotations, similarity_image
 from theory.tdoa.topology import TopologyResult, analyze_topology
 
 __all__ = [
     "OFFSETS",
     "BoundaryScene",
+    "MovedScene",
     "boundary_scenes",
+    "invariant",
+    "moved_scenes",
     "never_wrong",
     "scene_block",
     "truth",
@@ -52,6 +58,7 @@ OFFSETS = (Fraction(1, 10**3), Fraction(1, 10**9), Fraction(1, 10**12), Fraction
 FAMILIES = ("plane", "collinear", "mirror", "split")
 
 Point = tuple[Fraction, ...]
+F_ = Fraction
 
 
 @dataclass(frozen=True)
@@ -367,6 +374,62 @@ def never_wrong(scene: BoundaryScene, result: TopologyResult | None = None) -> b
     return exact_ok and ranks_ok
 
 
+@dataclass(frozen=True)
+class MovedScene:
+    """A boundary scene and its image under ``x ↦ scale · R x + shift`` (exact rationals)."""
+
+    scene: BoundaryScene
+    moved: BoundaryScene
+
+
+@st.composite
+def moved_scenes(draw: st.DrawFn) -> MovedScene:
+    """A boundary scene of any family moved by a rational rotation, scale and shift.
+
+    Returns
+    -------
+    MovedScene
+    """
+    scene = draw(st.one_of(*(boundary_scenes(f) for f in FAMILIES)))
+    dim = len(scene.target)
+    rotation = draw(rational_rotations(dim=dim))
+    scale = draw(st.sampled_from((F_(1, 4), F_(1), F_(5, 2), F_(8))))
+    shift = [F_(draw(st.integers(-40, 40))) for _ in range(dim)]
+    agents = similarity_image(list(scene.agents), rotation, scale, shift)
+    target = similarity_image([scene.target], rotation, scale, shift)[0]
+    points = [tuple(p) for p in agents]
+    assume(_round_trips([*points, tuple(target)]))
+    comm_range = None if scene.comm_range is None else scene.comm_range * scale
+    assume(comm_range is None or _round_trips([(comm_range,)]))
+    moved = BoundaryScene(
+        scene.family, scene.offset * scale, tuple(points), tuple(target), scene.edges, comm_range
+    )
+    return MovedScene(scene, moved)
+
+
+def _verdicts(scene: BoundaryScene) -> list[tuple]:
+    result = analyze_topology(parse_tdoa(scene_block(scene)))
+    return [
+        (a.component, a.rank, a.observable, a.heuristic_4_noncoplanar, a.mirror_ambiguous)
+        for a in result.agents
+    ]
+
+
+def invariant(example: MovedScene) -> bool:
+    """The verdicts of a scene and of its moved image are equal (exact decisions: always).
+
+    Parameters
+    ----------
+    example : MovedScene
+        A scene and its image.
+
+    Returns
+    -------
+    bool
+    """
+    return _verdicts(example.scene) == _verdicts(example.moved)
+
+
 _STATEMENTS = {
     "plane": "a 4th agent at distance 0, 10⁻¹², 10⁻⁹ or 10⁻³ from the plane of three others",
     "collinear": "a 3rd agent at distance 0, 10⁻¹², 10⁻⁹ or 10⁻³ (scaled) from the line of two "
@@ -390,3 +453,16 @@ for _family in FAMILIES:
             to_case=_to_case,
         )
     )
+register_property(
+    Property(
+        id="seed000.thm4.2.3.invariance/corrected",
+        claim="seed000.thm4.2.3.invariance",
+        wording="corrected",
+        statement="Translating, rotating (a rational rotation) and scaling every position of a "
+        "boundary scene leaves every trackcert topology verdict unchanged (components, ranks, "
+        "the heuristic, the mirror ambiguity).",
+        examples=moved_scenes(),
+        holds=invariant,
+        to_case=lambda example: _to_case(example.moved),
+    )
+)
