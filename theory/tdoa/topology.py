@@ -276,25 +276,32 @@ def analyze_topology(
     network = (
         _network_verdict(spec, scene, detectable, tol, cluster_tol)
         if network_rank
-        else NetworkVerdict(
-            None,
-            2 * spec.dim * spec.n_agents,
-            None,
-            detectable[0],
-            None,
-            "skipped",
-            detectable[1],
-            "network rank not requested",
-        )
+        else _skipped_network(spec, detectable)
     )
-    flow = (
-        "undirected: O_i sees agent i's connected component"
-        if scene.symmetric
-        else "directed: O_i sees the agents reachable from i along information flow (j hears "
-        "… hears i); components shown are weakly connected"
-    )
+    flow = _UNDIRECTED_FLOW if scene.symmetric else _DIRECTED_FLOW
     tolerances = {**tol, "uniqueness_tol": uniqueness_tol, "cluster_tol": cluster_tol}
     return TopologyResult(step + 1, spec.dim, agents, network, flow, tolerances, tuple(doubts))
+
+
+_UNDIRECTED_FLOW = "undirected: O_i sees agent i's connected component"
+_DIRECTED_FLOW = (
+    "directed: O_i sees the agents reachable from i along information flow (j hears … hears "
+    "i); components shown are weakly connected"
+)
+
+
+def _skipped_network(spec: TdoaSpec, detectable: tuple[bool, float]) -> NetworkVerdict:
+    """The network verdict without its rank (``network_rank=False``): detectability only."""
+    return NetworkVerdict(
+        None,
+        2 * spec.dim * spec.n_agents,
+        None,
+        detectable[0],
+        None,
+        "skipped",
+        detectable[1],
+        "network rank not requested",
+    )
 
 
 def observed_values(result: TopologyResult) -> dict[str, Any]:
