@@ -40,6 +40,7 @@ __all__ = [
     "HYPOTHESIS_TOL",
     "INCONCLUSIVE_FACTOR",
     "INEQUALITY_RTOL",
+    "INFORMATION_TOL",
     "ISS_BOUND_RTOL",
     "KERNEL_RTOL",
     "KINEMATICS_RTOL",
@@ -377,6 +378,17 @@ RADIUS_TOL = _named(
     "ρ(1 ± radius_tol) (theory.consensus.exact_radius)",
     "an eigenvalue of a non-normal matrix can move by √ε ≈ 1e-8 (2 × 2 Jordan block)",
 )
+# ---------------------------------------------------------------- TDOA localization (theory/tdoa)
+INFORMATION_TOL = _named(
+    "information_tol",
+    1e-12,
+    "relative to λ_max of the Fisher information",
+    "a TDOA (or range) Fisher information matrix whose least eigenvalue is ≤ information_tol · "
+    "λ_max counts as singular: its CRB trace is ∞ (seed 000 eq. (4.43), seed 003 Result 3)",
+    "three decades below rank_tol² (J = GᵀG squares the singular values of G): only a rank "
+    "deficiency, not an ill-conditioned but full-rank geometry, gives ∞",
+)
+
 PF_TOLERANCES = {
     "converge_tol": _named(
         "converge_tol",

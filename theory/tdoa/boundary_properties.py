@@ -376,7 +376,15 @@ def never_wrong(scene: BoundaryScene, result: TopologyResult | None = None) -> b
 
 @dataclass(frozen=True)
 class MovedScene:
-    """A boundary scene and its image under ``x ↦ scale · R x + shift`` (exact rationals)."""
+    """A boundary scene and its image under ``x ↦ scale · R x + shift`` (exact rationals).
+
+    Attributes
+    ----------
+    scene : BoundaryScene
+        The scene as drawn.
+    moved : BoundaryScene
+        Its image (agents, target, offset and range moved or scaled alike).
+    """
 
     scene: BoundaryScene
     moved: BoundaryScene

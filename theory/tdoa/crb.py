@@ -22,6 +22,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from theory.core.tolerances import INFORMATION_TOL
 from theory.tdoa.measurements import tdoa_jacobians
 from theory.tdoa.model import unit_directions
 
@@ -89,7 +90,7 @@ def crb_trace(
     """
     J = tdoa_fisher(target, positions, pairs, sigma2)
     eig = np.linalg.eigvalsh(J)
-    if eig[0] <= 1e-12 * max(eig[-1], 1.0):
+    if eig[-1] <= 0 or eig[0] <= INFORMATION_TOL * eig[-1]:
         return float("inf")
     return float(np.sum(1.0 / eig))
 
