@@ -819,5 +819,5 @@ def _ids(agents: list[int] | tuple[int, ...]) -> str:
     return "{" + ", ".join(str(a + 1) for a in agents) + "}"
 
 
-def _fmt(point: np.ndarray | None) -> str:
+def _fmt(point: tuple[float, ...] | None) -> str:
     return "-" if point is None else "[" + ", ".join(f"{v:.4g}" for v in point) + "]"
