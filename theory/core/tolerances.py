@@ -49,6 +49,7 @@ __all__ = [
     "MAX_ITER",
     "MIN_CONDITIONING",
     "MIRROR_TOL",
+    "MODE_ZERO_TOL",
     "PERIOD_TOL",
     "PF_TOLERANCES",
     "PSD_RTOL",
@@ -56,6 +57,7 @@ __all__ = [
     "RADIUS_TOL",
     "RANK_TOL",
     "ROUNDING_TOL",
+    "SNAP_RTOL",
     "TOLERANCES",
     "UNIQUENESS_TOL",
     "UNIT_CIRCLE_FACTOR",
@@ -387,6 +389,23 @@ INFORMATION_TOL = _named(
     "λ_max counts as singular: its CRB trace is ∞ (seed 000 eq. (4.43), seed 003 Result 3)",
     "three decades below rank_tol² (J = GᵀG squares the singular values of G): only a rank "
     "deficiency, not an ill-conditioned but full-rank geometry, gives ∞",
+)
+SNAP_RTOL = _named(
+    "snap_rtol",
+    1e-4,
+    "relative to max(1, |λ|)",
+    "an unobservable eigenvalue of the networked pair computed from its (possibly defective) "
+    "restriction is replaced by the nearest product λ(W)·λ(A) within snap_rtol; the unit-circle "
+    "decision is then made on it with unit_circle_tol and its band",
+    "Jordan blocks of size k perturb eigenvalues by ~ε^{1/k} (1e-4 for k = 4); the products "
+    "are computed from the well-conditioned factors",
+)
+MODE_ZERO_TOL = _named(
+    "mode_zero_tol",
+    1e-12,
+    "relative to max(1, ‖W‖_max ‖A‖_max)",
+    "a candidate mode λ(W)·λ(A) this small is exactly 0 (a singular W)",
+    "far above the eigenvalue error of a well-conditioned W, far below any weight written",
 )
 
 PF_TOLERANCES = {

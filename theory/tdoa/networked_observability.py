@@ -33,7 +33,13 @@ import numpy as np
 
 from theory.core.network import exact_weights
 from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
-from theory.core.tolerances import INCONCLUSIVE_FACTOR, UNIT_CIRCLE_FACTOR, UNIT_CIRCLE_TOL
+from theory.core.tolerances import (
+    INCONCLUSIVE_FACTOR,
+    MODE_ZERO_TOL,
+    SNAP_RTOL,
+    UNIT_CIRCLE_FACTOR,
+    UNIT_CIRCLE_TOL,
+)
 from theory.tdoa.generic_rank import exact_rank
 
 __all__ = [
@@ -398,13 +404,15 @@ def _null_space(
     return vh[rank:].T.copy(), float(min(above, below))
 
 
-def _mode_candidates(A: np.ndarray, W: np.ndarray, *, zero_tol: float = 1e-12) -> np.ndarray:
+def _mode_candidates(
+    A: np.ndarray, W: np.ndarray, *, zero_tol: float = MODE_ZERO_TOL
+) -> np.ndarray:
     products = np.outer(np.linalg.eigvals(W), np.linalg.eigvals(A)).ravel()
     scale = max(1.0, float(np.abs(W).max(initial=0.0)) * float(np.abs(A).max(initial=0.0)))
     return np.where(np.abs(products) <= zero_tol * scale, 0.0, products)
 
 
-def _snap(values: np.ndarray, candidates: np.ndarray, *, rel: float = 1e-4) -> list[complex]:
+def _snap(values: np.ndarray, candidates: np.ndarray, *, rel: float = SNAP_RTOL) -> list[complex]:
     """Replace each computed eigenvalue by the nearest exact-structure candidate if close.
 
     Eigenvalues of a restriction with Jordan blocks are perturbed by ~ε^{1/k}; the candidates
