@@ -6,6 +6,7 @@ import dataclasses
 import itertools
 
 import numpy as np
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -80,3 +81,14 @@ def test_centralized_ekf_attains_the_pcrb_distributed_does_not() -> None:
         ratios[kind] = [agent["mse_to_pcrb"] for agent in summary["agents"]]
     assert all(0.7 < r < 1.4 for r in ratios["centralized"]), ratios
     assert min(ratios["averaged"]) > max(ratios["centralized"]), ratios
+
+
+def test_crb_near_the_receivers_plane_is_finite_and_grows_like_h_to_the_minus_2() -> None:
+    """Exactly observable for h ≠ 0 (finite, ∝ h⁻²), singular at h = 0 (issue 17: the float
+    test λ_min ≤ 10⁻¹² λ_max read h = 10⁻⁶ as singular)."""
+    agents = np.array([[0, 0, 0], [5, 0, 0], [0, 5, 0], [4, 6, 0.0]])
+    traces = {h: crb_trace(np.array([1.0, 1.0, h]), agents) for h in (1e-3, 1e-6, 1e-9)}
+    assert all(np.isfinite(t) for t in traces.values())
+    assert traces[1e-6] / traces[1e-3] == pytest.approx(1e6, rel=1e-3)
+    assert traces[1e-9] / traces[1e-6] == pytest.approx(1e6, rel=1e-3)
+    assert crb_trace(np.array([1.0, 1.0, 0.0]), agents) == float("inf")

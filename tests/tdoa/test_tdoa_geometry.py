@@ -149,7 +149,8 @@ def test_agents_on_a_cone_with_apex_at_target_lose_rank(t, s, k, Q, rays) -> Non
     geometry = analyze_geometry(
         np.array(target, dtype=float), np.array([[float(x) for x in a] for a in agents])
     )
-    assert not geometry.full_rank
+    # floats of a rational cone are off it by rounding: rank-deficient, or full but inconclusive
+    assert not (geometry.full_rank and geometry.conclusive)
     axis = np.array([float(Q[i][2]) for i in range(3)])
     assert abs(abs(np.dot(axis, geometry.cone_axis)) - 1) < 1e-9
     assert abs(geometry.cone_cos - float(cos)) < 1e-9

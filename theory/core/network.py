@@ -10,10 +10,13 @@ what certificates and exact claims use), side by side (:data:`NAMED_WEIGHTS`).
 
 from __future__ import annotations
 
+import sys
 from fractions import Fraction
 
 import networkx as nx
 import numpy as np
+
+from theory.core.rationalize import exact_decimal
 
 __all__ = [
     "NAMED_WEIGHTS",
@@ -59,7 +62,10 @@ def adjacency_from_edges(n: int, edges: np.ndarray, *, directed: bool = False) -
 def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray:
     """Undirected adjacency of agents at ``positions`` closer than ``comm_range``.
 
-    The rule is strict (``<``), as in seed 000 §4.4.
+    The rule is strict (``<``), as in seed 000 §4.4, and decided exactly on the numbers as
+    written (:func:`theory.core.rationalize.exact_decimal`): pairs whose float squared distance
+    lies within a rounding bound of ``comm_range²`` are re-compared in rationals, so an agent at
+    exactly the range is never linked and one a hair inside always is.
 
     Parameters
     ----------
@@ -73,11 +79,37 @@ def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray
     ndarray of bool, shape (N, N)
         Symmetric, with a false diagonal.
     """
+    positions = np.asarray(positions, dtype=float)
     diff = positions[:, None, :] - positions[None, :, :]
-    distance = np.sqrt((diff**2).sum(axis=-1))
-    adjacency = distance < comm_range
+    squared = (diff**2).sum(axis=-1)
+    adjacency = squared < comm_range**2
+    for i, j in zip(
+        *np.nonzero(np.abs(squared - comm_range**2) <= _range_band(positions, comm_range)),
+        strict=True,
+    ):
+        if i < j:
+            adjacency[i, j] = adjacency[j, i] = _exactly_closer(
+                positions[i], positions[j], comm_range
+            )
     np.fill_diagonal(adjacency, False)
     return adjacency
+
+
+def _range_band(positions: np.ndarray, comm_range: float) -> float:
+    """A bound on the float error of ``‖p_i − p_j‖² − r²`` (generous: 64 d ε (max|p| + r)²).
+
+    Each coordinate difference is within ``2ε·max|p|`` of the exact one (both inputs within
+    ``ε/2`` relative of the decimals written, one rounded subtraction); squaring and summing
+    ``d`` terms and ``r²`` add a few more ulps of ``(max|p| + r)²``.
+    """
+    top = float(np.abs(positions).max(initial=0.0)) + abs(comm_range)
+    return 64 * positions.shape[1] * sys.float_info.epsilon * top * top
+
+
+def _exactly_closer(p: np.ndarray, q: np.ndarray, comm_range: float) -> bool:
+    """``‖p − q‖ < comm_range`` in exact rationals (coordinates read as written)."""
+    squared = sum((exact_decimal(a) - exact_decimal(b)) ** 2 for a, b in zip(p, q, strict=True))
+    return squared < exact_decimal(comm_range) ** 2
 
 
 def metropolis_weights(adjacency: np.ndarray) -> np.ndarray:

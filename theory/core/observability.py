@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from theory.core.tolerances import INCONCLUSIVE_FACTOR, RANK_TOL
+from theory.core.tolerances import EIGEN_TOL, INCONCLUSIVE_FACTOR, RANK_TOL
 
 __all__ = [
     "RANK_TOL",
@@ -132,7 +132,7 @@ def unobservable_eigenvalues(
     return lost
 
 
-def _distinct(values: np.ndarray, *, scale: float, rel: float = 1e-7) -> list[complex]:
+def _distinct(values: np.ndarray, *, scale: float, rel: float = EIGEN_TOL) -> list[complex]:
     out: list[complex] = []
     for value in values:
         if all(abs(value - seen) > rel * scale for seen in out):

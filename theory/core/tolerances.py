@@ -40,6 +40,7 @@ __all__ = [
     "GROWTH",
     "INCONCLUSIVE_FACTOR",
     "INEQUALITY_RTOL",
+    "INFORMATION_TOL",
     "ISS_BOUND_RTOL",
     "ISS_DIGITS",
     "ISS_SAFE_STEPS",
@@ -52,6 +53,7 @@ __all__ = [
     "MAX_ITER",
     "MIN_CONDITIONING",
     "MIRROR_TOL",
+    "MODE_ZERO_TOL",
     "PERIOD_TOL",
     "PERRON_BITS",
     "PF_TOLERANCES",
@@ -62,6 +64,7 @@ __all__ = [
     "RICCATI_HORIZON",
     "ROUNDING_BITS",
     "ROUNDING_TOL",
+    "SNAP_RTOL",
     "TOLERANCES",
     "UNIQUENESS_TOL",
     "UNIT_CIRCLE_FACTOR",
@@ -477,6 +480,34 @@ def bits_ladder(top: int) -> tuple[int, int, int]:
     """
     return (top // 4, top // 2, top)
 
+
+# ---------------------------------------------------------------- TDOA localization (theory/tdoa)
+INFORMATION_TOL = _named(
+    "information_tol",
+    1e-12,
+    "relative to λ_max of the Fisher information",
+    "a TDOA (or range) Fisher information matrix whose least eigenvalue is ≤ information_tol · "
+    "λ_max counts as singular: its CRB trace is ∞ (seed 000 eq. (4.43), seed 003 Result 3)",
+    "three decades below rank_tol² (J = GᵀG squares the singular values of G): only a rank "
+    "deficiency, not an ill-conditioned but full-rank geometry, gives ∞",
+)
+SNAP_RTOL = _named(
+    "snap_rtol",
+    1e-4,
+    "relative to max(1, |λ|)",
+    "an unobservable eigenvalue of the networked pair computed from its (possibly defective) "
+    "restriction is replaced by the nearest product λ(W)·λ(A) within snap_rtol; the unit-circle "
+    "decision is then made on it with unit_circle_tol and its band",
+    "Jordan blocks of size k perturb eigenvalues by ~ε^{1/k} (1e-4 for k = 4); the products "
+    "are computed from the well-conditioned factors",
+)
+MODE_ZERO_TOL = _named(
+    "mode_zero_tol",
+    1e-12,
+    "relative to max(1, ‖W‖_max ‖A‖_max)",
+    "a candidate mode λ(W)·λ(A) this small is exactly 0 (a singular W)",
+    "far above the eigenvalue error of a well-conditioned W, far below any weight written",
+)
 
 PF_TOLERANCES = {
     "converge_tol": _named(

@@ -14,8 +14,8 @@ citing [35, 36]): in 2D a node needs two TDOA measurements (three nodes) to loca
 and a node with fewer can still estimate the target if it is connected to a network that has
 enough. It decides, at seeded random target positions, the rank of each node's TDOA Jacobian
 (position block), the observability of its constant-velocity pair ``(A, H_i)``, and that of its
-connected component (all the component's TDOA rows stacked), with :mod:`theory.core.observability`'s
-scale-aware rank tolerance.
+connected component (all the component's TDOA rows stacked), exactly on the positions as
+written (:mod:`theory.tdoa.exact_geometry`), the float SVD at ``rank_tol`` beside it.
 
 The EKF is the simulation engine's averaged EKF of seed 000 eqs. (4.26)–(4.35) (seed 002's
 reference [36]), run in 2D on the PF's network: each filtering node corrects with its own TDOA
@@ -34,15 +34,16 @@ from typing import Any
 import numpy as np
 
 from theory.core.network import components, metropolis_weights
-from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
+from theory.core.observability import RANK_TOL, numeric_rank
 from theory.particle.case import PfSpec
 from theory.particle.dcrw import sample_dcrw_path
 from theory.particle.experiments import build_motion
 from theory.particle.filter import PfNetwork, run_filter, simulate_measurements
 from theory.tdoa.averaging import average_round
 from theory.tdoa.ekf import ekf_predict, ekf_update
+from theory.tdoa.exact_geometry import exact_direction_rank
 from theory.tdoa.measurements import tdoa_jacobians, tdoa_predictions
-from theory.tdoa.model import cv_discrete
+from theory.tdoa.model import cv_discrete, tdoa_jacobian
 
 __all__ = [
     "Comparison",
@@ -241,6 +242,14 @@ def measurement_ranks(
 ) -> list[dict[str, Any]]:
     """Per node: TDOA count, Jacobian rank, local and component observability (module docstring).
 
+    Every rank is exact on the positions as written (the random targets as the decimals of their
+    floats): the position block ``G`` of a connected set's stacked TDOA Jacobian has rank
+    ``dim aff{u_j}`` (:func:`theory.tdoa.exact_geometry.exact_direction_rank`), and for the
+    constant-velocity pair ``rank [G 0; G T G; …] = 2 rank G`` (``T ≠ 0``). The float SVD at
+    ``rank_tol`` is kept as evidence: ``min_margin`` is the smallest factor by which a float
+    decision on an exactly *full* rank clears its threshold (∞ when every full rank is well
+    conditioned or every rank is deficient exactly).
+
     Parameters
     ----------
     spec : PfSpec
@@ -250,7 +259,7 @@ def measurement_ranks(
     seed : int
         Seed of those positions.
     rank_tol : float
-        Relative rank tolerance (:func:`theory.core.observability.numeric_rank`).
+        Relative rank tolerance of the float evidence (:func:`numeric_rank`).
 
     Returns
     -------
@@ -261,43 +270,46 @@ def measurement_ranks(
     rng = np.random.default_rng(seed)
     low, high = spec.workspace[:, 0], spec.workspace[:, 1]
     targets = low + (high - low) * rng.random((points, 2))
-    A, _ = cv_discrete(1.0, dim=2)
     nodes, hears = spec.network.nodes, spec.network.hears
     parts = components(hears)
     records = []
     for i in range(len(nodes)):
         part = next(c for c in parts if i in c)
-        local, observable, pooled, margins = [], [], [], []
-        for p in targets:
-            H_i = _rows(p, nodes, [(i, j) for j in np.flatnonzero(hears[i])])
-            H_c = _rows(p, nodes, [(a, b) for a in part for b in np.flatnonzero(hears[a])])
-            for store, matrix in (
-                (local, H_i[:, :2]),
-                (observable, observability_matrix(A, H_i)),
-                (pooled, observability_matrix(A, H_c)),
-            ):
-                result = numeric_rank(matrix, rank_tol=rank_tol) if matrix.size else None
-                store.append(result.rank if result else 0)
-                if result:
-                    margins.append(result.margin)
+        star = [i, *(int(j) for j in np.flatnonzero(hears[i]))]
+        local = [_exact_rank(p, nodes, star, rank_tol) for p in targets]
+        pooled = [_exact_rank(p, nodes, part, rank_tol) for p in targets]
         records.append(
             {
                 "id": i + 1,
                 "measurements": int(hears[i].sum()),
-                "jacobian_rank": [min(local), max(local)],
-                "local_observability_rank": [min(observable), max(observable)],
+                "jacobian_rank": _span(r for r, _ in local),
+                "local_observability_rank": _span(2 * r for r, _ in local),
                 "component": [j + 1 for j in part],
-                "component_observability_rank": [min(pooled), max(pooled)],
-                "min_margin": float(min(margins)) if margins else float("inf"),
+                "component_observability_rank": _span(2 * r for r, _ in pooled),
+                "min_margin": float(min(m for _, m in local + pooled)),
+                "rank_method": "exact",
             }
         )
     return records
 
 
-def _rows(p: np.ndarray, nodes: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
-    """Stacked TDOA Jacobian rows ``[u_i − u_j, 0]`` (seed 000 eqs. (4.7)–(4.10)) in 2D."""
-    if not pairs:
-        return np.zeros((0, 4))
-    units = (p[None] - nodes) / np.linalg.norm(p[None] - nodes, axis=1, keepdims=True)
-    rows = np.array([units[i] - units[j] for i, j in pairs])
-    return np.hstack([rows, np.zeros_like(rows)])
+def _span(values) -> list[int]:
+    values = list(values)
+    return [min(values), max(values)]
+
+
+def _exact_rank(
+    target: np.ndarray, nodes: np.ndarray, members: list[int], rank_tol: float
+) -> tuple[int, float]:
+    """Exact rank of the connected set ``members``' TDOA position block at ``target``, and the
+    float margin when that rank is full (∞ otherwise): rows ``g_a − g_b`` of seed 000
+    eqs. (4.7)–(4.10) (:func:`theory.tdoa.model.tdoa_jacobian`)."""
+    if len(members) < 2:
+        return 0, float("inf")
+    dim = nodes.shape[1]
+    exact = exact_direction_rank(target.tolist(), nodes[members].tolist())
+    if exact < dim:
+        return exact, float("inf")
+    G = tdoa_jacobian(target, nodes[members], 0, range(1, len(members)))[:, :dim]
+    numeric = numeric_rank(G, rank_tol=rank_tol)
+    return exact, numeric.margin if numeric.rank == dim else 0.0

@@ -119,40 +119,51 @@ def check_pf_vs_ekf(case: Any) -> list[ClaimResult]:
         for name, errors in (("pf", comparison.pf_errors), ("ekf", comparison.ekf_errors))
     }
     per_node = _per_node(spec, comparison, verdicts, tol["diverge_tol"])
-    pf_states = set(verdicts["pf"].values())
-    status = (
-        "verified"
-        if pf_states == {"converges"}
-        else "refuted"
-        if "does not converge" in pf_states
-        else "inconclusive"
+    return [_result(case, comparison, verdicts, per_node, tol)]
+
+
+def _status(pf_verdicts: dict[int, str]) -> str:
+    """``verified`` when every node converges, ``refuted`` when one does not, else
+    ``inconclusive`` (a node whose median tail error lies between the two tolerances)."""
+    states = set(pf_verdicts.values())
+    if states == {"converges"}:
+        return "verified"
+    return "refuted" if "does not converge" in states else "inconclusive"
+
+
+def _result(
+    case: Any,
+    comparison: Any,
+    verdicts: dict[str, dict],
+    per_node: list[dict[str, Any]],
+    tol: dict[str, float],
+) -> ClaimResult:
+    """The claim's record: status, per-node evidence, margin and the tolerances used."""
+    spec = case.spec
+    return ClaimResult(
+        "seed002.sec4.pf_vs_ekf",
+        case.name,
+        "simulation",
+        _status(verdicts["pf"]),
+        evidence={
+            "nodes": per_node,
+            "runs": int(comparison.pf_errors.shape[0]),
+            "seed": comparison.seed,
+            "ekf": vars(EkfConfig(sigma=spec.config.sigma)),
+        },
+        margin=convergence_margin(
+            comparison.tail(comparison.pf_errors),
+            spec.network.filters,
+            {node + 1: "converges" for node in spec.network.filters},
+            converge_tol=tol["converge_tol"],
+            diverge_tol=tol["diverge_tol"],
+        ),
+        tolerance={k: tol[k] for k in ("converge_tol", "diverge_tol")},
+        message=f"PF {verdicts['pf']}; EKF on the same data {verdicts['ekf']}; runs with "
+        f"tail error ≥ diverge_tol per node: PF "
+        f"{[row['pf']['diverged_fraction'] for row in per_node]}, EKF "
+        f"{[row['ekf']['diverged_fraction'] for row in per_node]}",
     )
-    return [
-        ClaimResult(
-            "seed002.sec4.pf_vs_ekf",
-            case.name,
-            "simulation",
-            status,
-            evidence={
-                "nodes": per_node,
-                "runs": int(comparison.pf_errors.shape[0]),
-                "seed": comparison.seed,
-                "ekf": vars(EkfConfig(sigma=spec.config.sigma)),
-            },
-            margin=convergence_margin(
-                comparison.tail(comparison.pf_errors),
-                spec.network.filters,
-                {node + 1: "converges" for node in spec.network.filters},
-                converge_tol=tol["converge_tol"],
-                diverge_tol=tol["diverge_tol"],
-            ),
-            tolerance={k: tol[k] for k in ("converge_tol", "diverge_tol")},
-            message=f"PF {verdicts['pf']}; EKF on the same data {verdicts['ekf']}; runs with "
-            f"tail error ≥ diverge_tol per node: PF "
-            f"{[row['pf']['diverged_fraction'] for row in per_node]}, EKF "
-            f"{[row['ekf']['diverged_fraction'] for row in per_node]}",
-        )
-    ]
 
 
 def _per_node(

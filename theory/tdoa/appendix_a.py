@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from scipy.linalg import block_diag, eigh
 
+from theory.core.tolerances import RANK_TOL
 from theory.tdoa.ekf import kalman_gain
 from theory.tdoa.measurements import neighbour_lists, tdoa_jacobians
 from theory.tdoa.model import cv_discrete
@@ -84,7 +85,7 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
         "one_minus_alpha": one_minus_alpha,
         "factors": np.array(factors),
         "holds": np.array(factors) <= one_minus_alpha,
-        "bqb_rank": int(np.sum(bqb_eig > 1e-12 * bqb_eig[-1])),
+        "bqb_rank": int(np.sum(bqb_eig > RANK_TOL * bqb_eig[-1])),
         "bqb_lower_bound": float(max(bqb_eig[0], 0.0)),
     }
 

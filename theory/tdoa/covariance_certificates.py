@@ -133,13 +133,9 @@ def ekf_covariance_bound_certificate(
     seed 000, Corollary A.2.2, eq. (A.55).
     """
     A_q = exact_matrix(A)
-    eye = identity(len(A_q))
     Ks_q = [[exact_matrix(k) for k in ks] for ks in Ks]
     Hs_q = [[exact_matrix(h) for h in hs] for hs in Hs]
-    modes_q = [
-        [matmul(A_q, sub(eye, matmul(k, h))) for k, h in zip(ks, hs, strict=True)]
-        for ks, hs in zip(Ks_q, Hs_q, strict=True)
-    ]
+    modes_q = _closed_loop_modes(A_q, Ks_q, Hs_q)
     data = {
         "W": fraction_strings(stochastic_matrix(W)),
         "A": fraction_strings(A_q),
@@ -147,6 +143,17 @@ def ekf_covariance_bound_certificate(
     }
     floats = [[np.array(m, dtype=float) for m in mode] for mode in modes_q]
     return _covariance(data, W, floats, modes_q, X, rate, lmi_margin, precisions, case)
+
+
+def _closed_loop_modes(
+    A: Matrix, Ks: list[list[Matrix]], Hs: list[list[Matrix]]
+) -> list[list[Matrix]]:
+    """``M_k^j = A (I − K_k^j H_k^j)`` in exact rationals (seed 000 eq. (A.3))."""
+    eye = identity(len(A))
+    return [
+        [matmul(A, sub(eye, matmul(k, h))) for k, h in zip(ks, hs, strict=True)]
+        for ks, hs in zip(Ks, Hs, strict=True)
+    ]
 
 
 def _covariance(data, W, modes, modes_q, X, rate, lmi_margin, precisions, case) -> dict:

@@ -22,6 +22,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from theory.core.tolerances import INFORMATION_TOL
+from theory.tdoa.exact_geometry import exact_direction_rank
 from theory.tdoa.measurements import tdoa_jacobians
 from theory.tdoa.model import unit_directions
 
@@ -74,6 +76,13 @@ def crb_trace(
 ) -> float:
     """``tr(J⁻¹)`` of eq. (4.43); ``inf`` when ``J`` is singular (rank below ``d``).
 
+    Singularity is decided exactly when the pairs connect the agents they use (the default, all
+    pairs, does): ``rank J = rank G = dim aff{u_j}``
+    (:func:`theory.tdoa.exact_geometry.exact_direction_rank`, coordinates as written), so a
+    near-singular but full-rank geometry gets its finite (huge) trace ``σ² Σ 1/s_i²`` from the
+    singular values ``s_i`` of ``G`` (not of ``J = G Gᵀ/σ²``, which would square their ratio).
+    For other pair sets it is the float test ``λ_min ≤ information_tol · λ_max``.
+
     Parameters
     ----------
     target : ndarray, shape (d,)
@@ -87,11 +96,36 @@ def crb_trace(
     -------
     float
     """
-    J = tdoa_fisher(target, positions, pairs, sigma2)
-    eig = np.linalg.eigvalsh(J)
-    if eig[0] <= 1e-12 * max(eig[-1], 1.0):
+    pairs = list(itertools.combinations(range(len(positions)), 2)) if pairs is None else pairs
+    nodes = _connected_nodes(pairs)
+    if nodes is None:
+        eig = np.linalg.eigvalsh(tdoa_fisher(target, positions, pairs, sigma2))
+        if eig[-1] <= 0 or eig[0] <= INFORMATION_TOL * eig[-1]:
+            return float("inf")
+        return float(np.sum(1.0 / eig))
+    dim = len(target)
+    if exact_direction_rank(list(target), [list(positions[j]) for j in nodes]) < dim:
         return float("inf")
-    return float(np.sum(1.0 / eig))
+    g = unit_directions(target, positions)
+    s = np.linalg.svd(np.array([g[i] - g[j] for i, j in pairs]), compute_uv=False)
+    return float(sigma2 * np.sum(1.0 / s[:dim] ** 2)) if s[dim - 1] > 0 else float("inf")
+
+
+def _connected_nodes(pairs: Sequence[tuple[int, int]]) -> list[int] | None:
+    """The agents the pairs use, when the pairs connect them (else ``None``)."""
+    nodes = sorted({int(k) for pair in pairs for k in pair})
+    if not nodes:
+        return None
+    neighbours: dict[int, set[int]] = {k: set() for k in nodes}
+    for i, j in pairs:
+        neighbours[int(i)].add(int(j))
+        neighbours[int(j)].add(int(i))
+    seen, frontier = {nodes[0]}, [nodes[0]]
+    while frontier:
+        fresh = neighbours[frontier.pop()] - seen
+        seen |= fresh
+        frontier.extend(fresh)
+    return nodes if len(seen) == len(nodes) else None
 
 
 def optimal_crb_trace(n_agents: int, dim: int = 3, sigma2: float = 1.0) -> float:

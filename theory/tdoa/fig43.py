@@ -124,16 +124,7 @@ def agent_rank_witness(
     powers = [sp.eye(len(W))]
     for _ in range(2 * dim * len(W)):
         powers.append(powers[-1] * Wq)
-    ordered = sorted((min(e), max(e)) for e in edges)
-    selector, chosen = [], []
-    for t, (i, j) in enumerate(ordered):
-        m = min((i, j), key=lambda k: _distance(ordered, agent, k))
-        sign = 1 if m == i else -1
-        for l in [l for l in range(len(powers)) if powers[l][m, agent] != 0][:2]:
-            unit = sp.zeros(1, len(ordered))
-            unit[t] = powers[l][m, agent] * sign
-            selector.append(unit.row_join(l * T * unit))
-            chosen.append((l, m + 1, t + 1))
+    selector, chosen = _witness_rows(powers, sorted((min(e), max(e)) for e in edges), agent, T)
     # The chosen rows are S·(I_2 ⊗ Λ) with S = [E, T·L·E] free of λ, so the minor factors as
     # det(S)·det(Λ)² exactly (block-diagonal I_2 ⊗ Λ).
     c_T = sp.factor(sp.Matrix.vstack(*selector).det())
@@ -145,6 +136,23 @@ def agent_rank_witness(
         "minor": f"({c_T})*det(Lambda)**2",
         "rank": 2 * dim if constant else None,
     }
+
+
+def _witness_rows(
+    powers: list[sp.Matrix], ordered: list[tuple[int, int]], agent: int, T: sp.Symbol
+) -> tuple[list[sp.Matrix], list[tuple[int, int, int]]]:
+    """For each tree edge, the two lowest powers ``W^l`` reaching ``agent`` from its nearer
+    end ``m``: the selector rows ``[e_t, l·T·e_t]·[W^l]_{m,agent}`` and their ``(l, m, t)``."""
+    selector, chosen = [], []
+    for t, (i, j) in enumerate(ordered):
+        m = min((i, j), key=lambda k: _distance(ordered, agent, k))
+        sign = 1 if m == i else -1
+        for l in [l for l in range(len(powers)) if powers[l][m, agent] != 0][:2]:
+            unit = sp.zeros(1, len(ordered))
+            unit[t] = powers[l][m, agent] * sign
+            selector.append(unit.row_join(l * T * unit))
+            chosen.append((l, m + 1, t + 1))
+    return selector, chosen
 
 
 def _distance(edges: Sequence[tuple[int, int]], source: int, target: int) -> int:

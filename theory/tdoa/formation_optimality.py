@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from theory.core.tolerances import INFORMATION_TOL
+
 __all__ = ["FORMATIONS_RANGE", "FORMATIONS_TDOA", "range_crb_trace", "unit_circle"]
 
 
@@ -54,7 +56,11 @@ def range_crb_trace(directions: np.ndarray) -> float:
         ``inf`` when ``J`` is singular.
     """
     eig = np.linalg.eigvalsh(directions.T @ directions)
-    return float("inf") if eig[0] <= 1e-12 * eig[-1] else float(np.sum(1 / eig))
+    return (
+        float("inf")
+        if eig[-1] <= 0 or eig[0] <= INFORMATION_TOL * eig[-1]
+        else float(np.sum(1 / eig))
+    )
 
 
 FORMATIONS_RANGE = {

@@ -16,22 +16,20 @@ The paper's wording "det Λ = 0 ⇔ the 4 agents are coplanar" is therefore wron
 coplanar agents with the target off their plane are generically fine (though the target's mirror
 image in that plane gives the same measurements), and non-coplanar agents on such a cone are not.
 Proof in ``docs/theory/tdoa-observability.md``; the exact test for rational coordinates is
-:func:`exact_direction_rank`.
+:func:`exact_direction_rank` (:mod:`theory.tdoa.exact_geometry`, re-exported here).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
-import sympy as sp
 
 from theory.core.observability import RANK_TOL, numeric_rank
 from theory.core.rationalize import exact_decimal
 from theory.core.tolerances import INCONCLUSIVE_FACTOR
-from theory.tdoa.generic_rank import exact_rank
+from theory.tdoa.exact_geometry import exact_affine_rank, exact_direction_rank
 from theory.tdoa.model import unit_directions
 
 __all__ = [
@@ -54,15 +52,19 @@ class DirectionGeometry:
     n_agents, dim : int
         Size of the set and the space dimension.
     rank : int
-        Numeric rank of ``[u_i − u_1]`` (= rank of the stacked position Jacobian).
+        Float rank of ``[u_i − u_1]`` at ``rank_tol`` (evidence beside ``exact_rank``).
+    exact_rank : int
+        Exact rank of the stacked position Jacobian on the coordinates as written
+        (:func:`exact_direction_rank`).
     full_rank : bool
-        ``rank == dim``: the target position is locally observable from this set.
+        ``exact_rank == dim``: the target position is locally observable from this set.
     sigma_min : float
         The ``dim``-th singular value of ``[u_i − u_1]`` (0 if fewer rows).
     rank_tol, margin : float
         Relative rank tolerance and the factor by which the decision cleared it.
     conclusive : bool
-        ``margin ≥ inconclusive_factor``.
+        The exact rank is deficient (settled), or full with the float decision clearing its
+        threshold by ``inconclusive_factor`` (full but ill-conditioned is inconclusive).
     agents_coplanar : bool
         The agents' own affine hull has dimension ``< dim`` (exact on the given coordinates).
     target_on_agents_plane : bool
@@ -72,7 +74,8 @@ class DirectionGeometry:
     mirror_ambiguous : bool
         Agents coplanar, target off their plane: its mirror image gives the same TDOAs.
     cone_axis : tuple of float or None
-        When rank-deficient: a unit ``n`` with ``n·u_i = c`` for all ``i`` (the cone's axis).
+        When rank-deficient (exactly or in floats): a unit ``n`` with ``n·u_i = c`` for all
+        ``i`` (the axis).
     cone_cos : float or None
         That ``c`` (cosine of the half-angle; 0 for a plane through the target).
     """
@@ -80,6 +83,7 @@ class DirectionGeometry:
     n_agents: int
     dim: int
     rank: int
+    exact_rank: int
     full_rank: bool
     sigma_min: float
     rank_tol: float
@@ -153,69 +157,6 @@ def rational(value: float | int | Fraction) -> Fraction:
     return exact_decimal(value)
 
 
-def exact_affine_rank(points: Sequence[Sequence[float | Fraction]]) -> int:
-    """Exact dimension of the affine hull of points read as rationals (see :func:`rational`).
-
-    Parameters
-    ----------
-    points : sequence of sequences of float or Fraction
-        The points.
-
-    Returns
-    -------
-    int
-        ``-1`` for no points, ``0`` for one.
-    """
-    pts = [[rational(x) for x in p] for p in points]
-    if not pts:
-        return -1
-    return exact_rank([[x - y for x, y in zip(p, pts[0], strict=True)] for p in pts[1:]] or [[0]])
-
-
-def exact_direction_rank(target: Sequence[float], agents: Sequence[Sequence[float]]) -> int:
-    """Exact ``dim aff{u_i}`` for rational coordinates (the stacked Jacobian's rank).
-
-    With ``v_i = p − p_i`` and ``r_i = ‖v_i‖``, ``rank [u_i 1] = rank [v_i r_i]`` (rows scaled by
-    ``r_i > 0``), and ``dim aff{u_i} = rank [u_i 1] − 1``. Write ``r = Σ_q √q c_q`` over distinct
-    square-free ``q`` with rational vectors ``c_q``. Since square roots of distinct square-free
-    integers are linearly independent over ℚ, ``r`` lies in the real column space of the rational
-    ``V`` iff every ``c_q`` lies in its rational column space; all ranks are then exact over ℚ.
-
-    Parameters
-    ----------
-    target : sequence of float or Fraction
-        Target position (read as the decimal written, see :func:`rational`).
-    agents : sequence of sequences
-        Agent positions, none equal to the target.
-
-    Returns
-    -------
-    int
-        ``dim aff{u_i}`` (``0`` for one agent).
-
-    Raises
-    ------
-    ValueError
-        If an agent sits on the target.
-    """
-    p = [rational(x) for x in target]
-    V = [[pt - rational(a) for pt, a in zip(p, agent, strict=True)] for agent in agents]
-    groups: dict[int, list[Fraction]] = {}
-    for i, v in enumerate(V):
-        squared = sum(x * x for x in v)
-        if squared == 0:
-            raise ValueError(f"agent {i + 1} is on the target")
-        coeff, radical = sp.sqrt(sp.Rational(squared.numerator, squared.denominator)).as_coeff_Mul()
-        q = int(radical**2)
-        groups.setdefault(q, [Fraction(0)] * len(V))[i] = Fraction(int(coeff.p), int(coeff.q))
-    rank_v = exact_rank(V)
-    outside = any(
-        exact_rank([[*row, c] for row, c in zip(V, column, strict=True)]) > rank_v
-        for column in groups.values()
-    )
-    return rank_v + int(outside) - 1
-
-
 def analyze_geometry(
     target: np.ndarray,
     agents: np.ndarray,
@@ -249,20 +190,22 @@ def analyze_geometry(
     D = direction_differences(target, agents)
     result = numeric_rank(D, rank_tol=rank_tol) if m > 1 else None
     rank = result.rank if result else 0
+    exact = exact_direction_rank(target.tolist(), agents.tolist()) if m > 1 else 0
     sv = result.singular_values if result else ()
     coplanar = exact_affine_rank(agents.tolist()) < dim
     on_plane = coplanar and exact_affine_rank([*agents.tolist(), target.tolist()]) < dim
-    axis, cos = _cone(target, agents) if rank < dim and m > 1 else (None, None)
+    axis, cos = _cone(target, agents) if min(rank, exact) < dim and m > 1 else (None, None)
     margin = result.margin if result else np.inf
     return DirectionGeometry(
         n_agents=m,
         dim=dim,
         rank=rank,
-        full_rank=rank == dim,
+        exact_rank=exact,
+        full_rank=exact == dim,
         sigma_min=float(sv[dim - 1]) if len(sv) >= dim else 0.0,
         rank_tol=rank_tol,
         margin=float(margin),
-        conclusive=bool(margin >= inconclusive_factor),
+        conclusive=exact < dim or (rank == dim and bool(margin >= inconclusive_factor)),
         agents_coplanar=coplanar,
         target_on_agents_plane=on_plane,
         heuristic_4_noncoplanar=m >= dim + 1 and not coplanar,

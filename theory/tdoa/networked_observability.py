@@ -33,7 +33,13 @@ import numpy as np
 
 from theory.core.network import exact_weights
 from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
-from theory.core.tolerances import INCONCLUSIVE_FACTOR, UNIT_CIRCLE_FACTOR, UNIT_CIRCLE_TOL
+from theory.core.tolerances import (
+    INCONCLUSIVE_FACTOR,
+    MODE_ZERO_TOL,
+    SNAP_RTOL,
+    UNIT_CIRCLE_FACTOR,
+    UNIT_CIRCLE_TOL,
+)
 from theory.tdoa.generic_rank import exact_rank
 
 __all__ = [
@@ -320,11 +326,7 @@ def analyze_network(
     ]
     agent_ranks = [r.rank for r in agent]
     margin = min([margin, *(r.margin for r in agent)])
-    distances = [abs(abs(z) - 1.0) for z in eigenvalues]
-    unit_margin = min(
-        (max(d / unit_circle_tol, unit_circle_tol / d) if d > 0 else np.inf for d in distances),
-        default=np.inf,
-    )
+    unit_margin = _unit_circle_margin(eigenvalues, unit_circle_tol)
     return NetworkObservability(
         network_rank=network_rank,
         n_states=n_states,
@@ -340,6 +342,15 @@ def analyze_network(
         unit_circle_margin=float(unit_margin),
         conclusive=bool(margin >= inconclusive_factor and unit_margin >= unit_circle_factor),
         rank_method=method,
+    )
+
+
+def _unit_circle_margin(eigenvalues: list[complex], unit_circle_tol: float) -> float:
+    """Least factor by which an unobservable mode's ``||λ| − 1|`` clears ``unit_circle_tol``."""
+    distances = [abs(abs(z) - 1.0) for z in eigenvalues]
+    return min(
+        (max(d / unit_circle_tol, unit_circle_tol / d) if d > 0 else np.inf for d in distances),
+        default=np.inf,
     )
 
 
@@ -393,13 +404,15 @@ def _null_space(
     return vh[rank:].T.copy(), float(min(above, below))
 
 
-def _mode_candidates(A: np.ndarray, W: np.ndarray, *, zero_tol: float = 1e-12) -> np.ndarray:
+def _mode_candidates(
+    A: np.ndarray, W: np.ndarray, *, zero_tol: float = MODE_ZERO_TOL
+) -> np.ndarray:
     products = np.outer(np.linalg.eigvals(W), np.linalg.eigvals(A)).ravel()
     scale = max(1.0, float(np.abs(W).max(initial=0.0)) * float(np.abs(A).max(initial=0.0)))
     return np.where(np.abs(products) <= zero_tol * scale, 0.0, products)
 
 
-def _snap(values: np.ndarray, candidates: np.ndarray, *, rel: float = 1e-4) -> list[complex]:
+def _snap(values: np.ndarray, candidates: np.ndarray, *, rel: float = SNAP_RTOL) -> list[complex]:
     """Replace each computed eigenvalue by the nearest exact-structure candidate if close.
 
     Eigenvalues of a restriction with Jordan blocks are perturbed by ~ε^{1/k}; the candidates
@@ -527,13 +540,31 @@ def network_generic_rank(
         exact_rank([row[i * n : (i + 1) * n] for row in O], field=field) for i in range(n_agents)
     ]
     entry_degree = (4 if parametrization == "geometry" else 1) + (1 if T is None else 0)
-    degree = entry_degree * n * n_agents
+    return _generic_record(
+        network_rank, agent_ranks, n, parametrization, T, field, seed, sample, entry_degree
+    )
+
+
+def _generic_record(
+    network_rank: int,
+    agent_ranks: list[int],
+    n: int,
+    parametrization: str,
+    T: Fraction | None,
+    field: str,
+    seed: int,
+    sample: int,
+    entry_degree: int,
+) -> NetworkGenericRank:
+    """The record of :func:`network_generic_rank`, with its Schwartz–Zippel bound
+    ``degree / sample`` (``degree = entry_degree · n · N``: the order of a full minor)."""
+    degree = entry_degree * n * len(agent_ranks)
     return NetworkGenericRank(
         network_rank=network_rank,
         agent_ranks=agent_ranks,
         rank_sum=sum(agent_ranks),
         rank_sum_claim_holds=sum(agent_ranks) == network_rank,
-        n_states=n * n_agents,
+        n_states=n * len(agent_ranks),
         parametrization=parametrization,
         T=Fraction(T) if T is not None else None,
         field=field,

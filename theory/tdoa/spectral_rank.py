@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from theory.core.observability import RANK_TOL
+from theory.core.rationalize import exact_decimal
 from theory.core.tolerances import CLUSTER_TOL
 
 __all__ = [
@@ -69,28 +70,35 @@ class SpectralRank:
     margin: float
 
 
-def symmetrizing_scale(W: np.ndarray, *, tol: float = 1e-12) -> np.ndarray | None:
-    """A vector ``s > 0`` with ``diag(s) W diag(s)^{-1}`` symmetric, or ``None``.
+def symmetrizing_scale(W: np.ndarray) -> np.ndarray | None:
+    """A vector ``s > 0`` with ``diag(s) W diag(s)^{-1}`` symmetric, or ``None``; decided exactly.
 
-    Tries ``s = 1`` (symmetric ``W``, e.g. Metropolis) and ``s_i = w_ii^{-1/2}`` (uniform weights
-    ``W = D^{-1}(A + I)`` on an undirected graph).
+    Tries ``s = 1`` (``W = Wᵀ`` entry for entry, e.g. Metropolis) and ``s_i = w_ii^{-1/2}``
+    (uniform weights ``W = D^{-1}(A + I)`` on an undirected graph), for which the scaled matrix
+    is symmetric iff ``w_ij w_jj = w_ji w_ii`` for every pair: checked in floats first and then,
+    on the support, in exact rationals (the decimals as written), so a ``W`` that is only nearly
+    symmetrizable is never ranked as its symmetrized neighbour.
 
     Parameters
     ----------
     W : ndarray, shape (N, N)
         Consensus matrix with positive diagonal.
-    tol : float
-        Relative tolerance on the asymmetry of the scaled matrix.
 
     Returns
     -------
     ndarray or None
     """
-    for scale in (np.ones(W.shape[0]), 1.0 / np.sqrt(np.diag(W))):
-        S = scale[:, None] * W / scale[None, :]
-        if np.max(np.abs(S - S.T), initial=0.0) <= tol * max(1.0, float(np.abs(S).max())):
-            return scale
-    return None
+    if np.array_equal(W, W.T):
+        return np.ones(W.shape[0])
+    diag = np.diag(W)
+    lhs, rhs = W * diag[None, :], W.T * diag[:, None]
+    if not np.allclose(lhs, rhs, rtol=8 * np.finfo(float).eps, atol=0.0):
+        return None
+    q = {i: exact_decimal(float(diag[i])) for i in range(W.shape[0])}
+    for i, j in zip(*np.nonzero(np.triu(W, 1) + np.tril(W, -1).T), strict=True):
+        if exact_decimal(float(W[i, j])) * q[j] != exact_decimal(float(W[j, i])) * q[i]:
+            return None
+    return 1.0 / np.sqrt(diag)
 
 
 def spectral_network_rank(

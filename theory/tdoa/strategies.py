@@ -16,6 +16,8 @@ keyword-only, conditioning is bounded, and impossible arguments raise
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fractions import Fraction
+from itertools import product
 
 import networkx as nx
 import numpy as np
@@ -23,6 +25,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from theory.core.network import metropolis_weights, uniform_weights
+from theory.core.rationalize import exact_decimal
 from theory.strategy_helpers import check_range, generators, orthonormal_matrix
 
 __all__ = [
@@ -31,6 +34,8 @@ __all__ = [
     "TdoaScene",
     "is_connected",
     "networks",
+    "rational_rotations",
+    "similarity_image",
     "tdoa_scenes",
     "weight_matrices",
 ]
@@ -287,3 +292,96 @@ def is_connected(hears: np.ndarray, *, strongly: bool = False) -> bool:
     """
     graph = nx.from_numpy_array(hears.T.astype(int), create_using=nx.DiGraph)
     return nx.is_strongly_connected(graph) if strongly else nx.is_weakly_connected(graph)
+
+
+_DECIMAL_NORMS = frozenset({1, 2, 4, 5, 8, 10, 16, 20, 25})
+"""Quaternion norms ``w² + x² + y² + z²`` whose rotations have finite-decimal entries."""
+_QUATERNIONS = tuple(
+    q for q in product(range(-2, 3), repeat=4) if sum(x * x for x in q) in _DECIMAL_NORMS
+)
+_PYTHAGOREAN = ((3, 4, 5), (7, 24, 25), (44, 117, 125), (336, 527, 625))
+"""Pythagorean triples with hypotenuse a power of 5: cos and sin are finite decimals."""
+
+
+def _quaternion_rotation(q: tuple[int, int, int, int]) -> list[list[Fraction]]:
+    """The rotation of the (unnormalized) quaternion ``q``: rational, exactly orthogonal."""
+    w, x, y, z = q
+    n = Fraction(1, w * w + x * x + y * y + z * z)
+    return [
+        [n * (w * w + x * x - y * y - z * z), 2 * n * (x * y - w * z), 2 * n * (x * z + w * y)],
+        [2 * n * (x * y + w * z), n * (w * w - x * x + y * y - z * z), 2 * n * (y * z - w * x)],
+        [2 * n * (x * z - w * y), 2 * n * (y * z + w * x), n * (w * w - x * x - y * y + z * z)],
+    ]
+
+
+@st.composite
+def rational_rotations(draw: st.DrawFn, *, dim: int = 3) -> list[list[Fraction]]:
+    """Exactly orthogonal rational rotations whose entries are finite decimals.
+
+    2-D: ``[[c, −s], [s, c]]`` from a Pythagorean triple with hypotenuse ``5^k`` (signs and the
+    order of the legs drawn); 3-D: the rotation of an integer quaternion of norm ``2^a 5^b``.
+    Rotated decimal coordinates stay finite decimals, so a case file can state them exactly
+    (:func:`theory.core.rationalize.exact_decimal` reads them back unchanged).
+
+    Parameters
+    ----------
+    dim : int
+        2 or 3.
+
+    Returns
+    -------
+    list of list of Fraction
+
+    Raises
+    ------
+    InvalidArgument
+        For another ``dim``.
+    """
+    if dim == 3:
+        return _quaternion_rotation(draw(st.sampled_from(_QUATERNIONS)))
+    if dim != 2:
+        raise InvalidArgument(f"dim={dim!r}; expected 2 or 3")
+    a, b, c = draw(st.sampled_from(_PYTHAGOREAN))
+    cos, sin = (
+        (Fraction(a, c), Fraction(b, c))
+        if draw(st.booleans())
+        else (
+            Fraction(b, c),
+            Fraction(a, c),
+        )
+    )
+    cos, sin = cos * draw(st.sampled_from((1, -1))), sin * draw(st.sampled_from((1, -1)))
+    return [[cos, -sin], [sin, cos]]
+
+
+def similarity_image(
+    points: np.ndarray | list,
+    rotation: list[list[Fraction]],
+    scale: Fraction,
+    shift: list[Fraction],
+) -> list[list[Fraction]]:
+    """``scale · R p + shift`` for every point, in exact rationals (points read as written).
+
+    Parameters
+    ----------
+    points : array or nested list, shape (m, d)
+        Points (floats are read as the decimals they print as).
+    rotation : list of list of Fraction
+        A ``d × d`` rotation (:func:`rational_rotations`).
+    scale : Fraction
+        A positive factor.
+    shift : list of Fraction
+        A translation.
+
+    Returns
+    -------
+    list of list of Fraction
+    """
+    rows = [[exact_decimal(x) for x in point] for point in np.asarray(points).tolist()]
+    return [
+        [
+            scale * sum(r * x for r, x in zip(row, p, strict=True)) + t
+            for row, t in zip(rotation, shift, strict=True)
+        ]
+        for p in rows
+    ]

@@ -24,6 +24,7 @@ common hyperplane are flagged ``mirror_ambiguous``; and a separate global-unique
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Any
 
 import networkx as nx
@@ -34,6 +35,13 @@ import scipy.sparse.csgraph
 from theory.core.observability import RANK_TOL, RankResult, numeric_rank
 from theory.core.tolerances import INCONCLUSIVE_FACTOR
 from theory.tdoa.case import TdoaSpec
+from theory.tdoa.exact_geometry import (
+    exact_affine_rank,
+    exact_direction_rank,
+    exact_mirror,
+    rational_points,
+    same_ray_pair,
+)
 from theory.tdoa.model import cv_discrete, unit_directions
 from theory.tdoa.networked_observability import analyze_network
 from theory.tdoa.spectral_rank import (
@@ -225,6 +233,13 @@ def analyze_topology(
 ) -> TopologyResult:
     """Decide, for every agent, whether it can localize the target at time step ``step``.
 
+    Every per-agent rank, the paper's coplanarity heuristic and the mirror ambiguity are decided
+    in exact arithmetic on the coordinates as written (:mod:`theory.tdoa.exact_geometry`); the
+    float singular values are reported beside them. A rank that is full exactly but within
+    ``inconclusive_factor`` of ``rank_tol · σ_max`` in floats (ill-conditioned) makes the
+    result inconclusive; so does a float-only decision (directed detectability, the network
+    rank) inside its band.
+
     Parameters
     ----------
     spec : TdoaSpec
@@ -252,71 +267,41 @@ def analyze_topology(
     ----------
     seed 000 §4.2.2, eqs. (4.24), (4.36), Thm 4.2.3; seed 001 (journal version).
     """
-    positions, target = spec.agents[step], spec.target[step]
-    hears, W = spec.hears[step], spec.weights[step]
-    rows = _tdoa_rows(positions, target, hears)
-    parts, component_of = _components(hears)
-    symmetric = bool(np.array_equal(hears, hears.T))
-    reach_groups = [(p, p) for p in parts] if symmetric else _reach_groups(hears)
     tol = {"rank_tol": rank_tol, "inconclusive_factor": inconclusive_factor}
-    agents: list[AgentVerdict | None] = [None] * spec.n_agents
+    scene = _scene(spec, step)
     doubts: list[str] = []
-    part_rows = _rows_by_part(rows, component_of, len(parts))
-    groups = []
-    for members, reach in reach_groups:
-        k = int(component_of[members[0]])
-        selected = part_rows[k] if symmetric else np.flatnonzero(np.isin(rows.agent, reach))
-        group = _group_verdict(
-            positions, target, rows, selected, reach, parts[k], tol, uniqueness_tol
-        )
-        groups.append(group)
-        if group.rank_result.margin < inconclusive_factor:
-            doubts.append(
-                f"agents {_ids(members)}: stacked Jacobian singular value within a factor "
-                f"{group.rank_result.margin:.3g} of rank_tol·σ_max"
-            )
-    if symmetric:
-        pairs = zip(reach_groups, groups, strict=True)
-        leaders = {i: [g.rank_result] for (members, _), g in pairs for i in members}
-    else:
-        leaders = _upstream_leaders(hears, rows, tol["rank_tol"], inconclusive_factor, doubts)
-    for (members, _), group in zip(reach_groups, groups, strict=True):
-        for i in members:
-            ok = all(result.rank == spec.dim for result in leaders[i])
-            agents[i] = group.for_agent(i, int(component_of[i]) + 1, ok)
-    if symmetric:
-        detectable = (
-            all(g.rank_result.rank == spec.dim for g in groups),
-            min((g.rank_result.margin for g in groups), default=float("inf")),
-        )
-    else:
-        detectable = _directed_detectable(W, rows, tol["rank_tol"])
-    if not symmetric and detectable[1] < inconclusive_factor:
-        doubts.append(f"detectability: a singular value within a factor {detectable[1]:.3g}")
+    groups = _agent_groups(scene, tol, uniqueness_tol, doubts)
+    agents = _agent_verdicts(scene, groups, tol, doubts)
+    detectable = _detectability(scene, groups, tol, doubts)
     network = (
-        _network_verdict(spec, W, rows, parts, part_rows, detectable, tol, cluster_tol)
+        _network_verdict(spec, scene, detectable, tol, cluster_tol)
         if network_rank
-        else NetworkVerdict(
-            None,
-            2 * spec.dim * spec.n_agents,
-            None,
-            detectable[0],
-            None,
-            "skipped",
-            detectable[1],
-            "network rank not requested",
-        )
+        else _skipped_network(spec, detectable)
     )
-    flow = (
-        "undirected: O_i sees agent i's connected component"
-        if symmetric
-        else "directed: O_i sees the agents reachable from i along information flow (j hears "
-        "… hears i); components shown are weakly connected"
-    )
+    flow = _UNDIRECTED_FLOW if scene.symmetric else _DIRECTED_FLOW
     tolerances = {**tol, "uniqueness_tol": uniqueness_tol, "cluster_tol": cluster_tol}
-    return TopologyResult(
-        step + 1, spec.dim, tuple(agents), network, flow, tolerances, tuple(doubts)
-    )  # type: ignore[arg-type]
+    return TopologyResult(step + 1, spec.dim, agents, network, flow, tolerances, tuple(doubts))
+
+
+_UNDIRECTED_FLOW = "undirected: O_i sees agent i's connected component"
+_DIRECTED_FLOW = (
+    "directed: O_i sees the agents reachable from i along information flow (j hears … hears "
+    "i); components shown are weakly connected"
+)
+
+
+def _skipped_network(spec: TdoaSpec, detectable: tuple[bool, float]) -> NetworkVerdict:
+    """The network verdict without its rank (``network_rank=False``): detectability only."""
+    return NetworkVerdict(
+        None,
+        2 * spec.dim * spec.n_agents,
+        None,
+        detectable[0],
+        None,
+        "skipped",
+        detectable[1],
+        "network rank not requested",
+    )
 
 
 def observed_values(result: TopologyResult) -> dict[str, Any]:
@@ -348,19 +333,59 @@ class _Rows:
 
 
 @dataclass(frozen=True)
+class _Scene:
+    """One step of a scene, with everything the verdicts share (rows, components, rationals)."""
+
+    spec: TdoaSpec
+    positions: np.ndarray
+    target: np.ndarray
+    hears: np.ndarray
+    W: np.ndarray
+    rows: _Rows
+    parts: list[list[int]]
+    component_of: np.ndarray
+    part_rows: list[np.ndarray]
+    symmetric: bool
+    exact_positions: list[list[Fraction]]
+    exact_target: list[Fraction]
+
+    @property
+    def dim(self) -> int:
+        return self.positions.shape[1]
+
+
+@dataclass(frozen=True)
+class _RankDecision:
+    """The rank of a stacked TDOA Jacobian: exact, with the float SVD beside it.
+
+    ``rank`` is the exact rank (:func:`~theory.tdoa.exact_geometry.exact_direction_rank`);
+    ``doubt`` says why the verdict is inconclusive (full rank exactly, but the float singular
+    value within ``inconclusive_factor`` of ``rank_tol · σ_max``), ``None`` when it is not.
+    """
+
+    rank: int
+    numeric: RankResult
+    doubt: str | None
+
+    @property
+    def margin(self) -> float:
+        """∞ when settled (exactly rank-deficient, or full and well-conditioned)."""
+        return float("inf") if self.doubt is None else self.numeric.margin
+
+
+@dataclass(frozen=True)
 class _Group:
     reach: tuple[int, ...]
-    rank_result: RankResult
+    decision: _RankDecision
     sigma_min: float
     heuristic: bool
-    mirror: np.ndarray | None
+    mirror: tuple[float, ...] | None
     uniqueness: Uniqueness
     reason: str
     dim: int
 
     def for_agent(self, agent: int, component: int, localizes: bool) -> AgentVerdict:
-        rank = 2 * self.rank_result.rank
-        mirror = None if self.mirror is None else tuple(float(v) for v in self.mirror)
+        rank = 2 * self.decision.rank
         return AgentVerdict(
             agent + 1,
             component,
@@ -368,14 +393,94 @@ class _Group:
             rank,
             rank == 2 * self.dim,
             self.sigma_min,
-            self.rank_result.margin,
+            self.decision.numeric.margin,
             self.heuristic,
             self.reason,
             self.mirror is not None,
-            mirror,
+            self.mirror,
             self.uniqueness,
             localizes,
         )
+
+
+def _scene(spec: TdoaSpec, step: int) -> _Scene:
+    """The shared data of step ``step``: TDOA rows, components, exact coordinates."""
+    positions, target, hears = spec.agents[step], spec.target[step], spec.hears[step]
+    rows = _tdoa_rows(positions, target, hears)
+    parts, component_of = _components(hears)
+    return _Scene(
+        spec,
+        positions,
+        target,
+        hears,
+        spec.weights[step],
+        rows,
+        parts,
+        component_of,
+        _rows_by_part(rows, component_of, len(parts)),
+        bool(np.array_equal(hears, hears.T)),
+        rational_points(positions),
+        rational_points([target])[0],
+    )
+
+
+def _agent_groups(
+    scene: _Scene, tol: dict[str, float], uniqueness_tol: float, doubts: list[str]
+) -> list[tuple[list[int], _Group]]:
+    """Agents sharing a reach set ``R(i)`` (a component, or a strongly connected class) and the
+    verdict on their stacked Jacobian."""
+    reach_groups = [(p, p) for p in scene.parts] if scene.symmetric else _reach_groups(scene.hears)
+    out = []
+    for members, reach in reach_groups:
+        k = int(scene.component_of[members[0]])
+        selected = (
+            scene.part_rows[k]
+            if scene.symmetric
+            else np.flatnonzero(np.isin(scene.rows.agent, reach))
+        )
+        group = _group_verdict(scene, selected, reach, scene.parts[k], tol, uniqueness_tol)
+        if group.decision.doubt:
+            doubts.append(group.decision.doubt)
+        out.append((members, group))
+    return out
+
+
+def _agent_verdicts(
+    scene: _Scene,
+    groups: list[tuple[list[int], _Group]],
+    tol: dict[str, float],
+    doubts: list[str],
+) -> tuple[AgentVerdict, ...]:
+    """Each agent's verdict; ``localizes`` from the closed classes upstream of it."""
+    if scene.symmetric:
+        leaders = {i: [g.decision] for members, g in groups for i in members}
+    else:
+        leaders = _upstream_leaders(scene, tol, doubts)
+    agents: list[AgentVerdict | None] = [None] * scene.spec.n_agents
+    for members, group in groups:
+        for i in members:
+            ok = all(decision.rank == scene.dim for decision in leaders[i])
+            agents[i] = group.for_agent(i, int(scene.component_of[i]) + 1, ok)
+    return tuple(agents)  # type: ignore[arg-type]
+
+
+def _detectability(
+    scene: _Scene,
+    groups: list[tuple[list[int], _Group]],
+    tol: dict[str, float],
+    doubts: list[str],
+) -> tuple[bool, float]:
+    """PBH at the eigenvalue 1 (seed 000 eq. (4.24)): exact per component when undirected."""
+    if scene.symmetric:
+        decisions = [g.decision for _, g in groups]
+        return (
+            all(d.rank == scene.dim for d in decisions),
+            min((d.margin for d in decisions), default=float("inf")),
+        )
+    detectable = _directed_detectable(scene.W, scene.rows, tol["rank_tol"])
+    if detectable[1] < tol["inconclusive_factor"]:
+        doubts.append(f"detectability: a singular value within a factor {detectable[1]:.3g}")
+    return detectable
 
 
 def _tdoa_rows(positions: np.ndarray, target: np.ndarray, hears: np.ndarray) -> _Rows:
@@ -417,44 +522,73 @@ def _reach_groups(hears: np.ndarray) -> list[tuple[list[int], list[int]]]:
     return sorted(groups, key=lambda g: g[0][0])
 
 
+def _decide_rank(
+    scene: _Scene, stacked: np.ndarray, points: list[int], tol: dict[str, float], who: str
+) -> _RankDecision:
+    """Exact rank of the stacked rows over the connected set ``points``, float SVD beside it.
+
+    The rows ``u_r − u_s`` connect ``points`` (the receivers and the agents they hear), so their
+    rank is ``dim aff{u_j : j ∈ points}``, decided exactly. An exactly deficient rank settles the
+    verdict whatever the floats say; a full one is conclusive only when the float singular value
+    clears ``inconclusive_factor · rank_tol · σ_max`` (otherwise the geometry is ill-conditioned:
+    a relative perturbation of the data of that size loses the rank).
+    """
+    dim = scene.dim
+    numeric = numeric_rank(stacked, rank_tol=tol["rank_tol"]) if stacked.size else _empty(dim)
+    if not stacked.size:
+        return _RankDecision(0, numeric, None)
+    exact = exact_direction_rank(scene.exact_target, [scene.exact_positions[j] for j in points])
+    if exact < dim or (numeric.rank == dim and numeric.margin >= tol["inconclusive_factor"]):
+        return _RankDecision(exact, numeric, None)
+    sigma = numeric.singular_values[dim - 1] if len(numeric.singular_values) >= dim else 0.0
+    return _RankDecision(
+        exact,
+        numeric,
+        f"agents {who}: the stacked Jacobian has full rank {dim} in exact arithmetic (the "
+        f"coordinates as written) but is ill-conditioned: σ_{dim} = {sigma:.3g} is within a "
+        f"factor {numeric.margin:.3g} of rank_tol·σ_max = {numeric.threshold:.3g} (float rank "
+        f"{numeric.rank})",
+    )
+
+
 def _group_verdict(
-    positions: np.ndarray,
-    target: np.ndarray,
-    rows: _Rows,
+    scene: _Scene,
     inside: np.ndarray,
     reach: list[int],
     part: list[int],
     tol: dict[str, float],
     uniqueness_tol: float,
 ) -> _Group:
-    dim = positions.shape[1]
-    stacked = rows.vectors[inside]
-    rank_result = numeric_rank(stacked, rank_tol=tol["rank_tol"]) if stacked.size else _empty(dim)
-    sigma = np.zeros(dim)
-    sigma[: min(dim, len(rank_result.singular_values))] = rank_result.singular_values[:dim]
+    dim, rows = scene.dim, scene.rows
     receivers = sorted(set(reach) | set(rows.other[inside].tolist()))
-    mirror = _affine_hull(positions[receivers], target, tol["rank_tol"])[1]
-    heuristic_rank = _affine_hull(positions[part], target, tol["rank_tol"])[0]
-    heuristic = len(part) >= dim + 1 and heuristic_rank == dim
-    uniqueness = (
-        tdoa_solutions(positions[receivers], target, rank_tol=tol["rank_tol"], tol=uniqueness_tol)
-        if rank_result.rank == dim
-        else Uniqueness(False, (), dim - rank_result.rank, "not even locally observable")
+    decision = _decide_rank(scene, rows.vectors[inside], receivers, tol, _ids(reach))
+    sigma = np.zeros(dim)
+    values = decision.numeric.singular_values
+    sigma[: min(dim, len(values))] = values[:dim]
+    mirror = exact_mirror([scene.exact_positions[j] for j in receivers], scene.exact_target)[1]
+    heuristic = (
+        len(part) >= dim + 1 and exact_affine_rank([scene.exact_positions[j] for j in part]) == dim
     )
-    exact = rank_result.rank == dim
+    exact = decision.rank == dim
+    uniqueness = (
+        tdoa_solutions(
+            scene.positions[receivers], scene.target, rank_tol=tol["rank_tol"], tol=uniqueness_tol
+        )
+        if exact
+        else Uniqueness(False, (), dim - decision.rank, "not even locally observable")
+    )
+    mirror_point = None if mirror is None else tuple(float(v) for v in mirror)
     reason = (
         ""
         if exact == heuristic
-        else _disagreement(
-            exact, positions, target, receivers, part, rank_result.rank, mirror, reach
-        )
+        else _disagreement(scene, exact, receivers, part, decision.rank, mirror_point, reach)
     )
     return _Group(
         tuple(j + 1 for j in reach),
-        rank_result,
+        decision,
         float(sigma[-1]),
         heuristic,
-        mirror,
+        mirror_point,
         uniqueness,
         reason,
         dim,
@@ -465,44 +599,16 @@ def _empty(dim: int) -> RankResult:
     return RankResult(0, (0.0,) * dim, 0.0, RANK_TOL, float("inf"))
 
 
-def _affine_hull(
-    points: np.ndarray, target: np.ndarray, rank_tol: float
-) -> tuple[int, np.ndarray | None]:
-    """Affine dimension of ``points`` and the target's reflection through their hull (or None).
-
-    The reflection negates the target's offset orthogonal to the hull, so it keeps the distance
-    to every receiver: same ranges, same TDOAs. ``None`` when the hull is full-dimensional or
-    contains the target.
-    """
-    dim = points.shape[1]
-    centre = points.mean(axis=0)
-    scale = max(float(np.abs(points - centre).max()), float(np.abs(target - centre).max()), 1e-300)
-    if points.shape[0] < 2:
-        hull_rank, basis = 0, np.zeros((0, dim))
-    else:
-        result = numeric_rank((points - centre) / scale, rank_tol=rank_tol)
-        hull_rank = result.rank if result.singular_values[0] > rank_tol else 0
-        basis = np.linalg.svd(points - centre, full_matrices=False)[2][:hull_rank]
-    if hull_rank == dim:
-        return hull_rank, None
-    offset = target - centre
-    normal = offset - basis.T @ (basis @ offset)
-    if np.linalg.norm(normal) <= rank_tol * scale:
-        return hull_rank, None
-    return hull_rank, target - 2 * normal
-
-
 def _disagreement(
+    scene: _Scene,
     exact: bool,
-    positions: np.ndarray,
-    target: np.ndarray,
     receivers: list[int],
     part: list[int],
     rank: int,
-    mirror: np.ndarray | None,
+    mirror: tuple[float, ...] | None,
     reach: list[int],
 ) -> str:
-    dim = positions.shape[1]
+    dim = scene.dim
     flat = "coplanar" if dim == 3 else "collinear"
     if exact:
         return (
@@ -515,8 +621,7 @@ def _disagreement(
             f"directed network: only agents {_ids(reach)} receive this agent's information, "
             f"and their TDOA rows have rank {rank} < {dim}"
         )
-    units = unit_directions(target, positions[receivers])
-    same = _same_ray(units)
+    same = same_ray_pair(scene.exact_target, [scene.exact_positions[j] for j in receivers])
     if same:
         a, b = receivers[same[0]] + 1, receivers[same[1]] + 1
         return f"agents {a} and {b} lie on one ray from the target: rank {rank} < {dim}"
@@ -527,19 +632,9 @@ def _disagreement(
     )
 
 
-def _same_ray(units: np.ndarray, tol: float = 1e-9) -> tuple[int, int] | None:
-    gaps = np.linalg.norm(units[:, None] - units[None], axis=-1)
-    np.fill_diagonal(gaps, np.inf)
-    i, j = np.unravel_index(np.argmin(gaps), gaps.shape)
-    return (int(min(i, j)), int(max(i, j))) if gaps[i, j] <= tol else None
-
-
 def _network_verdict(
     spec: TdoaSpec,
-    W: np.ndarray,
-    rows: _Rows,
-    parts: list[list[int]],
-    part_rows: list[np.ndarray],
+    scene: _Scene,
     detectable: tuple[bool, float],
     tol: dict[str, float],
     cluster_tol: float,
@@ -547,8 +642,10 @@ def _network_verdict(
     dim, n = spec.dim, spec.n_agents
     rank, eigenvalues, methods, notes = 0, [], set(), []
     margin = detectable[1]
-    for part, selected in zip(parts, part_rows, strict=True):
-        piece = _component_rank(spec, W, rows, part, selected, tol["rank_tol"], cluster_tol)
+    for part, selected in zip(scene.parts, scene.part_rows, strict=True):
+        piece = _component_rank(
+            spec, scene.W, scene.rows, part, selected, tol["rank_tol"], cluster_tol
+        )
         if piece is None:
             notes.append(
                 f"component {_ids(part)}: W is not symmetrizable and has "
@@ -576,12 +673,8 @@ def _network_verdict(
 
 
 def _upstream_leaders(
-    hears: np.ndarray,
-    rows: _Rows,
-    rank_tol: float,
-    inconclusive_factor: float,
-    doubts: list[str],
-) -> dict[int, list[RankResult]]:
+    scene: _Scene, tol: dict[str, float], doubts: list[str]
+) -> dict[int, list[_RankDecision]]:
     """For each agent, the stacked-Jacobian ranks of the closed classes upstream of it.
 
     A closed class hears only its own members, so its error dynamics are autonomous and it can
@@ -589,24 +682,22 @@ def _upstream_leaders(
     the closed classes upstream of it through ``W_TT ⊗ A``, which is stable (``ρ(W_TT) < 1``).
     """
     flow = nx.DiGraph()
-    flow.add_nodes_from(range(hears.shape[0]))
-    flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(hears), strict=True))
+    flow.add_nodes_from(range(scene.hears.shape[0]))
+    flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(scene.hears), strict=True))
     condensed = nx.condensation(flow)
     ranks = {}
     for node in condensed:
         if condensed.in_degree(node) == 0:
             members = sorted(condensed.nodes[node]["members"])
-            stacked = rows.vectors[np.isin(rows.agent, members)]
-            dim = rows.vectors.shape[1]
-            ranks[node] = numeric_rank(stacked, rank_tol=rank_tol) if stacked.size else _empty(dim)
-            if ranks[node].margin < inconclusive_factor:
-                doubts.append(
-                    f"closed class {_ids(members)}: rank decided with margin "
-                    f"{ranks[node].margin:.3g}"
-                )
+            stacked = scene.rows.vectors[np.isin(scene.rows.agent, members)]
+            ranks[node] = _decide_rank(
+                scene, stacked, members, tol, f"closed class {_ids(members)}"
+            )
+            if ranks[node].doubt:
+                doubts.append(ranks[node].doubt)
     mapping = condensed.graph["mapping"]
-    upstream: dict[int, list[RankResult]] = {}
-    for agent in range(hears.shape[0]):
+    upstream: dict[int, list[_RankDecision]] = {}
+    for agent in range(scene.hears.shape[0]):
         node = mapping[agent]
         above = nx.ancestors(condensed, node) | {node}
         upstream[agent] = [ranks[c] for c in sorted(above) if c in ranks]
@@ -728,5 +819,5 @@ def _ids(agents: list[int] | tuple[int, ...]) -> str:
     return "{" + ", ".join(str(a + 1) for a in agents) + "}"
 
 
-def _fmt(point: np.ndarray | None) -> str:
+def _fmt(point: tuple[float, ...] | None) -> str:
     return "-" if point is None else "[" + ", ".join(f"{v:.4g}" for v in point) + "]"

@@ -96,10 +96,7 @@ def tdoa_solutions(
     origin = receivers[0]
     scale = float(max(np.abs(receivers - origin).max(), np.abs(target - origin).max()))
     q, t = (receivers - origin) / scale, (target - origin) / scale
-    distances = ranges(t, q)
-    delta = distances[1:] - distances[0]
-    L = 2.0 * np.hstack([q[1:], delta[:, None]])
-    b = (q[1:] ** 2).sum(axis=1) - delta**2
+    delta, L, b = _linear_system(q, t)
     rank = numeric_rank(L, rank_tol=rank_tol).rank
     _, _, vt = np.linalg.svd(L, full_matrices=L.shape[0] < L.shape[1])
     u0 = np.linalg.lstsq(L, b, rcond=None)[0]
@@ -121,6 +118,16 @@ def tdoa_solutions(
     if not points:
         return Uniqueness(True, (), 1, "the second root of the quadratic is not a valid position")
     return Uniqueness(False, points, 1, f"{len(points)} other position(s) give the same TDOAs")
+
+
+def _linear_system(q: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Range differences ``δ_j = ‖t − q_j‖ − ‖t − q_0‖`` and the linear system ``L [x; r₀] = b``
+    they impose on a position ``x`` with range ``r₀`` to receiver 0 (at the origin)."""
+    distances = ranges(t, q)
+    delta = distances[1:] - distances[0]
+    L = 2.0 * np.hstack([q[1:], delta[:, None]])
+    b = (q[1:] ** 2).sum(axis=1) - delta**2
+    return delta, L, b
 
 
 def _line_roots(u0: np.ndarray, direction: np.ndarray, tol: float) -> list[np.ndarray] | None:

@@ -1,0 +1,32 @@
+"""``comm_range`` links decided exactly on the decimals written (strict ``<``, seed 000 §4.4)."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+from hypothesis import given
+from hypothesis import strategies as st
+
+from theory.core.network import adjacency_from_range
+from theory.core.rationalize import exact_decimal
+
+decimals = st.integers(-999, 999).map(lambda k: k / 10)
+
+
+@given(st.lists(st.tuples(decimals, decimals), min_size=2, max_size=6), st.integers(1, 400))
+def test_links_equal_the_exact_comparison(points, tenths) -> None:
+    positions, comm_range = np.array(points), tenths / 10
+    got = adjacency_from_range(positions, comm_range)
+    for i, p in enumerate(points):
+        for j, q in enumerate(points):
+            squared = sum(
+                (exact_decimal(a) - exact_decimal(b)) ** 2 for a, b in zip(p, q, strict=True)
+            )
+            assert got[i, j] == (i != j and squared < Fraction(tenths, 10) ** 2)
+
+
+def test_a_pair_exactly_at_the_range_is_not_linked() -> None:
+    """0.1 → 0.4 is 0.30000000000000004 in floats; exactly 0.3: not linked at range 0.3."""
+    assert not adjacency_from_range(np.array([[0.1], [0.4]]), 0.3)[0, 1]
+    assert adjacency_from_range(np.array([[0.1], [0.4]]), 0.300000000001)[0, 1]
