@@ -15,7 +15,7 @@ from typing import Any
 import matplotlib
 
 matplotlib.use("Agg")
-from matplotlib.figure import Figure  # noqa: E402 (after choosing the backend)
+from matplotlib.figure import Figure
 
 __all__ = ["new_figure", "save_figure"]
 
