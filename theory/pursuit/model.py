@@ -30,6 +30,7 @@ multiple autonomous vehicles for range-based underwater target localization and 
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -40,6 +41,7 @@ __all__ = [
     "ClosedLoopRates",
     "PathHarmonics",
     "body_error",
+    "body_frame_feedback",
     "closed_loop_rates",
     "correction_speed",
     "delta_bar",
@@ -50,6 +52,7 @@ __all__ = [
     "euler_rotation_rows",
     "exp_skew",
     "gamma_acceleration",
+    "input_gains",
     "path",
     "path_derivative",
     "path_feedback",
@@ -186,6 +189,7 @@ def _generators(k: int) -> np.ndarray:
 _GENERATORS = {k: _generators(k).reshape(k, -1) for k in (1, 3)}
 _EYE = {2: np.eye(2), 3: np.eye(3)}
 _UNIT_TURN = _GENERATORS[1].reshape(2, 2)
+_DIAGONAL = np.arange(3)
 
 
 def skew(omega: np.ndarray) -> np.ndarray:
@@ -226,11 +230,10 @@ def exp_skew(omega: np.ndarray) -> np.ndarray:
     half_sin, half_cos = np.sin(0.5 * theta), np.cos(0.5 * theta)
     a = 2.0 * half_sin * half_cos / theta
     b = 2.0 * (half_sin / theta) ** 2
-    return (
-        (1.0 - b * theta_sq) * _EYE[3]
-        + a * skew(omega)
-        + b * (omega[..., :, None] * omega[..., None, :])
-    )
+    rotation = b * (omega[..., :, None] * omega[..., None, :])
+    rotation += a * skew(omega)
+    rotation[..., _DIAGONAL, _DIAGONAL] += (1.0 - b * theta_sq)[..., 0]
+    return rotation
 
 
 def euler_rotation(angles: np.ndarray) -> np.ndarray:
@@ -326,7 +329,7 @@ class PathHarmonics:
         angle = np.asarray(gamma, float)[..., None] * self.frequency + self.phase
         return self.amplitude * np.cos(angle), self.slope * -np.sin(angle)
 
-    @property
+    @functools.cached_property
     def slope(self) -> np.ndarray:
         """a_k f_k: the amplitudes of r′."""
         return self.amplitude * self.frequency
@@ -441,6 +444,35 @@ def tracking_input(
     return (command - e_hat @ K_p.T) @ delta_bar_matrix.T
 
 
+def input_gains(
+    delta_bar_matrix: np.ndarray, K_p: np.ndarray, epsilon: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """(G, g) with u = [c, b] G + g for eq. (51) written on body-frame vectors.
+
+    With the body-frame command c = Rᵀ(r′(γ)ω_d + v̂) and b = Rᵀ(p − r(γ) − q̂) (so ê_p = b − ε),
+    u = Δ̄(c − K_p ê_p) = Δ̄c − Δ̄K_p b + Δ̄K_p ε: G = [Δ̄ᵀ; −(Δ̄K_p)ᵀ] (2d × m) and g = Δ̄K_p ε,
+    the form the simulator evaluates (one product for every tracker; :func:`tracking_input`
+    is the same law on inertial-frame vectors).
+
+    Parameters
+    ----------
+    delta_bar_matrix : ndarray (m, d)
+        Δ̄ of :func:`delta_bar`.
+    K_p : ndarray (d, d)
+    epsilon : ndarray (d,)
+
+    Returns
+    -------
+    (ndarray (2d, m), ndarray (m,))
+
+    References
+    ----------
+    seed 003, eqs. (48), (51).
+    """
+    gain = delta_bar_matrix @ K_p
+    return np.vstack([delta_bar_matrix.T, -gain.T]), gain @ epsilon
+
+
 def tracker_rates(rotation: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """ṗ = R[v₁, 0(, 0)]ᵀ and the body rates ω of u = (v₁, ω) (the under-actuated model).
 
@@ -476,7 +508,22 @@ def path_feedback(e_hat: np.ndarray, rotation: np.ndarray, r_prime: np.ndarray) 
     ----------
     seed 003, eqs. (25), (29), (50b), (62).
     """
-    return np.sum(e_hat * rotate_back(rotation, r_prime), axis=-1)
+    return body_frame_feedback(e_hat, rotate_back(rotation, r_prime))
+
+
+def body_frame_feedback(e_hat: np.ndarray, r_prime_body: np.ndarray) -> np.ndarray:
+    """ê_pᵀ(Rᵀr′(γ)) of (50b) for r′ already in the body frame (:func:`path_feedback`).
+
+    Parameters
+    ----------
+    e_hat, r_prime_body : ndarray (…, d)
+        ê_p and Rᵀr′(γ).
+
+    References
+    ----------
+    seed 003, eqs. (50b), (62).
+    """
+    return (e_hat * r_prime_body).sum(axis=-1)
 
 
 def gamma_acceleration(
