@@ -328,7 +328,7 @@ def _predict(
     """The order-1 step: Euler in p, ETD1 in (γ, e_γ), R(I + hS(ω₀)) (:func:`heun_step`)."""
     (z_dot, omega), z = rates, state.z
     a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)  # z = [p (:a), γ (a:b), e_γ (b:)]
-    decay, w1, _, g1, _ = weights
+    decay, w1 = weights[:2]
     e, f0 = z[b:], z_dot[b:]
     z1 = np.empty_like(z)
     z1[:a] = z[:a] + h * z_dot[:a]
