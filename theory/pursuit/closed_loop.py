@@ -636,6 +636,25 @@ def _run(
     )  # fmt: skip
 
 
+def _filter_setup(
+    loop: DecLoop, settings: DecSettings, x0: np.ndarray, P0: np.ndarray, fusion: np.ndarray | None
+) -> dict[str, np.ndarray]:
+    """The DEKF's constants and first priors (Algorithm 2): F, W = Q⁻¹, π^[i,j] (default
+    ``settings.fusion_weight`` on each in-edge, the rest on the tracker), Ω_{1|0} and x̂_{1|0}."""
+    n, d = loop.n, loop.dim
+    if fusion is None:
+        adjacency = -loop.laplacian + np.diag(np.diag(loop.laplacian))
+        weight = settings.fusion_weight
+        fusion = np.diag(1 - weight * adjacency.sum(axis=1)) + weight * adjacency
+    return {
+        "F": transition_matrix(d, settings.Ts),
+        "W": np.linalg.inv(_matrix(settings.Q)),
+        "fusion": fusion,
+        "Omega": np.linalg.inv(np.broadcast_to(P0, (n, 2 * d, 2 * d))),
+        "x_pred": np.broadcast_to(x0, (n, 2 * d)).astype(float),
+    }
+
+
 def simulate_dec(
     target: np.ndarray,
     initial_positions: np.ndarray,
@@ -701,26 +720,16 @@ def simulate_dec(
     ----------
     seed 003, eqs. (2)–(5), (15)–(16), (22), (41)–(52).
     """
-    s = settings
     n, d = initial_positions.shape
-    every = round(s.Ts / s.dt)
-    if every < 1 or abs(every * s.dt - s.Ts) > 1e-9 * s.Ts:
+    every = round(settings.Ts / settings.dt)
+    if every < 1 or abs(every * settings.dt - settings.Ts) > 1e-9 * settings.Ts:
         raise ValueError("Ts must be an integer multiple of dt")
     if paths is None:
         phases = 2 * np.pi * np.arange(n) / n if n > 1 else np.zeros(1)
-        paths = np.column_stack([np.tile(s.radii, (n, 1)), phases])
-    loop = build_loop(s, np.asarray(paths, dtype=float), in_neighbours, d)
-    adjacency = -loop.laplacian + np.diag(np.diag(loop.laplacian))
-    if fusion is None:
-        fusion = np.diag(1 - s.fusion_weight * adjacency.sum(axis=1)) + s.fusion_weight * adjacency
-    dekf = {
-        "F": transition_matrix(d, s.Ts),
-        "W": np.linalg.inv(_matrix(s.Q)),
-        "fusion": fusion,
-        "Omega": np.linalg.inv(np.broadcast_to(P0, (n, 2 * d, 2 * d))),
-        "x_pred": np.broadcast_to(x0, (n, 2 * d)).astype(float),
-    }
+        paths = np.column_stack([np.tile(settings.radii, (n, 1)), phases])
+    loop = build_loop(settings, np.asarray(paths, dtype=float), in_neighbours, d)
+    dekf = _filter_setup(loop, settings, x0, P0, fusion)
     state = _initial_state(
         initial_positions, initial_headings, initial_gammas, initial_gamma_errors
     )
-    return _run(loop, field or loop.rates, target, state, dekf, steps, rng, s)
+    return _run(loop, field or loop.rates, target, state, dekf, steps, rng, settings)

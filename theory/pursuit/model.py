@@ -684,16 +684,23 @@ def closed_loop_rates(
         rotation, r_prime, omega_d, estimate_velocity, e_hat, delta_bar(epsilon), K_p
     )
     position_dot, omega = tracker_rates(rotation, u)
-    rotation_dot = rotation @ skew(omega)
-    de_p = rotation_dot.T @ (position - r_gamma - target_position) + rotation.T @ (
-        position_dot - r_prime * gamma_dot - target_velocity
-    )
+    de_p = _body_error_rate(
+        rotation, omega, position - r_gamma - target_position,
+        position_dot - r_prime * gamma_dot - target_velocity,
+    )  # fmt: skip
     e_gamma = gamma_dot - omega_d
-    feedback = 0.0
-    de_gamma = 0.0
+    feedback, de_gamma = 0.0, 0.0
     if controller == "II":
         feedback = float(path_feedback(e_hat, rotation, r_prime))
         de_gamma = float(gamma_acceleration(k_gamma, e_gamma, feedback, omega_d_dot)) - omega_d_dot
     return ClosedLoopRates(
         e_p, float(e_gamma), de_p, de_gamma, u, position_dot, float(gamma_dot), feedback
     )
+
+
+def _body_error_rate(
+    rotation: np.ndarray, omega: np.ndarray, offset: np.ndarray, offset_rate: np.ndarray
+) -> np.ndarray:
+    """ė_p = ṘᵀΔp + RᵀΔṗ for e_p = RᵀΔp − ε, Δp = p − r(γ) − q, with Ṙ = R S(ω) (eqs. (3), (19))."""
+    rotation_dot = rotation @ skew(omega)
+    return rotation_dot.T @ offset + rotation.T @ offset_rate
