@@ -391,11 +391,23 @@ def _error_figure(runs: Sequence[DecRun]) -> Any:
         values = np.mean([getattr(r, name) for r in runs], axis=0)
         for i in range(values.shape[1]):
             ax.plot(times, values[:, i], lw=1, label=f"tracker {i + 1}")
-        ax.set_yscale("log")
+        _plain_log_axis(ax)
         ax.set_ylabel(name.replace("_", " ") + " (m)")
         ax.legend(fontsize=7, loc="upper right")
     axes[-1].set_xlabel("time (s)")
     return fig
+
+
+def _plain_log_axis(ax: Any) -> None:
+    """A log-scale y axis labelled ``0.1, 1, 10`` at the decades, without minor ticks: the
+    default ``10ⁿ`` labels need matplotlib's mathtext parser, which costs more to build than
+    the rest of the figure."""
+    from matplotlib.ticker import FuncFormatter, NullLocator
+
+    ax.set_yscale("log")
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+    ax.yaxis.set_minor_locator(NullLocator())
+    ax.grid(True, which="major", axis="y", lw=0.3)
 
 
 def _coordination_figure(run: DecRun) -> Any:
