@@ -126,11 +126,19 @@ class LazyCommands(TyperGroup):
         self._listing = False
 
     def list_commands(self, ctx: _click.Context) -> list[str]:
-        """Every command of the index, in its order."""
+        """Every command of the index, in its order (``ctx``, click's context, is not used)."""
         return list(command_index())
 
     def get_command(self, ctx: _click.Context, cmd_name: str) -> _click.Command | None:
-        """The command ``cmd_name`` (its module imported on first use), ``None`` if unknown."""
+        """The command ``cmd_name`` (its module imported on first use), ``None`` if unknown.
+
+        Parameters
+        ----------
+        ctx : click.Context
+            The group's context (not used).
+        cmd_name : str
+            A command name.
+        """
         entry = command_index().get(cmd_name)
         if entry is None or cmd_name in self.commands:
             return self.commands.get(cmd_name)
@@ -142,7 +150,15 @@ class LazyCommands(TyperGroup):
     def resolve_command(
         self, ctx: _click.Context, args: list[str]
     ) -> tuple[str | None, _click.Command | None, list[str]]:
-        """The command named by ``args[0]``; an unknown name's error suggests close ones."""
+        """The command named by ``args[0]``; an unknown name's error suggests close ones.
+
+        Parameters
+        ----------
+        ctx : click.Context
+            The group's context.
+        args : list of str
+            The command line after the group's options.
+        """
         try:
             return super().resolve_command(ctx, args)
         except _click.exceptions.UsageError as error:
@@ -153,7 +169,15 @@ class LazyCommands(TyperGroup):
             raise
 
     def format_help(self, ctx: _click.Context, formatter: _click.HelpFormatter) -> None:
-        """The group's help, listing the commands from the index (nothing imported)."""
+        """The group's help, listing the commands from the index (nothing imported).
+
+        Parameters
+        ----------
+        ctx : click.Context
+            The group's context.
+        formatter : click.HelpFormatter
+            Where the help goes (typer writes it with rich instead).
+        """
         self._listing = True
         try:
             super().format_help(ctx, formatter)
