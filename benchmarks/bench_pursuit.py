@@ -21,7 +21,9 @@ For each case it prints
   ``model.closed_loop_rates`` in a Python loop, the pre-vectorization form), both over
   ``--seconds`` of simulated time, and their ratio: a same-run baseline.
 
-Start-up: ``trackcert --help`` and ``python -c "import theory.cli"`` in fresh processes.
+Start-up: ``trackcert --help`` and ``python -c "import theory.cli"`` in fresh processes, the
+latter against importing every command module (:data:`EAGER`, what registration did before the
+commands were loaded lazily) in the same run.
 Every time is the best of ``--repeat``; CPU beside wall because the machine is shared (wall time
 then includes waiting for a core). :data:`BEFORE` prints the same command measured before the
 speed-up (commit 725a9f4), with the date: that code is gone, so it is not re-run.
@@ -114,17 +116,29 @@ def _simulate(name: str, seed: int, codes: list[int]) -> None:
         _cli(["simulate", name, "--seed", str(seed), "-o", folder], codes)
 
 
+EAGER = (
+    "import importlib, theory.cli\n"
+    "for module in theory.cli.command_modules(): importlib.import_module(module)"
+)
+"""The former start-up, re-created: every command module imported (as registration did)."""
+
+
+def _python(code: str) -> None:
+    subprocess.run([sys.executable, "-c", code], cwd=ROOT, check=True)
+
+
 def _startup(repeat: int) -> None:
+    """``--help`` against the recorded figure, and the lazy import against the eager one."""
     helped = _best(lambda: _cli(["--help"]), repeat)
-    imported = _best(
-        lambda: subprocess.run([sys.executable, "-c", "import theory.cli"], cwd=ROOT, check=True),
-        repeat,
-    )
+    lazy = _best(lambda: _python("import theory.cli"), repeat)
+    eager = _best(lambda: _python(EAGER), repeat)
     before = BEFORE["--help"]
     print(
         f"start-up: trackcert --help wall {helped[0]:.2f} s, CPU {helped[1]:.2f} s "
-        f"(before: {before[0]:.2f} s, {before[1]:.2f} s); import theory.cli wall "
-        f"{imported[0]:.2f} s, CPU {imported[1]:.2f} s"
+        f"(before: {before[0]:.2f} s, {before[1]:.2f} s)\n"
+        f"  import theory.cli: wall {lazy[0]:.2f} s, CPU {lazy[1]:.2f} s; with every command "
+        f"module imported (the former eager registration): wall {eager[0]:.2f} s, CPU "
+        f"{eager[1]:.2f} s; ratio (CPU) {eager[1] / lazy[1]:.1f}"
     )
 
 
