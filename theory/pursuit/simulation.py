@@ -80,9 +80,9 @@ def check_pursuit_case(spec: PursuitSpec) -> None:
 
 
 def _target_states(spec: PursuitSpec, steps: int) -> np.ndarray:
-    times = RECORD_INTERVAL * np.arange(steps + 1)
+    times = RECORD_INTERVAL * np.arange(steps + 1)[:, None]  # the motion broadcasts over times
     motion = spec.target
-    return np.array([np.concatenate([motion.position(t), motion.velocity_at(t)]) for t in times])
+    return np.hstack([motion.position(times), motion.velocity_at(times)])
 
 
 def _initial_trackers(spec: PursuitSpec, start: np.ndarray) -> dict[str, np.ndarray]:
