@@ -316,32 +316,37 @@ def heun_step(
     Cox & Matthews, J. Comput. Phys. 176 (2002) (ETD2RK); Munthe-Kaas, BIT 38 (1998) (RKMK).
     """
     weights = _etd_weights(loop.k_gamma, h)
-    z1, R1 = _predict(loop, h, state, rates, weights)
+    free = _free_gamma(loop, state.z, rates[0], weights)
+    z1, R1 = _predict(loop, h, state, rates, (weights, free))
     rates1 = field(t + h, LoopState(z1, R1, loop.n, loop.dim), *estimate)
-    z2, R2 = _correct(loop, h, state, rates, (z1, R1), rates1, weights)
+    z2, R2 = _correct(loop, h, state, rates, (z1, R1), rates1, (weights, free))
     return LoopState(z2, R2, loop.n, loop.dim), _local_error(loop, state.z, (z1, R1), (z2, R2))
 
 
+Weights = tuple[tuple[float, ...], np.ndarray]
+"""The step's ETD weights (:func:`_etd_weights`) and :func:`_free_gamma`."""
+
+
 def _predict(
-    loop: DecLoop, h: float, state: LoopState, rates: Rates, weights: tuple[float, ...]
+    loop: DecLoop, h: float, state: LoopState, rates: Rates, weights: Weights
 ) -> tuple[np.ndarray, np.ndarray]:
     """The order-1 step: Euler in p, ETD1 in (γ, e_γ), R(I + hS(ω₀)) (:func:`heun_step`)."""
-    (z_dot, omega), z = rates, state.z
+    (z_dot, omega), z, ((decay, w1, *_), free) = rates, state.z, weights
     a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)  # z = [p (:a), γ (a:b), e_γ (b:)]
-    decay, w1 = weights[:2]
     e, f0 = z[b:], z_dot[b:]
     z1 = np.empty_like(z)
     z1[:a] = z[:a] + h * z_dot[:a]
-    z1[a:b] = _free_gamma(z, z_dot, a, b, weights) + h * (z_dot[a:b] - e)
+    z1[a:b] = free + h * (z_dot[a:b] - e)
     z1[b:] = decay * e + w1 * f0
     return z1, state.R + h * (state.R @ model.skew(omega))
 
 
 def _free_gamma(
-    z: np.ndarray, z_dot: np.ndarray, a: int, b: int, weights: tuple[float, ...]
+    loop: DecLoop, z: np.ndarray, z_dot: np.ndarray, weights: tuple[float, ...]
 ) -> np.ndarray:
     """γ + w₁e_γ + g₁f₀: the part of both γ-updates that does not depend on ω_d."""
     _, w1, _, g1, _ = weights
+    a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)
     return z[a:b] + w1 * z[b:] + g1 * z_dot[b:]
 
 
@@ -352,19 +357,19 @@ def _correct(
     rates: Rates,
     predicted: tuple[np.ndarray, np.ndarray],
     rates1: Rates,
-    weights: tuple[float, ...],
+    weights: Weights,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The order-2 step from the rates at both ends: Heun in p, ETD2RK in (γ, e_γ),
     R exp(½hS(ω₀ + ω₁)) (:func:`heun_step`)."""
     (z_dot, omega), (z_dot1, omega1), (z1, _) = rates, rates1, predicted
     z, half = state.z, 0.5 * h
     a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)
-    _, _, w2, _, g2 = weights
+    (_, _, w2, _, g2), free = weights
     slope = z_dot1[b:] - z_dot[b:]
     speed0 = z_dot[a:b] - z[b:]  # ω_d at the start
     z2 = np.empty_like(z)
     z2[:a] = z[:a] + half * (z_dot[:a] + z_dot1[:a])
-    z2[a:b] = _free_gamma(z, z_dot, a, b, weights) + half * (speed0 + z_dot1[a:b] - z1[b:])
+    z2[a:b] = free + half * (speed0 + z_dot1[a:b] - z1[b:])
     z2[a:b] += g2 * slope
     z2[b:] = z1[b:] + w2 * slope
     return z2, state.R @ model.exp_skew(half * (omega + omega1))

@@ -327,12 +327,17 @@ class PathHarmonics:
     def jet(self, gamma: Any) -> tuple[np.ndarray, np.ndarray]:
         """(r(γ), r′(γ)) at ``gamma`` (…) → two (…, d) arrays, from one evaluation of the angles."""
         angle = np.asarray(gamma, float)[..., None] * self.frequency + self.phase
-        return self.amplitude * np.cos(angle), self.slope * -np.sin(angle)
+        return self.amplitude * np.cos(angle), self._falling_slope * np.sin(angle)
 
     @functools.cached_property
     def slope(self) -> np.ndarray:
         """a_k f_k: the amplitudes of r′."""
         return self.amplitude * self.frequency
+
+    @functools.cached_property
+    def _falling_slope(self) -> np.ndarray:
+        """−a_k f_k: r′_k(γ) = −a_k f_k sin(f_k γ + φ_k) (the same product as slope·(−sin))."""
+        return -self.slope
 
     def derivative(self, gamma: Any, order: int = 0) -> np.ndarray:
         """d^order r/dγ^order at ``gamma`` (…) → (…, d): a f^n cos(fγ + φ + nπ/2)."""
