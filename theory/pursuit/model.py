@@ -189,7 +189,6 @@ def _generators(k: int) -> np.ndarray:
 _GENERATORS = {k: _generators(k).reshape(k, -1) for k in (1, 3)}
 _EYE = {2: np.eye(2), 3: np.eye(3)}
 _UNIT_TURN = _GENERATORS[1].reshape(2, 2)
-_DIAGONAL = np.arange(3)
 
 
 def skew(omega: np.ndarray) -> np.ndarray:
@@ -227,12 +226,13 @@ def exp_skew(omega: np.ndarray) -> np.ndarray:
         return np.cos(angle) * _EYE[2] + np.sin(angle) * _UNIT_TURN
     theta_sq = (omega * omega).sum(axis=-1)[..., None, None]
     theta = np.maximum(np.sqrt(theta_sq), 1e-150)  # below it, a = 1 and b = ½ to the last bit
-    half_sin, half_cos = np.sin(0.5 * theta), np.cos(0.5 * theta)
+    half = 0.5 * theta
+    half_sin, half_cos = np.sin(half), np.cos(half)
     a = 2.0 * half_sin * half_cos / theta
     b = 2.0 * (half_sin / theta) ** 2
     rotation = b * (omega[..., :, None] * omega[..., None, :])
     rotation += a * skew(omega)
-    rotation[..., _DIAGONAL, _DIAGONAL] += (1.0 - b * theta_sq)[..., 0]
+    rotation += (1.0 - b * theta_sq) * _EYE[3]  # adds exact zeros off the diagonal
     return rotation
 
 
