@@ -3,6 +3,7 @@ modules' file names, never by a hand-kept list (``theory.core.discovery``)."""
 
 from __future__ import annotations
 
+import inspect
 import json
 import re
 import subprocess
@@ -184,3 +185,45 @@ def test_loading_a_tdoa_case_imports_neither_the_particle_filter_nor_the_solvers
     code, imported = json.loads(done.stdout.strip().splitlines()[-1])
     assert code == 0
     assert imported == []
+
+
+def test_the_command_index_read_from_source_matches_what_registering_adds() -> None:
+    """``trackcert`` loads commands lazily from :func:`theory.cli.command_index`: every command
+    module registers exactly the commands its source declares, with the same help."""
+    import importlib
+
+    import typer
+
+    from theory.cli import command_index, command_modules
+
+    registered = {}
+    for module in command_modules():
+        app = typer.Typer()
+        importlib.import_module(module).register(app)
+        for info in app.registered_commands:
+            registered[info.name] = (module, inspect.getdoc(info.callback))
+    index = command_index()
+    assert {name: (e.module, e.help) for name, e in index.items()} == registered
+    assert {"simulate", "report", "check", "certify"} <= set(index)
+
+
+def test_help_and_simulate_import_no_heavy_library() -> None:
+    """``trackcert --help`` imports no command module; ``trackcert simulate`` of a TDOA case
+    neither the report's libraries (jinja2, hypothesis, cvxpy) nor sympy."""
+    script = (
+        "import json, sys, tempfile\n"
+        "from typer.testing import CliRunner\n"
+        "from theory.cli import app, command_modules\n"
+        "code = CliRunner().invoke(app, ['--help']).exit_code\n"
+        "helped = [m for m in command_modules() if m in sys.modules]\n"
+        "out = tempfile.mkdtemp()\n"
+        "args = ['simulate', 'sim-ch4-fixed-b5', '--steps', '3', '--no-figures', '-o', out]\n"
+        "simulated = CliRunner().invoke(app, args).exit_code\n"
+        "heavy = ['jinja2', 'hypothesis', 'cvxpy', 'sympy', 'theory.cli.report']\n"
+        "print(json.dumps([code, helped, simulated, [m for m in heavy if m in sys.modules]]))\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True, cwd=ROOT.parent
+    )
+    code, helped, simulated, imported = json.loads(done.stdout.strip().splitlines()[-1])
+    assert (code, helped, simulated, imported) == (0, [], 0, [])

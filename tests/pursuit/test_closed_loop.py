@@ -175,3 +175,120 @@ def test_held_input_scheme_linearization_explains_the_blowup() -> None:
     assert (
         _held_input_radius(5.0, 0.2, 7025.0, 6e-4) < 1 < _held_input_radius(5.0, 0.2, 7025.0, 1e-3)
     )
+
+
+RECORDED = {
+    "pursuit-table1-n1": {
+        "gammas": [[-0.913347318], [0.755600019], [2.757997749]],
+        "localization_errors": [[4.465420308], [1.069591003], [1.817239899]],
+        "positions": [
+            [[11.112186687, -19.752097574]],
+            [[10.414779776, 38.557430192]],
+            [[-43.556115136, 42.906262781]],
+        ],
+        "pursuit_errors": [[3.341370818], [0.563392885], [1.503933618]],
+        "steps": (2153, 49),
+    },
+    "pursuit-table1-n3": {
+        "gammas": [
+            [1.039772402, 1.007750781, 1.028272797],
+            [3.02935587, 3.02549471, 3.031289658],
+            [5.029209709, 5.033378255, 5.029660027],
+        ],
+        "localization_errors": [
+            [0.475187819, 0.405511475, 0.53473132],
+            [0.17834289, 0.15654876, 0.149296781],
+            [0.195513981, 0.214370099, 0.253741174],
+        ],
+        "positions": [
+            [
+                [10.952560314, 32.193677891],
+                [-35.033066072, 7.959095495],
+                [9.924925128, -19.777931265],
+            ],
+            [
+                [-41.302541896, 22.075603628],
+                [0.045246469, -9.573532083],
+                [6.610122157, 41.964823563],
+            ],
+            [
+                [-8.223598432, 1.329400143],
+                [3.283954377, 51.954282721],
+                [-46.302905365, 36.686325887],
+            ],
+        ],
+        "pursuit_errors": [
+            [0.916037695, 1.205614917, 0.819490592],
+            [0.412988352, 0.307287103, 0.268341928],
+            [0.326247028, 0.186387752, 0.29282489],
+        ],
+        "steps": (2206, 56),
+    },
+    "pursuit-table2-n1": {
+        "gammas": [[0.001558223], [3.890263127], [7.921234676]],
+        "localization_errors": [[4.868990544], [7.570596649], [8.99063302]],
+        "positions": [
+            [[77.985017811, 12.349004421, -18.174269587]],
+            [[-77.480018439, -54.569177004, 10.916640251]],
+            [[-31.220190336, 87.208339811, -96.674443686]],
+        ],
+        "pursuit_errors": [[14.18899648], [8.589332474], [10.796155488]],
+        "steps": (2730, 274),
+    },
+    "pursuit-table2-n3": {
+        "gammas": [
+            [2.191374894, 2.192197799, 2.208678538],
+            [6.204238931, 6.202776099, 6.203531871],
+            [10.202309969, 10.207656595, 10.204337548],
+        ],
+        "localization_errors": [
+            [3.615649531, 5.83491204, 1.901137722],
+            [1.333890713, 1.716381489, 1.44262581],
+            [2.262721642, 2.203070377, 2.370755399],
+        ],
+        "positions": [
+            [
+                [-56.077689733, 71.742561761, 27.065840189],
+                [-44.017122157, -66.611559652, -20.725245406],
+                [69.921822376, 13.532824243, -57.344176739],
+            ],
+            [
+                [63.907635843, -0.505935593, -26.219813665],
+                [-50.592050806, 80.411538567, -72.835350291],
+                [-63.597869239, -59.190718208, 14.064920849],
+            ],
+            [
+                [-85.618302604, -45.993512377, -94.491102608],
+                [50.52058417, -12.084591931, -8.452107467],
+                [-46.653898151, 88.867626986, -41.122135636],
+            ],
+        ],
+        "pursuit_errors": [
+            [8.89343258, 10.072035344, 7.791409404],
+            [1.894788027, 1.908802715, 1.869955199],
+            [2.849116711, 2.780940587, 2.810925625],
+        ],
+        "steps": (2789, 270),
+    },
+}
+"""Records 200, 600 and 1000 (t = 20, 60, 100 s) of each Table case, run with
+``default_rng(2)``, as the simulator computed them on 2026-12-03 (commit 725a9f4) before its
+speed-up: positions, γ, localization and pursuit errors (rounded to 1e-9), then (accepted,
+rejected) integration steps."""
+CHECKED = (200, 600, 1000)
+
+
+@pytest.mark.parametrize("name", TABLES)
+def test_trajectories_equal_those_recorded_before_the_speed_up(name: str) -> None:
+    """Same errors after the speed-up: the records agree with :data:`RECORDED` to the integrator
+    tolerance (positions and errors within rtol·scale, γ within 2·rtol), and the integrator took
+    the same steps."""
+    spec = load_case(name).spec
+    arguments, loop = _loop(spec, steps=CHECKED[-1])
+    run = simulate_dec(rng=np.random.default_rng(2), **arguments)
+    recorded, rtol = RECORDED[name], arguments["settings"].rtol
+    for key in ("positions", "localization_errors", "pursuit_errors"):
+        got = getattr(run, key)[list(CHECKED)]
+        np.testing.assert_allclose(got, recorded[key], rtol=0, atol=rtol * loop.scale, err_msg=key)
+    np.testing.assert_allclose(run.gammas[list(CHECKED)], recorded["gammas"], rtol=0, atol=2 * rtol)
+    assert (run.steps, run.rejected) == recorded["steps"]

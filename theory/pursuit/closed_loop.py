@@ -175,6 +175,8 @@ class DecLoop:
         Dimension and number of trackers.
     epsilon, K_p, delta_bar, laplacian : ndarray
         ε, K_p, Δ̄ = Δᵀ(ΔΔᵀ)⁻¹ and L = D_in − A.
+    input_gain, input_offset : ndarray
+        G and g of :func:`theory.pursuit.model.input_gains`: u = [Rᵀc, Rᵀb] G + g (eq. (51)).
     omega_bar, k_c, k_gamma : float
         ω̄, k_c and k_γ (0 for Type I, where e_γ ≡ 0).
     paths : PathHarmonics
@@ -190,6 +192,8 @@ class DecLoop:
     K_p: np.ndarray
     delta_bar: np.ndarray
     laplacian: np.ndarray
+    input_gain: np.ndarray
+    input_offset: np.ndarray
     omega_bar: float
     k_c: float
     k_gamma: float
@@ -218,16 +222,30 @@ class DecLoop:
         ----------
         seed 003, eqs. (2)–(5), (45)–(51), (50b).
         """
-        d = self.dim
+        d, n = self.dim, self.n
         v_hat = x_hat[:, d:]
-        q_hat = x_hat[:, :d] + (t - t_hat) * v_hat
         r_gamma, r_prime = self.paths.jet(state.gamma)
         omega_d = model.desired_speed(self.omega_bar, self.laplacian, state.gamma, self.k_c)
-        e_hat = model.body_error(state.R, state.p, r_gamma, q_hat, self.epsilon)
-        u = model.tracking_input(state.R, r_prime, omega_d, v_hat, e_hat, self.delta_bar, self.K_p)
+        # rows r′ω_d + v̂, p − r(γ) − q̂ and r′, all rotated to the body frame by one product
+        # (vᵀR = (Rᵀv)ᵀ, model.rotate_back); then u of (51) by model.input_gains
+        frames = np.empty((n, 3, d))
+        np.multiply(r_prime, omega_d[:, None], out=frames[:, 0])
+        frames[:, 0] += v_hat
+        np.subtract(state.p, r_gamma, out=frames[:, 1])
+        frames[:, 1] -= x_hat[:, :d] + (t - t_hat) * v_hat
+        frames[:, 2] = r_prime
+        body = np.matmul(frames, state.R)
+        u = body[:, :2].reshape(n, 2 * d) @ self.input_gain + self.input_offset
         position_dot, omega = model.tracker_rates(state.R, u)
-        feedback = model.path_feedback(e_hat, state.R, r_prime) if self.k_gamma else 0 * omega_d
-        return np.concatenate([position_dot.ravel(), omega_d + state.e_gamma, feedback]), omega
+        z_dot = np.empty(n * d + 2 * n)
+        z_dot[: n * d] = position_dot.ravel()
+        np.add(omega_d, state.e_gamma, out=z_dot[n * d : n * d + n])
+        if self.k_gamma:
+            e_hat = body[:, 1] - self.epsilon  # eq. (48)
+            z_dot[n * d + n :] = model.body_frame_feedback(e_hat, body[:, 2])
+        else:
+            z_dot[n * d + n :] = 0.0
+        return z_dot, omega
 
 
 Field = Callable[[float, LoopState, np.ndarray, float], Rates]
@@ -297,30 +315,83 @@ def heun_step(
     ----------
     Cox & Matthews, J. Comput. Phys. 176 (2002) (ETD2RK); Munthe-Kaas, BIT 38 (1998) (RKMK).
     """
-    z_dot, omega = rates
-    n, d = loop.n, loop.dim
-    a, b = n * d, n * d + n  # z = [p (:a), γ (a:b), e_γ (b:)]
-    decay, w1, w2, g1, g2 = _etd_weights(loop.k_gamma, h)
+    weights = _etd_weights(loop.k_gamma, h)
+    free = _free_gamma(loop, state.z, rates[0], weights)
+    z1, R1 = _predict(loop, h, state, rates, (weights, free))
+    rates1 = field(t + h, LoopState(z1, R1, loop.n, loop.dim), *estimate)
+    z2, R2 = _correct(loop, h, state, rates, (z1, R1), rates1, (weights, free))
+    return LoopState(z2, R2, loop.n, loop.dim), _local_error(loop, state.z, (z1, R1), (z2, R2))
+
+
+Weights = tuple[tuple[float, ...], np.ndarray]
+"""The step's ETD weights (:func:`_etd_weights`) and :func:`_free_gamma`."""
+
+
+def _predict(
+    loop: DecLoop, h: float, state: LoopState, rates: Rates, weights: Weights
+) -> tuple[np.ndarray, np.ndarray]:
+    """The order-1 step: Euler in p, ETD1 in (γ, e_γ), R(I + hS(ω₀)) (:func:`heun_step`)."""
+    (z_dot, omega), z, ((decay, w1, *_), free) = rates, state.z, weights
+    a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)  # z = [p (:a), γ (a:b), e_γ (b:)]
+    e, f0 = z[b:], z_dot[b:]
+    z1 = np.empty_like(z)
+    z1[:a] = z[:a] + h * z_dot[:a]
+    z1[a:b] = free + h * (z_dot[a:b] - e)
+    z1[b:] = decay * e + w1 * f0
+    return z1, state.R + h * (state.R @ model.skew(omega))
+
+
+def _free_gamma(
+    loop: DecLoop, z: np.ndarray, z_dot: np.ndarray, weights: tuple[float, ...]
+) -> np.ndarray:
+    """γ + w₁e_γ + g₁f₀: the part of both γ-updates that does not depend on ω_d."""
+    _, w1, _, g1, _ = weights
+    a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)
+    return z[a:b] + w1 * z[b:] + g1 * z_dot[b:]
+
+
+def _correct(
+    loop: DecLoop,
+    h: float,
+    state: LoopState,
+    rates: Rates,
+    predicted: tuple[np.ndarray, np.ndarray],
+    rates1: Rates,
+    weights: Weights,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The order-2 step from the rates at both ends: Heun in p, ETD2RK in (γ, e_γ),
+    R exp(½hS(ω₀ + ω₁)) (:func:`heun_step`)."""
+    (z_dot, omega), (z_dot1, omega1), (z1, _) = rates, rates1, predicted
     z, half = state.z, 0.5 * h
-    e, f0, speed0 = z[b:], z_dot[b:], z_dot[a:b] - z[b:]  # speed = ω_d
-    gamma_free = z[a:b] + w1 * e + g1 * f0
-    z1 = np.concatenate([z[:a] + h * z_dot[:a], gamma_free + h * speed0, decay * e + w1 * f0])
-    R1 = state.R + h * (state.R @ model.skew(omega))
-    z_dot1, omega1 = field(t + h, LoopState(z1, R1, n, d), *estimate)
-    slope = z_dot1[b:] - f0
-    z2 = np.concatenate(
-        [
-            z[:a] + half * (z_dot[:a] + z_dot1[:a]),
-            gamma_free + half * (speed0 + z_dot1[a:b] - z1[b:]) + g2 * slope,
-            z1[b:] + w2 * slope,
-        ]
+    a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)
+    (_, _, w2, _, g2), free = weights
+    slope = z_dot1[b:] - z_dot[b:]
+    speed0 = z_dot[a:b] - z[b:]  # ω_d at the start
+    z2 = np.empty_like(z)
+    z2[:a] = z[:a] + half * (z_dot[:a] + z_dot1[:a])
+    z2[a:b] = free + half * (speed0 + z_dot1[a:b] - z1[b:])
+    z2[a:b] += g2 * slope
+    z2[b:] = z1[b:] + w2 * slope
+    return z2, state.R @ model.exp_skew(half * (omega + omega1))
+
+
+def _local_error(
+    loop: DecLoop,
+    z: np.ndarray,
+    predicted: tuple[np.ndarray, np.ndarray],
+    corrected: tuple[np.ndarray, np.ndarray],
+) -> float:
+    """Largest corrector − predictor difference: p relative to the larger of
+    :attr:`DecLoop.scale` and the largest coordinate, γ and R absolute (e_γ not controlled)."""
+    (z1, R1), (z2, R2) = predicted, corrected
+    a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)
+    difference = np.abs(z2[:b] - z1[:b])
+    length = max(loop.scale, np.abs(z[:a]).max())
+    return max(
+        float(difference[:a].max()) / length,
+        float(difference[a:b].max()),
+        float(np.abs(R2 - R1).max()),
     )
-    R2 = state.R @ model.exp_skew(half * (omega + omega1))
-    length = max(loop.scale, abs(z[:a]).max())
-    error = max(
-        abs(z2[:a] - z1[:a]).max() / length, abs(z2[a:b] - z1[a:b]).max(), abs(R2 - R1).max()
-    )
-    return LoopState(z2, R2, n, d), float(error)
 
 
 @dataclass
@@ -464,15 +535,19 @@ def build_loop(
     """
     if settings.controller not in ("I", "II"):
         raise ValueError(f"controller must be 'I' or 'II', got {settings.controller!r}")
-    epsilon = np.asarray(settings.epsilon, dtype=float)
+    epsilon, K_p = np.asarray(settings.epsilon, dtype=float), _matrix(settings.Kp)
     n, scale = paths.shape[0], float(np.max(paths[:, : 3 if dim == 3 else 2]))
+    delta_bar = model.delta_bar(epsilon)
+    input_gain, input_offset = model.input_gains(delta_bar, K_p, epsilon)
     return DecLoop(
         dim=dim,
         n=n,
         epsilon=epsilon,
-        K_p=_matrix(settings.Kp),
-        delta_bar=model.delta_bar(epsilon),
+        K_p=K_p,
+        delta_bar=delta_bar,
         laplacian=_laplacian(in_neighbours, n),
+        input_gain=input_gain,
+        input_offset=input_offset,
         omega_bar=settings.omega_bar,
         k_c=settings.k_c,
         k_gamma=float(settings.k_gamma) if settings.controller == "II" else 0.0,
@@ -566,6 +641,25 @@ def _run(
     )  # fmt: skip
 
 
+def _filter_setup(
+    loop: DecLoop, settings: DecSettings, x0: np.ndarray, P0: np.ndarray, fusion: np.ndarray | None
+) -> dict[str, np.ndarray]:
+    """The DEKF's constants and first priors (Algorithm 2): F, W = Q⁻¹, π^[i,j] (default
+    ``settings.fusion_weight`` on each in-edge, the rest on the tracker), Ω_{1|0} and x̂_{1|0}."""
+    n, d = loop.n, loop.dim
+    if fusion is None:
+        adjacency = -loop.laplacian + np.diag(np.diag(loop.laplacian))
+        weight = settings.fusion_weight
+        fusion = np.diag(1 - weight * adjacency.sum(axis=1)) + weight * adjacency
+    return {
+        "F": transition_matrix(d, settings.Ts),
+        "W": np.linalg.inv(_matrix(settings.Q)),
+        "fusion": fusion,
+        "Omega": np.linalg.inv(np.broadcast_to(P0, (n, 2 * d, 2 * d))),
+        "x_pred": np.broadcast_to(x0, (n, 2 * d)).astype(float),
+    }
+
+
 def simulate_dec(
     target: np.ndarray,
     initial_positions: np.ndarray,
@@ -631,26 +725,16 @@ def simulate_dec(
     ----------
     seed 003, eqs. (2)–(5), (15)–(16), (22), (41)–(52).
     """
-    s = settings
     n, d = initial_positions.shape
-    every = round(s.Ts / s.dt)
-    if every < 1 or abs(every * s.dt - s.Ts) > 1e-9 * s.Ts:
+    every = round(settings.Ts / settings.dt)
+    if every < 1 or abs(every * settings.dt - settings.Ts) > 1e-9 * settings.Ts:
         raise ValueError("Ts must be an integer multiple of dt")
     if paths is None:
         phases = 2 * np.pi * np.arange(n) / n if n > 1 else np.zeros(1)
-        paths = np.column_stack([np.tile(s.radii, (n, 1)), phases])
-    loop = build_loop(s, np.asarray(paths, dtype=float), in_neighbours, d)
-    adjacency = -loop.laplacian + np.diag(np.diag(loop.laplacian))
-    if fusion is None:
-        fusion = np.diag(1 - s.fusion_weight * adjacency.sum(axis=1)) + s.fusion_weight * adjacency
-    dekf = {
-        "F": transition_matrix(d, s.Ts),
-        "W": np.linalg.inv(_matrix(s.Q)),
-        "fusion": fusion,
-        "Omega": np.linalg.inv(np.broadcast_to(P0, (n, 2 * d, 2 * d))),
-        "x_pred": np.broadcast_to(x0, (n, 2 * d)).astype(float),
-    }
+        paths = np.column_stack([np.tile(settings.radii, (n, 1)), phases])
+    loop = build_loop(settings, np.asarray(paths, dtype=float), in_neighbours, d)
+    dekf = _filter_setup(loop, settings, x0, P0, fusion)
     state = _initial_state(
         initial_positions, initial_headings, initial_gammas, initial_gamma_errors
     )
-    return _run(loop, field or loop.rates, target, state, dekf, steps, rng, s)
+    return _run(loop, field or loop.rates, target, state, dekf, steps, rng, settings)

@@ -30,6 +30,7 @@ multiple autonomous vehicles for range-based underwater target localization and 
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -40,6 +41,7 @@ __all__ = [
     "ClosedLoopRates",
     "PathHarmonics",
     "body_error",
+    "body_frame_feedback",
     "closed_loop_rates",
     "correction_speed",
     "delta_bar",
@@ -50,6 +52,7 @@ __all__ = [
     "euler_rotation_rows",
     "exp_skew",
     "gamma_acceleration",
+    "input_gains",
     "path",
     "path_derivative",
     "path_feedback",
@@ -223,14 +226,14 @@ def exp_skew(omega: np.ndarray) -> np.ndarray:
         return np.cos(angle) * _EYE[2] + np.sin(angle) * _UNIT_TURN
     theta_sq = (omega * omega).sum(axis=-1)[..., None, None]
     theta = np.maximum(np.sqrt(theta_sq), 1e-150)  # below it, a = 1 and b = ½ to the last bit
-    half_sin, half_cos = np.sin(0.5 * theta), np.cos(0.5 * theta)
+    half = 0.5 * theta
+    half_sin, half_cos = np.sin(half), np.cos(half)
     a = 2.0 * half_sin * half_cos / theta
     b = 2.0 * (half_sin / theta) ** 2
-    return (
-        (1.0 - b * theta_sq) * _EYE[3]
-        + a * skew(omega)
-        + b * (omega[..., :, None] * omega[..., None, :])
-    )
+    rotation = b * (omega[..., :, None] * omega[..., None, :])
+    rotation += a * skew(omega)
+    rotation += (1.0 - b * theta_sq) * _EYE[3]  # adds exact zeros off the diagonal
+    return rotation
 
 
 def euler_rotation(angles: np.ndarray) -> np.ndarray:
@@ -324,12 +327,17 @@ class PathHarmonics:
     def jet(self, gamma: Any) -> tuple[np.ndarray, np.ndarray]:
         """(r(γ), r′(γ)) at ``gamma`` (…) → two (…, d) arrays, from one evaluation of the angles."""
         angle = np.asarray(gamma, float)[..., None] * self.frequency + self.phase
-        return self.amplitude * np.cos(angle), self.slope * -np.sin(angle)
+        return self.amplitude * np.cos(angle), self._falling_slope * np.sin(angle)
 
-    @property
+    @functools.cached_property
     def slope(self) -> np.ndarray:
         """a_k f_k: the amplitudes of r′."""
         return self.amplitude * self.frequency
+
+    @functools.cached_property
+    def _falling_slope(self) -> np.ndarray:
+        """−a_k f_k: r′_k(γ) = −a_k f_k sin(f_k γ + φ_k) (the same product as slope·(−sin))."""
+        return -self.slope
 
     def derivative(self, gamma: Any, order: int = 0) -> np.ndarray:
         """d^order r/dγ^order at ``gamma`` (…) → (…, d): a f^n cos(fγ + φ + nπ/2)."""
@@ -441,6 +449,35 @@ def tracking_input(
     return (command - e_hat @ K_p.T) @ delta_bar_matrix.T
 
 
+def input_gains(
+    delta_bar_matrix: np.ndarray, K_p: np.ndarray, epsilon: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """(G, g) with u = [c, b] G + g for eq. (51) written on body-frame vectors.
+
+    With the body-frame command c = Rᵀ(r′(γ)ω_d + v̂) and b = Rᵀ(p − r(γ) − q̂) (so ê_p = b − ε),
+    u = Δ̄(c − K_p ê_p) = Δ̄c − Δ̄K_p b + Δ̄K_p ε: G = [Δ̄ᵀ; −(Δ̄K_p)ᵀ] (2d × m) and g = Δ̄K_p ε,
+    the form the simulator evaluates (one product for every tracker; :func:`tracking_input`
+    is the same law on inertial-frame vectors).
+
+    Parameters
+    ----------
+    delta_bar_matrix : ndarray (m, d)
+        Δ̄ of :func:`delta_bar`.
+    K_p : ndarray (d, d)
+    epsilon : ndarray (d,)
+
+    Returns
+    -------
+    (ndarray (2d, m), ndarray (m,))
+
+    References
+    ----------
+    seed 003, eqs. (48), (51).
+    """
+    gain = delta_bar_matrix @ K_p
+    return np.vstack([delta_bar_matrix.T, -gain.T]), gain @ epsilon
+
+
 def tracker_rates(rotation: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """ṗ = R[v₁, 0(, 0)]ᵀ and the body rates ω of u = (v₁, ω) (the under-actuated model).
 
@@ -476,7 +513,22 @@ def path_feedback(e_hat: np.ndarray, rotation: np.ndarray, r_prime: np.ndarray) 
     ----------
     seed 003, eqs. (25), (29), (50b), (62).
     """
-    return np.sum(e_hat * rotate_back(rotation, r_prime), axis=-1)
+    return body_frame_feedback(e_hat, rotate_back(rotation, r_prime))
+
+
+def body_frame_feedback(e_hat: np.ndarray, r_prime_body: np.ndarray) -> np.ndarray:
+    """ê_pᵀ(Rᵀr′(γ)) of (50b) for r′ already in the body frame (:func:`path_feedback`).
+
+    Parameters
+    ----------
+    e_hat, r_prime_body : ndarray (…, d)
+        ê_p and Rᵀr′(γ).
+
+    References
+    ----------
+    seed 003, eqs. (50b), (62).
+    """
+    return (e_hat * r_prime_body).sum(axis=-1)
 
 
 def gamma_acceleration(
@@ -637,16 +689,23 @@ def closed_loop_rates(
         rotation, r_prime, omega_d, estimate_velocity, e_hat, delta_bar(epsilon), K_p
     )
     position_dot, omega = tracker_rates(rotation, u)
-    rotation_dot = rotation @ skew(omega)
-    de_p = rotation_dot.T @ (position - r_gamma - target_position) + rotation.T @ (
-        position_dot - r_prime * gamma_dot - target_velocity
-    )
+    de_p = _body_error_rate(
+        rotation, omega, position - r_gamma - target_position,
+        position_dot - r_prime * gamma_dot - target_velocity,
+    )  # fmt: skip
     e_gamma = gamma_dot - omega_d
-    feedback = 0.0
-    de_gamma = 0.0
+    feedback, de_gamma = 0.0, 0.0
     if controller == "II":
         feedback = float(path_feedback(e_hat, rotation, r_prime))
         de_gamma = float(gamma_acceleration(k_gamma, e_gamma, feedback, omega_d_dot)) - omega_d_dot
     return ClosedLoopRates(
         e_p, float(e_gamma), de_p, de_gamma, u, position_dot, float(gamma_dot), feedback
     )
+
+
+def _body_error_rate(
+    rotation: np.ndarray, omega: np.ndarray, offset: np.ndarray, offset_rate: np.ndarray
+) -> np.ndarray:
+    """ė_p = ṘᵀΔp + RᵀΔṗ for e_p = RᵀΔp − ε, Δp = p − r(γ) − q, with Ṙ = R S(ω) (eqs. (3), (19))."""
+    rotation_dot = rotation @ skew(omega)
+    return rotation_dot.T @ offset + rotation.T @ offset_rate

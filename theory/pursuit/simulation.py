@@ -80,9 +80,9 @@ def check_pursuit_case(spec: PursuitSpec) -> None:
 
 
 def _target_states(spec: PursuitSpec, steps: int) -> np.ndarray:
-    times = RECORD_INTERVAL * np.arange(steps + 1)
+    times = RECORD_INTERVAL * np.arange(steps + 1)[:, None]  # the motion broadcasts over times
     motion = spec.target
-    return np.array([np.concatenate([motion.position(t), motion.velocity_at(t)]) for t in times])
+    return np.hstack([motion.position(times), motion.velocity_at(times)])
 
 
 def _initial_trackers(spec: PursuitSpec, start: np.ndarray) -> dict[str, np.ndarray]:
@@ -338,6 +338,9 @@ def write_pursuit_data(runs: Sequence[DecRun], summary: dict[str, Any], folder: 
 def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
     """``trajectories.png`` (run 0), ``errors.png`` and ``coordination.png``.
 
+    Drawn without pyplot and with fixed margins (:func:`theory.sim.figures.new_figure`): the
+    automatic layout would draw every tick label twice.
+
     Parameters
     ----------
     runs : sequence of DecRun
@@ -348,39 +351,73 @@ def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
     -------
     list of pathlib.Path
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from theory.sim.figures import save_figure
 
-    run = runs[0]
-    paths = []
-    fig, ax = plt.subplots(figsize=(6, 6))
+    drawn = (
+        (_trajectory_figure(runs[0]), "trajectories.png"),
+        (_error_figure(runs), "errors.png"),
+        (_coordination_figure(runs[0]), "coordination.png"),
+    )
+    return [save_figure(fig, folder / name, layout=False) for fig, name in drawn]
+
+
+_STACKED = {"left": 0.12, "right": 0.97, "bottom": 0.09, "top": 0.98, "hspace": 0.08}
+"""Margins of the two-panel figures (fractions of the figure)."""
+
+
+def _trajectory_figure(run: DecRun) -> Any:
+    """The target's and the trackers' paths in the horizontal plane."""
+    from theory.sim.figures import new_figure
+
+    margins = {"left": 0.13, "right": 0.97, "bottom": 0.09, "top": 0.98}
+    fig, ax = new_figure(figsize=(6, 6), margins=margins)
     ax.plot(*run.target[:, :2].T, "k-", lw=2, label="target")
     for i in range(run.positions.shape[1]):
-        ax.plot(*run.positions[:, i].T, lw=1, label=f"tracker {i + 1}")
+        ax.plot(*run.positions[:, i, :2].T, lw=1, label=f"tracker {i + 1}")
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.legend(fontsize=7, loc="upper right")
-    paths.append(save_figure(fig, folder / "trajectories.png"))
-    fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    return fig
+
+
+def _error_figure(runs: Sequence[DecRun]) -> Any:
+    """Pursuit and localization errors per tracker (means over runs), log scale."""
+    from theory.sim.figures import new_figure
+
+    fig, axes = new_figure(2, 1, figsize=(7, 6), sharex=True, margins=_STACKED)
+    times = runs[0].times
     for name, ax in zip(("pursuit_errors", "localization_errors"), axes, strict=True):
         values = np.mean([getattr(r, name) for r in runs], axis=0)
         for i in range(values.shape[1]):
-            ax.plot(run.times, values[:, i], lw=1, label=f"tracker {i + 1}")
-        ax.set_yscale("log")
+            ax.plot(times, values[:, i], lw=1, label=f"tracker {i + 1}")
+        _plain_log_axis(ax)
         ax.set_ylabel(name.replace("_", " ") + " (m)")
         ax.legend(fontsize=7, loc="upper right")
     axes[-1].set_xlabel("time (s)")
-    paths.append(save_figure(fig, folder / "errors.png"))
-    fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    return fig
+
+
+def _plain_log_axis(ax: Any) -> None:
+    """A log-scale y axis labelled ``0.1, 1, 10`` at the decades, without minor ticks: the
+    default ``10ⁿ`` labels need matplotlib's mathtext parser, which costs more to build than
+    the rest of the figure."""
+    from matplotlib.ticker import FuncFormatter, NullLocator
+
+    ax.set_yscale("log")
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+    ax.yaxis.set_minor_locator(NullLocator())
+    ax.grid(True, which="major", axis="y", lw=0.3)
+
+
+def _coordination_figure(run: DecRun) -> Any:
+    """γ^[i] about their mean and γ̇^[i] (run 0)."""
+    from theory.sim.figures import new_figure
+
+    fig, axes = new_figure(2, 1, figsize=(7, 6), sharex=True, margins=_STACKED)
     axes[0].plot(run.times, run.gammas - run.gammas.mean(axis=1, keepdims=True), lw=1)
     axes[0].set_ylabel("γ_i − mean γ (rad)")
     axes[1].plot(run.times, run.gamma_rates, lw=1)
     axes[1].set_ylabel("dγ_i/dt (rad/s)")
     axes[1].set_xlabel("time (s)")
-    paths.append(save_figure(fig, folder / "coordination.png"))
-    return paths
+    return fig

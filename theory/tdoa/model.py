@@ -20,9 +20,12 @@ axes of the evaluation points and of the measuring agents, so that one call serv
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
-import sympy as sp
+
+if TYPE_CHECKING:
+    import sympy as sp
 
 __all__ = [
     "cv_continuous",
@@ -85,6 +88,8 @@ def cv_discrete_symbolic(T: sp.Expr, dim: int = 3) -> sp.Matrix:
     -------
     sympy.Matrix, shape (2 dim, 2 dim)
     """
+    import sympy as sp
+
     eye, zero = sp.eye(dim), sp.zeros(dim, dim)
     return sp.Matrix(sp.BlockMatrix([[eye, T * eye], [zero, eye]]))
 

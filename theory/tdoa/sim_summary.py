@@ -114,11 +114,12 @@ def _summary(case: Case, spec: Any, results: list) -> dict[str, Any]:
 
 
 def _finish(case: Case, spec: Any, results: list, folder: Path, figures: bool) -> Finished:
-    from theory.tdoa.figures import write_figures
     from theory.tdoa.outputs import write_data
 
     record = _summary(case, spec, results)
     files = write_data(results, record, folder)
     if figures:
+        from theory.tdoa.figures import write_figures  # matplotlib: imported when drawing
+
         files += write_figures(results, folder)
     return Finished(record, files, sim_observed(record))
