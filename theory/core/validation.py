@@ -8,15 +8,18 @@ naming the field, the expected form and what was found.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 
 from theory.core.errors import CaseError
-from theory.core.tolerances import WEIGHT_SUM_TOL
+from theory.core.tolerances import COINCIDENCE_TOL, WEIGHT_SUM_TOL
 
 __all__ = [
     "check_keys",
+    "distinct_points",
+    "finite_number",
     "finite_array",
     "finite_matrix",
     "finite_vector",
@@ -118,6 +121,34 @@ def one_of(value: object, choices: Sequence[str], field: str) -> str:
     return value
 
 
+def finite_number(value: object, field: str) -> float:
+    """``value`` as a finite float (an ``int`` or ``float``; ``bool`` is refused).
+
+    Parameters
+    ----------
+    value : object
+        The raw value.
+    field : str
+        Dotted field name for messages.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a number, is NaN or infinite, or is an integer beyond the range of a
+        float (no ``OverflowError``).
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise CaseError(field, "a number", value)
+    problem = _number_problem(value)
+    if problem:
+        raise CaseError(field, problem, _shown(value))
+    return float(value)
+
+
 def positive_number(value: object, field: str, *, allow_zero: bool = False) -> float:
     """``value`` as a finite real number > 0 (or ≥ 0 with ``allow_zero``).
 
@@ -139,10 +170,8 @@ def positive_number(value: object, field: str, *, allow_zero: bool = False) -> f
     CaseError
         If ``value`` is not a number, or is not finite, or is out of bounds.
     """
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise CaseError(field, "a number", value)
-    number = float(value)
-    if not math.isfinite(number) or number < 0 or (number == 0 and not allow_zero):
+    number = finite_number(value, field)
+    if number < 0 or (number == 0 and not allow_zero):
         bound = "≥ 0" if allow_zero else "> 0"
         raise CaseError(field, f"a finite number {bound}", value)
     return number
@@ -371,25 +400,54 @@ def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12)
 
 
 def _numeric_array(value: object, field: str, expected: str) -> np.ndarray:
-    if isinstance(value, str | bytes | Mapping) or not _is_nested_numbers(value):
+    if isinstance(value, str | bytes | Mapping) or not isinstance(
+        value, list | tuple | int | float
+    ):
         raise CaseError(field, expected, value)
+    _check_leaves(value, field, expected)
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise CaseError(field, expected, value) from None
-    if not np.all(np.isfinite(array)):
-        raise CaseError(field, "finite numbers (no NaN or inf)", value)
     return array
 
 
-def _is_nested_numbers(value: object) -> bool:
-    if isinstance(value, bool):
-        return False
-    if isinstance(value, int | float):
-        return True
-    if isinstance(value, list | tuple):
-        return all(_is_nested_numbers(v) for v in value)
-    return False
+def _check_leaves(value: object, field: str, expected: str) -> None:
+    """Refuse the first entry (depth first, named by its 1-based index) that is no finite number.
+
+    Iterative, so it neither recurses nor converts anything before the whole value is known
+    to be nested lists of finite numbers.
+    """
+    stack: list[tuple[object, str]] = [(value, field)]
+    while stack:
+        item, where = stack.pop()
+        if isinstance(item, list | tuple):
+            stack.extend(
+                (entry, f"{where}[{k + 1}]") for k, entry in reversed(list(enumerate(item)))
+            )
+        elif isinstance(item, bool) or not isinstance(item, int | float):
+            raise CaseError(where, f"a number (the field is {expected})", item)
+        else:
+            problem = _number_problem(item)
+            if problem:
+                raise CaseError(where, problem, _shown(item))
+
+
+def _number_problem(value: int | float) -> str:
+    """Why the number ``value`` is unusable, or ``""`` when it is a finite float."""
+    if isinstance(value, int):
+        return "" if abs(value) <= _FLOAT_MAX else f"a finite number (|x| ≤ {_FLOAT_MAX:.3g})"
+    return "" if math.isfinite(value) else "a finite number (no NaN or inf)"
+
+
+def _shown(value: int | float) -> object:
+    """``value``, or a description when it is an integer too long to print."""
+    if isinstance(value, int) and abs(value) > _FLOAT_MAX:
+        return f"an integer of about 10^{int(value.bit_length() * math.log10(2))}"
+    return value
+
+
+_FLOAT_MAX = sys.float_info.max
 
 
 def _join(prefix: str, key: str) -> str:
