@@ -110,6 +110,13 @@ _limit(
     "N·n, the size of a dkf case's stacked error system (the LMIs' and operators' matrices)",
 )
 _limit(
+    "coordinate",
+    10**9,
+    "m",
+    "the magnitude of a position coordinate (agents, nodes, target), so that squared distances "
+    "and Jacobians stay finite and meaningful in floating point",
+)
+_limit(
     "memory_bytes",
     2 << 30,
     "bytes",

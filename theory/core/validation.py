@@ -14,14 +14,16 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from theory.core.errors import CaseError
+from theory.core.limits import LIMITS, limit
 from theory.core.tolerances import COINCIDENCE_TOL, WEIGHT_SUM_TOL
 
 __all__ = [
+    "bounded_coordinates",
     "check_keys",
     "distinct_points",
-    "finite_number",
     "finite_array",
     "finite_matrix",
+    "finite_number",
     "finite_vector",
     "one_of",
     "positive_definite",
@@ -363,6 +365,90 @@ def row_stochastic(
                 hint="The weights' sparsity must match the communication edges.",
             )
     return matrix
+
+
+def bounded_coordinates(points: np.ndarray, field: str) -> np.ndarray:
+    """Refuse a coordinate beyond the ``coordinate`` limit (:mod:`theory.core.limits`).
+
+    Squared distances, Jacobians and Gram matrices of the geometry must stay finite and
+    meaningful in floating point; a point at ``1e308`` would overflow them and make every other
+    point look coincident. The first offending entry is named by its 1-based index (the agent).
+
+    Parameters
+    ----------
+    points : ndarray
+        Coordinates (any shape; indices in messages follow it).
+    field : str
+        Dotted field name for messages.
+
+    Returns
+    -------
+    ndarray
+        ``points`` itself.
+
+    Raises
+    ------
+    CaseError
+        Naming the entry, the limit and how to raise it.
+    """
+    bound = limit("coordinate")
+    beyond = np.argwhere(np.abs(points) > bound)
+    if beyond.size:
+        index = tuple(int(k) for k in beyond[0])
+        where = field + "".join(f"[{k + 1}]" for k in index)
+        raise CaseError(
+            where,
+            f"a coordinate of magnitude at most {bound:.3g} m (limit 'coordinate')",
+            float(points[index]),
+            hint=LIMITS["coordinate"].hint(),
+        )
+    return points
+
+
+def distinct_points(
+    points: np.ndarray, field: str, *, noun: str = "agent", where: str = "", why: str = ""
+) -> np.ndarray:
+    """Refuse two of ``points`` that coincide (seed 000 eq. (4.3): TDOA needs distinct receivers).
+
+    Two points are one when their distance is at most ``coincidence_tol`` times their own
+    magnitude (at least 1 m): the resolution of those two coordinates, so a far-away point does
+    not make the others look coincident. The later point of the first coincident pair is named.
+
+    Parameters
+    ----------
+    points : ndarray, shape (N, dim)
+        Positions.
+    field : str
+        Dotted field name of the list of positions.
+    noun : str
+        What a point is, in messages (``agent``, ``node``).
+    where : str
+        Appended to the message, e.g. ``" at step 3"``.
+    why : str
+        Appended to the message: why coincident points are refused.
+
+    Returns
+    -------
+    ndarray
+        ``points`` itself.
+
+    Raises
+    ------
+    CaseError
+        Naming the later point of the first coincident pair and the earlier one.
+    """
+    gaps = np.linalg.norm(points[:, None] - points[None], axis=-1)
+    size = np.maximum(1.0, np.abs(points).max(axis=1))
+    close = gaps <= COINCIDENCE_TOL * np.maximum(size[:, None], size[None])
+    close &= np.triu(np.ones_like(close), k=1)
+    if close.any():
+        i, j = (int(k) for k in np.argwhere(close)[0])
+        raise CaseError(
+            f"{field}[{j + 1}]",
+            f"a position distinct from {noun} {i + 1}'s{where}{why}",
+            points[j].tolist(),
+        )
+    return points
 
 
 def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12) -> np.ndarray:
