@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 import sys
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any, NoReturn, TypeVar
 
 import typer
@@ -30,7 +32,9 @@ from theory.core.verdicts import (
 )
 
 __all__ = [
+    "COMMAND_LINE",
     "case_argument",
+    "check_output",
     "console",
     "error_console",
     "finish",
@@ -38,6 +42,9 @@ __all__ = [
     "print_json",
     "reports_errors",
 ]
+
+COMMAND_LINE = "<command line>"
+"""The ``file`` of an error in a command-line option (not in a case file)."""
 
 console = Console()
 error_console = Console(stderr=True)
@@ -120,3 +127,58 @@ def finish(data: Any, code: int, *, as_json: bool, show: Callable[[], None]) -> 
     else:
         show()
     raise typer.Exit(code)
+
+
+def check_output(path: str | Path, option: str, *, folder: bool) -> Path:
+    """Refuse an output path that cannot be written, before any work is done (nothing written).
+
+    A folder may not exist yet (it and missing parents are created later) but nothing on its way
+    may be a file, and its nearest existing ancestor must be a writable folder; a file's folder
+    must exist and be writable, and the file itself must not be a folder.
+
+    Parameters
+    ----------
+    path : str or Path
+        The value of the option.
+    option : str
+        The option, as named in the message (``-o/--output``).
+    folder : bool
+        Whether the option names a folder (else a file).
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    CaseError
+        Naming ``option`` (file ``<command line>``), what it must be and the path.
+    """
+    path = Path(path)
+    problem = _folder_problem(path) if folder else _file_problem(path)
+    if problem:
+        raise CaseError(option, problem, str(path), file=COMMAND_LINE)
+    return path
+
+
+def _folder_problem(path: Path) -> str:
+    if path.exists() and not path.is_dir():
+        return "a folder (a file of that name exists)"
+    ancestor = next((p for p in (path, *path.parents) if p.exists()), Path("."))
+    if not ancestor.is_dir():
+        return f"a folder path (its parent {str(ancestor)!r} is a file)"
+    if not os.access(ancestor, os.W_OK | os.X_OK):
+        return f"a folder that can be created or written ({str(ancestor)!r} is not writable)"
+    return ""
+
+
+def _file_problem(path: Path) -> str:
+    parent = path.parent
+    if path.is_dir():
+        return "a file path (a folder of that name exists)"
+    if not parent.is_dir():
+        why = "is a file" if parent.exists() else "does not exist"
+        return f"a file in an existing folder ({str(parent)!r} {why})"
+    if not os.access(parent, os.W_OK | os.X_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        return "a writable file path"
+    return ""

@@ -103,6 +103,7 @@ _limit(
     "steps",
     "time steps: pings, target moves, 0.1 s steps, trajectory samples (steps, --steps)",
 )
+_limit("examples", 1_000_000, "examples", "the search budget of trackcert falsify (--examples)")
 _limit(
     "dkf_dimension",
     256,

@@ -200,19 +200,21 @@ def check_pf_work(config: PfConfig, filters: int, steps: int, runs: int, field: 
     filters, steps, runs : int
         Filtering nodes, target moves, Monte Carlo runs.
     field : str
-        The field (or option, such as ``--runs``) named when the work is too much.
+        The field (or option, such as ``--runs``) named when the work, or the memory of the
+        error records, is too much.
 
     Raises
     ------
     CaseError
-        Naming ``field`` (``pf.particles`` for the memory), the estimate and the limit.
+        Naming ``field`` (``pf.particles`` when the particles take most memory), the estimate
+        and the limit.
     """
     particles, rounds = config.particles, config.exchange_rounds
-    memory = 128.0 * filters * particles + 16.0 * filters * (steps + 1) * runs
+    states, records = 128.0 * filters * particles, 16.0 * filters * (steps + 1) * runs
     check_estimate(
         "memory_bytes",
-        memory,
-        "pf.particles",
+        states + records,
+        "pf.particles" if states >= records else field,
         f"128 B × {filters} filters × {particles:,} particles + 16 B × filters × steps × runs",
     )
     work = float(filters) * particles * rounds * (steps + 1) * runs
