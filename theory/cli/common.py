@@ -72,7 +72,7 @@ def reports_errors(command: F) -> F:
 
 
 def _fail(message: str, code: int) -> None:
-    error_console.print(message, markup=False, highlight=False)
+    error_console.print(message, markup=False, highlight=False, soft_wrap=True)  # one line
     raise typer.Exit(code)
 
 

@@ -168,7 +168,8 @@ def _positions(block: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
         "N points [x, y] or [x, y, z] (or steps × N points)",
         ndims=(2, 3),
     )
-    agents = bounded_coordinates(agents[None] if agents.ndim == 2 else agents, "tdoa.agents")
+    agents = bounded_coordinates(agents, "tdoa.agents")
+    agents = agents[None] if agents.ndim == 2 else agents
     dim = agents.shape[2]
     if "dim" in block and block["dim"] != dim:
         raise CaseError(
@@ -179,7 +180,8 @@ def _positions(block: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
     raw_target = require(block, "target", "tdoa")
     expected = f"a point of {dim} coordinates (or steps × {dim})"
     target = finite_array(raw_target, "tdoa.target", expected, ndims=(1, 2))
-    target = bounded_coordinates(target[None] if target.ndim == 1 else target, "tdoa.target")
+    target = bounded_coordinates(target, "tdoa.target")
+    target = target[None] if target.ndim == 1 else target
     if target.shape[1] != dim:
         raise CaseError("tdoa.target", expected, raw_target)
     steps = max(agents.shape[0], target.shape[0])
