@@ -71,7 +71,7 @@ FILES = [
     ("dkf", "alias-bomb.yaml", "dkf.A", "limit 'yaml_nodes'"),
     ("topology", "huge-int-coordinate.yaml", "tdoa.agents[1][3]", "finite number"),
     ("topology", "float-overflow.yaml", "tdoa.agents[1][3]", "no NaN or inf"),
-    ("topology", "agent-at-1e308.yaml", "tdoa.agents[3][1]", "limit 'coordinate'"),
+    ("topology", "agent-at-1e308.yaml", "tdoa.agents[3][1]", "limit 'exponent'"),
     ("dkf", "negative-weight.yaml", "dkf.W[1][1]", "got -0.24"),
     ("pf", "pf-particles-1e12.yaml", "pf.particles", "TRACKCERT_MAX_PARTICLES"),
     ("pf", "pf-runs-1e9.yaml", "pf.runs", "TRACKCERT_MAX_RUNS"),
@@ -217,6 +217,53 @@ def test_options_are_checked_against_the_limits(args, tmp_path) -> None:
     assert not out.exists()
 
 
+def _changed(name: str, block: str, **values: object) -> dict:
+    data = yaml.safe_load(bundled_cases()[name].read_text(encoding="utf-8"))
+    data[block].update(values)
+    return data
+
+
+FIG43_AGENTS = [[-7, 3, 5], [1, -2, -5], [5, -1, 4], [7, 4, -2]]
+EXTREMES = [
+    ("topology", _changed("fig43-case-d", "tdoa", T=1e300), "tdoa.T", "exponent"),
+    ("dkf", _changed("ch5-example-1-wb", "dkf", A=[[1e300, 0], [0, 2]]), "dkf.A[1][1]", "exponent"),
+    ("pf", _changed("pf-path3", "pf", noise_sigma=1e-300), "pf.noise_sigma", "exponent"),
+    ("iss", _changed("pursuit-table1-n3", "pursuit", k_gamma=1e300), "pursuit.k_gamma", "exponent"),
+    (
+        "topology",
+        _changed(
+            "fig43-case-d", "tdoa", agents=[*FIG43_AGENTS[:2], [5e20, -1, 4], FIG43_AGENTS[3]]
+        ),
+        "tdoa.agents[3][1]",
+        "coordinate",
+    ),
+]
+
+
+@pytest.mark.parametrize(
+    ("command", "data", "field", "limit"), EXTREMES, ids=[e[2] for e in EXTREMES]
+)
+def test_numbers_beyond_a_range_limit_are_refused(command, data, field, limit, tmp_path) -> None:
+    """Squares of these overflow or underflow (an OverflowError, or an IndexError from particle
+    weights that all underflowed to 0, before the ``exponent`` limit); a far agent made the
+    others look coincident (before the ``coordinate`` limit and the per-pair coincidence rule)."""
+    path = tmp_path / "case.yaml"
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    assert f"limit '{limit}'" in " ".join(refused((command, str(path)), field).split())
+
+
+def test_a_numerical_failure_inside_the_range_is_inconclusive(tmp_path) -> None:
+    """A = 1e100·e₁e₁ᵀ + 2e₂e₂ᵀ is accepted, but its LMIs and SVDs fail in floating point: exit 3
+    naming the failure (never a verdict, never a traceback)."""
+    path = tmp_path / "case.yaml"
+    data = _changed("ch5-example-1-wb", "dkf", A=[[1e100, 0], [0, 2]])
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    code, output = run("dkf", str(path))
+    assert code in (1, 3), output
+    if code == 3:
+        assert "floating-point computation failed" in output
+
+
 # --- the fuzzer -------------------------------------------------------------------------------
 
 CASES = bundled_cases()
@@ -238,6 +285,8 @@ VALUES = [
     0.5,
     1e-300,
     1e300,
+    1e-100,
+    1e100,
     1e9,
     2**31,
     10**400,

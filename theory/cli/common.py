@@ -14,6 +14,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any, NoReturn, TypeVar
 
+import numpy as np
 import typer
 from rich.console import Console
 
@@ -33,6 +34,7 @@ from theory.core.verdicts import (
 
 __all__ = [
     "COMMAND_LINE",
+    "NUMERICAL_FAILURES",
     "case_argument",
     "check_output",
     "console",
@@ -52,8 +54,21 @@ error_console = Console(stderr=True)
 F = TypeVar("F", bound=Callable[..., Any])
 
 
+NUMERICAL_FAILURES = (ArithmeticError, np.linalg.LinAlgError)
+"""Floating-point failures (overflow, a non-converging SVD …) on input the validation accepted:
+reported as inconclusive (exit 3), never as a verdict and never as a traceback."""
+NUMERICAL_FAILURE = (
+    "a floating-point computation failed on this input (numbers this large or small may be "
+    "beyond what the method handles; see the 'exponent' limit, docs/cli.md)"
+)
+
+
 def reports_errors(command: F) -> F:
-    """Wrap ``command`` so trackcert errors become a stderr line and the DESIGN.md exit code."""
+    """Wrap ``command`` so trackcert errors become a stderr line and the DESIGN.md exit code.
+
+    A numerical failure the library did not turn into a :class:`SolverError`
+    (:data:`NUMERICAL_FAILURES`) is inconclusive too (exit 3), naming the error.
+    """
 
     @functools.wraps(command)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
@@ -67,6 +82,11 @@ def reports_errors(command: F) -> F:
             _fail(f"does not hold: {error}", EXIT_FAILS)
         except TrackcertError as error:
             _fail(f"error: {error}", EXIT_BAD_INPUT)
+        except NUMERICAL_FAILURES as error:
+            _fail(
+                f"inconclusive: {NUMERICAL_FAILURE}: {type(error).__name__}: {error}",
+                EXIT_INCONCLUSIVE,
+            )
 
     return wrapper  # type: ignore[return-value]
 

@@ -111,6 +111,13 @@ _limit(
     "N·n, the size of a dkf case's stacked error system (the LMIs' and operators' matrices)",
 )
 _limit(
+    "exponent",
+    100,
+    "decades",
+    "the range of every number in a case: 0 or a magnitude between 10^-e and 10^e, so that the "
+    "square or product of any two stays a normal float (no overflow to inf, no underflow to 0)",
+)
+_limit(
     "coordinate",
     10**9,
     "m",

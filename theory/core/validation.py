@@ -140,14 +140,15 @@ def finite_number(value: object, field: str) -> float:
     Raises
     ------
     CaseError
-        If ``value`` is not a number, is NaN or infinite, or is an integer beyond the range of a
-        float (no ``OverflowError``).
+        If ``value`` is not a number, is NaN or infinite, is an integer beyond the range of a
+        float (no ``OverflowError``), or is neither 0 nor of a magnitude within the ``exponent``
+        limit (:mod:`theory.core.limits`).
     """
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise CaseError(field, "a number", value)
-    problem = _number_problem(value)
+    problem = _number_problem(value, limit("exponent"))
     if problem:
-        raise CaseError(field, problem, _shown(value))
+        raise CaseError(field, problem, _shown(value), hint=_hint(problem))
     return float(value)
 
 
@@ -505,6 +506,7 @@ def _check_leaves(value: object, field: str, expected: str) -> None:
     to be nested lists of finite numbers.
     """
     stack: list[tuple[object, str]] = [(value, field)]
+    decades = limit("exponent")
     while stack:
         item, where = stack.pop()
         if isinstance(item, list | tuple):
@@ -514,16 +516,27 @@ def _check_leaves(value: object, field: str, expected: str) -> None:
         elif isinstance(item, bool) or not isinstance(item, int | float):
             raise CaseError(where, f"a number (the field is {expected})", item)
         else:
-            problem = _number_problem(item)
+            problem = _number_problem(item, decades)
             if problem:
-                raise CaseError(where, problem, _shown(item))
+                raise CaseError(where, problem, _shown(item), hint=_hint(problem))
 
 
-def _number_problem(value: int | float) -> str:
-    """Why the number ``value`` is unusable, or ``""`` when it is a finite float."""
-    if isinstance(value, int):
-        return "" if abs(value) <= _FLOAT_MAX else f"a finite number (|x| ≤ {_FLOAT_MAX:.3g})"
-    return "" if math.isfinite(value) else "a finite number (no NaN or inf)"
+def _number_problem(value: int | float, decades: int) -> str:
+    """Why the number ``value`` is unusable, or ``""`` (finite, 0 or within ``10^±decades``)."""
+    if isinstance(value, int) and abs(value) > _FLOAT_MAX:
+        return f"a finite number (|x| ≤ {_FLOAT_MAX:.3g})"
+    if isinstance(value, float) and not math.isfinite(value):
+        return "a finite number (no NaN or inf)"
+    low, high = 10.0 ** -min(decades, 323), 10.0 ** min(decades, 308)
+    if value != 0 and not low <= abs(value) <= high:
+        return (
+            f"0 or a number of magnitude between 1e-{decades} and 1e+{decades} (limit 'exponent')"
+        )
+    return ""
+
+
+def _hint(problem: str) -> str:
+    return LIMITS["exponent"].hint() if "limit 'exponent'" in problem else ""
 
 
 def _shown(value: int | float) -> object:
