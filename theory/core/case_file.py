@@ -5,7 +5,9 @@ A case file is YAML with the header ``name``, ``source``, ``kind``, optional ``d
 ``pursuit:``). Each kind registers a parser with :func:`register_kind` from a module named
 ``case.py`` or ``*_case.py`` of its domain package (found by :mod:`theory.core.discovery`; loading
 a case imports the module of its kind only); parsers raise :class:`~theory.core.errors.CaseError`
-and this module attributes the error to the file.
+and this module attributes the error to the file. The YAML is read by
+:mod:`theory.core.safe_yaml` (size, UTF-8, depth, aliases, tags and repeated keys bounded or
+refused), and the parsers check the limits of :mod:`theory.core.limits` before allocating.
 """
 
 from __future__ import annotations
