@@ -252,6 +252,8 @@ def test_numbers_beyond_a_range_limit_are_refused(command, data, field, limit, t
     assert f"limit '{limit}'" in " ".join(refused((command, str(path)), field).split())
 
 
+@pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")
+@pytest.mark.filterwarnings("ignore:invalid value encountered:RuntimeWarning")
 def test_a_numerical_failure_inside_the_range_is_inconclusive(tmp_path) -> None:
     """A = 1e100·e₁e₁ᵀ + 2e₂e₂ᵀ is accepted, but its LMIs and SVDs fail in floating point: exit 3
     naming the failure (never a verdict, never a traceback)."""
