@@ -2,8 +2,9 @@
 
 Everything here raises :class:`MalformedError` (exit code 2) on input that is not a well-formed
 certificate: unreadable or oversized files, invalid JSON, nesting too deep, JSON floats (numbers
-must be exact rational strings), numbers longer than :data:`MAX_NUMBER_CHARS`, wrong types or
-shapes, unknown fields. Nothing here decides whether a claim holds.
+must be exact rational strings), numbers longer than :data:`MAX_NUMBER_CHARS`, a key repeated
+in one object (JSON parsers silently keep the last), wrong types or shapes, unknown fields.
+Nothing here decides whether a claim holds.
 """
 
 from __future__ import annotations
@@ -68,13 +69,14 @@ def load(path: str) -> dict[str, Any]:
 
 
 def loads(content: str) -> dict[str, Any]:
-    """Parse certificate JSON: floats, NaN and long integers are refused while parsing."""
+    """Parse certificate JSON: floats, NaN, long integers, repeated keys refused while parsing."""
     try:
         data = json.loads(
             content,
             parse_float=_refuse_float,
             parse_int=_small_int,
             parse_constant=_refuse_float,
+            object_pairs_hook=_unique_keys,
         )
     except RecursionError:
         raise MalformedError("JSON nested too deeply") from None
@@ -83,6 +85,17 @@ def loads(content: str) -> dict[str, Any]:
         raise MalformedError(why) from None
     if not isinstance(data, dict):
         raise MalformedError("top level: expected a JSON object")
+    return data
+
+
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """An object from its ``(key, value)`` pairs, refusing a key given twice."""
+    data: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in data:
+            why = f"the key {key[:60]!r} appears twice in one object (the certificate is ambiguous)"
+            raise MalformedError(why)
+        data[key] = value
     return data
 
 

@@ -17,11 +17,13 @@ import typer
 
 import proofs_check.__main__
 from proofs_check.deadline import DEFAULT_SECONDS
-from theory.cli.common import console, print_json, reports_errors
+from theory.cli.common import COMMAND_LINE, check_output, console, print_json, reports_errors
 from theory.core.case_file import load_case
 from theory.core.errors import CaseError
 
 __all__ = ["register", "write_atomically"]
+
+OUTPUT = "-o/--output"
 
 
 def write_atomically(path: Path, text: str) -> None:
@@ -68,6 +70,8 @@ def register(app: typer.Typer) -> None:
         as_json: bool = typer.Option(False, "--json", help="Print the certificate."),
     ) -> None:
         """Write every certificate the case supports (a bundle), re-checked exactly."""
+        if output is not None:
+            check_output(output, OUTPUT, folder=False)
         loaded = load_case(case)
         from theory.certify import certificate_bundle  # cvxpy: imported on use
 
@@ -77,7 +81,9 @@ def register(app: typer.Typer) -> None:
             try:
                 write_atomically(output, text)
             except OSError as error:
-                raise CaseError("--output", "a writable file path", str(output)) from error
+                raise CaseError(
+                    OUTPUT, "a writable file path", str(output), file=COMMAND_LINE
+                ) from error
         if as_json or output is None:
             print_json(document)
             return

@@ -8,10 +8,13 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 import sys
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any, NoReturn, TypeVar
 
+import numpy as np
 import typer
 from rich.console import Console
 
@@ -30,7 +33,10 @@ from theory.core.verdicts import (
 )
 
 __all__ = [
+    "COMMAND_LINE",
+    "NUMERICAL_FAILURES",
     "case_argument",
+    "check_output",
     "console",
     "error_console",
     "finish",
@@ -39,14 +45,30 @@ __all__ = [
     "reports_errors",
 ]
 
+COMMAND_LINE = "<command line>"
+"""The ``file`` of an error in a command-line option (not in a case file)."""
+
 console = Console()
 error_console = Console(stderr=True)
 
 F = TypeVar("F", bound=Callable[..., Any])
 
 
+NUMERICAL_FAILURES = (ArithmeticError, np.linalg.LinAlgError)
+"""Floating-point failures (overflow, a non-converging SVD …) on input the validation accepted:
+reported as inconclusive (exit 3), never as a verdict and never as a traceback."""
+NUMERICAL_FAILURE = (
+    "a floating-point computation failed on this input (numbers this large or small may be "
+    "beyond what the method handles; see the 'exponent' limit, docs/cli.md)"
+)
+
+
 def reports_errors(command: F) -> F:
-    """Wrap ``command`` so trackcert errors become a stderr line and the DESIGN.md exit code."""
+    """Wrap ``command`` so trackcert errors become a stderr line and the DESIGN.md exit code.
+
+    A numerical failure the library did not turn into a :class:`SolverError`
+    (:data:`NUMERICAL_FAILURES`) is inconclusive too (exit 3), naming the error.
+    """
 
     @functools.wraps(command)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
@@ -60,12 +82,17 @@ def reports_errors(command: F) -> F:
             _fail(f"does not hold: {error}", EXIT_FAILS)
         except TrackcertError as error:
             _fail(f"error: {error}", EXIT_BAD_INPUT)
+        except NUMERICAL_FAILURES as error:
+            _fail(
+                f"inconclusive: {NUMERICAL_FAILURE}: {type(error).__name__}: {error}",
+                EXIT_INCONCLUSIVE,
+            )
 
     return wrapper  # type: ignore[return-value]
 
 
 def _fail(message: str, code: int) -> None:
-    error_console.print(message, markup=False, highlight=False)
+    error_console.print(message, markup=False, highlight=False, soft_wrap=True)  # one line
     raise typer.Exit(code)
 
 
@@ -120,3 +147,58 @@ def finish(data: Any, code: int, *, as_json: bool, show: Callable[[], None]) -> 
     else:
         show()
     raise typer.Exit(code)
+
+
+def check_output(path: str | Path, option: str, *, folder: bool) -> Path:
+    """Refuse an output path that cannot be written, before any work is done (nothing written).
+
+    A folder may not exist yet (it and missing parents are created later) but nothing on its way
+    may be a file, and its nearest existing ancestor must be a writable folder; a file's folder
+    must exist and be writable, and the file itself must not be a folder.
+
+    Parameters
+    ----------
+    path : str or Path
+        The value of the option.
+    option : str
+        The option, as named in the message (``-o/--output``).
+    folder : bool
+        Whether the option names a folder (else a file).
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    CaseError
+        Naming ``option`` (file ``<command line>``), what it must be and the path.
+    """
+    path = Path(path)
+    problem = _folder_problem(path) if folder else _file_problem(path)
+    if problem:
+        raise CaseError(option, problem, str(path), file=COMMAND_LINE)
+    return path
+
+
+def _folder_problem(path: Path) -> str:
+    if path.exists() and not path.is_dir():
+        return "a folder (a file of that name exists)"
+    ancestor = next((p for p in (path, *path.parents) if p.exists()), Path("."))
+    if not ancestor.is_dir():
+        return f"a folder path (its parent {str(ancestor)!r} is a file)"
+    if not os.access(ancestor, os.W_OK | os.X_OK):
+        return f"a folder that can be created or written ({str(ancestor)!r} is not writable)"
+    return ""
+
+
+def _file_problem(path: Path) -> str:
+    parent = path.parent
+    if path.is_dir():
+        return "a file path (a folder of that name exists)"
+    if not parent.is_dir():
+        why = "is a file" if parent.exists() else "does not exist"
+        return f"a file in an existing folder ({str(parent)!r} {why})"
+    if not os.access(parent, os.W_OK | os.X_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        return "a writable file path"
+    return ""

@@ -12,6 +12,7 @@ from rich.table import Table
 
 from theory.cli.common import console, print_json, reports_errors
 from theory.core.errors import CaseError
+from theory.core.limits import check_count
 from theory.core.verdicts import exit_code
 from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, all_properties, falsify, properties_for
 
@@ -34,6 +35,7 @@ def register(app: typer.Typer) -> None:
         if list_only:
             _list(as_json)
             return
+        check_count("examples", examples, "--examples", file="<command line>")
         if claim is None:
             raise CaseError(
                 "CLAIM",

@@ -16,8 +16,10 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from theory.cli.common import console, print_json, reports_errors
+from theory.cli.common import COMMAND_LINE, check_output, console, print_json, reports_errors
 from theory.core.case_file import Case, load_case
+from theory.core.errors import CaseError
+from theory.core.limits import check_count
 from theory.core.verdicts import exit_code
 
 __all__ = ["register", "run_pf_case"]
@@ -66,8 +68,18 @@ def run_pf_case(
     int
         The expectations' exit code: 0 all met, 1 one unmet, 3 one inconclusive or unchecked.
     """
+    from theory.particle.case import check_pf_work
     from theory.particle.pf_report import pf_report
 
+    if out is not None:
+        check_output(out, "-o/--out", folder=True)
+    if runs is not None:
+        check_count("runs", runs, "--runs", file=COMMAND_LINE)
+        spec = case.spec
+        try:
+            check_pf_work(spec.config, len(spec.network.filters), spec.steps, runs, "--runs")
+        except CaseError as error:
+            raise error.in_file(COMMAND_LINE) from None
     report = pf_report(case, runs=runs, seed=seed, out=None if out is None else Path(out))
     record = report.to_json()
     if as_json:

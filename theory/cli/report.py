@@ -16,7 +16,7 @@ import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from theory.cli.common import console, error_console, reports_errors
+from theory.cli.common import check_output, console, error_console, reports_errors
 from theory.core.case_file import bundled_cases, load_case
 from theory.core.verdicts import exit_code
 from theory.report.build import build_report, check_count, choose_claims
@@ -73,6 +73,7 @@ def register(app: typer.Typer) -> None:
         claims whose id matches a pattern; --errata names the errata document; --time-limit
         bounds each check's wall time; --json prints report.json.
         """
+        check_output(out, "-o/--out", folder=True)
         loaded = [load_case(c) for c in (cases or list(bundled_cases()))]
         claims = choose_claims(only or [])
         with _progress(check_count(loaded, claims)) as advance:

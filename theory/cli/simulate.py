@@ -17,12 +17,20 @@ from typing import Any
 import typer
 from rich.progress import Progress
 
-from theory.cli.common import console, error_console, print_json, reports_errors
+from theory.cli.common import (
+    COMMAND_LINE,
+    check_output,
+    console,
+    error_console,
+    print_json,
+    reports_errors,
+)
 from theory.core.case_file import load_case
 from theory.core.errors import CaseError
+from theory.core.limits import check_count
 from theory.core.verdicts import exit_code
 
-__all__ = ["register"]
+__all__ = ["check_options", "register"]
 
 KINDS = ("tdoa-sim", "pursuit", "dkf", "pf")
 
@@ -62,6 +70,7 @@ def register(app: typer.Typer) -> None:
         from theory.core.parallel import default_workers
         from theory.simulate import simulate_case, simulator_for
 
+        check_options(output, runs, steps)
         loaded = load_case(case)
         if loaded.kind not in KINDS:
             raise CaseError(
@@ -94,6 +103,27 @@ def register(app: typer.Typer) -> None:
         else:
             _print_table(report)
         raise typer.Exit(exit_code(simulation.verdict))
+
+
+def check_options(output: str, runs: int | None, steps: int | None) -> None:
+    """Refuse ``-o``, ``--runs`` or ``--steps`` before any work (:mod:`theory.core.limits`).
+
+    Parameters
+    ----------
+    output : str
+        The ``-o`` folder.
+    runs, steps : int or None
+        The options' values (``None``: not given).
+
+    Raises
+    ------
+    CaseError
+        Naming the option, the limit and how to raise it.
+    """
+    check_output(output, "-o/--output", folder=True)
+    for name, value in (("runs", runs), ("steps", steps)):
+        if value is not None:
+            check_count(name, value, f"--{name}", file=COMMAND_LINE)
 
 
 def _print_table(report: dict) -> None:

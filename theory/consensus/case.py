@@ -25,6 +25,7 @@ import numpy as np
 
 from theory.core.case_file import register_kind
 from theory.core.errors import CaseError
+from theory.core.limits import check_count, check_length
 from theory.core.tolerances import WEIGHT_SUM_TOL
 from theory.core.validation import (
     check_keys,
@@ -114,13 +115,17 @@ def parse_dkf(block: Mapping[str, Any], *, weight_sum_tol: float = WEIGHT_SUM_TO
         For any missing, unknown or invalid field, naming it.
     """
     check_keys(block, FIELDS, "dkf")
-    A = finite_matrix(require(block, "A", "dkf"), "dkf.A")
+    raw_A, raw_W = require(block, "A", "dkf"), require(block, "W", "dkf")
+    check_length(raw_A, "dkf_dimension", "dkf.A")
+    check_length(raw_W, "agents", "dkf.W")
+    A = finite_matrix(raw_A, "dkf.A")
     n = A.shape[0]
     if A.shape != (n, n) or n == 0:
         raise CaseError("dkf.A", "a non-empty square matrix", f"shape {A.shape}")
-    W = finite_matrix(require(block, "W", "dkf"), "dkf.W")
+    W = finite_matrix(raw_W, "dkf.W")
     row_stochastic(W, "dkf.W", tol=weight_sum_tol)
     N = W.shape[0]
+    check_count("dkf_dimension", N * n, "dkf.W")
     C = _per_agent(require(block, "C", "dkf"), "dkf.C", N, lambda c, f: _measurement(c, f, n))
     Q = positive_definite(
         finite_matrix(require(block, "Q", "dkf"), "dkf.Q", rows=n, cols=n), "dkf.Q"

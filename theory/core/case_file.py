@@ -5,7 +5,9 @@ A case file is YAML with the header ``name``, ``source``, ``kind``, optional ``d
 ``pursuit:``). Each kind registers a parser with :func:`register_kind` from a module named
 ``case.py`` or ``*_case.py`` of its domain package (found by :mod:`theory.core.discovery`; loading
 a case imports the module of its kind only); parsers raise :class:`~theory.core.errors.CaseError`
-and this module attributes the error to the file.
+and this module attributes the error to the file. The YAML is read by
+:mod:`theory.core.safe_yaml` (size, UTF-8, depth, aliases, tags and repeated keys bounded or
+refused), and the parsers check the limits of :mod:`theory.core.limits` before allocating.
 """
 
 from __future__ import annotations
@@ -16,10 +18,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from theory.core.discovery import kind_index
 from theory.core.errors import CaseError
+from theory.core.safe_yaml import decode_text, load_yaml, read_case_bytes
 from theory.core.validation import check_keys, one_of, positive_number, require
 
 __all__ = [
@@ -253,21 +254,15 @@ def load_case(path: str | Path) -> Case:
     Raises
     ------
     CaseError
-        If the file cannot be read, is not YAML, or fails validation.
+        If the file cannot be read, is too large, is not UTF-8 text, is not plain YAML (tags,
+        repeated keys, nesting or aliases beyond :mod:`theory.core.limits`), or fails validation
+        (:mod:`theory.core.safe_yaml`).
     """
     resolved = resolve_case_path(path)
     try:
-        text = resolved.read_text(encoding="utf-8")
-    except OSError as error:
-        raise CaseError("<file>", "a readable YAML file", error.strerror, file=str(path)) from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown place"
-        raise CaseError(
-            "<yaml>", "valid YAML", f"a syntax error at {where}", file=str(resolved)
-        ) from None
+        data = load_yaml(decode_text(read_case_bytes(str(resolved))))
+    except CaseError as error:
+        raise error.in_file(str(resolved)) from None
     return parse_case(data, file=str(resolved))
 
 

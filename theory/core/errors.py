@@ -81,5 +81,17 @@ class PropertyFails(TrackcertError):  # noqa: N818 (a verdict, not a malfunction
 
 
 def _brief(value: object, limit: int = 120) -> str:
-    text = repr(value)
+    try:
+        text = repr(_plain(value))
+    except ValueError:  # an integer beyond sys.get_int_max_str_digits()
+        text = "a number too long to print"
     return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _plain(value: object, depth: int = 0) -> object:
+    """``value`` with numpy scalars and arrays as plain Python (``-0.24``, not ``np.float64``)."""
+    if type(value).__module__ == "numpy" and hasattr(value, "tolist"):
+        return value.tolist()
+    if depth < 8 and isinstance(value, list | tuple):
+        return type(value)(_plain(v, depth + 1) for v in value[:50])
+    return value

@@ -8,17 +8,22 @@ naming the field, the expected form and what was found.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 
 from theory.core.errors import CaseError
-from theory.core.tolerances import WEIGHT_SUM_TOL
+from theory.core.limits import LIMITS, limit
+from theory.core.tolerances import COINCIDENCE_TOL, WEIGHT_SUM_TOL
 
 __all__ = [
+    "bounded_coordinates",
     "check_keys",
+    "distinct_points",
     "finite_array",
     "finite_matrix",
+    "finite_number",
     "finite_vector",
     "one_of",
     "positive_definite",
@@ -118,6 +123,35 @@ def one_of(value: object, choices: Sequence[str], field: str) -> str:
     return value
 
 
+def finite_number(value: object, field: str) -> float:
+    """``value`` as a finite float (an ``int`` or ``float``; ``bool`` is refused).
+
+    Parameters
+    ----------
+    value : object
+        The raw value.
+    field : str
+        Dotted field name for messages.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    CaseError
+        If ``value`` is not a number, is NaN or infinite, is an integer beyond the range of a
+        float (no ``OverflowError``), or is neither 0 nor of a magnitude within the ``exponent``
+        limit (:mod:`theory.core.limits`).
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise CaseError(field, "a number", value)
+    problem = _number_problem(value, limit("exponent"))
+    if problem:
+        raise CaseError(field, problem, _shown(value), hint=_hint(problem))
+    return float(value)
+
+
 def positive_number(value: object, field: str, *, allow_zero: bool = False) -> float:
     """``value`` as a finite real number > 0 (or ≥ 0 with ``allow_zero``).
 
@@ -139,10 +173,8 @@ def positive_number(value: object, field: str, *, allow_zero: bool = False) -> f
     CaseError
         If ``value`` is not a number, or is not finite, or is out of bounds.
     """
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise CaseError(field, "a number", value)
-    number = float(value)
-    if not math.isfinite(number) or number < 0 or (number == 0 and not allow_zero):
+    number = finite_number(value, field)
+    if number < 0 or (number == 0 and not allow_zero):
         bound = "≥ 0" if allow_zero else "> 0"
         raise CaseError(field, f"a finite number {bound}", value)
     return number
@@ -336,6 +368,90 @@ def row_stochastic(
     return matrix
 
 
+def bounded_coordinates(points: np.ndarray, field: str) -> np.ndarray:
+    """Refuse a coordinate beyond the ``coordinate`` limit (:mod:`theory.core.limits`).
+
+    Squared distances, Jacobians and Gram matrices of the geometry must stay finite and
+    meaningful in floating point; a point at ``1e308`` would overflow them and make every other
+    point look coincident. The first offending entry is named by its 1-based index (the agent).
+
+    Parameters
+    ----------
+    points : ndarray
+        Coordinates (any shape; indices in messages follow it).
+    field : str
+        Dotted field name for messages.
+
+    Returns
+    -------
+    ndarray
+        ``points`` itself.
+
+    Raises
+    ------
+    CaseError
+        Naming the entry, the limit and how to raise it.
+    """
+    bound = limit("coordinate")
+    beyond = np.argwhere(np.abs(points) > bound)
+    if beyond.size:
+        index = tuple(int(k) for k in beyond[0])
+        where = field + "".join(f"[{k + 1}]" for k in index)
+        raise CaseError(
+            where,
+            f"a coordinate of magnitude at most {bound:.3g} m (limit 'coordinate')",
+            float(points[index]),
+            hint=LIMITS["coordinate"].hint(),
+        )
+    return points
+
+
+def distinct_points(
+    points: np.ndarray, field: str, *, noun: str = "agent", where: str = "", why: str = ""
+) -> np.ndarray:
+    """Refuse two of ``points`` that coincide (seed 000 eq. (4.3): TDOA needs distinct receivers).
+
+    Two points are one when their distance is at most ``coincidence_tol`` times their own
+    magnitude (at least 1 m): the resolution of those two coordinates, so a far-away point does
+    not make the others look coincident. The later point of the first coincident pair is named.
+
+    Parameters
+    ----------
+    points : ndarray, shape (N, dim)
+        Positions.
+    field : str
+        Dotted field name of the list of positions.
+    noun : str
+        What a point is, in messages (``agent``, ``node``).
+    where : str
+        Appended to the message, e.g. ``" at step 3"``.
+    why : str
+        Appended to the message: why coincident points are refused.
+
+    Returns
+    -------
+    ndarray
+        ``points`` itself.
+
+    Raises
+    ------
+    CaseError
+        Naming the later point of the first coincident pair and the earlier one.
+    """
+    gaps = np.linalg.norm(points[:, None] - points[None], axis=-1)
+    size = np.maximum(1.0, np.abs(points).max(axis=1))
+    close = gaps <= COINCIDENCE_TOL * np.maximum(size[:, None], size[None])
+    close &= np.triu(np.ones_like(close), k=1)
+    if close.any():
+        i, j = (int(k) for k in np.argwhere(close)[0])
+        raise CaseError(
+            f"{field}[{j + 1}]",
+            f"a position distinct from {noun} {i + 1}'s{where}{why}",
+            points[j].tolist(),
+        )
+    return points
+
+
 def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12) -> np.ndarray:
     """Check that ``matrix`` is symmetric positive definite.
 
@@ -371,25 +487,66 @@ def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12)
 
 
 def _numeric_array(value: object, field: str, expected: str) -> np.ndarray:
-    if isinstance(value, str | bytes | Mapping) or not _is_nested_numbers(value):
+    if isinstance(value, str | bytes | Mapping) or not isinstance(
+        value, list | tuple | int | float
+    ):
         raise CaseError(field, expected, value)
+    _check_leaves(value, field, expected)
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise CaseError(field, expected, value) from None
-    if not np.all(np.isfinite(array)):
-        raise CaseError(field, "finite numbers (no NaN or inf)", value)
     return array
 
 
-def _is_nested_numbers(value: object) -> bool:
-    if isinstance(value, bool):
-        return False
-    if isinstance(value, int | float):
-        return True
-    if isinstance(value, list | tuple):
-        return all(_is_nested_numbers(v) for v in value)
-    return False
+def _check_leaves(value: object, field: str, expected: str) -> None:
+    """Refuse the first entry (depth first, named by its 1-based index) that is no finite number.
+
+    Iterative, so it neither recurses nor converts anything before the whole value is known
+    to be nested lists of finite numbers.
+    """
+    stack: list[tuple[object, str]] = [(value, field)]
+    decades = limit("exponent")
+    while stack:
+        item, where = stack.pop()
+        if isinstance(item, list | tuple):
+            stack.extend(
+                (entry, f"{where}[{k + 1}]") for k, entry in reversed(list(enumerate(item)))
+            )
+        elif isinstance(item, bool) or not isinstance(item, int | float):
+            raise CaseError(where, f"a number (the field is {expected})", item)
+        else:
+            problem = _number_problem(item, decades)
+            if problem:
+                raise CaseError(where, problem, _shown(item), hint=_hint(problem))
+
+
+def _number_problem(value: int | float, decades: int) -> str:
+    """Why the number ``value`` is unusable, or ``""`` (finite, 0 or within ``10^±decades``)."""
+    if isinstance(value, int) and abs(value) > _FLOAT_MAX:
+        return f"a finite number (|x| ≤ {_FLOAT_MAX:.3g})"
+    if isinstance(value, float) and not math.isfinite(value):
+        return "a finite number (no NaN or inf)"
+    low, high = 10.0 ** -min(decades, 323), 10.0 ** min(decades, 308)
+    if value != 0 and not low <= abs(value) <= high:
+        return (
+            f"0 or a number of magnitude between 1e-{decades} and 1e+{decades} (limit 'exponent')"
+        )
+    return ""
+
+
+def _hint(problem: str) -> str:
+    return LIMITS["exponent"].hint() if "limit 'exponent'" in problem else ""
+
+
+def _shown(value: int | float) -> object:
+    """``value``, or a description when it is an integer too long to print."""
+    if isinstance(value, int) and abs(value) > _FLOAT_MAX:
+        return f"an integer of about 10^{int(value.bit_length() * math.log10(2))}"
+    return value
+
+
+_FLOAT_MAX = sys.float_info.max
 
 
 def _join(prefix: str, key: str) -> str:

@@ -41,10 +41,14 @@ import numpy as np
 
 from theory.core.case_file import register_kind
 from theory.core.errors import CaseError
+from theory.core.limits import check_count, check_estimate, check_length
 from theory.core.network import adjacency_from_edges
 from theory.core.validation import (
+    bounded_coordinates,
     check_keys,
+    distinct_points,
     finite_matrix,
+    finite_number,
     one_of,
     positive_int,
     positive_number,
@@ -53,7 +57,7 @@ from theory.core.validation import (
 from theory.particle.dcrw import DcrwParams
 from theory.particle.filter import EXCHANGE_WEIGHTS, RECEIVED_HEADINGS, PfConfig, PfNetwork
 
-__all__ = ["MODELS", "PARAM_NAMES", "PfSpec", "check_pf_expect", "parse_pf"]
+__all__ = ["MODELS", "PARAM_NAMES", "PfSpec", "check_pf_expect", "check_pf_work", "parse_pf"]
 
 FIELDS = (
     "nodes",
@@ -88,6 +92,10 @@ PARAM_NAMES = ("mu", "gamma", "kappa", "lambda")
 TOLERANCE_KEYS = ("converge_tol", "diverge_tol", "improvement_tol")
 MODELS = ("dcrw", "gaussian", "learned")
 LEARNING_FIELDS = ("min_samples", "gamma_max", "burn_in")
+COINCIDENT_WHY = (
+    " (the TDOA of seed 002 eq. (3.9) between coincident nodes is identically 0: it carries no"
+    " information, so such a scene is refused as for kind tdoa)"
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -138,14 +146,20 @@ def parse_pf(block: Mapping[str, Any]) -> PfSpec:
         For any missing, unknown or invalid field, naming it.
     """
     check_keys(block, FIELDS, "pf")
-    nodes = finite_matrix(require(block, "nodes", "pf"), "pf.nodes", cols=2)
+    raw_nodes = require(block, "nodes", "pf")
+    check_length(raw_nodes, "agents", "pf.nodes")
+    nodes = bounded_coordinates(finite_matrix(raw_nodes, "pf.nodes", cols=2), "pf.nodes")
     n = nodes.shape[0]
     if n < 2:
         raise CaseError("pf.nodes", "at least 2 nodes [x, y]", n)
+    distinct_points(nodes, "pf.nodes", noun="node", why=COINCIDENT_WHY)
     hears = adjacency_from_edges(n, _edges(block.get("edges", []), n))
     filters = _ids(block.get("filters", list(range(1, n + 1))), n, "pf.filters")
-    workspace = finite_matrix(
-        block.get("workspace", [[-60, 60], [-60, 60]]), "pf.workspace", rows=2, cols=2
+    workspace = bounded_coordinates(
+        finite_matrix(
+            block.get("workspace", [[-60, 60], [-60, 60]]), "pf.workspace", rows=2, cols=2
+        ),
+        "pf.workspace",
     )
     if np.any(workspace[:, 1] <= workspace[:, 0]):
         raise CaseError(
@@ -153,12 +167,15 @@ def parse_pf(block: Mapping[str, Any]) -> PfSpec:
         )
     noise = positive_number(block.get("noise_sigma", 1.0), "pf.noise_sigma")
     config = _config(block, noise, hears, filters)
+    steps = check_count("steps", positive_int(block.get("steps", 100), "pf.steps"), "pf.steps")
+    runs = check_count("runs", positive_int(block.get("runs", 50), "pf.runs"), "pf.runs")
+    check_pf_work(config, len(filters), steps, runs, "pf.runs")
     return PfSpec(
         network=PfNetwork(nodes, hears, filters),
         config=config,
         workspace=workspace,
-        steps=positive_int(block.get("steps", 100), "pf.steps"),
-        runs=positive_int(block.get("runs", 50), "pf.runs"),
+        steps=steps,
+        runs=runs,
         seed=positive_int(block.get("seed", 0), "pf.seed", minimum=0),
         noise_sigma=noise,
         target=_target(block.get("target", {"mu": 0, "gamma": 0.7, "kappa": 2, "lambda": 3})),
@@ -168,8 +185,46 @@ def parse_pf(block: Mapping[str, Any]) -> PfSpec:
     )
 
 
+def check_pf_work(config: PfConfig, filters: int, steps: int, runs: int, field: str) -> None:
+    """Refuse a pf run whose memory or work would exceed the limits (:mod:`theory.core.limits`).
+
+    Each filter keeps, per particle, a position, a heading and a weight (seed 002 §3.2.1) plus
+    the resampling and likelihood temporaries: 16 floats (128 B) are counted per particle; the
+    error records add 16 B per filter, step and run. The work is one particle update per
+    particle, filter, exchange round, step and run.
+
+    Parameters
+    ----------
+    config : PfConfig
+        The filter's parameters (particles, exchange rounds).
+    filters, steps, runs : int
+        Filtering nodes, target moves, Monte Carlo runs.
+    field : str
+        The field (or option, such as ``--runs``) named when the work, or the memory of the
+        error records, is too much.
+
+    Raises
+    ------
+    CaseError
+        Naming ``field`` (``pf.particles`` when the particles take most memory), the estimate
+        and the limit.
+    """
+    particles, rounds = config.particles, config.exchange_rounds
+    states, records = 128.0 * filters * particles, 16.0 * filters * (steps + 1) * runs
+    check_estimate(
+        "memory_bytes",
+        states + records,
+        "pf.particles" if states >= records else field,
+        f"128 B × {filters} filters × {particles:,} particles + 16 B × filters × steps × runs",
+    )
+    work = float(filters) * particles * rounds * (steps + 1) * runs
+    what = f"{filters} filters × {particles:,} particles × {rounds} exchange rounds × steps × runs"
+    check_estimate("work", work, field, what)
+
+
 def _config(block: Mapping[str, Any], noise: float, hears: np.ndarray, filters: tuple) -> PfConfig:
     particles = positive_int(block.get("particles", 100), "pf.particles", minimum=2)
+    check_count("particles", particles, "pf.particles")
     share = positive_int(block.get("share", 10), "pf.share", minimum=0)
     degree = max((int(hears[i, list(filters)].sum()) for i in filters), default=0)
     if share * degree >= particles:
@@ -216,9 +271,7 @@ def _ids(raw: object, n: int, field: str) -> tuple[int, ...]:
 
 def _target(raw: object) -> DcrwParams:
     block = check_keys(raw, ("mu", "gamma", "kappa", "lambda"), "pf.target")
-    mu = require(block, "mu", "pf.target")
-    if isinstance(mu, bool) or not isinstance(mu, int | float) or not np.isfinite(mu):
-        raise CaseError("pf.target.mu", "a finite angle (rad)", mu)
+    mu = finite_number(require(block, "mu", "pf.target"), "pf.target.mu")
     gamma = positive_number(
         require(block, "gamma", "pf.target"), "pf.target.gamma", allow_zero=True
     )

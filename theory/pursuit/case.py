@@ -46,10 +46,12 @@ import numpy as np
 
 from theory.core.case_file import register_kind
 from theory.core.errors import CaseError
+from theory.core.limits import check_length
 from theory.core.network import adjacency_from_edges, uniform_weights
 from theory.core.validation import (
     check_keys,
     finite_matrix,
+    finite_number,
     finite_vector,
     one_of,
     positive_definite,
@@ -267,9 +269,7 @@ def parse_pursuit(block: Mapping[str, Any]) -> PursuitSpec:
 
 
 def _real(value: object, field: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
-        raise CaseError(field, "a finite number", value)
-    return float(value)
+    return finite_number(value, field)
 
 
 def _gain_matrix(raw: object, dim: int) -> np.ndarray:
@@ -294,6 +294,7 @@ def _optional_gain(block: Mapping[str, Any], key: str, *, required: bool, why: s
 def _trackers(raw: object, dim: int) -> tuple[TrackerPath, ...]:
     if not isinstance(raw, list) or not raw:
         raise CaseError("pursuit.trackers", "a non-empty list of tracker path parameters", raw)
+    check_length(raw, "trackers", "pursuit.trackers")
     allowed = TRACKER_FIELDS_3D if dim == 3 else TRACKER_FIELDS_2D
     paths = []
     for index, entry in enumerate(raw):

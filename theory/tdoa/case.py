@@ -25,6 +25,7 @@ import numpy as np
 
 from theory.core.case_file import register_kind
 from theory.core.errors import CaseError
+from theory.core.limits import check_estimate, check_length
 from theory.core.network import (
     adjacency_from_edges,
     adjacency_from_range,
@@ -34,7 +35,9 @@ from theory.core.network import (
 )
 from theory.core.tolerances import COINCIDENCE_TOL
 from theory.core.validation import (
+    bounded_coordinates,
     check_keys,
+    distinct_points,
     finite_array,
     finite_matrix,
     positive_number,
@@ -121,19 +124,51 @@ def parse_tdoa(block: Mapping[str, Any]) -> TdoaSpec:
     directed = block.get("directed", False)
     if not isinstance(directed, bool):
         raise CaseError("tdoa.directed", "true or false", directed)
+    _check_memory(agents.shape[0], agents.shape[1], 0)
     hears, comm_range = _topology(block, agents, directed)
+    _check_memory(*hears.shape[:2], int(hears.sum(axis=(1, 2)).max()))
     weights, rule = _weights(block.get("weights", "metropolis"), hears, directed)
     return TdoaSpec(T, dim, agents, target, hears, weights, rule, directed, comm_range)
 
 
+def _check_sizes(raw_agents: object, raw_target: object) -> None:
+    """Refuse too many agents or steps before any entry is read (:mod:`theory.core.limits`)."""
+    nested = isinstance(raw_agents, list) and raw_agents and isinstance(raw_agents[0], list)
+    if nested and raw_agents[0] and isinstance(raw_agents[0][0], list):
+        check_length(raw_agents, "steps", "tdoa.agents")
+        check_length(raw_agents[0], "agents", "tdoa.agents[1]")
+    else:
+        check_length(raw_agents, "agents", "tdoa.agents")
+    if isinstance(raw_target, list) and raw_target and isinstance(raw_target[0], list):
+        check_length(raw_target, "steps", "tdoa.target")
+
+
+def _check_memory(steps: int, n: int, rows: int) -> None:
+    """Refuse a scene whose arrays would exceed the memory budget (before they are made).
+
+    ``O`` of seed 000 eq. (4.36) has ``6N·M`` rows and ``6N`` columns (``M`` TDOA rows, one
+    per received link, known once the topology is); the parser itself keeps ``steps × N × N``
+    links and weights.
+    """
+    estimate = 8.0 * (6 * n * rows) * (6 * n) + 9.0 * steps * n * n
+    check_estimate(
+        "memory_bytes",
+        estimate,
+        "tdoa.agents",
+        f"8 B × 6N·M × 6N for O (N = {n} agents, M = {rows} TDOA rows) + 9 B × steps·N²",
+    )
+
+
 def _positions(block: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
     raw_agents = require(block, "agents", "tdoa")
+    _check_sizes(raw_agents, block.get("target"))
     agents = finite_array(
         raw_agents,
         "tdoa.agents",
         "N points [x, y] or [x, y, z] (or steps × N points)",
         ndims=(2, 3),
     )
+    agents = bounded_coordinates(agents, "tdoa.agents")
     agents = agents[None] if agents.ndim == 2 else agents
     dim = agents.shape[2]
     if "dim" in block and block["dim"] != dim:
@@ -145,6 +180,7 @@ def _positions(block: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
     raw_target = require(block, "target", "tdoa")
     expected = f"a point of {dim} coordinates (or steps × {dim})"
     target = finite_array(raw_target, "tdoa.target", expected, ndims=(1, 2))
+    target = bounded_coordinates(target, "tdoa.target")
     target = target[None] if target.ndim == 1 else target
     if target.shape[1] != dim:
         raise CaseError("tdoa.target", expected, raw_target)
@@ -160,24 +196,22 @@ def _positions(block: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _check_distinct(agents: np.ndarray, target: np.ndarray) -> None:
-    scale = max(1.0, float(np.abs(agents).max()), float(np.abs(target).max()))
+    """Refuse coincident agents, or the target on an agent, at any step.
+
+    Both use :func:`~theory.core.validation.distinct_points`'s rule: distance at most
+    ``coincidence_tol`` times the points' own magnitude (seed 000 eq. (4.3) divides by it).
+    """
+    static = agents.shape[0] == 1
     for k in range(agents.shape[0]):
-        where = f" at step {k + 1}" if agents.shape[0] > 1 else ""
-        gaps = np.linalg.norm(agents[k][:, None] - agents[k][None], axis=-1)
-        np.fill_diagonal(gaps, np.inf)
-        i, j = np.unravel_index(np.argmin(gaps), gaps.shape)
-        if gaps[i, j] <= COINCIDENCE_TOL * scale:
-            raise CaseError(
-                f"tdoa.agents[{j + 1}]",
-                f"a position distinct from agent {i + 1}'s{where}",
-                agents[k][j].tolist(),
-            )
+        where = "" if static else f" at step {k + 1}"
+        distinct_points(agents[k], "tdoa.agents", where=where)
         to_target = np.linalg.norm(agents[k] - target[k], axis=1)
-        i = int(np.argmin(to_target))
-        if to_target[i] <= COINCIDENCE_TOL * scale:
+        size = np.maximum(1.0, np.maximum(np.abs(agents[k]).max(axis=1), np.abs(target[k]).max()))
+        close = np.flatnonzero(to_target <= COINCIDENCE_TOL * size)
+        if close.size:
             raise CaseError(
                 "tdoa.target",
-                f"a position not on agent {i + 1}{where} (TDOA is undefined there)",
+                f"a position not on agent {close[0] + 1}{where} (TDOA is undefined there)",
                 target[k].tolist(),
             )
 

@@ -42,9 +42,11 @@ import numpy as np
 
 from theory.core.case_file import register_kind
 from theory.core.errors import CaseError
+from theory.core.limits import check_count, check_estimate, check_length
 from theory.core.network import adjacency_from_edges
 from theory.core.tolerances import PERIOD_TOL
 from theory.core.validation import (
+    bounded_coordinates,
     check_keys,
     finite_matrix,
     finite_vector,
@@ -58,7 +60,7 @@ from theory.core.validation import (
 from theory.tdoa.filters import FILTERS
 from theory.tdoa.formation import assign_offsets, crown_vertices, cube_vertices
 
-__all__ = ["TdoaSimSpec", "parse_tdoa_sim"]
+__all__ = ["TdoaSimSpec", "check_sim_work", "parse_tdoa_sim"]
 
 KIND = "tdoa-sim"
 FIELDS = (
@@ -165,20 +167,32 @@ def parse_tdoa_sim(block: Mapping[str, Any]) -> TdoaSimSpec:
         For any missing, unknown or invalid field, naming it.
     """
     check_keys(block, FIELDS, KIND)
-    agents = finite_matrix(require(block, "agents", KIND), f"{KIND}.agents", cols=3)
-    n = agents.shape[0]
+    raw_agents = require(block, "agents", KIND)
+    check_length(raw_agents, "agents", f"{KIND}.agents")
+    agents = finite_matrix(raw_agents, f"{KIND}.agents", cols=3)
+    n = bounded_coordinates(agents, f"{KIND}.agents").shape[0]
     if n < 2:
         raise CaseError(f"{KIND}.agents", "at least 2 agents", n)
     position = finite_vector(require(block, "target", KIND), f"{KIND}.target", length=3)
+    bounded_coordinates(position, f"{KIND}.target")
     velocity = finite_vector(
         block.get("target_velocity", [0, 0, 0]), f"{KIND}.target_velocity", length=3
     )
     T = positive_number(block.get("T", 1.0), f"{KIND}.T")
     tau = positive_number(block.get("tau", T), f"{KIND}.tau")
     ratio = T / tau
-    if ratio < 1 - PERIOD_TOL or abs(ratio - round(ratio)) > PERIOD_TOL * ratio:
+    if (
+        not math.isfinite(ratio)
+        or ratio < 1 - PERIOD_TOL
+        or abs(ratio - round(ratio)) > PERIOD_TOL * ratio
+    ):
         raise CaseError(f"{KIND}.tau", "a period dividing T (T/tau a positive integer)", tau)
     hears, comm_range = _topology(block, n)
+    steps = check_count(
+        "steps", positive_int(block.get("steps", 100), f"{KIND}.steps"), f"{KIND}.steps"
+    )
+    substeps = positive_int(block.get("substeps", 2), f"{KIND}.substeps")
+    check_sim_work(n, steps, round(ratio), substeps, f"{KIND}.steps")
     return TdoaSimSpec(
         agents=agents,
         target=np.concatenate([position, velocity]),
@@ -196,13 +210,37 @@ def parse_tdoa_sim(block: Mapping[str, Any]) -> TdoaSimSpec:
         linearize=one_of(
             block.get("linearize", "estimate"), ("estimate", "truth"), f"{KIND}.linearize"
         ),
-        steps=positive_int(block.get("steps", 100), f"{KIND}.steps"),
+        steps=steps,
         offsets=_offsets(block, agents),
         pole=positive_number(block.get("pole", 0.5), f"{KIND}.pole"),
         max_input=_limits(block.get("max_input", [2.0, 2.0, 2.0])),
-        substeps=positive_int(block.get("substeps", 2), f"{KIND}.substeps"),
+        substeps=substeps,
         cov_norm=one_of(block.get("cov_norm", "spectral"), ("spectral", "frobenius"), "cov_norm"),
     )
+
+
+def check_sim_work(n: int, steps: int, rounds: int, substeps: int, field: str) -> None:
+    """Refuse a run whose memory or work would exceed the limits (:mod:`theory.core.limits`).
+
+    Each agent keeps a 6-state estimate, its 6 × 6 covariance and its 9-state kinematics
+    (seed 000 §4.4), recorded at every ping: 51 floats (408 B) per agent and step. The work is
+    one N × N consensus exchange per round and one Runge–Kutta step per substep, per ping.
+
+    Parameters
+    ----------
+    n, steps, rounds, substeps : int
+        Agents, pings, consensus rounds per ping (T/τ), Runge–Kutta steps per round.
+    field : str
+        The field (or option, such as ``--steps``) named when it is too much.
+
+    Raises
+    ------
+    CaseError
+        Naming ``field``, the estimate and the limit.
+    """
+    check_estimate("memory_bytes", 408.0 * n * (steps + 1), field, f"408 B × {n} agents × steps")
+    work = float(steps + 1) * rounds * (n * n + substeps * n)
+    check_estimate("work", work, field, f"steps × {rounds} rounds × (N² + {substeps} substeps × N)")
 
 
 def _covariance(value: object, size: int, field: str) -> np.ndarray:
