@@ -13,7 +13,16 @@ import numpy as np
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-__all__ = ["boundary_values", "check_range", "generators", "orthonormal_matrix"]
+from theory.core.limits import limit
+
+__all__ = [
+    "boundary_values",
+    "case_floats",
+    "check_range",
+    "flush_tiny",
+    "generators",
+    "orthonormal_matrix",
+]
 
 
 def check_range(name_low: str, low: int, name_high: str, high: int, floor: int) -> None:
@@ -90,3 +99,41 @@ def boundary_values(
     t = float(threshold)
     offsets = st.tuples(st.sampled_from((-1, 1)), st.integers(min_exponent, max_exponent))
     return st.one_of(st.just(t), offsets.map(lambda o: t * (1 + o[0] * 10.0 ** -o[1])))
+
+
+def case_floats(low: float, high: float) -> st.SearchStrategy[float]:
+    """Floats in ``[low, high]`` that a case file accepts: a draw smaller in magnitude than
+    ``10^-e`` (the ``exponent`` limit of :mod:`theory.core.limits`) becomes ``0.0``.
+
+    Hypothesis likes tiny floats such as ``5e-152``; a case field refuses them (their products
+    underflow), and for every generated quantity they mean 0.
+
+    Parameters
+    ----------
+    low, high : float
+        Bounds (``low ≤ high``).
+
+    Returns
+    -------
+    SearchStrategy of float
+    """
+    return st.floats(low, high).map(lambda x: float(flush_tiny(np.float64(x))))
+
+
+def flush_tiny(values: np.ndarray) -> np.ndarray:
+    """``values`` with every entry smaller in magnitude than ``10^-e`` (the ``exponent`` limit of
+    :mod:`theory.core.limits`) set to 0, so that computed entries (a rotated gain matrix) are
+    accepted by a case file.
+
+    Parameters
+    ----------
+    values : ndarray
+        Numbers.
+
+    Returns
+    -------
+    ndarray
+        A copy with the tiny entries zeroed.
+    """
+    smallest = 10.0 ** -limit("exponent")
+    return np.where(np.abs(values) < smallest, 0.0, values)

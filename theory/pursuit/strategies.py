@@ -18,6 +18,7 @@ from theory.core.case_file import Case, parse_case
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.model import closed_loop_rates, exp_skew
 from theory.pursuit.model import path as path_point
+from theory.strategy_helpers import case_floats, flush_tiny
 
 __all__ = [
     "SIMULATED_BOUNDS",
@@ -69,18 +70,18 @@ def pursuit_parameters(draw: st.DrawFn, *, dim: int = 2) -> PursuitParameters:
     widened by about 2×."""
     if dim not in (2, 3):
         raise InvalidArgument(f"dim={dim}; expected 2 or 3")
-    positive = st.floats(0.05, 1.0)
-    radius = tuple(draw(st.floats(10.0, 100.0)) for _ in range(dim))
-    epsilon_head = draw(st.floats(-2.0, -0.1))
-    epsilon = (epsilon_head, *(draw(st.floats(-2.0, 0.0)) for _ in range(dim - 2)), 0.0)
+    positive = case_floats(0.05, 1.0)
+    radius = tuple(draw(case_floats(10.0, 100.0)) for _ in range(dim))
+    epsilon_head = draw(case_floats(-2.0, -0.1))
+    epsilon = (epsilon_head, *(draw(case_floats(-2.0, 0.0)) for _ in range(dim - 2)), 0.0)
     return PursuitParameters(
         dim=dim,
         radius=radius,
-        omega_bar=draw(st.floats(0.01, 0.2)),
+        omega_bar=draw(case_floats(0.01, 0.2)),
         epsilon=epsilon,
         K_p=tuple(draw(positive) for _ in range(dim)),
-        k_gamma=draw(st.floats(50.0, 1000.0)),
-        k_c=draw(st.floats(0.05, 1.0)),
+        k_gamma=draw(case_floats(50.0, 1000.0)),
+        k_c=draw(case_floats(0.05, 1.0)),
     )
 
 
@@ -163,7 +164,7 @@ def _check_interval(name: str, interval: tuple[float, float]) -> None:
 
 
 def _vectors(dim: int, bound: float) -> st.SearchStrategy[np.ndarray]:
-    return st.lists(st.floats(-bound, bound), min_size=dim, max_size=dim).map(np.array)
+    return st.lists(case_floats(-bound, bound), min_size=dim, max_size=dim).map(np.array)
 
 
 def _check_choices(dims: tuple[int, ...], controllers: tuple[str, ...]) -> None:
@@ -175,27 +176,27 @@ def _check_choices(dims: tuple[int, ...], controllers: tuple[str, ...]) -> None:
 
 def _pursuit_block(draw: st.DrawFn, n: int, dim: int, controller: str, bounds: dict) -> dict:
     """A ``pursuit:`` block's gains, ε, ω̄ and paths (no graph, target or DEKF)."""
-    positive_gains, sizes = st.floats(*bounds["gains"]), st.floats(*bounds["path_sizes"])
+    positive_gains, sizes = case_floats(*bounds["gains"]), case_floats(*bounds["path_sizes"])
     eigen = draw(st.lists(positive_gains, min_size=dim, max_size=dim))
     q_rot = exp_skew(draw(_vectors(1 if dim == 2 else 3, 3.0)))
     K_p = q_rot @ np.diag(eigen) @ q_rot.T
-    eps1 = draw(st.floats(*bounds["epsilon_1"])) * draw(st.sampled_from([-1, 1]))
-    epsilon = [eps1, *draw(st.lists(st.floats(-3, 3), min_size=dim - 1, max_size=dim - 1))]
+    eps1 = draw(case_floats(*bounds["epsilon_1"])) * draw(st.sampled_from([-1, 1]))
+    epsilon = [eps1, *draw(st.lists(case_floats(-3, 3), min_size=dim - 1, max_size=dim - 1))]
     trackers = []
     for _ in range(n):
         path = {"r_x": draw(sizes), "r_y": draw(sizes)}
-        path["gamma0"] = draw(st.floats(-math.pi, math.pi))
+        path["gamma0"] = draw(case_floats(-math.pi, math.pi))
         if dim == 3:
             path["r_z"] = draw(sizes)
-            path["c"] = draw(st.floats(1.2, 5)) * draw(st.sampled_from([-1, 1]))
+            path["c"] = draw(case_floats(1.2, 5)) * draw(st.sampled_from([-1, 1]))
         trackers.append(path)
     block = {
         "dim": dim,
         "controller": controller,
-        "omega_bar": draw(st.floats(*bounds["omega_bar"])),
+        "omega_bar": draw(case_floats(*bounds["omega_bar"])),
         "epsilon": epsilon,
-        "K_p": ((K_p + K_p.T) / 2).tolist(),
-        "k_gamma": draw(st.floats(*bounds.get("k_gamma", bounds["gains"]))),
+        "K_p": flush_tiny((K_p + K_p.T) / 2).tolist(),
+        "k_gamma": draw(case_floats(*bounds.get("k_gamma", bounds["gains"]))),
         "trackers": trackers,
     }
     if n > 1:
@@ -259,14 +260,14 @@ path-parameter loop is weakly damped), kept where a short run integrates in well
 
 def _target_and_filter(draw: st.DrawFn, dim: int) -> dict:
     """``target`` and ``dekf`` blocks: drift, a slow sinusoid, ranges every 1 or 2 s."""
-    speeds = st.lists(st.floats(-0.5, 0.5), min_size=dim, max_size=dim)
+    speeds = st.lists(case_floats(-0.5, 0.5), min_size=dim, max_size=dim)
     target = {
         "velocity": draw(speeds),
-        "amplitude": draw(st.lists(st.floats(0, 20), min_size=dim, max_size=dim)),
-        "frequency": draw(st.lists(st.floats(0, 0.02), min_size=dim, max_size=dim)),
-        "phase": draw(st.lists(st.floats(-math.pi, math.pi), min_size=dim, max_size=dim)),
+        "amplitude": draw(st.lists(case_floats(0, 20), min_size=dim, max_size=dim)),
+        "frequency": draw(st.lists(case_floats(0, 0.02), min_size=dim, max_size=dim)),
+        "phase": draw(st.lists(case_floats(-math.pi, math.pi), min_size=dim, max_size=dim)),
     }
-    sigma = draw(st.floats(0.1, 1.0))
+    sigma = draw(case_floats(0.1, 1.0))
     q = [1e-3] * dim + [1e-4] * dim
     dekf = {"Ts": draw(st.sampled_from([1, 2])), "sigma": sigma, "V": 1 / sigma**2}
     dekf["Q"] = np.diag(q).tolist()
@@ -338,7 +339,7 @@ def simulated_pursuit_blocks(
         tracker["initial"] = {
             "position": (start + offset).tolist(),
             "euler": draw(_vectors(1 if dim == 2 else 3, 1.5)).tolist(),
-            "gamma": draw(st.floats(-math.pi, math.pi)),
+            "gamma": draw(case_floats(-math.pi, math.pi)),
         }
     return block
 
@@ -359,16 +360,16 @@ def tracker_states(draw: st.DrawFn, *, spec: PursuitSpec, bound: float = 10.0) -
     if not 0 < bound < math.inf:
         raise InvalidArgument(f"bound={bound} must be positive and finite")
     dim = spec.dim
-    reals = st.floats(-bound, bound)
+    reals = case_floats(-bound, bound)
     return TrackerState(
         e_p=draw(_vectors(dim, bound)),
         e_gamma=draw(reals) if spec.controller == "II" else 0.0,
         rotation=exp_skew(draw(_vectors(1 if dim == 2 else 3, 3.1))),
-        gamma=draw(st.floats(-20, 20)),
+        gamma=draw(case_floats(-20, 20)),
         q_err=draw(_vectors(dim, bound)),
         v_err=draw(_vectors(dim, bound)),
-        omega_d=draw(st.floats(-2, 2)),
-        omega_d_dot=draw(st.floats(-2, 2)),
+        omega_d=draw(case_floats(-2, 2)),
+        omega_d_dot=draw(case_floats(-2, 2)),
         target=draw(_vectors(dim, bound)),
         target_v=draw(_vectors(dim, bound)),
     )
