@@ -25,12 +25,14 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
+from dataclasses import dataclass
 from typing import Any, TypeVar
 
 from theory.core.errors import CaseError
 
 __all__ = [
     "SCHEDULER_SETTING",
+    "Outcome",
     "TaskRunner",
     "default_workers",
     "engine",
@@ -135,23 +137,50 @@ class TaskRunner:
         Exception
             The first (in item order) exception a task raised, re-raised here.
         """
+        results: list[Any] = [None] * len(items)
+        errors: dict[int, BaseException] = {}
+        for done, outcome in enumerate(self.completed(fn, items), start=1):
+            if outcome.error is None:
+                results[outcome.index] = outcome.value
+            elif self.serial:
+                raise outcome.error  # the first in item order: no need to run the rest
+            else:
+                errors[outcome.index] = outcome.error
+            if progress is not None:
+                progress(done)
+        if errors:
+            raise errors[min(errors)]
+        return results
+
+    def completed(self, fn: Callable[[T], R], items: Sequence[T]) -> Iterator[Outcome]:
+        """The outcome of ``fn(item)`` for each item, as each task finishes.
+
+        Parameters
+        ----------
+        fn : callable
+            As for :meth:`map`.
+        items : sequence
+            As for :meth:`map`.
+
+        Yields
+        ------
+        Outcome
+            In completion order (item order on the serial path); a task that raised (or whose
+            worker died) yields its exception instead of a value.
+        """
         if self.serial or len(items) <= 1:
-            return _serial(fn, items, progress)
+            yield from _serial(fn, items)
+            return
         from distributed import as_completed
 
         client = self._connect()
         futures = client.map(fn, list(items), pure=False)
         index = {future.key: i for i, future in enumerate(futures)}
-        results: list[Any] = [None] * len(futures)
-        for done, future in enumerate(as_completed(futures), start=1):
-            if future.status == "finished":
-                results[index[future.key]] = future.result()
-            if progress is not None:
-                progress(done)
-        for future in futures:
-            if future.status == "error":
-                future.result()  # re-raises the task's exception
-        return results
+        try:
+            for future in as_completed(futures):
+                yield _outcome(index[future.key], future)
+        finally:
+            client.cancel(futures)
 
     def _connect(self) -> Any:
         if self._client is not None:
@@ -188,13 +217,43 @@ class TaskRunner:
         self._client = self._cluster = None
 
 
-def _serial(fn: Callable[[T], R], items: Sequence[T], progress: Callable[[int], None] | None):
-    results = []
-    for item in items:
-        results.append(fn(item))
-        if progress is not None:
-            progress(len(results))
-    return results
+@dataclass(frozen=True)
+class Outcome:
+    """One finished task of :meth:`TaskRunner.completed`.
+
+    Attributes
+    ----------
+    index : int
+        The item's position.
+    value : object
+        ``fn(item)`` (``None`` when the task failed).
+    error : BaseException or None
+        The exception the task raised (or the worker's failure, e.g. ``KilledWorker``).
+    """
+
+    index: int
+    value: Any = None
+    error: BaseException | None = None
+
+
+def _serial(fn: Callable[[T], R], items: Sequence[T]) -> Iterator[Outcome]:
+    for i, item in enumerate(items):
+        try:
+            value = fn(item)
+        except Exception as error:
+            yield Outcome(i, error=error)
+        else:
+            yield Outcome(i, value)
+
+
+def _outcome(i: int, future: Any) -> Outcome:
+    if future.status == "finished":
+        return Outcome(i, future.result())
+    try:
+        future.result()
+    except Exception as error:
+        return Outcome(i, error=error)
+    return Outcome(i, error=RuntimeError(f"task {i} ended as {future.status!r}"))
 
 
 @contextmanager
