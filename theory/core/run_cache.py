@@ -15,7 +15,10 @@ object identities, so a cache cannot hand a result computed for one case to anot
 from __future__ import annotations
 
 from collections.abc import Callable, Hashable
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
+
+if TYPE_CHECKING:
+    from theory.core.parallel import TaskRunner
 
 __all__ = ["RunCache", "shared"]
 
@@ -25,13 +28,22 @@ T = TypeVar("T")
 class RunCache:
     """Values computed once per case and run, by key.
 
+    Parameters
+    ----------
+    runner : TaskRunner, optional
+        An open engine on which a computation made of independent runs may spread them (e.g.
+        ``trackcert pf``'s Monte Carlo variants); ``None`` (inside a report task): serially.
+
     Attributes
     ----------
+    runner : TaskRunner or None
+        As given.
     hits, misses : int
         How many :meth:`get` calls found their key, and how many computed it.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, runner: TaskRunner | None = None) -> None:
+        self.runner = runner
         self._values: dict[Hashable, Any] = {}
         self.hits = 0
         self.misses = 0

@@ -15,20 +15,19 @@ LMI solution, a simulation, Monte Carlo runs) is done once; every other check is
 
 from __future__ import annotations
 
-import inspect
 import os
 import resource
 import socket
 import tempfile
 import time
 import traceback
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 from theory.core.case_file import Case
-from theory.core.claims import Claim, ClaimResult, NotApplicable, get_claim
+from theory.core.claims import Claim, ClaimResult, NotApplicable, accepts, get_claim
 from theory.core.run_cache import RunCache
 from theory.report.canonical import canonical
 from theory.report.records import MODEL_CASE, Record, derive_seed, paper_of, slug
@@ -42,7 +41,6 @@ __all__ = [
     "plan_tasks",
     "process_name",
     "run_task",
-    "takes",
 ]
 
 
@@ -122,15 +120,6 @@ class TaskOutput:
     peak_rss: int
 
 
-def takes(run: Callable[..., Any], keyword: str) -> bool:
-    """Whether ``run`` accepts the keyword argument ``keyword``."""
-    try:
-        parameters = inspect.signature(run).parameters
-    except (TypeError, ValueError):
-        return False
-    return keyword in parameters
-
-
 def plan_tasks(
     checks: Sequence[tuple[Claim, Case | None]],
     *,
@@ -160,11 +149,11 @@ def plan_tasks(
     sharing: dict[str, int] = {}
     for claim, case in checks:
         name = MODEL_CASE if case is None else case.name
-        if takes(claim.run, "cache") and name in sharing:
+        if accepts(claim.run, "cache") and name in sharing:
             task = tasks[sharing[name]]
             tasks[sharing[name]] = replace(task, claims=(*task.claims, claim.id))
             continue
-        if takes(claim.run, "cache"):
+        if accepts(claim.run, "cache"):
             sharing[name] = len(tasks)
         tasks.append(CheckTask((claim.id,), case, seed, seconds, figures))
     return tasks
@@ -218,7 +207,7 @@ def failed_task(task: CheckTask, claims: dict[str, Claim], error: BaseException)
     outputs = []
     for claim_id in task.claims:
         claim = claims[claim_id]
-        seed = derive_seed(task.seed, claim.id, name) if takes(claim.run, "seed") else None
+        seed = derive_seed(task.seed, claim.id, name) if accepts(claim.run, "seed") else None
         record = failure(claim, name, error, seed)
         outputs.append(CheckOutput(claim_id, name, (record,), None, 0.0, 0.0, {}))
     return TaskOutput(tuple(outputs), "", 0)
@@ -248,11 +237,11 @@ def _run_one(
     claim: Claim, task: CheckTask, cache: RunCache, folder: Path | None
 ) -> list[Record]:
     name = task.case_name
-    seed = derive_seed(task.seed, claim.id, name) if takes(claim.run, "seed") else None
+    seed = derive_seed(task.seed, claim.id, name) if accepts(claim.run, "seed") else None
     options: dict[str, Any] = {} if seed is None else {"seed": seed}
-    if takes(claim.run, "cache"):
+    if accepts(claim.run, "cache"):
         options["cache"] = cache
-    if folder is not None and takes(claim.run, "figure_dir"):
+    if folder is not None and accepts(claim.run, "figure_dir"):
         folder.mkdir(parents=True, exist_ok=True)
         options["figure_dir"] = folder
     try:
