@@ -98,4 +98,5 @@ class time_limit:  # noqa: N801 (used as a context manager, like contextlib's)
             if self._fired:
                 _set_async_exc(self._thread_id, None)  # not delivered yet: withdraw it
         self._timer.cancel()
+        self._timer.join()  # returns at once: the timer is cancelled or has fired
         self._timer = None
