@@ -123,14 +123,17 @@ def test_cli_time_limit_is_recorded(monkeypatch, tmp_path) -> None:
     out = tmp_path / "out"
     done = runner.invoke(
         app,
-        ["report", str(write_case(tmp_path)), "-o", str(out), "--time-limit", "0.2", "--workers", "1"],
-    )
+        ["report", str(write_case(tmp_path)), "-o", str(out), "--time-limit", "0.2",
+         "--workers", "1"],
+    )  # fmt: skip
     assert done.exit_code == 0, done.output
     document = json.loads((out / "report.json").read_text())
     assert document["environment"]["time_limit"] == 0.2
     assert document["environment"]["time_limit_enforced"] is True
     assert "Time limit per check: 0.2 s" in (out / "report.md").read_text()
     done = runner.invoke(
-        app, ["report", str(write_case(tmp_path)), "-o", str(out), "--time-limit", "-1", "--workers", "1"]
-    )
+        app,
+        ["report", str(write_case(tmp_path)), "-o", str(out), "--time-limit", "-1",
+         "--workers", "1"],
+    )  # fmt: skip
     assert done.exit_code == 2 and "Traceback" not in done.output
