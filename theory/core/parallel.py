@@ -182,6 +182,16 @@ class TaskRunner:
         finally:
             client.cancel(futures)
 
+    @property
+    def size(self) -> int:
+        """How many workers ran (or would run) the tasks: 1 on the serial path, the cluster's
+        worker count once connected, else :attr:`workers`."""
+        if self.serial:
+            return 1
+        if self._client is not None:
+            return len(self._client.scheduler_info().get("workers", {}))
+        return self.workers
+
     def _connect(self) -> Any:
         if self._client is not None:
             return self._client

@@ -138,9 +138,8 @@ def build_report(
         )
         wall = time.perf_counter() - started
         document = write_report(run, out_dir, errata_path=errata_path)
-        used = 1 if runner.serial else runner.workers
         timings = timings_document(
-            run, wall_seconds=wall, workers=used, scheduler=runner.scheduler
+            run, wall_seconds=wall, workers=runner.size, scheduler=runner.scheduler
         )
         write_timings(timings, Path(out_dir))
     return run, document
