@@ -66,6 +66,21 @@ def test_monte_carlo_is_identical_on_one_and_two_workers(cluster) -> None:
     assert not np.array_equal(serial[0], serial[1])  # the runs are seeded apart
 
 
+def test_particle_monte_carlo_is_identical_on_one_and_two_workers(cluster) -> None:
+    """seed 002's runs are tasks too (``theory.particle.experiments.monte_carlo``)."""
+    from theory.core.case_file import load_case
+    from theory.particle.experiments import monte_carlo as pf_monte_carlo
+
+    spec = load_case("pf-topology-b").spec
+    serial = pf_monte_carlo(spec, runs=3, seed=5, snapshot_steps=(0, 3))
+    with engine(scheduler=cluster.scheduler_address) as runner:
+        spread = pf_monte_carlo(spec, runs=3, seed=5, snapshot_steps=(0, 3), runner=runner)
+    for name in ("errors", "estimates", "paths"):
+        assert getattr(serial, name).tobytes() == getattr(spread, name).tobytes()
+    assert sorted(spread.snapshots) == [0, 3]
+    assert serial.snapshots[3].tobytes() == spread.snapshots[3].tobytes()
+
+
 def test_completed_reports_each_failure_and_map_raises_the_first(cluster) -> None:
     with engine(scheduler=cluster.scheduler_address) as runner:
         outcomes = sorted(runner.completed(_square_or_fail, list(range(8))), key=lambda o: o.index)
