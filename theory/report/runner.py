@@ -35,7 +35,14 @@ from theory.core.parallel import TaskRunner, engine
 from theory.core.verdicts import expectations_verdict
 from theory.report.canonical import canonical
 from theory.report.records import MODEL_CASE, RESULT_FIELDS, Record, derive_seed, paper_of, slug
-from theory.report.tasks import CheckOutput, TaskOutput, failed_task, plan_tasks, run_task
+from theory.report.tasks import (
+    CheckOutput,
+    CheckTask,
+    TaskOutput,
+    failed_task,
+    plan_tasks,
+    run_task,
+)
 
 __all__ = [
     "MODEL_CASE",
@@ -242,7 +249,10 @@ def _opened(runner: TaskRunner | None) -> Iterator[TaskRunner]:
 
 
 def _run_tasks(
-    runner: TaskRunner, tasks: list, claims: dict[str, Claim], progress: ProgressHook | None
+    runner: TaskRunner,
+    tasks: list[CheckTask],
+    claims: dict[str, Claim],
+    progress: ProgressHook | None,
 ) -> list[TaskOutput]:
     """Every task's output, in task order; a lost task's checks become inconclusive records."""
     outputs: list[TaskOutput | None] = [None] * len(tasks)
