@@ -91,7 +91,20 @@ def timings_document(
 
 
 def write_timings(document: dict[str, Any], out_dir: Path) -> Path:
-    """Write ``document`` as ``out_dir/timings.json``; returns the path."""
+    """Write ``document`` as ``out_dir/timings.json``.
+
+    Parameters
+    ----------
+    document : dict
+        From :func:`timings_document`.
+    out_dir : Path
+        The report folder (it exists).
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
     path = Path(out_dir) / "timings.json"
     path.write_text(json.dumps(document, indent=1) + "\n", encoding="utf-8")
     return path
