@@ -168,8 +168,8 @@ class TaskRunner:
             In completion order (item order on the serial path); a task that raised (or whose
             worker died) yields its exception instead of a value.
         """
-        if self.serial or len(items) <= 1:
-            yield from _serial(fn, items)
+        if self.serial or (len(items) <= 1 and self.scheduler is None):
+            yield from _serial(fn, items)  # one task is not worth starting a local cluster
             return
         from distributed import as_completed
 
