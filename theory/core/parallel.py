@@ -213,7 +213,8 @@ class TaskRunner:
             threads_per_worker=1,
             processes=True,
             memory_limit=WORKER_MEMORY,
-            dashboard_address=None,
+            dashboard_address=":0",  # the health server on a free port (8787 may be taken)
+            scheduler_kwargs={"dashboard": False},
         )
         self._client = Client(self._cluster)
         return self._client
