@@ -4,7 +4,9 @@ Every embarrassingly parallel piece of trackcert (the report's checks, Monte Car
 points, falsify examples) goes through :func:`engine`: a context that yields a :class:`TaskRunner`
 whose :meth:`~TaskRunner.map` runs ``fn(item)`` for each item and returns the results **in item
 order**, so that a caller seeding each item explicitly gets identical results with 1, 2 or 64
-workers and whatever the order in which they finish.
+workers and whatever the order in which they finish; :meth:`~TaskRunner.completed` yields each
+task's :class:`Outcome` (value or exception) as it finishes, for callers that show progress or
+must survive a lost task (the report).
 
 Where the tasks run:
 
