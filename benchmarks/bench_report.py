@@ -12,7 +12,8 @@ figure to compare, wall time is what the lead reruns on a quiet one. Peak memory
 process's and each worker's, from ``timings.json``. The two reports are compared byte for byte.
 
 Run from the repository root: ``python -m benchmarks.bench_report [--before REV] [--skip-before]
-[CASES…] [--only PATTERN …]``.
+[--keep DIR] [CASES…] [--only PATTERN …]`` (``--keep`` leaves the reports and their
+``timings.json`` in ``DIR/w1``, ``DIR/w2``, ``DIR/before``).
 """
 
 from __future__ import annotations
@@ -82,10 +83,12 @@ def main() -> None:
     parser.add_argument("--only", action="append", default=[], help="Claim id pattern.")
     parser.add_argument("--before", default=BEFORE, help="Revision measured as the before-cost.")
     parser.add_argument("--skip-before", action="store_true", help="Do not measure it.")
+    parser.add_argument("--keep", type=Path, help="Keep the reports (and timings.json) here.")
     args = parser.parse_args()
     extra = [*args.cases, *(f"--only={p}" for p in args.only)]
     with tempfile.TemporaryDirectory(prefix="bench-report-") as tmp:
-        folder = Path(tmp)
+        folder = Path(tmp) if args.keep is None else args.keep
+        folder.mkdir(parents=True, exist_ok=True)
         serial = run_report(ROOT, folder / "w1", 1, extra)
         print(describe("after, 1 worker", serial), flush=True)
         spread = run_report(ROOT, folder / "w2", 2, extra)
