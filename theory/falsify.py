@@ -15,8 +15,9 @@ from __future__ import annotations
 
 import importlib
 import random
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
 from typing import Any
 
 from hypothesis import HealthCheck, Phase, find, settings
@@ -24,6 +25,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import NoSuchExample
 
 from theory.core.discovery import role_modules
+from theory.core.parallel import TaskRunner, engine
 
 __all__ = [
     "DEFAULT_EXAMPLES",
@@ -31,6 +33,7 @@ __all__ = [
     "Property",
     "all_properties",
     "falsify",
+    "falsify_each",
     "properties_for",
     "register_property",
 ]
@@ -171,3 +174,51 @@ def falsify(prop: Property, *, examples: int = DEFAULT_EXAMPLES, seed: int = 0) 
     except NoSuchExample:
         return FalsifyResult(prop, examples, seed)
     return FalsifyResult(prop, examples, seed, example, prop.to_case(example))
+
+
+def falsify_each(
+    props: Sequence[Property],
+    *,
+    examples: int = DEFAULT_EXAMPLES,
+    seed: int = 0,
+    runner: TaskRunner | None = None,
+) -> list[FalsifyResult]:
+    """:func:`falsify` of each property, the searches as independent tasks on the engine.
+
+    Each search is deterministic given its seed (hypothesis draws from ``random.Random(seed)``),
+    so the results are the same whatever the runner. A worker looks its property up by id.
+
+    Parameters
+    ----------
+    props : sequence of Property
+        Registered properties.
+    examples : int
+        Budget of each search.
+    seed : int
+        Seed of each search.
+    runner : TaskRunner, optional
+        An open engine (:func:`theory.core.parallel.engine`); default: this process, serially.
+
+    Returns
+    -------
+    list of FalsifyResult
+        In the order of ``props``.
+    """
+    task = partial(_search, examples=examples, seed=seed)
+    ids = [p.id for p in props]
+    if runner is None:
+        with engine(1) as serial:
+            found = serial.map(task, ids)
+    else:
+        found = runner.map(task, ids)
+    return [
+        FalsifyResult(p, examples, seed, counterexample, case)
+        for p, (counterexample, case) in zip(props, found, strict=True)
+    ]
+
+
+def _search(prop_id: str, *, examples: int, seed: int) -> tuple[Any, dict[str, Any] | None]:
+    """The counterexample and its case file for the property ``prop_id`` (a task's payload)."""
+    (prop,) = [p for p in properties_for(prop_id) if p.id == prop_id]
+    result = falsify(prop, examples=examples, seed=seed)
+    return result.counterexample, result.case

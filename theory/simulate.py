@@ -158,6 +158,7 @@ def simulate_case(
     runs: int = 1,
     seed: int = 0,
     workers: int = 1,
+    scheduler: str | None = None,
     figures: bool = True,
     progress: Callable[[int], None] | None = None,
 ) -> Simulation:
@@ -172,7 +173,9 @@ def simulate_case(
     folder : Path
         Where data, figures and ``summary.json`` go (created).
     runs, seed, workers : int
-        Monte Carlo runs, root seed (run ``i`` uses child ``i``) and worker processes.
+        Monte Carlo runs, root seed (run ``i`` uses child ``i``) and local worker processes.
+    scheduler : str, optional
+        Address of a Dask scheduler to run on instead (default ``$TRACKCERT_SCHEDULER``).
     figures : bool
         Whether to draw PNG figures.
     progress : callable, optional
@@ -182,16 +185,18 @@ def simulate_case(
     -------
     Simulation
     """
+    from theory.core.parallel import engine
     from theory.sim.runner import monte_carlo
 
-    results = monte_carlo(
-        simulator.spec,
-        runs=runs,
-        seed=seed,
-        workers=workers,
-        progress=progress,
-        simulate=simulator.run,
-    )
+    with engine(min(workers, runs), scheduler) as runner:
+        results = monte_carlo(
+            simulator.spec,
+            runs=runs,
+            seed=seed,
+            runner=runner,
+            progress=progress,
+            simulate=simulator.run,
+        )
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     finished = simulator.finish(case, simulator.spec, results, folder, figures)

@@ -14,7 +14,8 @@ runner = CliRunner()
 
 
 def _report(*args: str):
-    return runner.invoke(app, ["report", *args])
+    """The command in this process (``--workers 1``): the fake claims exist only here."""
+    return runner.invoke(app, ["report", "--workers", "1", *args])
 
 
 def test_met_expectations_exit_0(monkeypatch, tmp_path) -> None:
@@ -23,7 +24,12 @@ def test_met_expectations_exit_0(monkeypatch, tmp_path) -> None:
     out = tmp_path / "out"
     done = _report(str(write_case(tmp_path)), "-o", str(out), "--seed", "3")
     assert done.exit_code == 0, done.output
-    assert sorted(p.name for p in out.iterdir()) == ["index.html", "report.json", "report.md"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        "index.html",
+        "report.json",
+        "report.md",
+        "timings.json",
+    ]
     assert "every expectation is met" in done.stdout
     assert json.loads((out / "report.json").read_text())["seed"] == 3
 

@@ -132,11 +132,11 @@ def test_progress_hook_sees_every_run(monkeypatch, tmp_path) -> None:
     register = fake_registry(monkeypatch)
     register_standard_fakes(register)
     seen = []
-    run_claims([load_case(write_case(tmp_path))], progress=lambda c, k: seen.append((c, k)))
+    run_claims([load_case(write_case(tmp_path))], progress=lambda d, k: seen.append((d, k)))
     assert seen == [
-        ("seed000.fake.model", "-"),
-        ("seed001.fake.observable", "four-path"),
-        ("seed003.fake.random", "four-path"),
+        (1, "seed000.fake.model on model"),
+        (2, "seed001.fake.observable on four-path"),
+        (3, "seed003.fake.random on four-path"),
     ]
 
 
@@ -169,7 +169,7 @@ def test_claims_that_draw_get_their_own_figure_folder(monkeypatch, tmp_path) -> 
     case = load_case(write_case(tmp_path, "a b"))
     run_claims([case], seed=0)
     run = run_claims([case], seed=0, figure_dir=tmp_path / "figures")
-    assert seen == [None, tmp_path / "figures" / "seed002.fake.draws" / "a_b"]
+    assert seen[0] is None and seen[1].parts[-2:] == ("seed002.fake.draws", "a_b")
     (record,) = run.records
     assert record.figures == (
         str(tmp_path / "figures" / "seed002.fake.draws" / "a_b" / "plot.png"),

@@ -6,11 +6,12 @@ JSON conversion is :func:`theory.core.jsonable.plain`.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import json
 import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any, NoReturn, TypeVar
 
@@ -42,7 +43,10 @@ __all__ = [
     "finish",
     "json_option",
     "print_json",
+    "progress_bar",
     "reports_errors",
+    "scheduler_option",
+    "workers_option",
 ]
 
 COMMAND_LINE = "<command line>"
@@ -202,3 +206,78 @@ def _file_problem(path: Path) -> str:
     if not os.access(parent, os.W_OK | os.X_OK) or (path.exists() and not os.access(path, os.W_OK)):
         return "a writable file path"
     return ""
+
+
+def workers_option(help: str = "Local worker processes (default: all cores; 1: serial).") -> Any:
+    """The ``--workers N`` option of a command running tasks (:mod:`theory.core.parallel`).
+
+    Parameters
+    ----------
+    help : str
+        Its help text.
+    """
+    return typer.Option(None, "--workers", min=1, help=help)
+
+
+def scheduler_option() -> Any:
+    """The ``--scheduler ADDRESS`` option: run the tasks on an existing Dask cluster."""
+    return typer.Option(
+        None,
+        "--scheduler",
+        metavar="ADDRESS",
+        help="Dask scheduler to run the tasks on, e.g. tcp://host:8786 "
+        "(default: $TRACKCERT_SCHEDULER, else a local cluster).",
+    )
+
+
+@contextlib.contextmanager
+def progress_bar(
+    total: int, description: str, *, quiet: bool = False
+) -> Iterator[Callable[..., None]]:
+    """A progress bar on stderr (done/total, elapsed, ETA) and the hook advancing it.
+
+    Quiet (the hook does nothing) when ``quiet`` (``--json``) or when stdout or stderr is not a
+    terminal.
+
+    Parameters
+    ----------
+    total : int
+        Number of units (tasks, runs, checks).
+    description : str
+        Shown beside the bar.
+    quiet : bool
+        Show nothing.
+
+    Yields
+    ------
+    callable
+        ``advance(done, label=None)``: ``done`` units finished so far; ``label`` replaces the
+        description (e.g. the check that just finished).
+    """
+    if quiet or not (console.is_terminal and error_console.is_terminal):
+        yield lambda done, label=None: None
+        return
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TextColumn("ETA"),
+        TimeRemainingColumn(),
+    )
+    with Progress(*columns, console=error_console, transient=True) as progress:
+        task = progress.add_task(description, total=total)
+
+        def advance(done: int, label: str | None = None) -> None:
+            progress.update(task, completed=done, description=label or description)
+
+        yield advance

@@ -10,11 +10,24 @@ import typer
 import yaml
 from rich.table import Table
 
-from theory.cli.common import console, print_json, reports_errors
+from theory.cli.common import (
+    console,
+    print_json,
+    reports_errors,
+    scheduler_option,
+    workers_option,
+)
 from theory.core.errors import CaseError
 from theory.core.limits import check_count
+from theory.core.parallel import default_workers, engine
 from theory.core.verdicts import exit_code
-from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, all_properties, falsify, properties_for
+from theory.falsify import (
+    DEFAULT_EXAMPLES,
+    FalsifyResult,
+    all_properties,
+    falsify_each,
+    properties_for,
+)
 
 __all__ = ["register"]
 
@@ -30,6 +43,10 @@ def register(app: typer.Typer) -> None:
         seed: int = typer.Option(0, "--seed", help="Seed of the search."),
         as_json: bool = typer.Option(False, "--json", help="Print JSON."),
         list_only: bool = typer.Option(False, "--list", help="List the claims it can run."),
+        workers: int = workers_option(
+            "Local worker processes, one wording per task (default: all cores; 1: serial)."
+        ),
+        scheduler: str = scheduler_option(),
     ) -> None:
         """Run hypothesis against a claim; print the shrunk counterexample as a case file."""
         if list_only:
@@ -49,7 +66,9 @@ def register(app: typer.Typer) -> None:
             raise CaseError(
                 "CLAIM", "a claim id listed by 'trackcert falsify --list'", claim
             ) from error
-        results = [falsify(p, examples=examples, seed=seed) for p in props]
+        count = min(workers or default_workers(), len(props))
+        with engine(count, scheduler) as runner:
+            results = falsify_each(props, examples=examples, seed=seed, runner=runner)
         if as_json:
             print_json({"results": [_record(r) for r in results]})
         else:

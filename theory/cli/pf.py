@@ -16,7 +16,16 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from theory.cli.common import COMMAND_LINE, check_output, console, print_json, reports_errors
+from theory.cli.common import (
+    COMMAND_LINE,
+    check_output,
+    console,
+    print_json,
+    progress_bar,
+    reports_errors,
+    scheduler_option,
+    workers_option,
+)
 from theory.core.case_file import Case, load_case
 from theory.core.errors import CaseError
 from theory.core.limits import check_count
@@ -42,13 +51,25 @@ def register(app: typer.Typer) -> None:
         seed: int = typer.Option(None, "--seed", min=0, help="Base seed (case default)."),
         out: str = typer.Option(None, "-o", "--out", help="Folder for pf.json and figures."),
         as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+        workers: int = workers_option(),
+        scheduler: str = scheduler_option(),
     ) -> None:
         """Run the distributed TDOA particle filter of seed 002 on a ``kind: pf`` case."""
-        raise typer.Exit(run_pf_case(load_case(case_name), runs, seed, out, as_json))
+        code = run_pf_case(
+            load_case(case_name), runs, seed, out, as_json, workers=workers, scheduler=scheduler
+        )
+        raise typer.Exit(code)
 
 
 def run_pf_case(
-    case: Case, runs: int | None, seed: int | None, out: str | None, as_json: bool
+    case: Case,
+    runs: int | None,
+    seed: int | None,
+    out: str | None,
+    as_json: bool,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
 ) -> int:
     """Print :func:`theory.particle.pf_report.pf_report` of ``case`` and return the exit code.
 
@@ -62,12 +83,15 @@ def run_pf_case(
         Folder for ``pf.json`` and figures (``None``: write nothing).
     as_json : bool
         Print JSON instead of a table.
+    workers, scheduler : int or str, optional
+        Where the Monte Carlo runs go (:func:`theory.core.parallel.engine`).
 
     Returns
     -------
     int
         The expectations' exit code: 0 all met, 1 one unmet, 3 one inconclusive or unchecked.
     """
+    from theory.core.parallel import engine
     from theory.particle.case import check_pf_work
     from theory.particle.pf_report import pf_report
 
@@ -80,7 +104,19 @@ def run_pf_case(
             check_pf_work(spec.config, len(spec.network.filters), spec.steps, runs, "--runs")
         except CaseError as error:
             raise error.in_file(COMMAND_LINE) from None
-    report = pf_report(case, runs=runs, seed=seed, out=None if out is None else Path(out))
+    total = runs or getattr(case.spec, "runs", 1)
+    with (
+        engine(workers, scheduler) as runner,
+        progress_bar(total, f"pf {case.name}", quiet=as_json) as advance,
+    ):
+        report = pf_report(
+            case,
+            runs=runs,
+            seed=seed,
+            out=None if out is None else Path(out),
+            runner=runner,
+            progress=advance,
+        )
     record = report.to_json()
     if as_json:
         print_json(record)

@@ -6,22 +6,27 @@ A shell over :func:`theory.report.build.build_report`; the exit code is the expe
 
 from __future__ import annotations
 
-import contextlib
 from collections import Counter
-from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from theory.cli.common import check_output, console, error_console, reports_errors
+from theory.cli.common import (
+    check_output,
+    console,
+    progress_bar,
+    reports_errors,
+    scheduler_option,
+    workers_option,
+)
 from theory.core.case_file import bundled_cases, load_case
 from theory.core.verdicts import exit_code
 from theory.report.build import build_report, check_count, choose_claims
 from theory.report.canonical import dumps
-from theory.report.runner import MODEL_CASE
+from theory.report.runner import RunResult
+from theory.report.timings import slowest
 
 __all__ = ["DEFAULT_TIME_LIMIT", "register"]
 
@@ -64,6 +69,8 @@ def register(app: typer.Typer) -> None:
         as_json: Annotated[
             bool, typer.Option("--json", help="Also print report.json to stdout.")
         ] = False,
+        workers: int | None = workers_option(),
+        scheduler: str | None = scheduler_option(),
     ) -> None:
         """Run every registered check on every case; write index.html, report.md, report.json.
 
@@ -71,12 +78,14 @@ def register(app: typer.Typer) -> None:
         inconclusive or unchecked (and none unmet), 2 on bad input. CASES
         are case files or bundled names; --seed seeds every randomized check; --only keeps the
         claims whose id matches a pattern; --errata names the errata document; --time-limit
-        bounds each check's wall time; --json prints report.json.
+        bounds each check's wall time; --json prints report.json; --workers and --scheduler
+        say where the checks run (the report is the same whatever they say). The checks' times
+        go to timings.json; the ten slowest are printed at the end.
         """
         check_output(out, "-o/--out", folder=True)
         loaded = [load_case(c) for c in (cases or list(bundled_cases()))]
         claims = choose_claims(only or [])
-        with _progress(check_count(loaded, claims)) as advance:
+        with progress_bar(check_count(loaded, claims), "checking", quiet=as_json) as advance:
             run, document = build_report(
                 loaded,
                 out,
@@ -85,32 +94,15 @@ def register(app: typer.Typer) -> None:
                 seconds=time_limit or None,
                 errata_path=errata,
                 progress=advance,
+                workers=workers,
+                scheduler=scheduler,
             )
         if as_json:
             console.file.write(dumps(document))
         else:
             _print_summary(document, out)
+            _print_slowest(run)
         raise typer.Exit(exit_code(run.verdict))
-
-
-@contextlib.contextmanager
-def _progress(total: int) -> Iterator[Callable[[str, str], None]]:
-    """A progress bar on stderr, and the hook advancing it before each check."""
-    columns = (
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-    )
-    with Progress(*columns, console=error_console, transient=True) as progress:
-        task = progress.add_task("checking", total=total)
-
-        def advance(claim_id: str, case: str) -> None:
-            where = "model" if case == MODEL_CASE else case
-            progress.update(task, description=f"{claim_id} on {where}")
-            progress.advance(task)
-
-        yield advance
 
 
 def _print_summary(document: dict, out: Path) -> None:
@@ -135,4 +127,16 @@ def _print_summary(document: dict, out: Path) -> None:
         if document["summary"]["all_expectations_met"]
         else ", ".join(f"{n} {v}" for v, n in counts.items() if n) + " expectation(s)"
     )
-    console.print(f"{verdict}; wrote {out / 'index.html'}, report.md, report.json", markup=False)
+    wrote = f"wrote {out / 'index.html'}, report.md, report.json, timings.json"
+    console.print(f"{verdict}; {wrote}", markup=False)
+
+
+def _print_slowest(run: RunResult, count: int = 10) -> None:
+    """The ``count`` slowest checks (wall and CPU seconds; all are in timings.json)."""
+    table = Table(title=f"{count} slowest checks (all in timings.json)")
+    for column, justify in (("claim", "left"), ("case", "left"), ("wall s", "right")):
+        table.add_column(column, justify=justify, overflow="fold")
+    table.add_column("CPU s", justify="right")
+    for t in slowest(run.timings, count):
+        table.add_row(t.claim, t.case, f"{t.wall_seconds:.2f}", f"{t.cpu_seconds:.2f}")
+    console.print(table)

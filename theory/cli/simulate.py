@@ -15,7 +15,6 @@ from pathlib import Path
 from typing import Any
 
 import typer
-from rich.progress import Progress
 
 from theory.cli.common import (
     COMMAND_LINE,
@@ -23,7 +22,10 @@ from theory.cli.common import (
     console,
     error_console,
     print_json,
+    progress_bar,
     reports_errors,
+    scheduler_option,
+    workers_option,
 )
 from theory.core.case_file import load_case
 from theory.core.errors import CaseError
@@ -57,9 +59,8 @@ def register(app: typer.Typer) -> None:
         seed: int = typer.Option(
             None, "--seed", help="Root seed, run i uses child i (default 0; pf cases: the case's)."
         ),
-        workers: int = typer.Option(
-            None, "--workers", min=1, help="Worker processes (default: all local cores)."
-        ),
+        workers: int = workers_option(),
+        scheduler: str = scheduler_option(),
         steps: int = typer.Option(
             None, "--steps", min=1, help="Override the number of steps (pings / 0.1 s steps)."
         ),
@@ -79,12 +80,14 @@ def register(app: typer.Typer) -> None:
         if loaded.kind == "pf":
             from theory.cli.pf import run_pf_case
 
-            raise typer.Exit(run_pf_case(loaded, runs, seed, output, as_json))
+            code = run_pf_case(
+                loaded, runs, seed, output, as_json, workers=workers, scheduler=scheduler
+            )
+            raise typer.Exit(code)
         runs, seed = runs or 1, seed or 0
         chosen = simulator_for(loaded, steps)
         workers = workers or default_workers()
-        with Progress(console=error_console, transient=True) as progress:
-            task = progress.add_task(f"simulating {loaded.name}", total=runs)
+        with progress_bar(runs, f"simulating {loaded.name}", quiet=as_json) as advance:
             simulation = simulate_case(
                 loaded,
                 chosen,
@@ -92,8 +95,9 @@ def register(app: typer.Typer) -> None:
                 runs=runs,
                 seed=seed,
                 workers=workers,
+                scheduler=scheduler,
                 figures=figures,
-                progress=lambda done: progress.update(task, completed=done),
+                progress=advance,
             )
         report = simulation.to_json()
         for warning in report.get("warnings", []):

@@ -53,9 +53,10 @@ from theory.core.claims import (
 )
 from theory.core.expectations import matches
 from theory.core.observability import RANK_TOL
+from theory.core.run_cache import RunCache, shared
 from theory.core.tolerances import EXACT_DIM, MAP_RTOL, PSD_TOL, RADIUS_TOL
 
-__all__ = ["DkfAnalysis", "analyze_dkf", "dkf_claim_results", "printed_match"]
+__all__ = ["DkfAnalysis", "analyze_dkf", "case_analysis", "dkf_claim_results", "printed_match"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -219,6 +220,27 @@ def analyze_dkf(
     return DkfAnalysis(case, decision, conditions, gains, source, *radii, searches, riccati, tol)
 
 
+def case_analysis(case: Case, cache: RunCache | None = None) -> DkfAnalysis:
+    """:func:`analyze_dkf` of ``case`` without the self-weight search, once per ``cache``.
+
+    The report runs every dkf claim of a case with one :class:`~theory.core.run_cache.RunCache`,
+    so the LMI decision, the Riccati iteration and the conditions are computed once per case
+    (as :func:`dkf_claim_results` does for ``trackcert dkf``).
+
+    Parameters
+    ----------
+    case : Case
+        A dkf case.
+    cache : RunCache, optional
+        The case's cache (``None``: compute).
+
+    Returns
+    -------
+    DkfAnalysis
+    """
+    return shared(cache, "analyze_dkf", lambda: analyze_dkf(case, search_self_weight=False))
+
+
 def dkf_claim_results(analysis: DkfAnalysis) -> list[tuple[Claim, ClaimResult]]:
     """Every registered claim about dkf cases, run on ``analysis.case`` with ``analysis`` passed
     to each check that takes it, so the LMI, the Riccati iteration and the conditions are
@@ -279,8 +301,10 @@ def _result(claim: str, case: Case, method: str, ok: bool | None, evidence: dict
     statement="(A, C, W) is S-detectable as the case expects (true when it states nothing)",
     kinds=("dkf",),
 )
-def _claim_s_detectable(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
-    analysis = analysis or analyze_dkf(case, search_self_weight=False)
+def _claim_s_detectable(
+    case: Case, analysis: DkfAnalysis | None = None, *, cache: RunCache | None = None
+) -> list[ClaimResult]:
+    analysis = analysis or case_analysis(case, cache)
     verdict = analysis.decision.verdict
     expected = case.expect.get("s_detectable", True)
     ok = None if verdict is None else verdict == expected
@@ -328,8 +352,10 @@ def _necessity(
     "w_ii < 1/r_σ(A_iᵘ)² for every agent",
     kinds=("dkf",),
 )
-def _claim_thm(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
-    analysis = analysis or analyze_dkf(case, search_self_weight=False)
+def _claim_thm(
+    case: Case, analysis: DkfAnalysis | None = None, *, cache: RunCache | None = None
+) -> list[ClaimResult]:
+    analysis = analysis or case_analysis(case, cache)
     return _necessity(
         analysis, "seed000.thm5.2.10", analysis.conditions.paper_conditions,
         "Thm 5.2.10's conditions",
@@ -343,8 +369,10 @@ def _claim_thm(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimRes
     "set S of agents blind to a common eigenvector",
     kinds=("dkf",),
 )
-def _claim_blindset(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
-    analysis = analysis or analyze_dkf(case, search_self_weight=False)
+def _claim_blindset(
+    case: Case, analysis: DkfAnalysis | None = None, *, cache: RunCache | None = None
+) -> list[ClaimResult]:
+    analysis = analysis or case_analysis(case, cache)
     return _necessity(
         analysis,
         "seed000.thm5.2.10.blindset",
@@ -360,8 +388,10 @@ def _claim_blindset(case: Case, analysis: DkfAnalysis | None = None) -> list[Cla
     "P − L(P) > 0 for some P > 0",
     kinds=("dkf",),
 )
-def _claim_lemma_522(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
-    analysis = analysis or analyze_dkf(case, search_self_weight=False)
+def _claim_lemma_522(
+    case: Case, analysis: DkfAnalysis | None = None, *, cache: RunCache | None = None
+) -> list[ClaimResult]:
+    analysis = analysis or case_analysis(case, cache)
     spec = case.spec
     if analysis.gains is None:
         return [_result("seed000.lem5.2.2", case, "numeric", None, {"gains_source": "none"})]
@@ -413,8 +443,10 @@ def _lyapunov_agrees(identities: bool, lyapunov: bool | None, radius: float) -> 
     statement="with fixed gains, the error covariances of (5.5) satisfy Σ(k) ≤ P(k) of (5.15)",
     kinds=("dkf",),
 )
-def _claim_lemma_523(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
-    analysis = analysis or analyze_dkf(case, search_self_weight=False)
+def _claim_lemma_523(
+    case: Case, analysis: DkfAnalysis | None = None, *, cache: RunCache | None = None
+) -> list[ClaimResult]:
+    analysis = analysis or case_analysis(case, cache)
     spec = case.spec
     if analysis.gains is None:
         return [_result("seed000.lem5.2.3", case, "simulation", None, {"gains_source": "none"})]
@@ -450,8 +482,10 @@ def _claim_lemma_523(case: Case, analysis: DkfAnalysis | None = None) -> list[Cl
     "P_{k+1} = f_1(M, P_k) + U stays below (α + μ/(1 − r)) X",
     kinds=("dkf",),
 )
-def _claim_lemma_a21(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
-    analysis = analysis or analyze_dkf(case, search_self_weight=False)
+def _claim_lemma_a21(
+    case: Case, analysis: DkfAnalysis | None = None, *, cache: RunCache | None = None
+) -> list[ClaimResult]:
+    analysis = analysis or case_analysis(case, cache)
     if analysis.gains is None:
         raise NotApplicable("no gains: the case fixes none and the LMI found no witness")
     spec = case.spec
@@ -501,8 +535,10 @@ def _averaged_bound(spec: Any, gains: tuple[np.ndarray, ...]) -> AveragedBoundCh
     "(A, C, W) is S-detectable",
     kinds=("dkf",),
 )
-def _claim_riccati(case: Case, analysis: DkfAnalysis | None = None) -> list[ClaimResult]:
-    analysis = analysis or analyze_dkf(case, search_self_weight=False)
+def _claim_riccati(
+    case: Case, analysis: DkfAnalysis | None = None, *, cache: RunCache | None = None
+) -> list[ClaimResult]:
+    analysis = analysis or case_analysis(case, cache)
     run, verdict = analysis.riccati, analysis.decision.verdict
     stabilizing = run.status == "converged" and run.stabilizing
     ok = True if not stabilizing else verdict

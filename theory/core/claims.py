@@ -14,6 +14,7 @@ complete without a hand-kept list.
 from __future__ import annotations
 
 import importlib
+import inspect
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -27,6 +28,7 @@ __all__ = [
     "Claim",
     "ClaimResult",
     "NotApplicable",
+    "accepts",
     "all_claims",
     "applicable_results",
     "claim_modules",
@@ -180,7 +182,29 @@ def register(
     return decorate
 
 
-def applicable_results(claim: Claim, case: Any) -> list[ClaimResult]:
+def accepts(run: Callable[..., Any], keyword: str) -> bool:
+    """Whether a claim's ``run`` takes the keyword argument ``keyword`` (``seed``, ``cache``…).
+
+    Parameters
+    ----------
+    run : callable
+        The check.
+    keyword : str
+        The keyword.
+
+    Returns
+    -------
+    bool
+        ``False`` also when the signature cannot be read; a ``**kwargs`` does not count.
+    """
+    try:
+        parameters = inspect.signature(run).parameters
+    except (TypeError, ValueError):
+        return False
+    return keyword in parameters
+
+
+def applicable_results(claim: Claim, case: Any, *, cache: Any = None) -> list[ClaimResult]:
     """``claim.run(case)``, with :class:`NotApplicable` read as no result.
 
     Parameters
@@ -189,13 +213,17 @@ def applicable_results(claim: Claim, case: Any) -> list[ClaimResult]:
         A registered claim.
     case : Case or None
         The case (``None`` for a claim about the model alone).
+    cache : RunCache, optional
+        The case's :class:`~theory.core.run_cache.RunCache`, passed to a check that accepts
+        ``cache`` (so that checks of one case share their work).
 
     Returns
     -------
     list of ClaimResult
     """
+    options = {"cache": cache} if cache is not None and accepts(claim.run, "cache") else {}
     try:
-        return claim.run(case)
+        return claim.run(case, **options)
     except NotApplicable:
         return []
 

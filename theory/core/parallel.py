@@ -4,7 +4,9 @@ Every embarrassingly parallel piece of trackcert (the report's checks, Monte Car
 points, falsify examples) goes through :func:`engine`: a context that yields a :class:`TaskRunner`
 whose :meth:`~TaskRunner.map` runs ``fn(item)`` for each item and returns the results **in item
 order**, so that a caller seeding each item explicitly gets identical results with 1, 2 or 64
-workers and whatever the order in which they finish.
+workers and whatever the order in which they finish; :meth:`~TaskRunner.completed` yields each
+task's :class:`Outcome` (value or exception) as it finishes, for callers that show progress or
+must survive a lost task (the report).
 
 Where the tasks run:
 
@@ -25,12 +27,14 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
+from dataclasses import dataclass
 from typing import Any, TypeVar
 
 from theory.core.errors import CaseError
 
 __all__ = [
     "SCHEDULER_SETTING",
+    "Outcome",
     "TaskRunner",
     "default_workers",
     "engine",
@@ -135,23 +139,60 @@ class TaskRunner:
         Exception
             The first (in item order) exception a task raised, re-raised here.
         """
-        if self.serial or len(items) <= 1:
-            return _serial(fn, items, progress)
+        results: list[Any] = [None] * len(items)
+        errors: dict[int, BaseException] = {}
+        for done, outcome in enumerate(self.completed(fn, items), start=1):
+            if outcome.error is None:
+                results[outcome.index] = outcome.value
+            elif self.serial:
+                raise outcome.error  # the first in item order: no need to run the rest
+            else:
+                errors[outcome.index] = outcome.error
+            if progress is not None:
+                progress(done)
+        if errors:
+            raise errors[min(errors)]
+        return results
+
+    def completed(self, fn: Callable[[T], R], items: Sequence[T]) -> Iterator[Outcome]:
+        """The outcome of ``fn(item)`` for each item, as each task finishes.
+
+        Parameters
+        ----------
+        fn : callable
+            As for :meth:`map`.
+        items : sequence
+            As for :meth:`map`.
+
+        Yields
+        ------
+        Outcome
+            In completion order (item order on the serial path); a task that raised (or whose
+            worker died) yields its exception instead of a value.
+        """
+        if self.serial or (len(items) <= 1 and self.scheduler is None):
+            yield from _serial(fn, items)  # one task is not worth starting a local cluster
+            return
         from distributed import as_completed
 
         client = self._connect()
         futures = client.map(fn, list(items), pure=False)
         index = {future.key: i for i, future in enumerate(futures)}
-        results: list[Any] = [None] * len(futures)
-        for done, future in enumerate(as_completed(futures), start=1):
-            if future.status == "finished":
-                results[index[future.key]] = future.result()
-            if progress is not None:
-                progress(done)
-        for future in futures:
-            if future.status == "error":
-                future.result()  # re-raises the task's exception
-        return results
+        try:
+            for future in as_completed(futures):
+                yield _outcome(index[future.key], future)
+        finally:
+            client.cancel(futures)
+
+    @property
+    def size(self) -> int:
+        """How many workers ran (or would run) the tasks: 1 on the serial path, the cluster's
+        worker count once connected, else :attr:`workers`."""
+        if self.serial:
+            return 1
+        if self._client is not None:
+            return len(self._client.scheduler_info().get("workers", {}))
+        return self.workers
 
     def _connect(self) -> Any:
         if self._client is not None:
@@ -174,7 +215,8 @@ class TaskRunner:
             threads_per_worker=1,
             processes=True,
             memory_limit=WORKER_MEMORY,
-            dashboard_address=None,
+            dashboard_address=":0",  # the health server on a free port (8787 may be taken)
+            scheduler_kwargs={"dashboard": False},
         )
         self._client = Client(self._cluster)
         return self._client
@@ -188,13 +230,43 @@ class TaskRunner:
         self._client = self._cluster = None
 
 
-def _serial(fn: Callable[[T], R], items: Sequence[T], progress: Callable[[int], None] | None):
-    results = []
-    for item in items:
-        results.append(fn(item))
-        if progress is not None:
-            progress(len(results))
-    return results
+@dataclass(frozen=True)
+class Outcome:
+    """One finished task of :meth:`TaskRunner.completed`.
+
+    Attributes
+    ----------
+    index : int
+        The item's position.
+    value : object
+        ``fn(item)`` (``None`` when the task failed).
+    error : BaseException or None
+        The exception the task raised (or the worker's failure, e.g. ``KilledWorker``).
+    """
+
+    index: int
+    value: Any = None
+    error: BaseException | None = None
+
+
+def _serial(fn: Callable[[T], R], items: Sequence[T]) -> Iterator[Outcome]:
+    for i, item in enumerate(items):
+        try:
+            value = fn(item)
+        except Exception as error:
+            yield Outcome(i, error=error)
+        else:
+            yield Outcome(i, value)
+
+
+def _outcome(i: int, future: Any) -> Outcome:
+    if future.status == "finished":
+        return Outcome(i, future.result())
+    try:
+        future.result()
+    except Exception as error:
+        return Outcome(i, error=error)
+    return Outcome(i, error=RuntimeError(f"task {i} ended as {future.status!r}"))
 
 
 @contextmanager

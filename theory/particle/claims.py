@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.claims import ClaimResult, register
+from theory.core.run_cache import RunCache
 from theory.particle.case import PARAM_NAMES, PfSpec
 from theory.particle.experiments import (
     DEFAULT_TOLERANCES,
@@ -57,7 +58,9 @@ def _node_observed(node: int, status: str) -> int | bool | None:
     ),
     kinds=("pf",),
 )
-def check_convergence(case: Any, *, figure_dir: Path | None = None) -> list[ClaimResult]:
+def check_convergence(
+    case: Any, *, figure_dir: Path | None = None, cache: RunCache | None = None
+) -> list[ClaimResult]:
     """Compare each expected convergence verdict with the Monte Carlo one (seed 002 eq. (3.20)).
 
     Observes ``converges``: node id → true / false / null (median tail error inside the
@@ -74,7 +77,7 @@ def check_convergence(case: Any, *, figure_dir: Path | None = None) -> list[Clai
     if not expected:
         return []
     tol = _tolerances(case)
-    mc = shared_monte_carlo(case.spec)
+    mc = shared_monte_carlo(case.spec, cache=cache)
     found = convergence_verdicts(
         mc.tail_errors,
         case.spec.network.filters,
@@ -123,7 +126,7 @@ def check_convergence(case: Any, *, figure_dir: Path | None = None) -> list[Clai
     statement="In topology B the consensus (particle exchange) step lowers node 4's norm error.",
     kinds=("pf",),
 )
-def check_consensus(case: Any) -> list[ClaimResult]:
+def check_consensus(case: Any, *, cache: RunCache | None = None) -> list[ClaimResult]:
     """Paired Monte Carlo comparison of ``m`` versus ``m = 0`` at the expected node.
 
     Observes ``consensus_helps`` (module docstring).
@@ -132,8 +135,8 @@ def check_consensus(case: Any) -> list[ClaimResult]:
     if node is None:
         return []
     tol = _tolerances(case)
-    with_consensus = shared_monte_carlo(case.spec)
-    without = shared_monte_carlo(case.spec, share=0)
+    with_consensus = shared_monte_carlo(case.spec, cache=cache)
+    without = shared_monte_carlo(case.spec, share=0, cache=cache)
     column = _column(case.spec, int(node))
     result = compare_variants(
         with_consensus, without, column, improvement_tol=tol["improvement_tol"]
@@ -171,7 +174,7 @@ def check_consensus(case: Any) -> list[ClaimResult]:
     ),
     kinds=("pf",),
 )
-def check_learning(case: Any) -> list[ClaimResult]:
+def check_learning(case: Any, *, cache: RunCache | None = None) -> list[ClaimResult]:
     """Learned vs Gaussian (paired test) and learned vs true DCRW (reported, with the fits).
 
     Observes ``learned_beats_gaussian`` (module docstring).
@@ -180,7 +183,10 @@ def check_learning(case: Any) -> list[ClaimResult]:
     if node is None:
         return []
     tol = _tolerances(case)
-    runs = {m: shared_monte_carlo(case.spec, model=m) for m in ("dcrw", "learned", "gaussian")}
+    runs = {
+        m: shared_monte_carlo(case.spec, model=m, cache=cache)
+        for m in ("dcrw", "learned", "gaussian")
+    }
     column = _column(case.spec, int(node))
     versus = {
         name: compare_variants(
@@ -259,8 +265,10 @@ def learned_bias(fits: np.ndarray, truth: np.ndarray) -> tuple[np.ndarray, np.nd
     return bias, fits.std(axis=0, ddof=1) / np.sqrt(len(fits))
 
 
-def _node_bias(spec: PfSpec, node: int, improvement_tol: float) -> dict[str, Any]:
-    fits = shared_monte_carlo(spec, model="learned").learned[:, _column(spec, node)]
+def _node_bias(
+    spec: PfSpec, learned: np.ndarray, node: int, improvement_tol: float
+) -> dict[str, Any]:
+    fits = learned[:, _column(spec, node)]
     fits = fits[~np.isnan(fits[:, 0])]
     if len(fits) < 2:
         return {"node": node, "fitted_runs": len(fits), "biased": None, "z_max": None}
@@ -291,7 +299,7 @@ def _bias_status(node: dict[str, Any]) -> str:
     "step-length PDFs.",
     kinds=("pf",),
 )
-def check_learned_pdfs(case: Any) -> list[ClaimResult]:
+def check_learned_pdfs(case: Any, *, cache: RunCache | None = None) -> list[ClaimResult]:
     """Bias of each learned parameter over runs: a z-test of (mean fit − truth) / SE.
 
     Runs on the nodes named by ``learned_pdfs_centre`` and ``learned_biased`` and observes both:
@@ -306,7 +314,8 @@ def check_learned_pdfs(case: Any) -> list[ClaimResult]:
     if not nodes:
         return []
     tol = _tolerances(case)
-    found = [_node_bias(case.spec, n, tol["improvement_tol"]) for n in nodes]
+    learned = shared_monte_carlo(case.spec, model="learned", cache=cache).learned
+    found = [_node_bias(case.spec, learned, n, tol["improvement_tol"]) for n in nodes]
     statuses = {_bias_status(f) for f in found}
     status = next(s for s in ("refuted", "inconclusive", "corrected", "verified") if s in statuses)
     observed: dict[str, Any] = {}

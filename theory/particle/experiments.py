@@ -16,12 +16,15 @@ the steps. A node **converges** when the median tail error over runs is ``≤ co
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import partial
 from typing import Any
 
 import numpy as np
 
+from theory.core.parallel import TaskRunner, engine
+from theory.core.run_cache import RunCache, shared
 from theory.core.tolerances import PF_TOLERANCES
 from theory.particle.case import PfSpec
 from theory.particle.dcrw import sample_dcrw_path
@@ -123,8 +126,13 @@ def monte_carlo(
     model: str | None = None,
     share: int | None = None,
     snapshot_steps: tuple[int, ...] = (),
+    runner: TaskRunner | None = None,
+    progress: Callable[[int], None] | None = None,
 ) -> MonteCarlo:
     """Run the scenario ``runs`` times (defaults from ``spec``); see the module docstring.
+
+    The runs are independent tasks on the engine (:mod:`theory.core.parallel`); run ``r`` draws
+    only from ``default_rng([seed, r, ·])``, so the result is the same whatever the runner.
 
     Parameters
     ----------
@@ -138,6 +146,10 @@ def monte_carlo(
         Override ``m`` (0 disables consensus).
     snapshot_steps : tuple of int
         Steps at which run 0 keeps its particle sets.
+    runner : TaskRunner, optional
+        An open engine (:func:`theory.core.parallel.engine`); default: this process, serially.
+    progress : callable, optional
+        Called with the number of runs finished so far.
 
     Returns
     -------
@@ -147,25 +159,37 @@ def monte_carlo(
     seed = spec.seed if seed is None else seed
     model = spec.model if model is None else model
     config = spec.config if share is None else replace(spec.config, share=share)
-    errors, estimates, paths, learned, snapshots = [], [], [], [], {}
-    for r in range(runs):
-        path, run = _one_run(spec, config, model, [seed, r], snapshot_steps if r == 0 else ())
-        errors.append(run.errors)
-        estimates.append(run.estimates)
-        paths.append(path)
-        snapshots = snapshots or run.snapshots
-        if model == "learned":
-            learned.append(run.motion.params)
+    task = partial(_run_record, spec, config, model, seed, snapshot_steps)
+    if runner is None:
+        with engine(1) as serial:
+            records = serial.map(task, range(runs), progress=progress)
+    else:
+        records = runner.map(task, range(runs), progress=progress)
+    errors, estimates, paths, learned, snapshots = zip(*records, strict=True)
     return MonteCarlo(
         np.asarray(errors),
         np.asarray(estimates),
         np.asarray(paths),
-        np.asarray(learned) if learned else None,
-        snapshots,
+        np.asarray(learned) if model == "learned" else None,
+        snapshots[0],
         seed,
         model,
         config.share,
     )
+
+
+def _run_record(
+    spec: PfSpec,
+    config: PfConfig,
+    model: str,
+    seed: int,
+    snapshot_steps: tuple[int, ...],
+    r: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None, dict[int, np.ndarray]]:
+    """Run ``r`` as plain arrays (errors, estimates, path, learned fits, run 0's snapshots)."""
+    path, run = _one_run(spec, config, model, [seed, r], snapshot_steps if r == 0 else ())
+    learned = run.motion.params if model == "learned" else None
+    return run.errors, run.estimates, path, learned, run.snapshots
 
 
 def _one_run(
@@ -332,33 +356,44 @@ def compare_variants(
 
 
 def shared_monte_carlo(
-    spec: PfSpec, *, model: str | None = None, share: int | None = None
+    spec: PfSpec,
+    *,
+    model: str | None = None,
+    share: int | None = None,
+    cache: RunCache | None = None,
+    progress: Callable[[int], None] | None = None,
 ) -> MonteCarlo:
-    """:func:`monte_carlo` memoised per ``spec`` object, model and ``m``.
+    """:func:`monte_carlo` of ``spec`` once per ``cache``, model and ``m``.
 
-    Thus the claims run on one loaded case (the report, ``trackcert pf``) share their runs
-    instead of repeating them.
+    Thus the claims run on one case with one :class:`~theory.core.run_cache.RunCache` (the
+    report's task of the case, ``trackcert pf``) share their runs instead of repeating them.
 
     Parameters
     ----------
     spec : PfSpec
-        The scenario (memoised by object identity).
+        The scenario (the cache belongs to its case).
     model : str, optional
         Override the propagation model (default: the case's).
     share : int, optional
         Override ``m`` (0 disables consensus; default: the case's).
+    cache : RunCache, optional
+        The case's cache (``None``: run); the runs go to its ``runner`` when it has one.
+    progress : callable, optional
+        Called with the number of runs finished, when they run.
 
     Returns
     -------
     MonteCarlo
     """
     model = spec.model if model is None else model
-    return _memoised(spec, model, spec.config.share if share is None else share)
-
-
-@lru_cache(maxsize=16)
-def _memoised(spec: PfSpec, model: str, share: int) -> MonteCarlo:
-    return monte_carlo(spec, model=model, share=share)
+    share = spec.config.share if share is None else share
+    key = ("pf_monte_carlo", spec.runs, spec.seed, model, share)
+    runner = None if cache is None else cache.runner
+    return shared(
+        cache,
+        key,
+        lambda: monte_carlo(spec, model=model, share=share, runner=runner, progress=progress),
+    )
 
 
 VARIANTS = {

@@ -11,6 +11,7 @@ exits with the expectations' verdict (:mod:`theory.core.verdicts`).
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -20,6 +21,8 @@ from theory.core.claims import ClaimResult, all_claims, applicable_results, get_
 from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, evaluate, observations_from
 from theory.core.jsonable import plain
+from theory.core.parallel import TaskRunner
+from theory.core.run_cache import RunCache
 from theory.core.verdicts import Verdict, expectations_verdict
 
 __all__ = ["SNAPSHOT_STEPS", "PfReport", "pf_report"]
@@ -76,7 +79,13 @@ class PfReport:
 
 
 def pf_report(
-    case: Case, *, runs: int | None = None, seed: int | None = None, out: Path | None = None
+    case: Case,
+    *,
+    runs: int | None = None,
+    seed: int | None = None,
+    out: Path | None = None,
+    runner: TaskRunner | None = None,
+    progress: Callable[[int], None] | None = None,
 ) -> PfReport:
     """Run ``case`` (``kind: pf``), its claims and its expectations; write ``out`` if given.
 
@@ -88,6 +97,11 @@ def pf_report(
         Monte Carlo runs and base seed (``None``: the case's own).
     out : Path, optional
         Folder for ``pf.json`` and figures (``None``: write nothing).
+    runner : TaskRunner, optional
+        An open engine for the Monte Carlo runs (default: this process, serially); the claims
+        share them through one :class:`~theory.core.run_cache.RunCache`.
+    progress : callable, optional
+        Called with the number of the case's runs finished.
 
     Returns
     -------
@@ -108,12 +122,13 @@ def pf_report(
         case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
     )
     case = replace(case, spec=spec)
-    mc = shared_monte_carlo(spec)
+    cache = RunCache(runner)
+    mc = shared_monte_carlo(spec, cache=cache, progress=progress)
     claims = [
         result
         for claim in all_claims()
         if "pf" in claim.kinds
-        for result in applicable_results(claim, case)
+        for result in applicable_results(claim, case, cache=cache)
     ]
     observed = [
         found for r in claims for found in observations_from(r.claim, plain(r.evidence), r.status)

@@ -26,7 +26,7 @@ from typing import Any
 
 import theory
 from theory.core.claims import DOCUMENT_KEY
-from theory.report.runner import Record, slug
+from theory.report.records import Record, slug
 
 __all__ = [
     "CERTIFICATE_KEYS",

@@ -1,14 +1,17 @@
 """``trackcert report`` as one library call: choose the claims, run them, write the folder.
 
-:func:`build_report` runs :func:`theory.report.runner.run_claims` with figures drawn in a
-temporary folder and writes the report with :func:`theory.report.render.write_report`; the
-command only shows progress and a summary and exits with the expectations' verdict
-(:mod:`theory.core.verdicts`).
+:func:`build_report` runs :func:`theory.report.runner.run_claims` on the task engine
+(:func:`theory.core.parallel.engine`: ``workers`` local processes or the Dask cluster at
+``scheduler``) with figures drawn in a temporary folder, writes the report with
+:func:`theory.report.render.write_report` and the checks' times with
+:func:`theory.report.timings.write_timings`; the command only shows progress and a summary and
+exits with the expectations' verdict (:mod:`theory.core.verdicts`).
 """
 
 from __future__ import annotations
 
 import tempfile
+import time
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -16,8 +19,10 @@ from typing import Any
 from theory.core.case_file import Case
 from theory.core.claims import Claim, all_claims
 from theory.core.errors import CaseError
+from theory.core.parallel import engine
 from theory.report.render import write_report
 from theory.report.runner import ProgressHook, RunResult, run_claims, select_claims
+from theory.report.timings import timings_document, write_timings
 
 __all__ = ["build_report", "check_count", "choose_claims"]
 
@@ -77,8 +82,11 @@ def build_report(
     seconds: float | None = None,
     errata_path: Path | None = None,
     progress: ProgressHook | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
 ) -> tuple[RunResult, dict[str, Any]]:
-    """Run every claim on every case and write ``index.html``, ``report.md``, ``report.json``.
+    """Run every claim on every case; write ``index.html``, ``report.md``, ``report.json`` and
+    ``timings.json``.
 
     Parameters
     ----------
@@ -95,8 +103,11 @@ def build_report(
     errata_path : Path, optional
         The errata document (default ``docs/errata.md``).
     progress : callable, optional
-        ``progress(claim_id, case_name)`` before each check (``case_name`` is
-        :data:`~theory.report.runner.MODEL_CASE` for model claims).
+        ``progress(done, label)`` as checks complete (:data:`~theory.report.runner.ProgressHook`).
+    workers : int, optional
+        Local worker processes (default: all local cores; 1: serially in this process).
+    scheduler : str, optional
+        Address of a Dask scheduler to run on (default ``$TRACKCERT_SCHEDULER``).
 
     Returns
     -------
@@ -106,11 +117,16 @@ def build_report(
     Raises
     ------
     CaseError
-        If ``errata_path`` is not a readable file, or the folder cannot be written.
+        If ``errata_path`` is not a readable file, the folder cannot be written, ``workers < 1``
+        or the scheduler cannot be reached.
     """
     if errata_path is not None and not Path(errata_path).is_file():
         raise CaseError("--errata", "a readable Markdown file", str(errata_path))
-    with tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures:
+    with (
+        tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures,
+        engine(workers, scheduler) as runner,
+    ):
+        started = time.perf_counter()
         run = run_claims(
             cases,
             seed=seed,
@@ -118,6 +134,12 @@ def build_report(
             progress=progress,
             seconds=seconds,
             figure_dir=Path(figures),
+            runner=runner,
         )
+        wall = time.perf_counter() - started
         document = write_report(run, out_dir, errata_path=errata_path)
+        timings = timings_document(
+            run, wall_seconds=wall, workers=runner.size, scheduler=runner.scheduler
+        )
+        write_timings(timings, Path(out_dir))
     return run, document

@@ -18,7 +18,7 @@ import theory
 from theory.core.case_file import Case, bundled_case_dir
 from theory.core.claims import all_claims, claim_modules
 from theory.core.tolerances import table
-from theory.report.runner import Record
+from theory.report.records import Record
 from theory.report.time_limit import enforceable
 
 __all__ = ["PACKAGES", "SEED_RULE", "environment"]

@@ -1,58 +1,102 @@
 """A wall-clock limit on one check, so that one slow claim cannot hold up the whole report.
 
-:func:`time_limit` arms ``SIGALRM`` for the ``with`` block; when it fires,
-:class:`TimeLimitExceeded` is raised in the check's Python code, and the report records the claim
-as ``inconclusive``. The
-exception derives from :class:`BaseException`, like :class:`KeyboardInterrupt`, so that a
+:func:`time_limit` arms a :class:`threading.Timer` for the ``with`` block; when it fires, it raises
+:class:`TimeLimitExceeded` in the thread running the block (``PyThreadState_SetAsyncExc``), and the
+report records the claim as ``inconclusive``. One mechanism serves every thread: the main thread
+of ``--workers 1`` and the worker thread in which a Dask task runs (where ``SIGALRM`` cannot be
+used). When the block exits first, the timer is cancelled and an exception it may have scheduled
+in the meantime is withdrawn, so nothing is raised after the block.
+
+The exception derives from :class:`BaseException`, like :class:`KeyboardInterrupt`, so that a
 check's own ``except Exception`` (a solver failure turned into a verdict) cannot swallow it.
-Native code (a solver's inner loop) is interrupted when it next returns to Python. The limit
-needs ``SIGALRM`` and the main thread; elsewhere (Windows, a worker thread) :func:`enforceable`
-is false and checks run unlimited.
+Native code (a solver's inner loop) is interrupted when it next returns to Python.
 """
 
 from __future__ import annotations
 
-import signal
+import ctypes
 import threading
-from collections.abc import Iterator
-from contextlib import contextmanager
+from types import TracebackType
 
 __all__ = ["TimeLimitExceeded", "enforceable", "time_limit"]
 
 
 class TimeLimitExceeded(BaseException):
-    """A check ran past its time limit."""
+    """A check ran past its time limit.
 
-    def __init__(self, seconds: float) -> None:
-        super().__init__(f"the check did not finish within its time limit of {seconds:g} s")
-        self.seconds = seconds
+    The exception is raised asynchronously as a class (no arguments), so the limit travels as the
+    class attribute ``seconds`` of a subclass made per limit (:func:`_expired`).
+    """
+
+    seconds: float = 0.0
+
+    def __init__(self, seconds: float | None = None) -> None:
+        if seconds is not None:
+            self.seconds = seconds
+        super().__init__(f"the check did not finish within its time limit of {self.seconds:g} s")
+
+
+def _expired(seconds: float) -> type[TimeLimitExceeded]:
+    """A subclass of :class:`TimeLimitExceeded` whose instances say ``seconds``."""
+    return type("TimeLimitExceeded", (TimeLimitExceeded,), {"seconds": seconds})
 
 
 def enforceable() -> bool:
-    """Whether :func:`time_limit` can interrupt a check here (``SIGALRM``, main thread)."""
-    return hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
+    """Whether :func:`time_limit` can interrupt a check (``PyThreadState_SetAsyncExc``)."""
+    return hasattr(ctypes, "pythonapi") and hasattr(ctypes.pythonapi, "PyThreadState_SetAsyncExc")
 
 
-@contextmanager
-def time_limit(seconds: float | None) -> Iterator[None]:
+def _set_async_exc(thread_id: int, exception: type[BaseException] | None) -> int:
+    """Schedule ``exception`` in thread ``thread_id`` (``None`` withdraws a scheduled one)."""
+    target = ctypes.py_object(exception) if exception is not None else None
+    return ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(thread_id), target)
+
+
+class time_limit:  # noqa: N801 (used as a context manager, like contextlib's)
     """Raise :class:`TimeLimitExceeded` in the ``with`` block after ``seconds`` of wall time.
 
     Parameters
     ----------
     seconds : float or None
-        The limit; ``None`` (or a place where :func:`enforceable` is false) sets none.
+        The limit; ``None`` (or a Python where :func:`enforceable` is false) sets none.
     """
-    if seconds is None or not enforceable():
-        yield
-        return
 
-    def expire(signum: int, frame: object) -> None:
-        raise TimeLimitExceeded(seconds)
+    def __init__(self, seconds: float | None) -> None:
+        self.seconds = seconds
+        self._lock = threading.Lock()
+        self._timer: threading.Timer | None = None
+        self._thread_id = 0
+        self._open = False
+        self._fired = False
 
-    previous = signal.signal(signal.SIGALRM, expire)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+    def __enter__(self) -> time_limit:
+        if self.seconds is None or not enforceable():
+            return self
+        self._thread_id = threading.get_ident()
+        self._open = True
+        self._timer = threading.Timer(self.seconds, self._expire)
+        self._timer.daemon = True
+        self._timer.start()
+        return self
+
+    def _expire(self) -> None:
+        with self._lock:
+            if self._open:
+                self._fired = True
+                _set_async_exc(self._thread_id, _expired(float(self.seconds or 0.0)))
+
+    def __exit__(
+        self,
+        kind: type[BaseException] | None,
+        error: BaseException | None,
+        trace: TracebackType | None,
+    ) -> None:
+        if self._timer is None:
+            return
+        with self._lock:
+            self._open = False
+            if self._fired:
+                _set_async_exc(self._thread_id, None)  # not delivered yet: withdraw it
+        self._timer.cancel()
+        self._timer.join()  # returns at once: the timer is cancelled or has fired
+        self._timer = None

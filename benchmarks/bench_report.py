@@ -1,0 +1,113 @@
+"""``trackcert report`` wall and CPU time at 1 and 2 workers, the speed-up, the cost before this
+work, and peak memory (issue 16 items 1 and 4).
+
+Targets (issue 16): the whole report ≤ 90 s wall on 2 cores, a speed-up of 1.8–2× from 1 to 2
+workers, no worker over 1 GiB. Each configuration runs the command as a user does
+(``python -m theory.cli report -o DIR --workers N``) in a fresh process; the baseline of every
+ratio is measured in the same run: the speed-up against ``--workers 1``, the cost removal against
+the code at ``--before REV`` (default: the commit before the report ran on the engine), exported
+with ``git archive`` to a temporary folder and run serially the same way. CPU seconds are those of
+the command and all its worker processes (``RUSAGE_CHILDREN``): on a shared machine they are the
+figure to compare, wall time is what the lead reruns on a quiet one. Peak memory: the report
+process's and each worker's, from ``timings.json``. The two reports are compared byte for byte.
+
+Run from the repository root: ``python -m benchmarks.bench_report [--before REV] [--skip-before]
+[--keep DIR] [CASES…] [--only PATTERN …]`` (``--keep`` leaves the reports and their
+``timings.json`` in ``DIR/w1``, ``DIR/w2``, ``DIR/before``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import tarfile
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+BEFORE = "725a9f44028b"
+"""The commit before issue 16 item 1 (the report ran serially in one process)."""
+
+GIB = 1024**3
+
+
+def run_report(source: Path, out: Path, workers: int | None, extra: list[str]) -> dict:
+    """Run the report from the tree ``source``; wall and CPU seconds and its timings.json."""
+    options = [] if workers is None else ["--workers", str(workers)]
+    command = [sys.executable, "-m", "theory.cli", "report", "-o", str(out), *options, *extra]
+    env = {**os.environ, "PYTHONPATH": str(source), "OPENBLAS_NUM_THREADS": "1"}
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    done = subprocess.run(command, cwd=source, env=env, capture_output=True, text=True)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if done.returncode not in (0, 1, 3):
+        raise SystemExit(f"report failed ({done.returncode}):\n{done.stderr[-2000:]}")
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    timings_path = out / "timings.json"
+    timings = json.loads(timings_path.read_text()) if timings_path.exists() else {}
+    return {"wall": wall, "cpu": cpu, "timings": timings, "rss": after.ru_maxrss * 1024}
+
+
+def export(revision: str, folder: Path) -> Path:
+    """The tree at ``revision`` (``git archive``) under ``folder``."""
+    archive = folder / "before.tar"
+    with archive.open("wb") as handle:
+        subprocess.run(["git", "archive", revision], cwd=ROOT, stdout=handle, check=True)
+    tree = folder / "before"
+    with tarfile.open(archive) as tar:
+        tar.extractall(tree, filter="data")
+    return tree
+
+
+def describe(name: str, result: dict) -> str:
+    timings = result["timings"]
+    workers = timings.get("worker_peak_rss", {})
+    worst = max(workers.values(), default=0)
+    parent = timings.get("parent_peak_rss", result["rss"])
+    return (
+        f"{name:<22} wall {result['wall']:7.1f} s   CPU {result['cpu']:7.1f} s   "
+        f"peak RSS parent {parent / 2**20:6.0f} MiB, worst worker {worst / 2**20:6.0f} MiB "
+        f"({len(workers)} workers)"
+    )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("cases", nargs="*", help="Cases (default: every bundled case).")
+    parser.add_argument("--only", action="append", default=[], help="Claim id pattern.")
+    parser.add_argument("--before", default=BEFORE, help="Revision measured as the before-cost.")
+    parser.add_argument("--skip-before", action="store_true", help="Do not measure it.")
+    parser.add_argument("--keep", type=Path, help="Keep the reports (and timings.json) here.")
+    args = parser.parse_args()
+    extra = [*args.cases, *(f"--only={p}" for p in args.only)]
+    with tempfile.TemporaryDirectory(prefix="bench-report-") as tmp:
+        folder = Path(tmp) if args.keep is None else args.keep
+        folder.mkdir(parents=True, exist_ok=True)
+        serial = run_report(ROOT, folder / "w1", 1, extra)
+        print(describe("after, 1 worker", serial), flush=True)
+        spread = run_report(ROOT, folder / "w2", 2, extra)
+        print(describe("after, 2 workers", spread), flush=True)
+        same = (folder / "w1/report.json").read_bytes() == (folder / "w2/report.json").read_bytes()
+        print(f"speed-up 1 → 2 workers: {serial['wall'] / spread['wall']:.2f}× wall "
+              f"(target 1.8–2×); report.json identical: {same}")  # fmt: skip
+        print(f"2-worker wall {spread['wall']:.1f} s (target ≤ 90 s on 2 quiet cores)")
+        worst = max(spread["timings"].get("worker_peak_rss", {}).values(), default=0)
+        print(f"worst worker peak RSS {worst / GIB:.2f} GiB (target ≤ 1 GiB)")
+        if args.skip_before:
+            return
+        tree = export(args.before, folder)
+        before = run_report(tree, folder / "before", None, extra)
+        print(describe(f"before ({args.before[:12]})", before))
+        print(f"cost removed: before / after, serial: {before['cpu'] / serial['cpu']:.2f}× CPU, "
+              f"{before['wall'] / serial['wall']:.2f}× wall; before serial / after 2 workers: "
+              f"{before['wall'] / spread['wall']:.2f}× wall")  # fmt: skip
+
+
+if __name__ == "__main__":
+    main()

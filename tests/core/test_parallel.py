@@ -1,0 +1,126 @@
+"""The task engine: results in item order whatever the workers, failures reported, bad settings
+refused (exit 2 from the commands)."""
+
+from __future__ import annotations
+
+import sys
+
+import cloudpickle
+import numpy as np
+import pytest
+from distributed import LocalCluster
+from hypothesis import given
+from hypothesis import strategies as st
+
+from theory.core.errors import CaseError
+from theory.core.parallel import SCHEDULER_SETTING, engine, scheduler_address
+from theory.core.run_cache import RunCache, shared
+from theory.sim.runner import monte_carlo
+
+# Workers unpickle this module's functions by value: the test folder is not importable there.
+cloudpickle.register_pickle_by_value(sys.modules[__name__])
+
+
+def _walk(spec: dict, rng: np.random.Generator) -> np.ndarray:
+    """A random walk of ``spec["steps"]`` steps (one Monte Carlo run)."""
+    return np.cumsum(rng.normal(size=spec["steps"]))
+
+
+def _square_or_fail(x: int) -> int:
+    if x in (3, 5):
+        raise ValueError(f"item {x} fails")
+    return x * x
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """Two single-threaded worker processes, started by the test."""
+    with LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as started:
+        yield started
+
+
+@given(st.lists(st.integers(-1000, 1000), max_size=30))
+def test_serial_map_is_the_list_comprehension(items: list[int]) -> None:
+    done: list[int] = []
+    with engine(1) as runner:
+        assert runner.serial
+        assert runner.map(abs, items, progress=done.append) == [abs(i) for i in items]
+    assert done == list(range(1, len(items) + 1))
+
+
+def test_monte_carlo_is_identical_on_one_and_two_workers(cluster) -> None:
+    spec = {"steps": 50}
+    serial = monte_carlo(spec, simulate=_walk, runs=12, seed=7, workers=1)
+    done: list[int] = []
+    with engine(scheduler=cluster.scheduler_address) as runner:
+        assert not runner.serial
+        spread = monte_carlo(
+            spec, simulate=_walk, runs=12, seed=7, runner=runner, progress=done.append
+        )
+    assert len(serial) == 12
+    for a, b in zip(serial, spread, strict=True):
+        assert a.tobytes() == b.tobytes()
+    assert done == list(range(1, 13))
+    assert not np.array_equal(serial[0], serial[1])  # the runs are seeded apart
+
+
+def test_particle_monte_carlo_is_identical_on_one_and_two_workers(cluster) -> None:
+    """seed 002's runs are tasks too (``theory.particle.experiments.monte_carlo``)."""
+    from theory.core.case_file import load_case
+    from theory.particle.experiments import monte_carlo as pf_monte_carlo
+
+    spec = load_case("pf-topology-b").spec
+    serial = pf_monte_carlo(spec, runs=3, seed=5, snapshot_steps=(0, 3))
+    with engine(scheduler=cluster.scheduler_address) as runner:
+        spread = pf_monte_carlo(spec, runs=3, seed=5, snapshot_steps=(0, 3), runner=runner)
+    for name in ("errors", "estimates", "paths"):
+        assert getattr(serial, name).tobytes() == getattr(spread, name).tobytes()
+    assert sorted(spread.snapshots) == [0, 3]
+    assert serial.snapshots[3].tobytes() == spread.snapshots[3].tobytes()
+
+
+def test_completed_reports_each_failure_and_map_raises_the_first(cluster) -> None:
+    with engine(scheduler=cluster.scheduler_address) as runner:
+        outcomes = sorted(runner.completed(_square_or_fail, list(range(8))), key=lambda o: o.index)
+        assert [o.index for o in outcomes] == list(range(8))
+        assert [type(o.error) for o in outcomes if o.error] == [ValueError, ValueError]
+        assert [o.value for o in outcomes if o.error is None] == [0, 1, 4, 16, 36, 49]
+        with pytest.raises(ValueError, match="item 3 fails"):
+            runner.map(_square_or_fail, list(range(8)))
+    with engine(1) as serial, pytest.raises(ValueError, match="item 3 fails"):
+        serial.map(_square_or_fail, list(range(8)))
+
+
+def test_bad_settings_are_case_errors(monkeypatch) -> None:
+    with pytest.raises(CaseError, match="--workers"), engine(0):
+        pass
+    monkeypatch.setenv(SCHEDULER_SETTING, "tcp://example:8786")
+    assert scheduler_address(None) == "tcp://example:8786"
+    assert scheduler_address("tcp://other:1") == "tcp://other:1"
+
+
+def test_unreachable_scheduler_is_a_case_error(monkeypatch) -> None:
+    monkeypatch.setattr("theory.core.parallel.CONNECT_TIMEOUT", 1.0)
+    with (
+        pytest.raises(CaseError, match="--scheduler") as raised,
+        engine(scheduler="tcp://127.0.0.1:9") as runner,
+    ):
+        runner.map(abs, [1, 2])
+    assert "dask scheduler" in raised.value.hint
+
+
+def test_run_cache_computes_once_per_key() -> None:
+    calls: list[str] = []
+    cache = RunCache()
+
+    def compute(name: str):
+        return lambda: calls.append(name) or name.upper()
+
+    assert cache.get("a", compute("a")) == "A"
+    assert cache.get("a", compute("again")) == "A"
+    assert shared(cache, "b", compute("b")) == "B"
+    assert shared(None, "a", compute("none")) == "NONE"
+    assert calls == ["a", "b", "none"]
+    assert (cache.hits, cache.misses) == (1, 2)
