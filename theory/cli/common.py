@@ -96,7 +96,8 @@ def reports_errors(command: F) -> F:
 
 
 def _fail(message: str, code: int) -> None:
-    error_console.print(message, markup=False, highlight=False, soft_wrap=True)  # one line
+    # one line, verbatim (no markup, no emoji codes such as ':b:')
+    error_console.print(message, markup=False, highlight=False, soft_wrap=True, emoji=False)
     raise typer.Exit(code)
 
 
@@ -251,11 +252,12 @@ def progress_bar(
     Yields
     ------
     callable
-        ``advance(done, label=None)``: ``done`` units finished so far; ``label`` replaces the
-        description (e.g. the check that just finished).
+        ``advance(done, label=None, total=None)``: ``done`` units finished so far; ``label``
+        replaces the description (e.g. the check that just finished); ``total`` corrects the
+        number of units once it is known.
     """
     if quiet or not (console.is_terminal and error_console.is_terminal):
-        yield lambda done, label=None: None
+        yield lambda done, label=None, total=None: None
         return
     from rich.progress import (
         BarColumn,
@@ -277,7 +279,9 @@ def progress_bar(
     with Progress(*columns, console=error_console, transient=True) as progress:
         task = progress.add_task(description, total=total)
 
-        def advance(done: int, label: str | None = None) -> None:
+        def advance(done: int, label: str | None = None, total: int | None = None) -> None:
             progress.update(task, completed=done, description=label or description)
+            if total is not None:
+                progress.update(task, total=total)
 
         yield advance

@@ -11,16 +11,23 @@ inconclusive, 0 otherwise; 2 bad input (including a grid with no valid point).
 
 from __future__ import annotations
 
-import sys
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-from theory.cli.common import console, error_console, json_option, print_json, reports_errors
+from theory.cli.common import (
+    COMMAND_LINE,
+    check_output,
+    console,
+    json_option,
+    print_json,
+    progress_bar,
+    reports_errors,
+    scheduler_option,
+    workers_option,
+)
+from theory.core.limits import check_count
 
 __all__ = ["register"]
 
@@ -30,26 +37,6 @@ PARAM_HELP = (
     "(e.g. k_gamma=1:400:log20, seed=0:50). PATH is a dotted path to a numeric case field "
     "(k_gamma, trackers.0.r_x, W.0.1) or seed."
 )
-
-
-@contextmanager
-def _progress(quiet: bool) -> Iterator[Callable[[int, int], None] | None]:
-    if quiet:
-        yield None
-        return
-    columns = (
-        TextColumn("sweep"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeRemainingColumn(),
-    )
-    with Progress(*columns, console=error_console, transient=True) as progress:
-        task = progress.add_task("sweep", total=None)
-
-        def advance(done: int, total: int) -> None:
-            progress.update(task, completed=done, total=total)
-
-        yield advance
 
 
 def _print_summary(summary: dict, files: list[Path]) -> None:
@@ -80,13 +67,9 @@ def register(app: typer.Typer) -> None:
         case: str = typer.Argument(..., help="Case file or bundled case name."),
         param: Annotated[list[str] | None, typer.Option("--param", "-p", help=PARAM_HELP)] = None,
         output: str = typer.Option(..., "-o", "--output", help="Folder for the sweep files."),
-        workers: int = typer.Option(
-            None, "--workers", help="Worker processes (default: all local cores; 1: serial)."
-        ),
-        scheduler: str = typer.Option(
-            None, "--scheduler", help="Dask scheduler address (default $TRACKCERT_SCHEDULER)."
-        ),
-        steps: int = typer.Option(None, "--steps", help="Simulation steps per point."),
+        workers: int = workers_option(),
+        scheduler: str = scheduler_option(),
+        steps: int = typer.Option(None, "--steps", min=1, help="Simulation steps per point."),
         simulate: bool = typer.Option(
             True, "--simulate/--no-simulate", help="Simulate each point (one run)."
         ),
@@ -100,8 +83,10 @@ def register(app: typer.Typer) -> None:
         from theory.sweep.outputs import write_sweep
         from theory.sweep.run import sweep_case
 
-        quiet = as_json or not sys.stdout.isatty()
-        with _progress(quiet) as progress:
+        check_output(output, "-o/--output", folder=True)
+        if steps is not None:
+            check_count("steps", steps, "--steps", file=COMMAND_LINE)
+        with progress_bar(0, "sweep", quiet=as_json) as advance:
             result = sweep_case(
                 case,
                 param or [],
@@ -110,7 +95,7 @@ def register(app: typer.Typer) -> None:
                 workers=workers,
                 scheduler=scheduler,
                 max_points=MAX_POINTS if max_points is None else max_points,
-                progress=progress,
+                progress=lambda done, total: advance(done, total=total),
             )
         files = write_sweep(result, Path(output))
         summary = result.to_json()["summary"]
