@@ -38,7 +38,6 @@ from typing import Any
 import networkx as nx
 import numpy as np
 import scipy.linalg
-import sympy as sp
 
 from theory.core.errors import InconclusiveError, PropertyFails
 from theory.core.rationalize import exact_decimal
@@ -222,16 +221,17 @@ def left_eigenvector(laplacian: np.ndarray) -> tuple[Fraction, ...] | None:
     ----------
     seed 003, Lemma 1.
     """
+    import flint
+
     n = laplacian.shape[0]
-    lt = sp.Matrix(laplacian.T.astype(int).tolist())
-    kernel = lt.nullspace()
-    if len(kernel) != 1:
+    basis, nullity = flint.fmpz_mat(laplacian.T.astype(int).tolist()).nullspace()
+    if nullity != 1:
         return None
-    vector = kernel[0]
+    vector = [int(basis[i, 0]) for i in range(n)]
     total = sum(vector)
     if total == 0:
         return None
-    return tuple(Fraction(int(x.p), int(x.q)) for x in (vector / total)[:n])
+    return tuple(Fraction(x, total) for x in vector)
 
 
 def _orthogonal_basis(r: np.ndarray) -> np.ndarray:
