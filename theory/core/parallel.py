@@ -24,6 +24,7 @@ only oversubscribe the cores.
 
 from __future__ import annotations
 
+import logging
 import os
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
@@ -222,11 +223,21 @@ class TaskRunner:
         return self._client
 
     def close(self) -> None:
-        """Close the client and the local cluster, if they were started."""
-        if self._client is not None:
-            self._client.close()
-        if self._cluster is not None:
-            self._cluster.close()
+        """Close the client and the local cluster, if they were started.
+
+        Dask's shutdown chatter (a worker killed after a few seconds of closing) is not shown:
+        the results are in by then.
+        """
+        logger = logging.getLogger("distributed")
+        level = logger.level
+        logger.setLevel(logging.ERROR)
+        try:
+            if self._client is not None:
+                self._client.close()
+            if self._cluster is not None:
+                self._cluster.close()
+        finally:
+            logger.setLevel(level)
         self._client = self._cluster = None
 
 
