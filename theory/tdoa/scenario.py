@@ -17,6 +17,7 @@ one EKF uses every agent's rows.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,7 +32,14 @@ from theory.tdoa.model import cv_discrete
 from theory.tdoa.sim_case import TdoaSimSpec
 from theory.tdoa.target import simulate_cv_target
 
-__all__ = ["TdoaRun", "covariance_norms", "hears_at", "run_tdoa_scenario", "weights_at"]
+__all__ = [
+    "TdoaRun",
+    "covariance_norms",
+    "hears_at",
+    "run_tdoa_scenario",
+    "run_tdoa_scenarios",
+    "weights_at",
+]
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,37 +122,137 @@ def run_tdoa_scenario(spec: TdoaSimSpec, rng: np.random.Generator) -> TdoaRun:
     ----------
     seed 000, eqs. (4.1)–(4.10), (4.26)–(4.35), (4.44)–(4.48), §4.3, App. B.2.
     """
-    n, K, m = spec.n_agents, spec.steps, spec.rounds
-    A, B = cv_discrete(spec.T, 3)
-    BQB = B @ spec.Q @ B.T
-    truth = simulate_cv_target(spec.target, spec.Q, spec.T, K, rng)
-    x = np.tile(spec.x0, (n, 1))
-    P = np.tile(spec.P0, (n, 1, 1))
-    states = rest_states(spec.agents)
-    record = _Recorder(n, K, m)
-    record.fine(0, states, np.zeros(n))
-    travelled = np.zeros(n)
+    return run_tdoa_scenarios([spec], [rng])[0]
+
+
+def run_tdoa_scenarios(
+    specs: Sequence[TdoaSimSpec], rngs: Sequence[np.random.Generator]
+) -> list[TdoaRun]:
+    """Simulate several closed loops in lock step; each run equals :func:`run_tdoa_scenario`.
+
+    The runs are independent (each draws from its own generator, in the same order as alone);
+    only the robots' integration between pings, the costly part, is done for all runs' agents
+    in one stack, so a sweep over ``b`` or seeds pays the per-step overhead once.
+
+    Parameters
+    ----------
+    specs : sequence of TdoaSimSpec
+        The scenarios; they must share ``T``, ``tau``, ``steps``, ``substeps``, ``pole`` and
+        ``max_input`` (the shared clock and actuators).
+    rngs : sequence of numpy.random.Generator
+        One generator per scenario.
+
+    Returns
+    -------
+    list of TdoaRun
+        In the order of ``specs``.
+
+    Raises
+    ------
+    ValueError
+        When the scenarios do not share their clock or actuators, or the lengths differ.
+
+    References
+    ----------
+    seed 000, eqs. (4.1)–(4.10), (4.26)–(4.35), (4.44)–(4.48), §4.3, App. B.2.
+    """
+    clock = _shared_clock(specs, rngs)
+    runs = [_Run(spec, rng) for spec, rng in zip(specs, rngs, strict=True)]
+    K, m = clock.steps, clock.rounds
     for k in range(K + 1):
-        positions = states[:, :3]
-        neighbours = neighbour_lists(hears_at(spec, positions))
-        readings = tdoa_readings(truth[k, :3], positions, neighbours, spec.r, rng)
-        at = truth[k, :3] if spec.linearize == "truth" else None
-        x, P = measurement_step(
-            spec.filter, x, P, readings, positions, neighbours, spec.r, linearize_at=at
-        )
+        for run in runs:
+            run.measure(k)
         for j in range(m):
-            if shares_estimates(spec.filter):
-                x, P = average_round(weights_at(spec, states[:, :3]), x, P)
-            norms = covariance_norms(P, spec.cov_norm)
-            if j == 0:
-                record.ping(k, x, P, norms, [len(nb) for nb in neighbours])
+            for run in runs:
+                run.average(k, j)
             if k == K:
                 break
-            moving = norms > spec.b
-            states, travelled = _move(spec, states, x, moving, j * spec.tau, travelled)
-            record.fine(k * m + j + 1, states, travelled, moving)
-        x, P = ekf_predict(x, P, A, BQB)
-    return record.result(spec, truth)
+            _move_all(clock, runs, j * clock.tau)
+            for run in runs:
+                run.record.fine(k * m + j + 1, run.states, run.travelled, run.moving)
+        for run in runs:
+            run.predict()
+    return [run.record.result(run.spec, run.truth) for run in runs]
+
+
+def _shared_clock(specs: Sequence[TdoaSimSpec], rngs: Sequence[np.random.Generator]) -> TdoaSimSpec:
+    """The first spec, after checking that every spec shares its clock and actuators."""
+    if not specs or len(specs) != len(rngs):
+        raise ValueError(f"need one generator per scenario, got {len(specs)} and {len(rngs)}")
+    first = specs[0]
+    for spec in specs[1:]:
+        if any(getattr(spec, f) != getattr(first, f) for f in _LOCKSTEP_FIELDS):
+            raise ValueError(f"lock-step scenarios must share {', '.join(_LOCKSTEP_FIELDS)}")
+    return first
+
+
+_LOCKSTEP_FIELDS = ("T", "tau", "steps", "substeps", "pole", "max_input")
+
+
+class _Run:
+    """The state of one run between the lock-step phases of :func:`run_tdoa_scenarios`."""
+
+    def __init__(self, spec: TdoaSimSpec, rng: np.random.Generator) -> None:
+        n = spec.n_agents
+        self.spec, self.rng = spec, rng
+        A, B = cv_discrete(spec.T, 3)
+        self.A, self.BQB = A, B @ spec.Q @ B.T
+        self.truth = simulate_cv_target(spec.target, spec.Q, spec.T, spec.steps, rng)
+        self.x = np.tile(spec.x0, (n, 1))
+        self.P = np.tile(spec.P0, (n, 1, 1))
+        self.states = rest_states(spec.agents)
+        self.travelled = np.zeros(n)
+        self.moving = np.zeros(n, dtype=bool)
+        self.neighbours: list[np.ndarray] = []
+        self.record = _Recorder(n, spec.steps, spec.rounds)
+        self.record.fine(0, self.states, self.travelled)
+
+    def measure(self, k: int) -> None:
+        """Step 1 of ping ``k``: TDOA readings and every agent's measurement update."""
+        spec, positions = self.spec, self.states[:, :3]
+        self.neighbours = neighbour_lists(hears_at(spec, positions))
+        readings = tdoa_readings(self.truth[k, :3], positions, self.neighbours, spec.r, self.rng)
+        at = self.truth[k, :3] if spec.linearize == "truth" else None
+        self.x, self.P = measurement_step(
+            spec.filter,
+            self.x,
+            self.P,
+            readings,
+            positions,
+            self.neighbours,
+            spec.r,
+            linearize_at=at,
+        )
+
+    def average(self, k: int, j: int) -> None:
+        """Round ``j`` of step 2: averaging, the trigger ``‖P̄_i‖ > b``, the record at ``j = 0``."""
+        spec = self.spec
+        if shares_estimates(spec.filter):
+            self.x, self.P = average_round(weights_at(spec, self.states[:, :3]), self.x, self.P)
+        norms = covariance_norms(self.P, spec.cov_norm)
+        if j == 0:
+            self.record.ping(k, self.x, self.P, norms, [len(nb) for nb in self.neighbours])
+        self.moving = norms > spec.b
+
+    def predict(self) -> None:
+        """Step 3: predict the estimates to the next ping (4.26), (4.33)."""
+        self.x, self.P = ekf_predict(self.x, self.P, self.A, self.BQB)
+
+
+def _move_all(clock: TdoaSimSpec, runs: list[_Run], since_ping: float) -> None:
+    """Integrate every run's robots over one ``τ`` as one stack of agents."""
+    sizes = np.cumsum([run.spec.n_agents for run in runs])[:-1]
+    states, travelled = _move(
+        clock,
+        np.concatenate([run.states for run in runs]),
+        np.concatenate([run.x for run in runs]),
+        np.concatenate([run.spec.offsets for run in runs]),
+        np.concatenate([run.moving for run in runs]),
+        since_ping,
+        np.concatenate([run.travelled for run in runs]),
+    )
+    for run, s, d in zip(runs, np.split(states, sizes), np.split(travelled, sizes), strict=True):
+        run.states, run.travelled = s, d
 
 
 def hears_at(spec: TdoaSimSpec, positions: np.ndarray) -> np.ndarray:
@@ -186,11 +294,15 @@ def _move(
     spec: TdoaSimSpec,
     states: np.ndarray,
     estimates: np.ndarray,
+    offsets: np.ndarray,
     moving: np.ndarray,
     since_ping: float,
     travelled: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Integrate the robots over one ``τ`` (tracking where ``moving``, braking elsewhere)."""
+    """Integrate the robots over one ``τ`` (tracking where ``moving``, braking elsewhere).
+
+    ``spec`` gives the clock and actuators; ``offsets`` are the agents' formation offsets.
+    """
     dt = spec.tau / spec.substeps
     for s in range(spec.substeps):
         start = since_ping + s * dt
@@ -199,7 +311,7 @@ def _move(
             u = braking_control(r, spec.pole)
             if moving.any():
                 flat = np.zeros((r.shape[0], 3, 3))
-                flat[:, 0] = estimates[:, :3] + (start + offset) * estimates[:, 3:] + spec.offsets
+                flat[:, 0] = estimates[:, :3] + (start + offset) * estimates[:, 3:] + offsets
                 flat[:, 1] = estimates[:, 3:]
                 u[moving] = linearizing_control(
                     r[moving], flat[moving], spec.pole, max_input=spec.max_input

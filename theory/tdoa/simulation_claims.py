@@ -21,7 +21,7 @@ import numpy as np
 from theory.core.claims import ClaimResult, register
 from theory.sim.figures import save_figure
 from theory.tdoa.appendix_a import lemma_a12_along
-from theory.tdoa.scenario import run_tdoa_scenario
+from theory.tdoa.scenario import run_tdoa_scenario, run_tdoa_scenarios
 
 __all__ = ["check_b_tradeoff", "check_lemma_a12"]
 
@@ -39,6 +39,9 @@ SWEEP_MAX_STEPS = 60
 def check_b_tradeoff(case: Any, *, figure_dir: Path | None = None) -> list[ClaimResult]:
     """Sweep ``b`` over :data:`B_SWEEP` with the case's other settings; means over 3 seeds.
 
+    The 12 runs are simulated in lock step (:func:`~theory.tdoa.scenario.run_tdoa_scenarios`),
+    each as it would run alone.
+
     Parameters
     ----------
     case : Case
@@ -47,10 +50,14 @@ def check_b_tradeoff(case: Any, *, figure_dir: Path | None = None) -> list[Claim
         Folder for ``b-tradeoff.png`` (distance against covariance norm, one point per ``b``).
     """
     steps = min(case.spec.steps, SWEEP_MAX_STEPS)
+    specs = [dataclasses.replace(case.spec, b=b, steps=steps) for b in B_SWEEP]
+    sweep = run_tdoa_scenarios(
+        [spec for spec in specs for _ in SWEEP_SEEDS],
+        [np.random.default_rng(s) for _ in specs for s in SWEEP_SEEDS],
+    )
     distance, norms = [], []
-    for b in B_SWEEP:
-        spec = dataclasses.replace(case.spec, b=b, steps=steps)
-        runs = [run_tdoa_scenario(spec, np.random.default_rng(s)) for s in SWEEP_SEEDS]
+    for i in range(len(B_SWEEP)):
+        runs = sweep[i * len(SWEEP_SEEDS) : (i + 1) * len(SWEEP_SEEDS)]
         distance.append(float(np.mean([r.distance[-1].sum() for r in runs])))
         norms.append(float(np.mean([r.cov_norms[steps // 5 :].mean() for r in runs])))
     falls = all(a > b for a, b in itertools.pairwise(distance))
