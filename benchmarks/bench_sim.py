@@ -4,7 +4,9 @@ Prints, for the bundled case ``sim-ch4-fixed-b0``:
 
 * time per run, pings/second and robot-integration steps/second (one worker);
 * Monte Carlo throughput over all local cores against one worker (ratio);
-* the vectorised agent controller against a per-agent Python loop (ratio).
+* the vectorised agent controller against a per-agent Python loop (ratio);
+* the 12 runs of the ``seed000.sec4.4.b-tradeoff`` sweep in lock step against one by one
+  (CPU time, ratio).
 
 and for the seed 003 2-D three-tracker scenario (Table I, 4501 steps of 0.1 s, DEKF every 2 s):
 time per run, steps/second, and Monte Carlo throughput over all local cores against one worker.
@@ -32,7 +34,8 @@ from theory.pursuit.closed_loop import DecSettings, simulate_dec
 from theory.pursuit.dekf import table_target
 from theory.sim.runner import monte_carlo
 from theory.tdoa.agents import linearizing_control
-from theory.tdoa.scenario import run_tdoa_scenario
+from theory.tdoa.scenario import run_tdoa_scenario, run_tdoa_scenarios
+from theory.tdoa.simulation_claims import B_SWEEP, SWEEP_MAX_STEPS, SWEEP_SEEDS
 
 
 def _timed(function, *args, **kwargs) -> float:
@@ -79,7 +82,35 @@ def main() -> None:
         f"{vectorised * 1e6 / repeats:.0f} µs, per-agent loop {looped * 1e6 / repeats:.0f} µs "
         f"(ratio {looped / vectorised:.1f})"
     )
+    bench_lock_step(spec)
     bench_dec(args.runs)
+
+
+def _cpu(function, *args) -> float:
+    start = time.process_time()
+    function(*args)
+    return time.process_time() - start
+
+
+def bench_lock_step(spec) -> None:
+    """The b-tradeoff sweep's runs, one by one against in lock step (CPU seconds, same run)."""
+    specs = [dataclasses.replace(spec, b=b, steps=SWEEP_MAX_STEPS) for b in B_SWEEP]
+    specs = [s for s in specs for _ in SWEEP_SEEDS]
+    seeds = [seed for _ in B_SWEEP for seed in SWEEP_SEEDS]
+
+    def solo() -> None:
+        for s, seed in zip(specs, seeds, strict=True):
+            run_tdoa_scenario(s, np.random.default_rng(seed))
+
+    def together() -> None:
+        run_tdoa_scenarios(specs, [np.random.default_rng(seed) for seed in seeds])
+
+    one_by_one, lock_step = _cpu(solo), _cpu(together)
+    print(
+        f"b-tradeoff sweep, {len(specs)} runs of {SWEEP_MAX_STEPS} pings: one by one "
+        f"{one_by_one:.2f} s CPU, lock step {lock_step:.2f} s CPU "
+        f"(ratio {one_by_one / lock_step:.2f})"
+    )
 
 
 def _dec_run(seed: int) -> float:

@@ -7,6 +7,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pytest
 import yaml
 from typer.testing import CliRunner
 
@@ -15,7 +16,7 @@ from theory.core.case_file import load_case
 from theory.core.claims import get_claim
 from theory.sim.runner import monte_carlo
 from theory.tdoa.metrics import summarize_runs
-from theory.tdoa.scenario import run_tdoa_scenario
+from theory.tdoa.scenario import TdoaRun, run_tdoa_scenario, run_tdoa_scenarios
 
 runner = CliRunner()
 
@@ -32,6 +33,34 @@ def test_runs_are_deterministic_and_independent_of_workers() -> None:
         assert np.array_equal(a.estimates, b.estimates)
         assert np.array_equal(a.paths, b.paths)
     assert not np.array_equal(serial[0].truth, serial[1].truth)
+
+
+def _same_run(a: TdoaRun, b: TdoaRun) -> bool:
+    return all(
+        np.array_equal(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a)
+    )
+
+
+def test_lock_step_runs_equal_solo_runs_exactly() -> None:
+    """Runs simulated together (mixed b, filters, topologies, seeds) equal each run alone."""
+    specs = [_spec("sim-ch4-fixed-b0", steps=6, b=b) for b in (0.0, 3.0, float("inf"))] + [
+        _spec("sim-ch4-range21-b0", steps=6, filter=kind)
+        for kind in ("decentralized", "centralized")
+    ]
+    seeds = [0, 1, 2, 3, 0]
+    together = run_tdoa_scenarios(specs, [np.random.default_rng(s) for s in seeds])
+    for spec, seed, run in zip(specs, seeds, together, strict=True):
+        assert _same_run(run, run_tdoa_scenario(spec, np.random.default_rng(seed)))
+    assert run.moving.any() and not together[2].moving.any()
+
+
+def test_lock_step_needs_a_shared_clock() -> None:
+    specs = [_spec("sim-ch4-fixed-b0", steps=3), _spec("sim-ch4-fixed-b0", steps=4)]
+    rngs = [np.random.default_rng(0), np.random.default_rng(1)]
+    with pytest.raises(ValueError, match="share"):
+        run_tdoa_scenarios(specs, rngs)
+    with pytest.raises(ValueError, match="one generator per scenario"):
+        run_tdoa_scenarios(specs[:1], rngs)
 
 
 def test_larger_b_travels_less_and_estimates_worse() -> None:

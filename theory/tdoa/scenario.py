@@ -17,7 +17,7 @@ one EKF uses every agent's rows.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -137,8 +137,8 @@ def run_tdoa_scenarios(
     Parameters
     ----------
     specs : sequence of TdoaSimSpec
-        The scenarios; they must share ``T``, ``tau``, ``steps``, ``substeps``, ``pole`` and
-        ``max_input`` (the shared clock and actuators).
+        The scenarios; they must share ``T``, ``tau``, ``steps``, ``substeps``, ``pole``,
+        ``max_input`` (the shared clock and actuators) and ``cov_norm``.
     rngs : sequence of numpy.random.Generator
         One generator per scenario.
 
@@ -163,8 +163,7 @@ def run_tdoa_scenarios(
         for run in runs:
             run.measure(k)
         for j in range(m):
-            for run in runs:
-                run.average(k, j)
+            _average_all(runs, k, j)
             if k == K:
                 break
             _move_all(clock, runs, j * clock.tau)
@@ -186,7 +185,7 @@ def _shared_clock(specs: Sequence[TdoaSimSpec], rngs: Sequence[np.random.Generat
     return first
 
 
-_LOCKSTEP_FIELDS = ("T", "tau", "steps", "substeps", "pole", "max_input")
+_LOCKSTEP_FIELDS = ("T", "tau", "steps", "substeps", "pole", "max_input", "cov_norm")
 
 
 class _Run:
@@ -203,6 +202,7 @@ class _Run:
         self.states = rest_states(spec.agents)
         self.travelled = np.zeros(n)
         self.moving = np.zeros(n, dtype=bool)
+        self.norms = np.zeros(n)
         self.neighbours: list[np.ndarray] = []
         self.record = _Recorder(n, spec.steps, spec.rounds)
         self.record.fine(0, self.states, self.travelled)
@@ -224,19 +224,41 @@ class _Run:
             linearize_at=at,
         )
 
-    def average(self, k: int, j: int) -> None:
-        """Round ``j`` of step 2: averaging, the trigger ``‖P̄_i‖ > b``, the record at ``j = 0``."""
+    def average(self) -> bool:
+        """A consensus round (4.28), (4.35) of step 2; whether this filter averages at all."""
         spec = self.spec
-        if shares_estimates(spec.filter):
-            self.x, self.P = average_round(weights_at(spec, self.states[:, :3]), self.x, self.P)
-        norms = covariance_norms(self.P, spec.cov_norm)
+        if not shares_estimates(spec.filter):
+            return False
+        self.x, self.P = average_round(weights_at(spec, self.states[:, :3]), self.x, self.P)
+        return True
+
+    def trigger(self, k: int, j: int) -> None:
+        """The trigger ``‖P̄_i‖ > b`` of round ``j`` (``self.norms`` is current), the record at
+        ``j = 0``."""
         if j == 0:
-            self.record.ping(k, self.x, self.P, norms, [len(nb) for nb in self.neighbours])
-        self.moving = norms > spec.b
+            degrees = [len(nb) for nb in self.neighbours]
+            self.record.ping(k, self.x, self.P, self.norms, degrees)
+        self.moving = self.norms > self.spec.b
 
     def predict(self) -> None:
         """Step 3: predict the estimates to the next ping (4.26), (4.33)."""
         self.x, self.P = ekf_predict(self.x, self.P, self.A, self.BQB)
+
+
+def _average_all(runs: list[_Run], k: int, j: int) -> None:
+    """Round ``j`` after ping ``k`` for every run; the norms of all changed ``P̄`` in one call.
+
+    Without averaging (``decentralized``, ``centralized``) ``P`` is the same in every round
+    after the ping's, and so are its norms: they are computed at ``j = 0`` only.
+    """
+    changed = [run for run in runs if run.average() or j == 0]
+    if changed:
+        sizes = np.cumsum([run.spec.n_agents for run in changed])[:-1]
+        norms = covariance_norms(np.concatenate([run.P for run in changed]), runs[0].spec.cov_norm)
+        for run, part in zip(changed, np.split(norms, sizes), strict=True):
+            run.norms = part
+    for run in runs:
+        run.trigger(k, j)
 
 
 def _move_all(clock: TdoaSimSpec, runs: list[_Run], since_ping: float) -> None:
@@ -304,24 +326,41 @@ def _move(
     ``spec`` gives the clock and actuators; ``offsets`` are the agents' formation offsets.
     """
     dt = spec.tau / spec.substeps
+    tracked = estimates[moving, :3], estimates[moving, 3:], offsets[moving]
     for s in range(spec.substeps):
-        start = since_ping + s * dt
-
-        def control(offset: float, r: np.ndarray, start: float = start) -> np.ndarray:
-            u = braking_control(r, spec.pole)
-            if moving.any():
-                flat = np.zeros((r.shape[0], 3, 3))
-                flat[:, 0] = estimates[:, :3] + (start + offset) * estimates[:, 3:] + offsets
-                flat[:, 1] = estimates[:, 3:]
-                u[moving] = linearizing_control(
-                    r[moving], flat[moving], spec.pole, max_input=spec.max_input
-                )
-            return u
-
+        control = _controller(spec, tracked, moving, since_ping + s * dt)
         new = rk4_step(states, control, dt)
         travelled = travelled + np.linalg.norm(new[:, :3] - states[:, :3], axis=1)
         states = new
     return states, travelled
+
+
+def _controller(
+    spec: TdoaSimSpec,
+    tracked: tuple[np.ndarray, np.ndarray, np.ndarray],
+    moving: np.ndarray,
+    start: float,
+) -> Callable[[float, np.ndarray], np.ndarray]:
+    """``u(s, r)`` over one RK4 step from ``start`` (time since the ping).
+
+    The moving agents (``tracked``: their estimated positions, velocities and formation
+    offsets) follow ``ζ*`` of (B.14)–(B.18) with the law (B.11); the others brake.
+    """
+    position, velocity, offsets = tracked
+    everyone = bool(moving.all())
+
+    def control(offset: float, r: np.ndarray) -> np.ndarray:
+        flat = np.zeros((position.shape[0], 3, 3))
+        flat[:, 0] = position + (start + offset) * velocity + offsets
+        flat[:, 1] = velocity
+        if everyone:
+            return linearizing_control(r, flat, spec.pole, max_input=spec.max_input)
+        u = braking_control(r, spec.pole)
+        if position.shape[0]:
+            u[moving] = linearizing_control(r[moving], flat, spec.pole, max_input=spec.max_input)
+        return u
+
+    return control
 
 
 class _Recorder:
