@@ -204,6 +204,8 @@ class _Run:
         self.moving = np.zeros(n, dtype=bool)
         self.norms = np.zeros(n)
         self.neighbours: list[np.ndarray] = []
+        fixed = spec.hears is not None or isinstance(spec.weights, np.ndarray)
+        self.fixed_weights = weights_at(spec, spec.agents) if fixed else None
         self.record = _Recorder(n, spec.steps, spec.rounds)
         self.record.fine(0, self.states, self.travelled)
 
@@ -229,7 +231,10 @@ class _Run:
         spec = self.spec
         if not shares_estimates(spec.filter):
             return False
-        self.x, self.P = average_round(weights_at(spec, self.states[:, :3]), self.x, self.P)
+        W = self.fixed_weights
+        if W is None:
+            W = weights_at(spec, self.states[:, :3])
+        self.x, self.P = average_round(W, self.x, self.P)
         return True
 
     def trigger(self, k: int, j: int) -> None:
