@@ -193,11 +193,12 @@ def fit_wrapped_cauchy(
     """Maximum-likelihood ``(μ, γ)`` of eq. (3.1) from turning angles.
 
     The log-likelihood ``n log(1 − |ψ|²) − Σ log|e^{iφ_j} − ψ|²`` (``ψ = γ e^{iμ}``) is maximised
-    over the open unit disk with BFGS (analytic gradient) in the coordinates
-    ``ψ = v / √(1 + |v|²)`` (so ``1 − |ψ|² = 1/(1 + |v|²)`` exactly), started from the circular
-    moments. The maximum is interior exactly when no angle carries half or more of the sample
-    (Kent & Tyler 1988); otherwise the supremum is at ``γ = 1`` at the repeated angle, and the
-    result is that angle with ``γ = gamma_max``.
+    over the open unit disk by damped Newton steps (exact gradient and Hessian), started from the
+    circular moments, falling back to BFGS in the coordinates ``ψ = v / √(1 + |v|²)`` (so
+    ``1 − |ψ|² = 1/(1 + |v|²)`` exactly) if Newton does not converge. The maximum is interior
+    exactly when no angle carries half or more of the sample (Kent & Tyler 1988); otherwise the
+    supremum is at ``γ = 1`` at the repeated angle, and the result is that angle with
+    ``γ = gamma_max``.
 
     Parameters
     ----------
@@ -229,12 +230,98 @@ def fit_wrapped_cauchy(
         return mode, float(gamma_max)
     moment = z.mean()
     start = moment * min(abs(moment), 0.99) / max(abs(moment), 1e-12)
+    psi = _wrapped_cauchy_newton(z, start)
+    if psi is None:
+        psi = _wrapped_cauchy_bfgs(z, start)
+    return float(np.angle(psi)), float(min(abs(psi), gamma_max))
+
+
+def _wrapped_cauchy_bfgs(z: np.ndarray, start: complex) -> complex:
+    """The ML ``ψ`` by BFGS in the coordinates ``v`` (fallback of the Newton iteration)."""
     v0 = np.array([start.real, start.imag]) / np.sqrt(1 - abs(start) ** 2)
     result = optimize.minimize(_wrapped_cauchy_objective, v0, args=(z,), method="BFGS", jac=True)
     if not np.isfinite(result.fun):
         raise SolverError(f"wrapped-Cauchy ML fit failed: {result.message}")
-    psi = complex(*result.x) / np.sqrt(1 + result.x @ result.x)
-    return float(np.angle(psi)), float(min(abs(psi), gamma_max))
+    return complex(*result.x) / np.sqrt(1 + result.x @ result.x)
+
+
+def _wrapped_cauchy_newton(
+    z: np.ndarray, start: complex, *, max_iter: int = 100, step_tol: float = 1e-10
+) -> complex | None:
+    """The ML ``ψ`` by damped Newton steps on the negative log-likelihood over the unit disk.
+
+    ``f(ψ) = −n log(1 − |ψ|²) + Σ log|z_j − ψ|²`` with its exact gradient and Hessian
+    (:func:`_wrapped_cauchy_derivatives`); where the Hessian is not positive definite it is
+    shifted until it is (:func:`_newton_direction`), and each step is halved until it stays inside
+    the disk and decreases ``f`` (Armijo, up to rounding of ``f``). Converged when the full Newton
+    step is below ``step_tol · (1 − |ψ|)``; returns ``None`` after ``max_iter`` steps without it.
+    """
+    psi = start
+    value, grad, hess = _wrapped_cauchy_derivatives(z, psi)
+    for _ in range(max_iter):
+        step = _newton_direction(grad, hess)
+        if abs(step) <= step_tol * (1.0 - abs(psi)):
+            return psi + step if abs(psi + step) < 1.0 else psi
+        slope = grad.real * step.real + grad.imag * step.imag
+        noise = 1e-13 * (1.0 + abs(value))
+        t = 1.0
+        while t > 1e-12:
+            trial = psi + t * step
+            if abs(trial) < 1.0:
+                trial_value, trial_grad, trial_hess = _wrapped_cauchy_derivatives(z, trial)
+                if trial_value <= value + 1e-4 * t * slope + noise:
+                    break
+            t *= 0.5
+        else:
+            return None
+        psi, value, grad, hess = trial, trial_value, trial_grad, trial_hess
+    return None
+
+
+def _newton_direction(grad: complex, hess: tuple[float, float, float]) -> complex:
+    """``−H⁻¹ g`` for ``H = [[a, b], [b, c]]``, ``H`` first shifted by a multiple of ``I`` to be
+    positive definite (``g`` and the result as complex numbers ``x + iy``)."""
+    a, b, c = hess
+    half_trace, det = 0.5 * (a + c), a * c - b * b
+    smallest = half_trace - np.sqrt(max(half_trace**2 - det, 0.0))
+    scale = abs(a) + abs(c) + 1.0
+    if smallest <= 1e-12 * scale:
+        shift = -smallest + 1e-6 * scale
+        a, c, det = a + shift, c + shift, (a + shift) * (c + shift) - b * b
+    return complex(-(c * grad.real - b * grad.imag), -(a * grad.imag - b * grad.real)) / det
+
+
+def _wrapped_cauchy_derivatives(
+    z: np.ndarray, psi: complex
+) -> tuple[float, complex, tuple[float, float, float]]:
+    """Negative log-likelihood of eq. (3.1) in ``ψ = γ e^{iμ}``, its gradient and Hessian.
+
+    With ``p = (Re ψ, Im ψ)``, ``u_j = z_j − p`` and ``d_j = |u_j|``:
+    ``∇f = 2n p / (1 − |p|²) − 2 Σ u_j / d_j²`` and
+    ``∇²f = 2n I / (1 − |p|²) + 4n p pᵀ / (1 − |p|²)² + Σ (2 I / d_j² − 4 u_j u_jᵀ / d_j⁴)``.
+    The gradient is returned as the complex number ``∂f/∂x + i ∂f/∂y``, the Hessian as
+    ``(∂²f/∂x², ∂²f/∂x∂y, ∂²f/∂y²)``.
+    """
+    n = z.size
+    x, y = psi.real, psi.imag
+    slack = 1.0 - (x * x + y * y)
+    gap = z - psi
+    ux, uy = gap.real, gap.imag
+    inv = 1.0 / np.maximum(ux * ux + uy * uy, np.finfo(float).tiny)
+    value = -n * np.log(slack) - float(np.log(inv).sum())
+    grad = 2 * n * psi / slack - 2 * complex(ux @ inv, uy @ inv)
+    wx, wy = ux * inv, uy * inv
+    diagonal = 2 * n / slack + 2 * float(inv.sum())
+    outer = 4 * n / slack**2
+    return (
+        float(value),
+        grad,
+        (
+            diagonal + outer * x * x - 4 * float(wx @ wx),
+            outer * x * y - 4 * float(wx @ wy),
+            diagonal + outer * y * y - 4 * float(wy @ wy),
+        ),
+    )
 
 
 def _largest_tie(angles: np.ndarray, tol: float) -> tuple[float, int]:
