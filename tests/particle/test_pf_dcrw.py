@@ -137,6 +137,19 @@ def test_newton_derivatives_match_finite_differences(x, y, seed):
         assert d_grad.imag == pytest.approx(h_row[1], rel=1e-4, abs=1e-3)
 
 
+@given(kappas, lams, st.integers(2, 120), st.integers(0, 2**16))
+def test_weibull_fit_solves_the_profile_equation(kappa, lam, n, seed):
+    """Seed 002 eq. (3.2): at the ML shape the profile-likelihood equation vanishes (its root is
+    unique, the equation increasing), and ``λ = (mean δ^κ)^{1/κ}``."""
+    delta = sample_weibull(np.random.default_rng(seed), kappa, lam, (n,))
+    assume(np.ptp(np.log(delta)) > 1e-2)  # keeps the root inside the default bounds
+    k_hat, lam_hat = fit_weibull(delta)
+    logs = np.log(delta)
+    weights = delta**k_hat / np.sum(delta**k_hat)
+    assert weights @ logs - 1 / k_hat - logs.mean() == pytest.approx(0, abs=1e-9)
+    assert lam_hat == pytest.approx(np.mean(delta**k_hat) ** (1 / k_hat), rel=1e-9)
+
+
 def test_degenerate_fits_are_clamped():
     mu, gamma = fit_wrapped_cauchy(np.array([0.3, 0.3, 0.3]), gamma_max=0.95)
     assert gamma == 0.95 and mu == pytest.approx(0.3)

@@ -355,8 +355,8 @@ def fit_weibull(
     """Maximum-likelihood ``(κ, λ)`` of eq. (3.2) from positive step lengths.
 
     Solves the profile equation ``Σ δ^κ ln δ / Σ δ^κ − 1/κ − mean(ln δ) = 0`` (increasing in ``κ``)
-    by ``brentq`` inside ``kappa_bounds``; at a bound the root is clamped to it (e.g. all lengths
-    equal: κ → ∞). Then ``λ = (mean δ^κ)^{1/κ}``.
+    by bracketed Newton steps (:func:`_weibull_root`) inside ``kappa_bounds``; at a bound the root
+    is clamped to it (e.g. all lengths equal: κ → ∞). Then ``λ = (mean δ^κ)^{1/κ}``.
 
     Parameters
     ----------
@@ -378,20 +378,57 @@ def fit_weibull(
         raise ValueError("fit_weibull needs at least one step length, all > 0")
     logs = np.log(x)
     shifted = logs - logs.max()
-
-    def profile(kappa: float) -> float:
-        weights = np.exp(kappa * shifted)
-        return float(weights @ logs / weights.sum() - 1.0 / kappa - logs.mean())
-
+    centred = logs - logs.mean()
     low, high = kappa_bounds
-    if profile(low) >= 0:
+    if _weibull_profile(low, shifted, centred)[0] >= 0:
         kappa = low
-    elif profile(high) <= 0:
+    elif _weibull_profile(high, shifted, centred)[0] <= 0:
         kappa = high
     else:
-        kappa = optimize.brentq(profile, low, high, xtol=1e-12, rtol=1e-12)
+        kappa = _weibull_root(shifted, centred, low, high)
     lam = float(np.exp(logs.max()) * np.mean(np.exp(kappa * shifted)) ** (1.0 / kappa))
     return float(kappa), lam
+
+
+def _weibull_profile(kappa: float, shifted: np.ndarray, centred: np.ndarray) -> tuple[float, float]:
+    """The profile equation of :func:`fit_weibull` at ``κ`` and its derivative in ``κ``.
+
+    With weights ``w_j ∝ δ_j^κ`` (``shifted = ln δ − max ln δ`` keeps them finite) the value is
+    ``Σ w_j ℓ_j / Σ w_j − 1/κ`` (``centred`` = ``ℓ = ln δ − mean ln δ``) and the derivative is the
+    ``w``-weighted variance of ``ln δ`` plus ``1/κ²`` (> 0: the equation is increasing).
+    """
+    weights = np.exp(kappa * shifted)
+    weights /= weights.sum()
+    mean = float(weights @ centred)
+    variance = float(weights @ (centred - mean) ** 2)
+    return mean - 1.0 / kappa, variance + 1.0 / kappa**2
+
+
+def _weibull_root(
+    shifted: np.ndarray, centred: np.ndarray, low: float, high: float, *, tol: float = 1e-12
+) -> float:
+    """The root of the profile equation inside ``[low, high]`` (value < 0 at ``low``, > 0 at
+    ``high``) by Newton steps kept inside a shrinking bracket (bisection when a step leaves it).
+
+    Started from the moment estimate ``κ ≈ π / (√6 · sd(ln δ))`` (the log of a Weibull variable
+    has standard deviation ``π / (κ√6)``); converged when a step is below ``tol · κ``.
+    """
+    spread = float(np.sqrt(np.mean(centred**2)))
+    kappa = float(np.clip(np.pi / (np.sqrt(6.0) * max(spread, 1e-300)), low, high))
+    for _ in range(200):
+        value, slope = _weibull_profile(kappa, shifted, centred)
+        if value < 0:
+            low = kappa
+        else:
+            high = kappa
+        step = value / slope
+        candidate = kappa - step
+        if not low < candidate < high:
+            candidate = 0.5 * (low + high)
+        if abs(candidate - kappa) <= tol * kappa or high - low <= tol * kappa:
+            return candidate
+        kappa = candidate
+    raise SolverError("Weibull profile-likelihood root did not converge")
 
 
 def fit_dcrw(turns: np.ndarray, steps: np.ndarray, *, gamma_max: float = 1 - 1e-9) -> DcrwParams:
