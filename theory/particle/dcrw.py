@@ -5,9 +5,10 @@ the step length ``δ`` is Weibull with shape ``κ`` and scale ``λ`` (eq. 3.2). 
 the turning angles (eq. 3.3) and the position moves by ``δ`` along the heading (eqs. 3.4–3.5).
 
 Maximum-likelihood fits: the wrapped Cauchy by maximising the log-likelihood over the unit disk
-(``ψ = γ e^{iμ}``) from the method-of-moments start ``E[e^{iφ}] = γ e^{iμ}``; the Weibull by the
-profile-likelihood equation in ``κ`` (one monotone root, ``scipy.optimize.brentq``) with
-``λ = (mean δ^κ)^{1/κ}``. Both are cross-checked against ``scipy.stats`` in the tests.
+(``ψ = γ e^{iμ}``) by damped Newton steps from the method-of-moments start
+``E[e^{iφ}] = γ e^{iμ}``; the Weibull by the profile-likelihood equation in ``κ`` (one monotone
+root, bracketed Newton steps) with ``λ = (mean δ^κ)^{1/κ}``. Both are cross-checked against
+``scipy.stats`` in the tests.
 """
 
 from __future__ import annotations
