@@ -68,11 +68,7 @@ def time_wrapped_cauchy_fits(samples: int = 300) -> tuple[float, float]:
     turning angles (the learner's largest) from one moment start each."""
     rng = np.random.default_rng(3)
     angles = [sample_wrapped_cauchy(rng, 0.0, g, (95,)) for g in rng.uniform(0, 0.9, samples)]
-    problems = []
-    for phi in angles:
-        z = np.exp(1j * phi)
-        moment = z.mean()
-        problems.append((z, moment * min(abs(moment), 0.99) / max(abs(moment), 1e-12)))
+    problems = [(z, dcrw._moment_start(z)) for z in (np.exp(1j * phi) for phi in angles)]
     seconds = []
     for fit in (dcrw._wrapped_cauchy_newton, dcrw._wrapped_cauchy_bfgs):
         start = time.process_time()

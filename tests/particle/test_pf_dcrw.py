@@ -112,8 +112,7 @@ def test_newton_fit_is_stationary_and_no_worse_than_bfgs(mu, gamma, n, seed):
     at least the BFGS fallback's (both from the same moment start)."""
     phi = sample_wrapped_cauchy(np.random.default_rng(seed), mu, gamma, (n,))
     z = np.exp(1j * phi)
-    moment = z.mean()
-    start = moment * min(abs(moment), 0.99) / max(abs(moment), 1e-12)
+    start = dcrw._moment_start(z)
     newton = dcrw._wrapped_cauchy_newton(z, start)
     assert newton is not None and abs(newton) < 1
     bfgs = dcrw._wrapped_cauchy_bfgs(z, start)

@@ -229,12 +229,18 @@ def fit_wrapped_cauchy(
     mode, count = _largest_tie(np.angle(z), tie_tol)
     if 2 * count >= z.size:
         return mode, float(gamma_max)
-    moment = z.mean()
-    start = moment * min(abs(moment), 0.99) / max(abs(moment), 1e-12)
+    start = _moment_start(z)
     psi = _wrapped_cauchy_newton(z, start)
     if psi is None:
         psi = _wrapped_cauchy_bfgs(z, start)
     return float(np.angle(psi)), float(min(abs(psi), gamma_max))
+
+
+def _moment_start(z: np.ndarray) -> complex:
+    """The circular moment ``mean e^{iφ}`` (``= γ e^{iμ}`` in expectation), shrunk into
+    ``|ψ| ≤ 0.99``: the start of the ML iterations."""
+    moment = z.mean()
+    return moment * min(abs(moment), 0.99) / max(abs(moment), 1e-12)
 
 
 def _wrapped_cauchy_bfgs(z: np.ndarray, start: complex) -> complex:
