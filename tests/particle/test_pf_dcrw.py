@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import assume, given
 from hypothesis import strategies as st
 from scipy import integrate, stats
 
+from theory.particle import dcrw
 from theory.particle.dcrw import (
     DcrwParams,
     fit_weibull,
@@ -103,6 +104,49 @@ def test_fit_is_a_likelihood_maximum():
     best = np.sum(wrapped_cauchy_logpdf(phi, mu, gamma))
     for dmu, dg in [(0.01, 0), (-0.01, 0), (0, 0.01), (0, -0.01)]:
         assert np.sum(wrapped_cauchy_logpdf(phi, mu + dmu, gamma + dg)) < best
+
+
+@given(mus, st.floats(min_value=0.0, max_value=0.98), st.integers(3, 120), st.integers(0, 2**16))
+def test_newton_fit_is_stationary_and_no_worse_than_bfgs(mu, gamma, n, seed):
+    """The Newton iteration reaches a stationary point of eq. (3.1)'s likelihood whose value is
+    at least the BFGS fallback's (both from the same moment start)."""
+    phi = sample_wrapped_cauchy(np.random.default_rng(seed), mu, gamma, (n,))
+    z = np.exp(1j * phi)
+    start = dcrw._moment_start(z)
+    newton = dcrw._wrapped_cauchy_newton(z, start)
+    assert newton is not None and abs(newton) < 1
+    bfgs = dcrw._wrapped_cauchy_bfgs(z, start)
+    value, grad, _ = dcrw._wrapped_cauchy_derivatives(z, newton)
+    assert value <= dcrw._wrapped_cauchy_derivatives(z, bfgs)[0] + 1e-9 * (1 + abs(value))
+    assert abs(grad) * (1 - abs(newton)) ** 2 <= 1e-6 * n
+
+
+@given(st.floats(-0.9, 0.9), st.floats(-0.9, 0.9), st.integers(0, 2**16))
+def test_newton_derivatives_match_finite_differences(x, y, seed):
+    psi = complex(x, y)
+    assume(abs(psi) < 0.95)
+    z = np.exp(1j * np.random.default_rng(seed).uniform(-np.pi, np.pi, 20))
+    _, grad, (hxx, hxy, hyy) = dcrw._wrapped_cauchy_derivatives(z, psi)
+    h = 1e-6
+    for e, g_e, h_row in [(1.0, grad.real, (hxx, hxy)), (1j, grad.imag, (hxy, hyy))]:
+        up, down = (dcrw._wrapped_cauchy_derivatives(z, psi + s * h * e) for s in (1, -1))
+        assert (up[0] - down[0]) / (2 * h) == pytest.approx(g_e, rel=1e-5, abs=1e-5)
+        d_grad = (up[1] - down[1]) / (2 * h)
+        assert d_grad.real == pytest.approx(h_row[0], rel=1e-4, abs=1e-3)
+        assert d_grad.imag == pytest.approx(h_row[1], rel=1e-4, abs=1e-3)
+
+
+@given(kappas, lams, st.integers(2, 120), st.integers(0, 2**16))
+def test_weibull_fit_solves_the_profile_equation(kappa, lam, n, seed):
+    """Seed 002 eq. (3.2): at the ML shape the profile-likelihood equation vanishes (its root is
+    unique, the equation increasing), and ``λ = (mean δ^κ)^{1/κ}``."""
+    delta = sample_weibull(np.random.default_rng(seed), kappa, lam, (n,))
+    assume(np.ptp(np.log(delta)) > 1e-2)  # keeps the root inside the default bounds
+    k_hat, lam_hat = fit_weibull(delta)
+    logs = np.log(delta)
+    weights = delta**k_hat / np.sum(delta**k_hat)
+    assert weights @ logs - 1 / k_hat - logs.mean() == pytest.approx(0, abs=1e-9)
+    assert lam_hat == pytest.approx(np.mean(delta**k_hat) ** (1 / k_hat), rel=1e-9)
 
 
 def test_degenerate_fits_are_clamped():

@@ -24,7 +24,7 @@ from theory.particle.filter import (
     run_filter,
     simulate_measurements,
 )
-from theory.particle.motion import DcrwMotion, GaussianMotion, UniformMotion
+from theory.particle.motion import DcrwMotion, GaussianMotion, UniformMotion, truncated_normal
 
 TRIANGLE = np.array([[0.0, 30.0], [-26.0, -15.0], [26.0, -15.0]])
 seeds = st.integers(0, 2**32 - 1)
@@ -323,3 +323,25 @@ def test_exchange_on_random_graphs_keeps_sets_whole(data):
                 assert state.headings[f, np.argmax(mine)] == h  # kept with its own heading
             else:
                 assert any(np.any(np.all(t == c, axis=1)) for t in tops)
+
+
+@given(
+    st.floats(-6.0, -0.1),
+    st.one_of(st.floats(0.1, 6.0), st.just(np.inf)),
+    st.floats(-5.0, 5.0),
+    st.floats(0.1, 3.0),
+    st.integers(0, 2**16),
+)
+def test_truncated_normal_is_scipys_truncnorm_draw_for_draw(a, b, loc, scale, seed):
+    """The Gaussian baseline's sampler (seed 002 §3.3.2) gives scipy's truncnorm numbers exactly,
+    from the same generator state."""
+    expected = stats.truncnorm.rvs(
+        a, b, loc=loc, scale=scale, size=(3, 50), random_state=np.random.default_rng(seed)
+    )
+    got = truncated_normal(np.random.default_rng(seed), a, b, loc, scale, (3, 50))
+    np.testing.assert_array_equal(got, expected)
+
+
+def test_truncated_normal_needs_a_negative_lower_bound():
+    with pytest.raises(ValueError, match="a < 0"):
+        truncated_normal(np.random.default_rng(0), 0.5, 1.0, 0.0, 1.0, (2,))

@@ -5,9 +5,10 @@ the step length ``δ`` is Weibull with shape ``κ`` and scale ``λ`` (eq. 3.2). 
 the turning angles (eq. 3.3) and the position moves by ``δ`` along the heading (eqs. 3.4–3.5).
 
 Maximum-likelihood fits: the wrapped Cauchy by maximising the log-likelihood over the unit disk
-(``ψ = γ e^{iμ}``) from the method-of-moments start ``E[e^{iφ}] = γ e^{iμ}``; the Weibull by the
-profile-likelihood equation in ``κ`` (one monotone root, ``scipy.optimize.brentq``) with
-``λ = (mean δ^κ)^{1/κ}``. Both are cross-checked against ``scipy.stats`` in the tests.
+(``ψ = γ e^{iμ}``) by damped Newton steps from the method-of-moments start
+``E[e^{iφ}] = γ e^{iμ}``; the Weibull by the profile-likelihood equation in ``κ`` (one monotone
+root, bracketed Newton steps) with ``λ = (mean δ^κ)^{1/κ}``. Both are cross-checked against
+``scipy.stats`` in the tests.
 """
 
 from __future__ import annotations
@@ -193,11 +194,12 @@ def fit_wrapped_cauchy(
     """Maximum-likelihood ``(μ, γ)`` of eq. (3.1) from turning angles.
 
     The log-likelihood ``n log(1 − |ψ|²) − Σ log|e^{iφ_j} − ψ|²`` (``ψ = γ e^{iμ}``) is maximised
-    over the open unit disk with BFGS (analytic gradient) in the coordinates
-    ``ψ = v / √(1 + |v|²)`` (so ``1 − |ψ|² = 1/(1 + |v|²)`` exactly), started from the circular
-    moments. The maximum is interior exactly when no angle carries half or more of the sample
-    (Kent & Tyler 1988); otherwise the supremum is at ``γ = 1`` at the repeated angle, and the
-    result is that angle with ``γ = gamma_max``.
+    over the open unit disk by damped Newton steps (exact gradient and Hessian), started from the
+    circular moments, falling back to BFGS in the coordinates ``ψ = v / √(1 + |v|²)`` (so
+    ``1 − |ψ|² = 1/(1 + |v|²)`` exactly) if Newton does not converge. The maximum is interior
+    exactly when no angle carries half or more of the sample (Kent & Tyler 1988); otherwise the
+    supremum is at ``γ = 1`` at the repeated angle, and the result is that angle with
+    ``γ = gamma_max``.
 
     Parameters
     ----------
@@ -227,14 +229,106 @@ def fit_wrapped_cauchy(
     mode, count = _largest_tie(np.angle(z), tie_tol)
     if 2 * count >= z.size:
         return mode, float(gamma_max)
+    start = _moment_start(z)
+    psi = _wrapped_cauchy_newton(z, start)
+    if psi is None:
+        psi = _wrapped_cauchy_bfgs(z, start)
+    return float(np.angle(psi)), float(min(abs(psi), gamma_max))
+
+
+def _moment_start(z: np.ndarray) -> complex:
+    """The circular moment ``mean e^{iφ}`` (``= γ e^{iμ}`` in expectation), shrunk into
+    ``|ψ| ≤ 0.99``: the start of the ML iterations."""
     moment = z.mean()
-    start = moment * min(abs(moment), 0.99) / max(abs(moment), 1e-12)
+    return moment * min(abs(moment), 0.99) / max(abs(moment), 1e-12)
+
+
+def _wrapped_cauchy_bfgs(z: np.ndarray, start: complex) -> complex:
+    """The ML ``ψ`` by BFGS in the coordinates ``v`` (fallback of the Newton iteration)."""
     v0 = np.array([start.real, start.imag]) / np.sqrt(1 - abs(start) ** 2)
     result = optimize.minimize(_wrapped_cauchy_objective, v0, args=(z,), method="BFGS", jac=True)
     if not np.isfinite(result.fun):
         raise SolverError(f"wrapped-Cauchy ML fit failed: {result.message}")
-    psi = complex(*result.x) / np.sqrt(1 + result.x @ result.x)
-    return float(np.angle(psi)), float(min(abs(psi), gamma_max))
+    return complex(*result.x) / np.sqrt(1 + result.x @ result.x)
+
+
+def _wrapped_cauchy_newton(
+    z: np.ndarray, start: complex, *, max_iter: int = 100, step_tol: float = 1e-10
+) -> complex | None:
+    """The ML ``ψ`` by damped Newton steps on the negative log-likelihood over the unit disk.
+
+    ``f(ψ) = −n log(1 − |ψ|²) + Σ log|z_j − ψ|²`` with its exact gradient and Hessian
+    (:func:`_wrapped_cauchy_derivatives`); where the Hessian is not positive definite it is
+    shifted until it is (:func:`_newton_direction`), and each step is halved until it stays inside
+    the disk and decreases ``f`` (Armijo, up to rounding of ``f``). Converged when the full Newton
+    step is below ``step_tol · (1 − |ψ|)``; returns ``None`` after ``max_iter`` steps without it.
+    """
+    psi = start
+    value, grad, hess = _wrapped_cauchy_derivatives(z, psi)
+    for _ in range(max_iter):
+        step = _newton_direction(grad, hess)
+        if abs(step) <= step_tol * (1.0 - abs(psi)):
+            return psi + step if abs(psi + step) < 1.0 else psi
+        slope = grad.real * step.real + grad.imag * step.imag
+        noise = 1e-13 * (1.0 + abs(value))
+        t = 1.0
+        while t > 1e-12:
+            trial = psi + t * step
+            if abs(trial) < 1.0:
+                trial_value, trial_grad, trial_hess = _wrapped_cauchy_derivatives(z, trial)
+                if trial_value <= value + 1e-4 * t * slope + noise:
+                    break
+            t *= 0.5
+        else:
+            return None
+        psi, value, grad, hess = trial, trial_value, trial_grad, trial_hess
+    return None
+
+
+def _newton_direction(grad: complex, hess: tuple[float, float, float]) -> complex:
+    """``−H⁻¹ g`` for ``H = [[a, b], [b, c]]``, ``H`` first shifted by a multiple of ``I`` to be
+    positive definite (``g`` and the result as complex numbers ``x + iy``)."""
+    a, b, c = hess
+    half_trace, det = 0.5 * (a + c), a * c - b * b
+    smallest = half_trace - np.sqrt(max(half_trace**2 - det, 0.0))
+    scale = abs(a) + abs(c) + 1.0
+    if smallest <= 1e-12 * scale:
+        shift = -smallest + 1e-6 * scale
+        a, c, det = a + shift, c + shift, (a + shift) * (c + shift) - b * b
+    return complex(-(c * grad.real - b * grad.imag), -(a * grad.imag - b * grad.real)) / det
+
+
+def _wrapped_cauchy_derivatives(
+    z: np.ndarray, psi: complex
+) -> tuple[float, complex, tuple[float, float, float]]:
+    """Negative log-likelihood of eq. (3.1) in ``ψ = γ e^{iμ}``, its gradient and Hessian.
+
+    With ``p = (Re ψ, Im ψ)``, ``u_j = z_j − p`` and ``d_j = |u_j|``:
+    ``∇f = 2n p / (1 − |p|²) − 2 Σ u_j / d_j²`` and
+    ``∇²f = 2n I / (1 − |p|²) + 4n p pᵀ / (1 − |p|²)² + Σ (2 I / d_j² − 4 u_j u_jᵀ / d_j⁴)``.
+    The gradient is returned as the complex number ``∂f/∂x + i ∂f/∂y``, the Hessian as
+    ``(∂²f/∂x², ∂²f/∂x∂y, ∂²f/∂y²)``.
+    """
+    n = z.size
+    x, y = psi.real, psi.imag
+    slack = 1.0 - (x * x + y * y)
+    gap = z - psi
+    ux, uy = gap.real, gap.imag
+    inv = 1.0 / np.maximum(ux * ux + uy * uy, np.finfo(float).tiny)
+    value = -n * np.log(slack) - float(np.log(inv).sum())
+    grad = 2 * n * psi / slack - 2 * complex(ux @ inv, uy @ inv)
+    wx, wy = ux * inv, uy * inv
+    diagonal = 2 * n / slack + 2 * float(inv.sum())
+    outer = 4 * n / slack**2
+    return (
+        float(value),
+        grad,
+        (
+            diagonal + outer * x * x - 4 * float(wx @ wx),
+            outer * x * y - 4 * float(wx @ wy),
+            diagonal + outer * y * y - 4 * float(wy @ wy),
+        ),
+    )
 
 
 def _largest_tie(angles: np.ndarray, tol: float) -> tuple[float, int]:
@@ -268,8 +362,8 @@ def fit_weibull(
     """Maximum-likelihood ``(κ, λ)`` of eq. (3.2) from positive step lengths.
 
     Solves the profile equation ``Σ δ^κ ln δ / Σ δ^κ − 1/κ − mean(ln δ) = 0`` (increasing in ``κ``)
-    by ``brentq`` inside ``kappa_bounds``; at a bound the root is clamped to it (e.g. all lengths
-    equal: κ → ∞). Then ``λ = (mean δ^κ)^{1/κ}``.
+    by bracketed Newton steps (:func:`_weibull_root`) inside ``kappa_bounds``; at a bound the root
+    is clamped to it (e.g. all lengths equal: κ → ∞). Then ``λ = (mean δ^κ)^{1/κ}``.
 
     Parameters
     ----------
@@ -291,20 +385,57 @@ def fit_weibull(
         raise ValueError("fit_weibull needs at least one step length, all > 0")
     logs = np.log(x)
     shifted = logs - logs.max()
-
-    def profile(kappa: float) -> float:
-        weights = np.exp(kappa * shifted)
-        return float(weights @ logs / weights.sum() - 1.0 / kappa - logs.mean())
-
+    centred = logs - logs.mean()
     low, high = kappa_bounds
-    if profile(low) >= 0:
+    if _weibull_profile(low, shifted, centred)[0] >= 0:
         kappa = low
-    elif profile(high) <= 0:
+    elif _weibull_profile(high, shifted, centred)[0] <= 0:
         kappa = high
     else:
-        kappa = optimize.brentq(profile, low, high, xtol=1e-12, rtol=1e-12)
+        kappa = _weibull_root(shifted, centred, low, high)
     lam = float(np.exp(logs.max()) * np.mean(np.exp(kappa * shifted)) ** (1.0 / kappa))
     return float(kappa), lam
+
+
+def _weibull_profile(kappa: float, shifted: np.ndarray, centred: np.ndarray) -> tuple[float, float]:
+    """The profile equation of :func:`fit_weibull` at ``κ`` and its derivative in ``κ``.
+
+    With weights ``w_j ∝ δ_j^κ`` (``shifted = ln δ − max ln δ`` keeps them finite) the value is
+    ``Σ w_j ℓ_j / Σ w_j − 1/κ`` (``centred`` = ``ℓ = ln δ − mean ln δ``) and the derivative is the
+    ``w``-weighted variance of ``ln δ`` plus ``1/κ²`` (> 0: the equation is increasing).
+    """
+    weights = np.exp(kappa * shifted)
+    weights /= weights.sum()
+    mean = float(weights @ centred)
+    variance = float(weights @ (centred - mean) ** 2)
+    return mean - 1.0 / kappa, variance + 1.0 / kappa**2
+
+
+def _weibull_root(
+    shifted: np.ndarray, centred: np.ndarray, low: float, high: float, *, tol: float = 1e-12
+) -> float:
+    """The root of the profile equation inside ``[low, high]`` (value < 0 at ``low``, > 0 at
+    ``high``) by Newton steps kept inside a shrinking bracket (bisection when a step leaves it).
+
+    Started from the moment estimate ``κ ≈ π / (√6 · sd(ln δ))`` (the log of a Weibull variable
+    has standard deviation ``π / (κ√6)``); converged when a step is below ``tol · κ``.
+    """
+    spread = float(np.sqrt(np.mean(centred**2)))
+    kappa = float(np.clip(np.pi / (np.sqrt(6.0) * max(spread, 1e-300)), low, high))
+    for _ in range(200):
+        value, slope = _weibull_profile(kappa, shifted, centred)
+        if value < 0:
+            low = kappa
+        else:
+            high = kappa
+        step = value / slope
+        candidate = kappa - step
+        if not low < candidate < high:
+            candidate = 0.5 * (low + high)
+        if abs(candidate - kappa) <= tol * kappa or high - low <= tol * kappa:
+            return candidate
+        kappa = candidate
+    raise SolverError("Weibull profile-likelihood root did not converge")
 
 
 def fit_dcrw(turns: np.ndarray, steps: np.ndarray, *, gamma_max: float = 1 - 1e-9) -> DcrwParams:
