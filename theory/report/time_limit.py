@@ -4,8 +4,8 @@
 :class:`TimeLimitExceeded` in the thread running the block (``PyThreadState_SetAsyncExc``), and the
 report records the claim as ``inconclusive``. One mechanism serves every thread: the main thread
 of ``--workers 1`` and the worker thread in which a Dask task runs (where ``SIGALRM`` cannot be
-used). When the block exits first, the timer is cancelled and an exception it may have scheduled
-in the meantime is withdrawn, so nothing is raised after the block.
+used). When the block exits first, the timer is cancelled, and an exception it scheduled in the
+meantime is received and dropped before the block is left, so nothing is raised after it.
 
 The exception derives from :class:`BaseException`, like :class:`KeyboardInterrupt`, so that a
 check's own ``except Exception`` (a solver failure turned into a verdict) cannot swallow it.
@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import ctypes
 import threading
+import time
 from types import TracebackType
 
 __all__ = ["TimeLimitExceeded", "enforceable", "time_limit"]
@@ -46,10 +47,11 @@ def enforceable() -> bool:
     return hasattr(ctypes, "pythonapi") and hasattr(ctypes.pythonapi, "PyThreadState_SetAsyncExc")
 
 
-def _set_async_exc(thread_id: int, exception: type[BaseException] | None) -> int:
-    """Schedule ``exception`` in thread ``thread_id`` (``None`` withdraws a scheduled one)."""
-    target = ctypes.py_object(exception) if exception is not None else None
-    return ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(thread_id), target)
+def _set_async_exc(thread_id: int, exception: type[BaseException]) -> int:
+    """Schedule ``exception`` in thread ``thread_id``."""
+    return ctypes.pythonapi.PyThreadState_SetAsyncExc(
+        ctypes.c_ulong(thread_id), ctypes.py_object(exception)
+    )
 
 
 class time_limit:  # noqa: N801 (used as a context manager, like contextlib's)
@@ -95,8 +97,27 @@ class time_limit:  # noqa: N801 (used as a context manager, like contextlib's)
             return
         with self._lock:
             self._open = False
-            if self._fired:
-                _set_async_exc(self._thread_id, None)  # not delivered yet: withdraw it
+        delivered = kind is not None and issubclass(kind, TimeLimitExceeded)
+        if self._fired and not delivered:
+            _absorb_pending()
         self._timer.cancel()
         self._timer.join()  # returns at once: the timer is cancelled or has fired
         self._timer = None
+
+
+def _absorb_pending(seconds: float = 0.1) -> None:
+    """Receive, here, a :class:`TimeLimitExceeded` scheduled just as the block ended, and drop it.
+
+    An exception scheduled with ``PyThreadState_SetAsyncExc`` is raised at the interpreter's next
+    check (every loop iteration), so this loop receives it at once. It is never *withdrawn*
+    (``PyThreadState_SetAsyncExc(id, NULL)``): CPython would leave its "asynchronous exception
+    pending" signal set with nothing to raise, and every later instruction of the thread would
+    take the interpreter's slow path (a hypothesis search after it ran about 1000× slower).
+    If the block itself swallowed the exception, the loop simply runs out after ``seconds``.
+    """
+    end = time.monotonic() + seconds
+    try:
+        while time.monotonic() < end:
+            pass
+    except TimeLimitExceeded:
+        return
