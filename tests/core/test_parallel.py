@@ -3,7 +3,10 @@ refused (exit 2 from the commands)."""
 
 from __future__ import annotations
 
+import subprocess
 import sys
+import textwrap
+from pathlib import Path
 
 import cloudpickle
 import numpy as np
@@ -109,6 +112,54 @@ def test_unreachable_scheduler_is_a_case_error(monkeypatch) -> None:
     ):
         runner.map(abs, [1, 2])
     assert "dask scheduler" in raised.value.hint
+
+
+def test_unreachable_scheduler_started_in_the_background_fails_at_the_first_map(
+    monkeypatch,
+) -> None:
+    monkeypatch.setattr("theory.core.parallel.CONNECT_TIMEOUT", 1.0)
+    with pytest.raises(CaseError, match="--scheduler"), engine(scheduler="tcp://127.0.0.1:9") as r:
+        r.start()
+        r.map(abs, [1, 2])
+
+
+def test_start_on_the_serial_path_starts_nothing() -> None:
+    with engine(1) as runner:
+        runner.start()
+        assert runner.map(abs, [-1, -2]) == [1, 2]
+        assert runner.size == 1
+
+
+def test_local_workers_started_in_the_background_have_the_preload_imported(tmp_path) -> None:
+    """A fresh process (so that it starts its own forkserver): its two workers are up before the
+    first map and have imported the preload modules, and only those, before any task runs."""
+    (tmp_path / "probe.py").write_text(
+        "import sys\n\ndef loaded(name):\n    return name in sys.modules\n"
+    )
+    script = textwrap.dedent(
+        """
+        import probe
+        from theory.core.parallel import engine
+
+        if __name__ == "__main__":
+            with engine(2, preload=["theory.tdoa.model"]) as runner:
+                runner.start()
+                print(runner.map(probe.loaded, ["theory.tdoa.model", "theory.pursuit.dekf"]))
+                print(runner.size)
+        """
+    )
+    root = Path(__file__).resolve().parents[2]
+    done = subprocess.run(
+        [sys.executable, "-c", script],
+        cwd=tmp_path,
+        env={"PYTHONPATH": f"{tmp_path}:{root}", "PATH": "/usr/bin:/bin"},
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["[True,", "False]", "2"]
 
 
 def test_run_cache_computes_once_per_key() -> None:

@@ -17,7 +17,7 @@ from report_fakes import fake_registry, register_standard_fakes, result, write_c
 from theory.core.case_file import load_case
 from theory.core.claims import NotApplicable
 from theory.core.errors import CaseError
-from theory.report.artifacts import check_with_cli
+from theory.report.artifacts import check_document, check_with_cli, prechecked
 from theory.report.canonical import canonical, dumps
 from theory.report.errata import parse_errata
 from theory.report.markup import markdown_to_html
@@ -235,6 +235,43 @@ def test_certificate_documents_are_written_and_checked(monkeypatch, tmp_path) ->
     assert entry["path"] == path and entry["check"]["valid"] is True
     assert entry["check"]["command"] == f"python -m proofs_check {path} --json"
     assert json.loads((tmp_path / "out" / path).read_text()) == document
+
+
+def test_certificate_documents_are_checked_once_where_their_claim_ran(
+    monkeypatch, tmp_path
+) -> None:
+    """The task's verdict (on the same bytes) is the report's: the checker does not run again."""
+    from theory.tdoa.rank_certificates import generic_rank_certificates
+
+    register = fake_registry(monkeypatch)
+    case = load_case(write_case(tmp_path, "case-a"))
+    (document, *_) = generic_rank_certificates(case.spec)
+
+    @register("seed000.doc", source="s", statement="t", kinds=("tdoa",))
+    def with_document(case):
+        return [result(case, claim="seed000.doc", evidence={"certificate_document": document})]
+
+    run = run_claims([case], seed=0)
+    ((digest, verdict),) = run.certificate_checks.items()
+    assert verdict["valid"] is True and digest == check_document(document)[0]
+
+    def never(relative: Path, out_dir: Path) -> dict:
+        raise AssertionError("checked twice")
+
+    monkeypatch.setattr("theory.report.artifacts.check_with_cli", never)
+    write_report(run, tmp_path / "out")
+    (record,) = json.loads((tmp_path / "out" / "report.json").read_text())["claims"]
+    ((entry),) = record["certificates"]
+    assert entry["sha256"] == digest and entry["check"]["valid"] is True
+    assert entry["check"]["command"] == f"python -m proofs_check {entry['path']} --json"
+
+
+def test_prechecked_verdicts_apply_only_to_the_bytes_checked(tmp_path) -> None:
+    (tmp_path / "bogus.json").write_text('{"format": "trackcert-certificate/1"}')
+    stale = {"0" * 64: {"command": "x", "valid": True, "checks": []}}
+    verdict = prechecked(stale)(Path("bogus.json"), tmp_path)
+    assert verdict["valid"] is not True
+    assert verdict["command"] == "python -m proofs_check bogus.json --json"
 
 
 def test_cli_checker_never_validates_a_bogus_certificate(tmp_path) -> None:

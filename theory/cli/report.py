@@ -22,10 +22,12 @@ from theory.cli.common import (
     workers_option,
 )
 from theory.core.case_file import bundled_cases, load_case
+from theory.core.parallel import engine
 from theory.core.verdicts import exit_code
 from theory.report.build import build_report, check_count, choose_claims
 from theory.report.canonical import dumps
 from theory.report.runner import RunResult
+from theory.report.tasks import worker_modules
 from theory.report.timings import slowest
 
 __all__ = ["DEFAULT_TIME_LIMIT", "register"]
@@ -84,19 +86,20 @@ def register(app: typer.Typer) -> None:
         """
         check_output(out, "-o/--out", folder=True)
         loaded = [load_case(c) for c in (cases or list(bundled_cases()))]
-        claims = choose_claims(only or [])
-        with progress_bar(check_count(loaded, claims), "checking", quiet=as_json) as advance:
-            run, document = build_report(
-                loaded,
-                out,
-                claims=claims,
-                seed=seed,
-                seconds=time_limit or None,
-                errata_path=errata,
-                progress=advance,
-                workers=workers,
-                scheduler=scheduler,
-            )
+        with engine(workers, scheduler, preload=worker_modules()) as runner:
+            runner.start()  # the workers start while the claims are imported here
+            claims = choose_claims(only or [])
+            with progress_bar(check_count(loaded, claims), "checking", quiet=as_json) as advance:
+                run, document = build_report(
+                    loaded,
+                    out,
+                    claims=claims,
+                    seed=seed,
+                    seconds=time_limit or None,
+                    errata_path=errata,
+                    progress=advance,
+                    runner=runner,
+                )
         if as_json:
             console.file.write(dumps(document))
         else:

@@ -13,8 +13,10 @@ Where the tasks run:
 * ``workers=1`` (and no scheduler): in this process, one after the other (the debugging path;
   no Dask at all);
 * by default: an in-process ``distributed.LocalCluster`` of one single-threaded worker process per
-  local core, started on the first :meth:`~TaskRunner.map` of more than one task and closed when
-  the context ends;
+  local core, started on the first :meth:`~TaskRunner.map` of more than one task (or in the
+  background from :meth:`~TaskRunner.start`, while the caller prepares its tasks) and closed when
+  the context ends. Its workers are forked from a ``forkserver`` that has imported the caller's
+  ``preload`` modules once, so no worker imports them again;
 * ``scheduler="tcp://host:8786"`` (or the ``TRACKCERT_SCHEDULER`` setting): an existing Dask
   cluster, whose workers must have trackcert installed.
 
@@ -26,6 +28,7 @@ from __future__ import annotations
 
 import logging
 import os
+import threading
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -52,11 +55,21 @@ CONNECT_TIMEOUT = 10.0
 WORKER_MEMORY = "2GiB"
 """Memory limit of each LocalCluster worker (Dask pauses, then restarts, a worker above it)."""
 
-WORKER_CONFIG = {"distributed.worker.profile.enabled": False}
-"""Dask settings of LocalCluster workers: no statistical profiler. It samples the task thread's
-stack every 10 ms under the GIL and made the report's checks cost about 45 % more CPU on 2
-workers (2-worker report: 98 s → 76 s wall, same report.json). Workers of a cluster started
-apart take ``DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False`` (docs/parallel.md)."""
+WORKER_CONFIG = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.worker.multiprocessing-method": "forkserver",
+}
+"""Dask settings of LocalCluster workers.
+
+* No statistical profiler: it samples the task thread's stack every 10 ms under the GIL and made
+  the report's checks cost about 45 % more CPU on 2 workers (2-worker report: 98 s → 76 s wall,
+  same report.json). Workers of a cluster started apart take
+  ``DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False`` (docs/parallel.md).
+* Worker processes forked from a ``forkserver`` (Dask's default is ``spawn``) that has imported
+  the engine's ``preload`` modules: the imports (about 3 s of CPU for the report's claims) and
+  the module-level work they do are paid once, not once per worker. Dask sets its thread-count
+  variables (``OMP_NUM_THREADS``…, ``distributed.nanny.pre-spawn-environ``) in this process
+  before the first worker starts, so the forkserver, started then, inherits them."""
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -104,13 +117,18 @@ class TaskRunner:
         Local worker processes (ignored with a scheduler); 1 is the serial path.
     scheduler : str or None
         Address of an existing scheduler.
+    preload : tuple of str
+        Modules the local cluster's forkserver imports before forking the workers.
     """
 
-    def __init__(self, workers: int, scheduler: str | None) -> None:
+    def __init__(self, workers: int, scheduler: str | None, preload: Sequence[str] = ()) -> None:
         self.workers = workers
         self.scheduler = scheduler
+        self.preload = tuple(preload)
         self._client: Any = None
         self._cluster: Any = None
+        self._starting: threading.Thread | None = None
+        self._start_error: BaseException | None = None
 
     @property
     def serial(self) -> bool:
@@ -201,9 +219,39 @@ class TaskRunner:
             return len(self._client.scheduler_info().get("workers", {}))
         return self.workers
 
+    def start(self) -> None:
+        """Begin connecting in the background: the local cluster's workers start (or the
+        scheduler is reached) while the caller prepares its tasks; the first :meth:`map` waits
+        for it. Nothing happens on the serial path or once connected.
+
+        A failure (an unreachable scheduler) is raised by the first :meth:`map`.
+        """
+        if self.serial or self._client is not None or self._starting is not None:
+            return
+        self._starting = threading.Thread(
+            target=self._start_in_background, name="trackcert-engine-start", daemon=True
+        )
+        self._starting.start()
+
+    def _start_in_background(self) -> None:
+        try:
+            self._open()
+        except BaseException as error:  # re-raised in the caller's thread by _connect
+            self._start_error = error
+
     def _connect(self) -> Any:
-        if self._client is not None:
-            return self._client
+        if self._starting is not None:
+            self._starting.join()
+            self._starting = None
+            if self._start_error is not None:
+                error, self._start_error = self._start_error, None
+                raise error
+        if self._client is None:
+            self._open()
+        return self._client
+
+    def _open(self) -> None:
+        """Connect to the scheduler, or start the local cluster and connect to it."""
         from distributed import Client, LocalCluster
 
         if self.scheduler is not None:
@@ -216,10 +264,11 @@ class TaskRunner:
                     self.scheduler,
                     hint=f"{error}; start one with `dask scheduler` and `dask worker ADDRESS`",
                 ) from None
-            return self._client
+            return
         import dask
 
         with dask.config.set(WORKER_CONFIG):  # the worker processes start with it
+            _preload_forkserver(self.preload)
             self._cluster = LocalCluster(
                 n_workers=self.workers,
                 threads_per_worker=1,
@@ -229,7 +278,6 @@ class TaskRunner:
                 scheduler_kwargs={"dashboard": False},
             )
         self._client = Client(self._cluster)
-        return self._client
 
     def close(self) -> None:
         """Close the client and the local cluster, if they were started.
@@ -237,6 +285,9 @@ class TaskRunner:
         Dask's shutdown chatter (a worker killed after a few seconds of closing) is not shown:
         the results are in by then.
         """
+        if self._starting is not None:
+            self._starting.join()
+            self._starting = None
         logger = logging.getLogger("distributed")
         level = logger.level
         logger.setLevel(logging.ERROR)
@@ -248,6 +299,20 @@ class TaskRunner:
         finally:
             logger.setLevel(level)
         self._client = self._cluster = None
+
+
+def _preload_forkserver(modules: Sequence[str]) -> None:
+    """Have the forkserver import ``modules`` (and ``distributed``) before it forks any worker.
+
+    Called under :data:`WORKER_CONFIG`. Dask's ``get_mp_context`` sets its own preload list (its
+    required packages) on first use; ours, set after it, replaces that list. A forkserver that is
+    already running (an earlier cluster of this process) keeps the modules it has.
+    """
+    if not modules:
+        return
+    from distributed.utils import get_mp_context
+
+    get_mp_context().set_forkserver_preload(["distributed", *modules])
 
 
 @dataclass(frozen=True)
@@ -290,7 +355,9 @@ def _outcome(i: int, future: Any) -> Outcome:
 
 
 @contextmanager
-def engine(workers: int | None = None, scheduler: str | None = None) -> Iterator[TaskRunner]:
+def engine(
+    workers: int | None = None, scheduler: str | None = None, *, preload: Sequence[str] = ()
+) -> Iterator[TaskRunner]:
     """A :class:`TaskRunner` for the ``with`` block; its cluster (if any) is closed at the end.
 
     Parameters
@@ -300,6 +367,9 @@ def engine(workers: int | None = None, scheduler: str | None = None) -> Iterator
     scheduler : str, optional
         Address of an existing Dask scheduler (default ``$TRACKCERT_SCHEDULER``); its workers
         run the tasks and ``workers`` is ignored.
+    preload : sequence of str, optional
+        Modules the local workers' forkserver imports before forking them (what the tasks will
+        import); none: Dask's default list.
 
     Yields
     ------
@@ -313,7 +383,7 @@ def engine(workers: int | None = None, scheduler: str | None = None) -> Iterator
     count = default_workers() if workers is None else workers
     if count < 1:
         raise CaseError("--workers", "an integer ≥ 1", workers)
-    runner = TaskRunner(count, scheduler_address(scheduler))
+    runner = TaskRunner(count, scheduler_address(scheduler), preload)
     try:
         yield runner
     finally:

@@ -9,6 +9,11 @@ reproducible ``report.json``), puts the copy's path relative to ``DIR`` in the e
 document is replaced by its file's path under ``certificate``), and re-verifies every
 certificate with the independent checker, ``python -m proofs_check FILE --json`` (what
 ``trackcert check`` runs, DESIGN.md), recording that command's verdict next to it.
+
+A certificate document is checked where its claim ran (:func:`check_document`, on the task's
+worker, while other checks run): the verdict travels back keyed by the SHA-256 of the exact bytes
+the report writes, and :func:`prechecked` reuses it for the report's copy of those bytes (naming
+the copy in its ``command``) instead of running the checker again after all the checks.
 """
 
 from __future__ import annotations
@@ -19,7 +24,8 @@ import os
 import shutil
 import subprocess
 import sys
-from collections.abc import Callable
+import tempfile
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -32,8 +38,11 @@ __all__ = [
     "CERTIFICATE_KEYS",
     "Artifacts",
     "CertificateChecker",
+    "certificate_bytes",
+    "check_document",
     "check_with_cli",
     "collect",
+    "prechecked",
 ]
 
 CERTIFICATE_KEYS = ("certificate", "certificates")
@@ -125,12 +134,77 @@ def _copy(source: Path, folder: str, record: Record, out_dir: Path, taken: set[s
 
 def _write(document: dict, record: Record, out_dir: Path, taken: set[str]) -> dict:
     """Write a certificate ``document`` as ``DIR/certificates/<claim>/<case>/<kind>.json``."""
-    name = f"{slug(str(document.get('kind', 'certificate')))}.json"
-    path = _reserve("certificates", record, name, taken)
+    path = _reserve("certificates", record, _document_name(document), taken)
     target = out_dir / path
     target.parent.mkdir(parents=True, exist_ok=True)
-    target.write_text(json.dumps(document, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
-    return {"path": path, "sha256": hashlib.sha256(target.read_bytes()).hexdigest()}
+    content = certificate_bytes(document)
+    target.write_bytes(content)
+    return {"path": path, "sha256": hashlib.sha256(content).hexdigest()}
+
+
+def _document_name(document: dict) -> str:
+    return f"{slug(str(document.get('kind', 'certificate')))}.json"
+
+
+def certificate_bytes(document: dict) -> bytes:
+    """The file the report writes for a certificate ``document``: UTF-8 JSON, indent 1, newline.
+
+    Parameters
+    ----------
+    document : dict
+        The certificate.
+
+    Returns
+    -------
+    bytes
+    """
+    return (json.dumps(document, indent=1, ensure_ascii=False) + "\n").encode("utf-8")
+
+
+def check_document(document: dict) -> tuple[str, dict[str, Any]]:
+    """The independent checker's verdict on the file :func:`certificate_bytes` makes of
+    ``document``, written to a temporary folder (where a claim's task runs).
+
+    Parameters
+    ----------
+    document : dict
+        The certificate.
+
+    Returns
+    -------
+    (str, dict)
+        The SHA-256 of the bytes checked, and :func:`check_with_cli`'s verdict on them.
+    """
+    content = certificate_bytes(document)
+    name = Path(_document_name(document))
+    with tempfile.TemporaryDirectory(prefix="trackcert-certificate-") as folder:
+        (Path(folder) / name).write_bytes(content)
+        verdict = check_with_cli(name, Path(folder))
+    return hashlib.sha256(content).hexdigest(), verdict
+
+
+def prechecked(verdicts: Mapping[str, dict[str, Any]]) -> CertificateChecker:
+    """A checker reusing ``verdicts`` (by SHA-256 of the file's bytes), else :func:`check_with_cli`.
+
+    Parameters
+    ----------
+    verdicts : mapping of str to dict
+        Verdicts of :func:`check_document`, by the SHA-256 of the bytes checked.
+
+    Returns
+    -------
+    CertificateChecker
+        Its verdict on a file whose bytes were checked already is that verdict, with the
+        ``command`` naming the file given; any other file is checked now.
+    """
+
+    def checker(relative: Path, out_dir: Path) -> dict[str, Any]:
+        digest = hashlib.sha256((out_dir / relative).read_bytes()).hexdigest()
+        if digest not in verdicts:
+            return check_with_cli(relative, out_dir)
+        return {**verdicts[digest], "command": _command_line(relative)}
+
+    return checker
 
 
 def _reserve(folder: str, record: Record, name: str, taken: set[str]) -> str:
@@ -167,7 +241,7 @@ def check_with_cli(relative: Path, out_dir: Path) -> dict[str, Any]:
     root = str(Path(theory.__file__).resolve().parent.parent)
     inherited = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, *inherited]))
-    shown = "python -m proofs_check " + " ".join(command)
+    shown = _command_line(relative)
     try:
         done = subprocess.run(
             [sys.executable, "-m", "proofs_check", *command],
@@ -194,3 +268,8 @@ def check_with_cli(relative: Path, out_dir: Path) -> dict[str, Any]:
         "valid": valid if isinstance(valid, bool) else None,
         "checks": checks,
     }
+
+
+def _command_line(relative: Path) -> str:
+    """The checker's command line on ``relative``, as the report shows it."""
+    return f"python -m proofs_check {relative.as_posix()} --json"

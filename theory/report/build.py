@@ -1,8 +1,8 @@
 """``trackcert report`` as one library call: choose the claims, run them, write the folder.
 
-:func:`build_report` runs :func:`theory.report.runner.run_claims` on the task engine
-(:func:`theory.core.parallel.engine`: ``workers`` local processes or the Dask cluster at
-``scheduler``) with figures drawn in a temporary folder, writes the report with
+:func:`build_report` runs :func:`theory.report.runner.run_claims` on the caller's task engine
+(:func:`theory.core.parallel.engine`, preloading :func:`theory.report.tasks.worker_modules`;
+default: serially in this process) with figures drawn in a temporary folder, writes the report with
 :func:`theory.report.render.write_report` and the checks' times with
 :func:`theory.report.timings.write_timings`; the command only shows progress and a summary and
 exits with the expectations' verdict (:mod:`theory.core.verdicts`).
@@ -19,7 +19,7 @@ from typing import Any
 from theory.core.case_file import Case
 from theory.core.claims import Claim, all_claims
 from theory.core.errors import CaseError
-from theory.core.parallel import engine
+from theory.core.parallel import TaskRunner
 from theory.report.render import write_report
 from theory.report.runner import ProgressHook, RunResult, run_claims, select_claims
 from theory.report.timings import timings_document, write_timings
@@ -82,8 +82,7 @@ def build_report(
     seconds: float | None = None,
     errata_path: Path | None = None,
     progress: ProgressHook | None = None,
-    workers: int | None = None,
-    scheduler: str | None = None,
+    runner: TaskRunner | None = None,
 ) -> tuple[RunResult, dict[str, Any]]:
     """Run every claim on every case; write ``index.html``, ``report.md``, ``report.json`` and
     ``timings.json``.
@@ -104,10 +103,8 @@ def build_report(
         The errata document (default ``docs/errata.md``).
     progress : callable, optional
         ``progress(done, label)`` as checks complete (:data:`~theory.report.runner.ProgressHook`).
-    workers : int, optional
-        Local worker processes (default: all local cores; 1: serially in this process).
-    scheduler : str, optional
-        Address of a Dask scheduler to run on (default ``$TRACKCERT_SCHEDULER``).
+    runner : TaskRunner, optional
+        An open engine to run the checks on (default: serially in this process).
 
     Returns
     -------
@@ -117,15 +114,12 @@ def build_report(
     Raises
     ------
     CaseError
-        If ``errata_path`` is not a readable file, the folder cannot be written, ``workers < 1``
-        or the scheduler cannot be reached.
+        If ``errata_path`` is not a readable file, the folder cannot be written or the engine's
+        scheduler cannot be reached.
     """
     if errata_path is not None and not Path(errata_path).is_file():
         raise CaseError("--errata", "a readable Markdown file", str(errata_path))
-    with (
-        tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures,
-        engine(workers, scheduler) as runner,
-    ):
+    with tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures:
         started = time.perf_counter()
         run = run_claims(
             cases,
@@ -139,7 +133,10 @@ def build_report(
         wall = time.perf_counter() - started
         document = write_report(run, out_dir, errata_path=errata_path)
         timings = timings_document(
-            run, wall_seconds=wall, workers=runner.size, scheduler=runner.scheduler
+            run,
+            wall_seconds=wall,
+            workers=1 if runner is None else runner.size,
+            scheduler=None if runner is None else runner.scheduler,
         )
         write_timings(timings, Path(out_dir))
     return run, document

@@ -21,7 +21,7 @@ from markupsafe import Markup
 
 from theory.core.claims import STATUSES
 from theory.core.errors import CaseError
-from theory.report.artifacts import CertificateChecker, collect
+from theory.report.artifacts import CertificateChecker, collect, prechecked
 from theory.report.canonical import dumps, layout
 from theory.report.document import build_document
 from theory.report.environment import environment
@@ -57,7 +57,9 @@ def write_report(
     errata_path : str or Path, optional
         The errata document; defaults to :func:`theory.report.errata.default_errata_path`.
     checker : callable, optional
-        Certificate checker (default: ``trackcert check FILE --json``).
+        Certificate checker (default: the verdicts the checks' tasks gave,
+        :attr:`RunResult.certificate_checks`, and ``python -m proofs_check FILE --json`` on any
+        other certificate).
 
     Returns
     -------
@@ -75,7 +77,9 @@ def write_report(
         out.mkdir(parents=True, exist_ok=True)
     except OSError as error:
         raise CaseError("-o", "a folder that can be created", str(out), hint=str(error)) from None
-    artifacts = collect(run.records, out, checker=checker)
+    artifacts = collect(
+        run.records, out, checker=prechecked(run.certificate_checks) if checker is None else checker
+    )
     env = environment(run.seed, run.cases, run.records, run.time_limit)
     text = dumps(build_document(run, artifacts, env, errata))
     document = json.loads(text)

@@ -22,10 +22,11 @@ limit (:mod:`theory.report.time_limit`), a check still running when it expires b
 from __future__ import annotations
 
 import fnmatch
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Any
 
 from theory.core.case_file import Case, kind_spec
 from theory.core.claims import Claim, all_claims
@@ -113,6 +114,10 @@ class RunResult:
     timings : tuple of Timing
         Wall and CPU time of each check, in check order (not part of ``report.json``: they differ
         from run to run; :mod:`theory.report.timings` writes them to ``timings.json``).
+    certificate_checks : dict of str to dict
+        The independent checker's verdicts on the certificate documents, given where their
+        claims ran, by the SHA-256 of the bytes checked (see
+        :func:`theory.report.artifacts.prechecked`).
     """
 
     records: tuple[Record, ...]
@@ -123,6 +128,7 @@ class RunResult:
     seed: int
     time_limit: float | None = None
     timings: tuple[Timing, ...] = ()
+    certificate_checks: Mapping[str, dict[str, Any]] = field(default_factory=dict)
 
     @property
     def all_expectations_met(self) -> bool:
@@ -210,6 +216,7 @@ def run_claims(
         seed,
         seconds,
         tuple(timings),
+        {d: v for out in outputs for o in out.checks for d, v in o.certificate_checks.items()},
     )
 
 

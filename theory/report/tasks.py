@@ -5,8 +5,10 @@ limit — and :func:`run_task` runs it on a Dask worker (or in this process with
 it looks each claim up in the worker's own registry, runs it with its derived seed under the time
 limit, and returns plain data (:class:`TaskOutput`): the records, the reason of a claim that does
 not apply, the wall and CPU time of each check, the bytes of the figures the claims drew (so that
-the report can be built on a machine that does not share the worker's disk) and the worker's peak
-memory.
+the report can be built on a machine that does not share the worker's disk), the independent
+checker's verdict on each certificate document a claim returned
+(:func:`theory.report.artifacts.check_document`: certificates are re-verified in parallel, not
+after all the checks) and the worker's peak memory.
 
 Claims of one case whose ``run`` accepts the keyword ``cache`` share one task and one
 :class:`~theory.core.run_cache.RunCache` (:func:`plan_tasks`), so that work they have in common (an
@@ -22,13 +24,22 @@ import tempfile
 import time
 import traceback
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from theory.core.case_file import Case
-from theory.core.claims import Claim, ClaimResult, NotApplicable, accepts, get_claim
+from theory.core.claims import (
+    DOCUMENT_KEY,
+    Claim,
+    ClaimResult,
+    NotApplicable,
+    accepts,
+    claim_modules,
+    get_claim,
+)
 from theory.core.run_cache import RunCache
+from theory.report.artifacts import check_document
 from theory.report.canonical import canonical
 from theory.report.records import MODEL_CASE, Record, derive_seed, paper_of, slug
 from theory.report.time_limit import TimeLimitExceeded, time_limit
@@ -41,6 +52,7 @@ __all__ = [
     "plan_tasks",
     "process_name",
     "run_task",
+    "worker_modules",
 ]
 
 
@@ -90,6 +102,9 @@ class CheckOutput:
         Wall and CPU (this process) time the check took.
     figures : dict of str to bytes
         The figures' content, by relative name ``<claim>/<case>/<file>``.
+    certificate_checks : dict of str to dict
+        The checker's verdict on each certificate document of the records, by the SHA-256 of
+        the bytes checked (:func:`~theory.report.artifacts.check_document`).
     """
 
     claim: str
@@ -99,6 +114,7 @@ class CheckOutput:
     wall_seconds: float
     cpu_seconds: float
     figures: dict[str, bytes]
+    certificate_checks: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -157,6 +173,17 @@ def plan_tasks(
             sharing[name] = len(tasks)
         tasks.append(CheckTask((claim.id,), case, seed, seconds, figures))
     return tasks
+
+
+def worker_modules() -> tuple[str, ...]:
+    """The modules a worker imports to run any check: this one and every claim module (the
+    engine's ``preload``, :func:`theory.core.parallel.engine`).
+
+    Returns
+    -------
+    tuple of str
+    """
+    return (__name__, *claim_modules())
 
 
 def run_task(task: CheckTask) -> TaskOutput:
@@ -230,7 +257,12 @@ def _check(claim_id: str, task: CheckTask, cache: RunCache, root: Path | None) -
         records, reason = [], str(why)
     wall, cpu = time.perf_counter() - started, time.process_time() - cpu
     records, figures = _ship_figures(records, root)
-    return CheckOutput(claim_id, name, tuple(records), reason, wall, cpu, figures)
+    verdicts = dict(
+        check_document(r.evidence[DOCUMENT_KEY])
+        for r in records
+        if isinstance(r.evidence.get(DOCUMENT_KEY), dict)
+    )
+    return CheckOutput(claim_id, name, tuple(records), reason, wall, cpu, figures, verdicts)
 
 
 def _run_one(
