@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections import Counter
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.table import Table
@@ -21,7 +21,7 @@ from theory.cli.common import (
     scheduler_option,
     workers_option,
 )
-from theory.core.case_file import bundled_cases, load_case
+from theory.core.case_file import Case, bundled_cases, load_case
 from theory.core.parallel import engine
 from theory.core.verdicts import exit_code
 from theory.report.build import build_report, check_count, choose_claims
@@ -86,26 +86,33 @@ def register(app: typer.Typer) -> None:
         """
         check_output(out, "-o/--out", folder=True)
         loaded = [load_case(c) for c in (cases or list(bundled_cases()))]
-        with engine(workers, scheduler, preload=worker_modules()) as runner:
-            runner.start()  # the workers start while the claims are imported here
-            claims = choose_claims(only or [])
-            with progress_bar(check_count(loaded, claims), "checking", quiet=as_json) as advance:
-                run, document = build_report(
-                    loaded,
-                    out,
-                    claims=claims,
-                    seed=seed,
-                    seconds=time_limit or None,
-                    errata_path=errata,
-                    progress=advance,
-                    runner=runner,
-                )
+        options = {"seed": seed, "seconds": time_limit or None, "errata_path": errata}
+        run, document = _run(loaded, out, only or [], options, (workers, scheduler), as_json)
         if as_json:
             console.file.write(dumps(document))
         else:
             _print_summary(document, out)
             _print_slowest(run)
         raise typer.Exit(exit_code(run.verdict))
+
+
+def _run(
+    loaded: list[Case],
+    out: Path,
+    only: list[str],
+    options: dict[str, Any],
+    where: tuple[int | None, str | None],
+    quiet: bool,
+) -> tuple[RunResult, dict]:
+    """The report on the engine (``where`` = workers, scheduler) behind a progress bar; the
+    workers start while the claims are imported here."""
+    with engine(*where, preload=worker_modules()) as runner:
+        runner.start()
+        claims = choose_claims(only)
+        with progress_bar(check_count(loaded, claims), "checking", quiet=quiet) as advance:
+            return build_report(
+                loaded, out, claims=claims, progress=advance, runner=runner, **options
+            )
 
 
 def _print_summary(document: dict, out: Path) -> None:
