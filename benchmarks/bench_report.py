@@ -7,9 +7,12 @@ workers, no worker over 1 GiB. Each configuration runs the command as a user doe
 ratio is measured in the same run: the speed-up against ``--workers 1``, the cost removal against
 the code at ``--before REV`` (default: the commit before the report ran on the engine), exported
 with ``git archive`` to a temporary folder and run serially the same way. CPU seconds are those of
-the command and all its worker processes (``RUSAGE_CHILDREN``): on a shared machine they are the
-figure to compare, wall time is what the lead reruns on a quiet one. Peak memory: the report
-process's and each worker's, from ``timings.json``. The two reports are compared byte for byte.
+the command (``RUSAGE_CHILDREN``; LocalCluster workers are forked by a forkserver, which the
+command does not wait for, so their CPU is not in it) and those of its checks wherever they ran
+(``timings.json``): on a shared machine they are the figures to compare, wall time is what the lead
+reruns on a quiet one; the 1-minute load average before and after each run says how quiet it
+was. Peak memory: the report process's and each worker's, from ``timings.json``. The two reports
+are compared byte for byte.
 
 Run from the repository root: ``python -m benchmarks.bench_report [--before REV] [--skip-before]
 [--keep DIR] [CASES…] [--only PATTERN …]`` (``--keep`` leaves the reports and their
@@ -41,6 +44,7 @@ def run_report(source: Path, out: Path, workers: int | None, extra: list[str]) -
     options = [] if workers is None else ["--workers", str(workers)]
     command = [sys.executable, "-m", "theory.cli", "report", "-o", str(out), *options, *extra]
     env = {**os.environ, "PYTHONPATH": str(source), "OPENBLAS_NUM_THREADS": "1"}
+    load = os.getloadavg()[0]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     done = subprocess.run(command, cwd=source, env=env, capture_output=True, text=True)
@@ -51,7 +55,9 @@ def run_report(source: Path, out: Path, workers: int | None, extra: list[str]) -
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     timings_path = out / "timings.json"
     timings = json.loads(timings_path.read_text()) if timings_path.exists() else {}
-    return {"wall": wall, "cpu": cpu, "timings": timings, "rss": after.ru_maxrss * 1024}
+    loads = (load, os.getloadavg()[0])
+    rss = after.ru_maxrss * 1024
+    return {"wall": wall, "cpu": cpu, "timings": timings, "rss": rss, "load": loads}
 
 
 def export(revision: str, folder: Path) -> Path:
@@ -70,10 +76,12 @@ def describe(name: str, result: dict) -> str:
     workers = timings.get("worker_peak_rss", {})
     worst = max(workers.values(), default=0)
     parent = timings.get("parent_peak_rss", result["rss"])
+    checks = timings.get("cpu_seconds", float("nan"))
     return (
-        f"{name:<22} wall {result['wall']:7.1f} s   CPU {result['cpu']:7.1f} s   "
-        f"peak RSS parent {parent / 2**20:6.0f} MiB, worst worker {worst / 2**20:6.0f} MiB "
-        f"({len(workers)} workers)"
+        f"{name:<22} wall {result['wall']:7.1f} s   CPU command {result['cpu']:6.1f} s, "
+        f"checks {checks:6.1f} s   peak RSS parent {parent / 2**20:4.0f} MiB, worst worker "
+        f"{worst / 2**20:4.0f} MiB ({len(workers)} workers)   load {result['load'][0]:.1f}"
+        f"→{result['load'][1]:.1f}"
     )
 
 
