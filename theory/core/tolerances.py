@@ -380,7 +380,7 @@ RUNAWAY_FACTOR = _named(
     "factor, of the largest S-T curve semi-axis",
     "a simulated DEC run stops as a runaway when, at a sampling instant, a tracker's localization "
     "error ‖q̂ − q‖ exceeds runaway_factor times the largest semi-axis of the trackers' S-T curves "
-    "(seed 003 (15)–(16); docs/theory/pursuit-iss.md §9)",
+    "(seed 003 (15)–(16); docs/theory/pursuit-iss.md §11)",
     "the Table cases' bounded runs (seeds 0–9) stay below 0.7 curve sizes; every runaway passed "
     "5 within 4–10 s of passing 1 and went on to over 400 before its step floor (none came back)",
 )

@@ -25,7 +25,7 @@ A run stops early in two ways (records after the stop are NaN, :attr:`DecRun.sto
 ``"runaway"`` when, at a sampling instant, a tracker's localization error exceeds
 ``runaway_factor`` (:data:`theory.core.tolerances.RUNAWAY_FACTOR`) times the S-T curves' size —
 the DEKF has lost the target and the loop escapes exponentially with it, the turn rates growing
-with the estimate's jumps (docs/theory/pursuit-iss.md §9) — and ``"step_floor"`` when a step
+with the estimate's jumps (docs/theory/pursuit-iss.md §11) — and ``"step_floor"`` when a step
 falls below ``min_step``.
 """
 
@@ -634,7 +634,7 @@ def runaway_reason(
     A run has run away when a tracker's localization error ‖q̂ − q‖ exceeds ``factor`` times
     :attr:`DecLoop.scale`, the S-T curves' size: the tracker then circles a point that is not
     near the target, and the one-range DEKF, whose bearing error has passed 90°, pushes its
-    estimate further out along the wrong ray at every correction (docs/theory/pursuit-iss.md §9).
+    estimate further out along the wrong ray at every correction (docs/theory/pursuit-iss.md §11).
     The reason states the evidence that nothing is singular: the estimated range ‖q̂ − p‖ (the
     divisor of the range Jacobian C_k of (41)) and λ_min of the information Ω_{k+1|k} (44).
 
