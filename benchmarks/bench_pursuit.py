@@ -16,6 +16,10 @@ For each case it prints
   runaway that stops early) and the ratios reference / wall and reference / CPU;
 * where its time goes, measured in this process: the simulation alone (the library run of the
   command's run 0), and the imports, summary (ISS agreement), data files and figures;
+* the runaway stop: the library run of the command's run 0 as it is (a runaway stops when the
+  localization error passes ``runaway_factor`` curve sizes, docs/theory/pursuit-iss.md §11)
+  against the same run with the check off (``runaway_factor = inf``: integrated until the step
+  floor, the behaviour before), CPU of both and their ratio, with where each stopped and why;
 * the library run with the vectorized vector field against the per-tracker field of the
   regression oracle (``tests/pursuit/dec_oracle.py``: every tracker through
   ``model.closed_loop_rates`` in a Python loop, the pre-vectorization form), both over
@@ -33,6 +37,9 @@ Usage: ``python benchmarks/bench_pursuit.py [--seconds 100] [--repeat 3] [--case
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import functools
+import math
 import resource
 import subprocess
 import sys
@@ -221,6 +228,31 @@ def _phase_rows(names: list[str], seed: int) -> None:
         )
 
 
+def _command_run(name: str, seed: int, settings_change: dict):
+    """The library run 0 of ``trackcert simulate NAME --seed SEED``, settings changed."""
+    arguments = dec_arguments(load_case(name).spec)
+    arguments["settings"] = dataclasses.replace(arguments["settings"], **settings_change)
+    rng = np.random.default_rng(np.random.SeedSequence(seed).spawn(1)[0])
+    return simulate_dec(rng=rng, **arguments)
+
+
+def _runaway_rows(names: list[str], seed: int, repeat: int) -> None:
+    print("\nrunaway stop against the step floor (library run 0 of the same seed), CPU s")
+    print(f"{'case':26} {'checked':>8} {'stop':>14} {'unchecked':>9} {'stop':>17} {'ratio':>6}")
+    for name in names:
+        cpus, stops = [], []
+        for change in ({}, {"runaway_factor": math.inf}):
+            runs: list = []
+            call = functools.partial(_command_run, name, seed, change)
+            cpus.append(_best(lambda call=call, runs=runs: runs.append(call()), repeat)[1])
+            run = runs[0]
+            stops.append("completed" if run.completed else f"{run.stop_cause} {run.stopped_at:g}")
+        print(
+            f"{name:26} {cpus[0]:8.2f} {stops[0]:>14} {cpus[1]:9.2f} {stops[1]:>17} "
+            f"{cpus[1] / cpus[0]:6.1f}"
+        )
+
+
 def _oracle_rows(names: list[str], seconds: float, repeat: int) -> None:
     print(f"\nlibrary run over {seconds:g} s simulated, CPU s: vectorized vs per-tracker field")
     print(f"{'case':26} {'vectorized':>10} {'per-tracker':>11} {'ratio':>6}")
@@ -239,6 +271,7 @@ def main() -> None:
     _startup(args.repeat)
     _command_rows(args.cases, args.seed, args.repeat)
     _phase_rows(args.cases, args.seed)
+    _runaway_rows(args.cases, args.seed, args.repeat)
     _oracle_rows(args.cases, args.seconds, args.repeat)
 
 

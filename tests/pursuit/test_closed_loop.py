@@ -133,7 +133,7 @@ def test_a_run_that_needs_too_small_steps_stops_with_nan_records() -> None:
     arguments = dec_arguments(spec, 30)
     arguments["settings"] = dataclasses.replace(arguments["settings"], min_step=0.05)
     run = simulate_dec(rng=np.random.default_rng(0), **arguments)
-    assert not run.completed and "below" in run.stop_reason
+    assert not run.completed and "below" in run.stop_reason and run.stop_cause == "step_floor"
     assert np.isnan(run.pursuit_errors[-1]).all()
 
 

@@ -20,6 +20,13 @@ the local error, and the step adapts (:class:`StepControl`) so that it stays bel
 (positions relative to the paths' size, attitude entries and γ absolute). Between sampling
 instants the controller uses ``q̂(t) = q̂_{k|k} + (t − t_k)v̂``. Outputs are recorded every
 ``dt``; steps never cross a record or a sampling instant.
+
+A run stops early in two ways (records after the stop are NaN, :attr:`DecRun.stop_cause`):
+``"runaway"`` when, at a sampling instant, a tracker's localization error exceeds
+``runaway_factor`` (:data:`theory.core.tolerances.RUNAWAY_FACTOR`) times the S-T curves' size —
+the DEKF has lost the target and the loop escapes exponentially with it, the turn rates growing
+with the estimate's jumps (docs/theory/pursuit-iss.md §11) — and ``"step_floor"`` when a step
+falls below ``min_step``.
 """
 
 from __future__ import annotations
@@ -30,6 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from theory.core.tolerances import RUNAWAY_FACTOR
 from theory.pursuit import model
 from theory.pursuit.dekf import dekf_step, transition_matrix
 
@@ -42,6 +50,7 @@ __all__ = [
     "build_loop",
     "heun_step",
     "integrate_until",
+    "runaway_reason",
     "simulate_dec",
 ]
 
@@ -83,6 +92,9 @@ class DecSettings:
         attitude entries and γ absolute (rad).
     min_step : float
         Steps shorter than this (s) stop the run (the loop is too stiff or diverges).
+    runaway_factor : float
+        A tracker's localization error above this many S-T curve sizes (:attr:`DecLoop.scale`)
+        at a sampling instant stops the run as a runaway (``math.inf``: never).
     """
 
     omega_bar: float = 0.05
@@ -100,6 +112,7 @@ class DecSettings:
     sigma: float = 0.5
     rtol: float = 3e-4
     min_step: float = 1e-5
+    runaway_factor: float = RUNAWAY_FACTOR
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,7 +123,8 @@ class DecRun:
     ``‖q̂ − q‖`` and ``estimation_errors`` ``‖x̂ − x‖`` (state used by the controller at that
     instant) (M+1, N), ``target`` (M+1, 2d); ``steps`` and ``rejected`` count the integration
     steps taken and refused; ``stopped_at`` is the time the integration stopped early (records
-    after it are NaN) or ``None``, with the reason in ``stop_reason``."""
+    after it are NaN) or NaN, with the reason in ``stop_reason`` and ``stop_cause``
+    ``"runaway"`` (:func:`runaway_reason`) or ``"step_floor"`` (a step below ``min_step``)."""
 
     times: np.ndarray
     positions: np.ndarray
@@ -126,6 +140,7 @@ class DecRun:
     rejected: int = 0
     stopped_at: float = math.nan
     stop_reason: str = ""
+    stop_cause: str = ""
 
     @property
     def completed(self) -> bool:
@@ -606,39 +621,108 @@ def _sample(loop, state, truth, filter_state, dekf, rng, settings):
     return x_hat, (x_pred, Omega)
 
 
+def runaway_reason(
+    loop: DecLoop,
+    positions: np.ndarray,
+    x_hat: np.ndarray,
+    truth: np.ndarray,
+    information: np.ndarray,
+    factor: float,
+) -> str:
+    """Why the run is a runaway at a sampling instant, or ``""`` when it is not.
+
+    A run has run away when a tracker's localization error ‖q̂ − q‖ exceeds ``factor`` times
+    :attr:`DecLoop.scale`, the S-T curves' size: the tracker then circles a point that is not
+    near the target, and the one-range DEKF, whose bearing error has passed 90°, pushes its
+    estimate further out along the wrong ray at every correction (docs/theory/pursuit-iss.md §11).
+    The reason states the evidence that nothing is singular: the estimated range ‖q̂ − p‖ (the
+    divisor of the range Jacobian C_k of (41)) and λ_min of the information Ω_{k+1|k} (44).
+
+    Parameters
+    ----------
+    loop : DecLoop
+    positions : ndarray, shape (N, d)
+        Tracker positions at the instant.
+    x_hat : ndarray, shape (N, 2d)
+        Filtered estimates x̂_{k|k}.
+    truth : ndarray, shape (2d,)
+        The target's true state.
+    information : ndarray, shape (N, 2d, 2d)
+        The DEKF's next priors Ω_{k+1|k}.
+    factor : float
+        ``runaway_factor`` (:data:`theory.core.tolerances.RUNAWAY_FACTOR`).
+
+    Returns
+    -------
+    str
+        Tracker (1-based), error, threshold, bearing error, estimated range and λ_min(Ω).
+
+    References
+    ----------
+    seed 003, eqs. (9)–(10), (41), (44), Theorem 2 (x̃ is its input).
+    """
+    d = loop.dim
+    errors = np.linalg.norm(x_hat[:, :d] - truth[:d], axis=1)
+    worst = int(np.argmax(errors))
+    if not errors[worst] > factor * loop.scale:
+        return ""
+    to_estimate, to_target = x_hat[worst, :d] - positions[worst], truth[:d] - positions[worst]
+    cosine = to_estimate @ to_target / (np.linalg.norm(to_estimate) * np.linalg.norm(to_target))
+    bearing = math.degrees(math.acos(min(1.0, max(-1.0, float(cosine)))))
+    smallest = float(np.linalg.eigvalsh(information[worst])[0])
+    return (
+        f"runaway: tracker {worst + 1}'s localization error {errors[worst]:.4g} m exceeds "
+        f"runaway_factor {factor:g} × {loop.scale:g} m (the DEKF lost the target: bearing error "
+        f"{bearing:.0f}°, estimated range {np.linalg.norm(to_estimate):.4g} m, "
+        f"λ_min(Ω) = {smallest:.3g})"
+    )
+
+
 def _run(
     loop: DecLoop, field: Field, target: np.ndarray, state: LoopState, dekf: dict, steps: int,
     rng: np.random.Generator, settings: DecSettings,
 ) -> DecRun:  # fmt: skip
-    """Sample, record and integrate record by record; stop early (NaN records) on a step failure."""
+    """Sample, record and integrate record by record; stop early (NaN records) on a runaway
+    (:func:`runaway_reason`, checked at each sampling instant) or a step failure."""
     every, dt = round(settings.Ts / settings.dt), settings.dt
     z = np.full((steps + 1, state.z.size), np.nan)
     R = np.full((steps + 1, *state.R.shape), np.nan)
     estimates = np.full((steps + 1, loop.n, 2 * loop.dim + 1), np.nan)
-    counts, control, stopped, reason = [0, 0], StepControl(dt, dt), math.nan, ""
+    counts, control, stop = [0, 0], StepControl(dt, dt), {}
     filter_state = (dekf["x_pred"], dekf["Omega"])
     for m in range(steps + 1):
         if m % every == 0:
             x_hat, filter_state = _sample(loop, state, target[m], filter_state, dekf, rng, settings)
             t_hat, rates = m * dt, None
+            reason = runaway_reason(
+                loop, state.p, x_hat, target[m], filter_state[1], settings.runaway_factor
+            )
         z[m], R[m] = state.z, state.R
         estimates[m, :, :-1], estimates[m, :, -1] = x_hat, m * dt - t_hat
         if m == steps:
+            break
+        if reason:
+            stop = _stop(m * dt, reason, "runaway")
             break
         try:
             state, rates, accepted, refused = integrate_until(
                 loop, field, m * dt, (m + 1) * dt, state, (x_hat, t_hat), control, settings, rates
             )
         except FloatingPointError as error:
-            stopped, reason = m * dt, str(error)
+            stop = _stop(m * dt, str(error), "step_floor")
             break
         counts[0] += accepted
         counts[1] += refused
     times = dt * np.arange(steps + 1)
     return DecRun(
         times, **_outputs(loop, times, z, R, estimates, target), target=target[: steps + 1],
-        steps=counts[0], rejected=counts[1], stopped_at=stopped, stop_reason=reason,
+        steps=counts[0], rejected=counts[1], **stop,
     )  # fmt: skip
+
+
+def _stop(time: float, reason: str, cause: str) -> dict[str, object]:
+    """The :class:`DecRun` fields of a run stopped early at ``time``."""
+    return {"stopped_at": time, "stop_reason": reason, "stop_cause": cause}
 
 
 def _filter_setup(

@@ -21,6 +21,7 @@ import numpy as np
 from theory.core.case_file import Case
 from theory.core.errors import CaseError
 from theory.core.expectations import Observed
+from theory.core.tolerances import RUNAWAY_FACTOR
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.closed_loop import DecRun, DecSettings, simulate_dec
 from theory.pursuit.model import desired_speed
@@ -197,10 +198,12 @@ def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, An
         ``{"agents": [{"id", "final_localization_error", "mean_localization_error",
         "final_pursuit_error", "mean_pursuit_error"}], "final_gamma_spread",
         "final_gamma_rate_error", "omega_bar", "integration_steps", "stopped_at",
-        "iss_agreement"}`` (means over runs; errors in m, γ in rad; ``stopped_at`` per run,
-        ``None`` when the run completed; ``iss_agreement``: run 0 against the certified
-        estimate, :func:`theory.pursuit.iss_check.simulation_agreement`, or ``None`` when
-        ``trackcert iss`` certifies nothing).
+        "stop_causes", "stop_reasons", "tolerances", "iss_agreement"}`` (means over runs; errors
+        in m, γ in rad; ``stopped_at``, ``stop_causes`` (``"runaway"`` or ``"step_floor"``,
+        :class:`~theory.pursuit.closed_loop.DecRun`) and ``stop_reasons`` per run, ``None`` when
+        the run completed; ``tolerances``: the ``runaway_factor`` used; ``iss_agreement``: run 0
+        against the certified estimate, :func:`theory.pursuit.iss_check.simulation_agreement`,
+        or ``None`` when ``trackcert iss`` certifies nothing).
     """
     loc = np.mean([r.localization_errors for r in runs], axis=0)
     pur = np.mean([r.pursuit_errors for r in runs], axis=0)
@@ -223,6 +226,9 @@ def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, An
         "omega_bar": spec.omega_bar,
         "integration_steps": [r.steps for r in runs],
         "stopped_at": [None if r.completed else r.stopped_at for r in runs],
+        "stop_causes": [None if r.completed else r.stop_cause for r in runs],
+        "stop_reasons": [None if r.completed else r.stop_reason for r in runs],
+        "tolerances": {"runaway_factor": RUNAWAY_FACTOR},
         "iss_agreement": _agreement(spec, runs[0]),
     }
 
@@ -297,11 +303,20 @@ def _finish(case: Case, spec: Any, results: list, folder: Path, figures: bool) -
     if figures:
         files += write_pursuit_figures(results, folder)
     summary["warnings"] = [
-        f"a run's integration stopped at t = {stopped:g} s (step below the floor)"
-        for stopped in summary["stopped_at"]
+        _stop_warning(i, stopped, cause, reason)
+        for i, (stopped, cause, reason) in enumerate(
+            zip(summary["stopped_at"], summary["stop_causes"], summary["stop_reasons"], strict=True)
+        )
         if stopped is not None
     ]
     return Finished(summary, files, simulation_observed(summary))
+
+
+def _stop_warning(run: int, stopped: float, cause: str, reason: str) -> str:
+    """The warning for run ``run`` (0-based) stopped at ``stopped`` s."""
+    if cause == "runaway":
+        return f"run {run} stopped at t = {stopped:g} s, {reason}"
+    return f"a run's integration stopped at t = {stopped:g} s (step below the floor)"
 
 
 def write_pursuit_data(runs: Sequence[DecRun], summary: dict[str, Any], folder: Path) -> list[Path]:
