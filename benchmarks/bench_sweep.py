@@ -6,8 +6,10 @@ trackers), ``k_gamma=1:400:log100`` × ``seed=0:10`` = 1,000 points, each judged
 ``trackcert iss``'s analysis and simulated for ``--steps`` records of 0.1 s (one run).
 
 Prints serial and parallel wall time, the ideal (serial / 2) and the ratio parallel / ideal;
-beside them the CPU time (this process, and the worker processes by ``RUSAGE_CHILDREN`` once the
-cluster has closed) since the machine may be shared, the cluster's start-up cost (a 2-point
+beside them the CPU time of this process and of the whole machine during the run
+(``psutil.cpu_times``: the LocalCluster's workers are forked by a forkserver, not this process's
+waited children, so ``RUSAGE_CHILDREN`` misses them; on a quiet machine the machine's CPU is this
+process's and its workers'), since the machine may be shared, the cluster's start-up cost (a 2-point
 sweep), and whether the two sweeps' rows are identical. Points run in batches
 (:data:`theory.sweep.run.TASKS_PER_WORKER` tasks per worker, each a stride of the grid), so
 Dask's per-task overhead is paid per batch, not per point.
@@ -18,29 +20,31 @@ Usage: ``python benchmarks/bench_sweep.py [--steps 10] [--gains 100] [--seeds 10
 from __future__ import annotations
 
 import argparse
-import resource
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+import psutil
+
 from theory.sweep.run import TASKS_PER_WORKER, sweep_case
 
 CASE = "pursuit-table1-n3"
 
 
-def _children_cpu() -> float:
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
+def _machine_cpu() -> float:
+    """CPU seconds every process of the machine has used (user + system, all cores)."""
+    times = psutil.cpu_times()
+    return times.user + times.system
 
 
 def _timed_sweep(params: list[str], steps: int, workers: int):
-    """(sweep, wall seconds, CPU of this process, CPU of finished child processes)."""
-    cpu, children, wall = time.process_time(), _children_cpu(), time.perf_counter()
+    """(sweep, wall seconds, CPU of this process, CPU of the whole machine)."""
+    cpu, machine, wall = time.process_time(), _machine_cpu(), time.perf_counter()
     result = sweep_case(CASE, params, steps=steps, workers=workers)
     wall = time.perf_counter() - wall
-    return result, wall, time.process_time() - cpu, _children_cpu() - children
+    return result, wall, time.process_time() - cpu, _machine_cpu() - machine
 
 
 def main() -> None:
@@ -60,7 +64,8 @@ def main() -> None:
 
     _, startup, _, _ = _timed_sweep(["k_gamma=1,2"], args.steps, args.workers)
     serial, s_wall, s_cpu, _ = _timed_sweep(params, args.steps, 1)
-    parallel, p_wall, p_main, p_workers = _timed_sweep(params, args.steps, args.workers)
+    parallel, p_wall, p_main, p_machine = _timed_sweep(params, args.steps, args.workers)
+    p_workers = p_machine - p_main
     ideal = s_wall / args.workers
 
     print(
@@ -69,7 +74,7 @@ def main() -> None:
     )
     print(
         f"parallel (workers={args.workers}):   {p_wall:8.2f} s wall, {p_main:8.2f} s CPU here + "
-        f"{p_workers:.2f} s CPU in workers"
+        f"{p_workers:.2f} s CPU elsewhere on the machine (the workers)"
     )
     print(f"ideal (serial / {args.workers}):     {ideal:8.2f} s")
     print(f"ratio parallel / ideal: {p_wall / ideal:8.2f}   (target ≤ 1.10)")

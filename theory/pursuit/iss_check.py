@@ -22,7 +22,7 @@ from theory.pursuit.case import PursuitSpec
 from theory.pursuit.closed_loop import DecRun
 from theory.pursuit.iss import coordination_iss, iss_bound
 
-__all__ = ["iss_margin_along", "simulation_agreement"]
+__all__ = ["STOPS", "iss_margin_along", "simulation_agreement"]
 
 
 
@@ -83,6 +83,13 @@ def iss_margin_along(spec: PursuitSpec, run: DecRun) -> dict[str, Any]:
     }
 
 
+STOPS = {
+    "runaway": "a runaway: the DEKF lost the target",
+    "step_floor": "the integrator's step fell below its floor",
+}
+"""How a stopped run's message names its cause (the full reason is in the run's warning)."""
+
+
 def simulation_agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any]:
     """Whether a run of a certified case stays within the certified estimate (and finite).
 
@@ -90,8 +97,8 @@ def simulation_agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any]:
     within β(‖μ(0)‖, t) + γ(sup‖x̃‖) at every record (slack: the table's ``iss_bound_rtol``).
     ``status`` is
     ``verified`` then, ``refuted`` when μ leaves the estimate, ``inconclusive`` when the
-    integration stopped early inside it (the loop ran away with its estimate: the certificate,
-    which takes x̃ as its input, is not contradicted).
+    run stopped early inside it (the loop ran away with its estimate, docs/theory/pursuit-iss.md
+    §11: the certificate, which takes x̃ as its input, is not contradicted).
 
     Parameters
     ----------
@@ -105,7 +112,8 @@ def simulation_agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any]:
     dict
         ``simulation_bounded``, ``status``, ``message`` and the numbers: ``margin``,
         ``relative_margin``, ``worst_time``, ``gain``, ``final_mu``, ``final_bound``,
-        ``x_tilde_initial``, ``x_tilde_max``, ``x_tilde_final``, ``completed``, ``stopped_at``.
+        ``x_tilde_initial``, ``x_tilde_max``, ``x_tilde_final``, ``completed``, ``stopped_at``,
+        ``stop_cause`` (``"runaway"``, ``"step_floor"`` or ``None``).
 
     Raises
     ------
@@ -131,6 +139,7 @@ def simulation_agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any]:
         "x_tilde_final": float(x_tilde[-1]),
         "completed": run.completed,
         "stopped_at": None if run.completed else run.stopped_at,
+        "stop_cause": None if run.completed else run.stop_cause,
     }
     if not along["holds"]:
         status = "refuted"
@@ -140,9 +149,10 @@ def simulation_agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any]:
         )
     elif not run.completed:
         status = "inconclusive"
+        stop = STOPS.get(run.stop_cause, run.stop_reason)
         message = (
-            f"within the estimate until the integration stopped at t = {run.stopped_at:g} s "
-            f"({run.stop_reason}); ‖x̃‖ grew from {x_tilde[0]:.3g} to {x_tilde.max():.3g}"
+            f"within the estimate until the run stopped at t = {run.stopped_at:g} s ({stop}); "
+            f"‖x̃‖ grew from {x_tilde[0]:.3g} to {x_tilde.max():.3g}"
         )
     else:
         status = "verified"
