@@ -13,8 +13,8 @@ from __future__ import annotations
 import sys
 from fractions import Fraction
 
-import networkx as nx
 import numpy as np
+from scipy.sparse.csgraph import connected_components
 
 from theory.core.rationalize import exact_decimal
 
@@ -213,6 +213,6 @@ def weights_support(weights: np.ndarray) -> np.ndarray:
 
 def components(adjacency: np.ndarray) -> list[list[int]]:
     """Weakly connected components of ``adjacency``: sorted lists of 0-based agents."""
-    graph = nx.from_numpy_array(adjacency.astype(int), create_using=nx.DiGraph)
-    parts = [sorted(c) for c in nx.weakly_connected_components(graph)]
+    count, labels = connected_components(adjacency, connection="weak")
+    parts = [np.flatnonzero(labels == c).tolist() for c in range(count)]
     return sorted(parts, key=lambda c: c[0])

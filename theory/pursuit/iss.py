@@ -35,9 +35,9 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-import networkx as nx
 import numpy as np
 import scipy.linalg
+from scipy.sparse.csgraph import connected_components
 
 from theory.core.errors import InconclusiveError, PropertyFails
 from theory.core.rationalize import exact_decimal
@@ -335,8 +335,7 @@ def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
     """
     L = spec.laplacian
     n = L.shape[0]
-    graph = nx.from_numpy_array(spec.adjacency.T.astype(int), create_using=nx.DiGraph)
-    strongly = n == 1 or nx.is_strongly_connected(graph)
+    strongly = n == 1 or connected_components(spec.adjacency, connection="strong")[0] == 1
     r_exact = left_eigenvector(L)
     if r_exact is None:
         return CoordinationIss(n, L, spec.k_c, strongly, zero_eigenvalue_simple=False)
