@@ -158,16 +158,17 @@ def rotation_rate_check(dim: int, printed: bool = False) -> IdentityCheck:
     return IdentityCheck(name, residual, residual.is_zero_matrix, rotation_dot, rotation * s)
 
 
-def _half_angle_zero(residual: sp.Matrix, angles: sp.Matrix) -> sp.Matrix:
-    """``residual`` (rational in sin, cos, tan of ``angles``) as the zero matrix when it vanishes
-    identically, else simplified.
+def _half_angle_zero(residual: sp.Matrix, angles: sp.Matrix | tuple = ()) -> sp.Matrix:
+    """``residual`` (rational in sin, cos, tan of ``angles``, and in other symbols) as the zero
+    matrix when it vanishes identically, else simplified.
 
     The exact test substitutes the tangent half-angle parametrization sin a = 2t/(1+t²),
     cos a = (1−t²)/(1+t²) for each angle and cancels: a rational function of the t's that is
     identically zero vanishes for every angle in (−π, π) where it is defined, hence by continuity
-    everywhere it is defined. It costs about 0.1 s where ``simplify``'s trigonometric search took
+    everywhere it is defined. Without angles it is ``cancel``'s canonical form of a rational
+    function, zero iff the function is. It costs about 0.1 s where ``simplify``'s search took
     3 s for the 3-D rates of eq. (3); an entry it leaves non-zero (or with trigonometric
-    functions of other arguments left) goes to ``simplify``.
+    functions of other arguments left) goes to ``simplify``, for display.
     """
     half = {}
     for angle in angles:
@@ -220,7 +221,7 @@ def error_dynamics_check(dim: int) -> IdentityCheck:
     e_p = rotation.T * d - eps
     u = sp.Matrix([v1, *omega])
     printed = -s * e_p + delta_matrix(eps) * u - rotation.T * (r_prime * gamma_dot + target_v)
-    residual = sp.simplify(kinematic - printed)
+    residual = _half_angle_zero(kinematic - printed)
     return IdentityCheck(
         "eq. (21) from (2)–(5), (19)", residual, residual.is_zero_matrix, kinematic, printed
     )
@@ -253,7 +254,7 @@ def lyapunov_derivative_check(dim: int, controller: str, estimated: bool) -> Ide
     delta = delta_matrix(eps)
     delta_bar = delta.T * (delta * delta.T).inv()
     command = rotation.T * (r_prime * omega_d + target_v + v_err) - k_p * e_hat
-    delta_u = sp.simplify(delta * delta_bar) * command
+    delta_u = (delta * delta_bar).applyfunc(sp.cancel) * command
     de_p = -skew(omega) * e_p + delta_u - rotation.T * (r_prime * gamma_dot + target_v)
     v_dot = (e_p.T * de_p)[0, 0]
     if controller == "II":
