@@ -37,6 +37,11 @@ PARAM_HELP = (
     "(e.g. k_gamma=1:400:log20, seed=0:50). PATH is a dotted path to a numeric case field "
     "(k_gamma, trackers.0.r_x, W.0.1) or seed."
 )
+LINK_HELP = (
+    "PATH=EXPR, repeatable: set PATH at each point from a swept --param path SOURCE, EXPR one "
+    "of SOURCE, -SOURCE, B*SOURCE, A+SOURCE, A-SOURCE, A+B*SOURCE, A-B*SOURCE "
+    "(e.g. W.0.1=1-W.0.0 keeps a row of W stochastic). Adds no points."
+)
 
 
 def _print_summary(summary: dict, files: list[Path]) -> None:
@@ -66,6 +71,7 @@ def register(app: typer.Typer) -> None:
     def sweep(
         case: str = typer.Argument(..., help="Case file or bundled case name."),
         param: Annotated[list[str] | None, typer.Option("--param", "-p", help=PARAM_HELP)] = None,
+        link: Annotated[list[str] | None, typer.Option("--link", help=LINK_HELP)] = None,
         output: str = typer.Option(..., "-o", "--output", help="Folder for the sweep files."),
         workers: int = workers_option(),
         scheduler: str = scheduler_option(),
@@ -90,6 +96,7 @@ def register(app: typer.Typer) -> None:
             result = sweep_case(
                 case,
                 param or [],
+                links=link or [],
                 steps=steps,
                 simulate=simulate,
                 workers=workers,

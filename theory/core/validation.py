@@ -346,9 +346,8 @@ def row_stochastic(
     bad = np.flatnonzero(np.abs(sums - 1.0) > tol)
     if bad.size:
         i = bad[0]
-        raise CaseError(
-            f"{field}[{i + 1}]", f"a row summing to 1 (tolerance {tol:g})", f"sum {sums[i]!r}"
-        )
+        expected = f"a row summing to 1 (tolerance {tol:g})"
+        raise CaseError(f"{field}[{i + 1}]", expected, f"sum {float(sums[i])!r}")
     zero_diag = np.flatnonzero(np.diag(matrix) <= 0)
     if zero_diag.size:
         i = zero_diag[0]

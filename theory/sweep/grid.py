@@ -13,7 +13,9 @@ A spec is one of (``docs/sweep.md``):
 
 A number written as an integer (``5``, ``-3``) stays an integer; anything else is a float.
 Several specs make the cartesian product, the first ``--param`` varying slowest (nested loops
-in the order written), so the grid's order is deterministic.
+in the order written), so the grid's order is deterministic. A linked parameter
+(``--link PATH=EXPR``, :mod:`theory.sweep.links`) adds no dimension: at each point its value is
+an affine function of one swept parameter's.
 """
 
 from __future__ import annotations
@@ -42,7 +44,7 @@ __all__ = [
 MAX_POINTS = 100_000
 """Points a sweep refuses to exceed unless ``--max-points`` raises it."""
 
-SCALES = ("range", "lin", "log", "list", "value")
+SCALES = ("range", "lin", "log", "list", "value", "link")
 """How a spec spaces its values (``log`` sweeps are drawn on a log axis)."""
 
 FIELD = "--param"
@@ -71,22 +73,36 @@ class Param:
     scale : str
         One of :data:`SCALES`.
     values : tuple of int or float
-        The values, in sweep order.
+        The values, in sweep order (of a link: its value at each value of its source).
+    source : str or None
+        A link's source: the path of the swept parameter it follows (``None``: swept itself).
+    offset, factor : int or float
+        A link's value is ``offset + factor · source``.
     """
 
     path: str
     spec: str
     scale: str
     values: tuple[Number, ...]
+    source: str | None = None
+    offset: Number = 0
+    factor: Number = 1
+
+    def linked(self, value: Number) -> Number:
+        """A link's value where its source is ``value``."""
+        return self.offset + self.factor * value
 
     def to_json(self) -> dict[str, object]:
-        """``path``, ``spec``, ``scale`` and ``values``."""
-        return {
+        """``path``, ``spec``, ``scale`` and ``values`` (and a link's ``source``)."""
+        out: dict[str, object] = {
             "path": self.path,
             "spec": self.spec,
             "scale": self.scale,
             "values": list(self.values),
         }
+        if self.source is not None:
+            out["source"] = self.source
+        return out
 
 
 def _bad(given: str, why: str = "") -> CaseError:
@@ -196,7 +212,7 @@ def parse_param(text: str) -> Param:
 
 
 def grid_size(params: Sequence[Param]) -> int:
-    """The number of points of the product of ``params`` (1 for none).
+    """The number of points of the product of ``params`` (1 for none; links add none).
 
     Parameters
     ----------
@@ -206,7 +222,7 @@ def grid_size(params: Sequence[Param]) -> int:
     -------
     int
     """
-    return math.prod(len(p.values) for p in params)
+    return math.prod(len(p.values) for p in params if p.source is None)
 
 
 def check_size(params: Sequence[Param], max_points: int = MAX_POINTS) -> int:
@@ -233,7 +249,7 @@ def check_size(params: Sequence[Param], max_points: int = MAX_POINTS) -> int:
     paths = [p.path for p in params]
     repeated = sorted({p for p in paths if paths.count(p) > 1})
     if repeated:
-        raise _bad(", ".join(repeated), "each path may be swept by one --param only")
+        raise _bad(", ".join(repeated), "each path may be set by one --param or --link only")
     if max_points < 1:
         raise CaseError("--max-points", "an integer ≥ 1", max_points, file="<command line>")
     size = grid_size(params)
@@ -241,7 +257,7 @@ def check_size(params: Sequence[Param], max_points: int = MAX_POINTS) -> int:
         raise CaseError(
             "--param",
             f"at most {max_points} points (--max-points raises the limit)",
-            f"{size} points ({' × '.join(str(len(p.values)) for p in params)})",
+            f"{size} points ({' × '.join(str(len(p.values)) for p in params if not p.source)})",
             file="<command line>",
         )
     return size
@@ -253,10 +269,14 @@ def grid_points(params: Sequence[Param]) -> Iterator[tuple[Number, ...]]:
     Parameters
     ----------
     params : sequence of Param
+        Swept parameters, and links whose sources are among them.
 
     Yields
     ------
     tuple
-        The values, in ``params`` order.
+        The values, in ``params`` order (a link's from its source's value at the point).
     """
-    yield from itertools.product(*(p.values for p in params))
+    swept = [p for p in params if p.source is None]
+    for point in itertools.product(*(p.values for p in swept)):
+        at = dict(zip((p.path for p in swept), point, strict=True))
+        yield tuple(at[p.path] if p.source is None else p.linked(at[p.source]) for p in params)

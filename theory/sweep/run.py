@@ -35,6 +35,7 @@ from theory.core.parallel import engine
 from theory.core.verdicts import Verdict, exit_code
 from theory.sweep.grid import MAX_POINTS, Param, check_size, grid_points, parse_param
 from theory.sweep.kinds import analysis_for
+from theory.sweep.links import parse_link
 from theory.sweep.paths import Target, resolve_target
 from theory.sweep.points import INVALID, Row, SweepSetup, evaluate_batch
 
@@ -175,6 +176,7 @@ def sweep_case(
     case: str,
     params: Sequence[str | Param],
     *,
+    links: Sequence[str] = (),
     steps: int | None = None,
     simulate: bool = True,
     workers: int | None = None,
@@ -190,6 +192,9 @@ def sweep_case(
         A case file or bundled case name.
     params : sequence of str or Param
         ``PATH=SPEC`` texts (:func:`theory.sweep.grid.parse_param`) or parsed parameters.
+    links : sequence of str
+        ``PATH=EXPR`` texts (:func:`theory.sweep.links.parse_link`): fields set at each point
+        from a swept parameter's value (they follow the parameters in rows and columns).
     steps : int, optional
         Simulation steps per point (default: the kind's).
     simulate : bool
@@ -210,12 +215,13 @@ def sweep_case(
     Raises
     ------
     CaseError
-        Bad case, ``--param``, ``--steps``, ``--max-points`` or ``--no-simulate`` for a kind
-        judged by its simulation, or no point valid (exit 2).
+        Bad case, ``--param``, ``--link``, ``--steps``, ``--max-points`` or ``--no-simulate``
+        for a kind judged by its simulation, or no point valid (exit 2).
     """
     loaded = load_case(case)
     data = yaml.safe_load(resolve_case_path(case).read_text(encoding="utf-8"))
-    parsed = tuple(p if isinstance(p, Param) else parse_param(p) for p in params)
+    swept = tuple(p if isinstance(p, Param) else parse_param(p) for p in params)
+    parsed = swept + tuple(parse_link(text, swept) for text in links)
     total = check_size(parsed, max_points)
     _check_settings(loaded.kind, steps, simulate)
     targets = _targets(data, loaded.kind, parsed, loaded.file)
