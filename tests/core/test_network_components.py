@@ -1,16 +1,20 @@
-"""Graph components by scipy's csgraph agree with networkx's on random digraphs (the library
-uses csgraph in the commands that must not pay networkx's import)."""
+"""Graph components and strong connectivity, computed with scipy's csgraph (the commands that must
+not pay networkx's import), agree with networkx on random and on all three-node digraphs."""
 
 from __future__ import annotations
+
+import dataclasses
+import itertools
 
 import networkx as nx
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
-from scipy.sparse.csgraph import connected_components
 
+from theory.core.case_file import load_case
 from theory.core.network import components
+from theory.pursuit.iss import coordination_iss
 
 
 def _digraphs():
@@ -28,8 +32,14 @@ def test_weak_components_are_networkx_ones(adjacency: np.ndarray) -> None:
     assert components(adjacency) == expected
 
 
-@given(_digraphs())
-def test_strong_connectivity_is_networkx_one(adjacency: np.ndarray) -> None:
-    graph = nx.from_numpy_array(adjacency, create_using=nx.DiGraph)
-    strongly = connected_components(adjacency, connection="strong")[0] == 1
-    assert strongly == nx.is_strongly_connected(graph)
+def test_pursuit_strong_connectivity_is_networkx_one_on_every_three_tracker_digraph() -> None:
+    """seed 003 Lemma 3 needs a strongly connected digraph (`coordination_iss`)."""
+    spec = load_case("pursuit-table1-n3").spec
+    off = [(i, j) for i in range(3) for j in range(3) if i != j]
+    for chosen in itertools.product((0, 1), repeat=len(off)):
+        adjacency = np.zeros((3, 3), dtype=bool)
+        for (i, j), edge in zip(off, chosen, strict=True):
+            adjacency[i, j] = bool(edge)
+        graph = nx.from_numpy_array(adjacency.astype(int), create_using=nx.DiGraph)
+        found = coordination_iss(dataclasses.replace(spec, adjacency=adjacency))
+        assert found.strongly_connected == nx.is_strongly_connected(graph), adjacency
