@@ -49,7 +49,11 @@ def choose_claims(patterns: Sequence[str] = ()) -> list[Claim]:
     if patterns and not claims:
         known = "Registered claims: " + ", ".join(c.id for c in registered)
         raise CaseError(
-            "--only", "a pattern matching a registered claim id", list(patterns), hint=known
+            "--only",
+            "a pattern matching a registered claim id",
+            list(patterns),
+            file="<command line>",
+            hint=known,
         )
     return claims
 
@@ -118,7 +122,9 @@ def build_report(
         scheduler cannot be reached.
     """
     if errata_path is not None and not Path(errata_path).is_file():
-        raise CaseError("--errata", "a readable Markdown file", str(errata_path))
+        raise CaseError(
+            "--errata", "a readable Markdown file", str(errata_path), file="<command line>"
+        )
     with tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures:
         started = time.perf_counter()
         run = run_claims(
