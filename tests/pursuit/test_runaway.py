@@ -105,6 +105,24 @@ def test_simulate_reports_the_runaway_and_the_factor(tmp_path) -> None:
     assert summary["iss_agreement"]["status"] == "inconclusive"
 
 
+def test_a_case_sets_its_runaway_factor_in_tolerances(tmp_path) -> None:
+    """``tolerances: {runaway_factor: 2}`` stops the same run earlier and is reported."""
+    import yaml
+
+    from theory.core.case_file import resolve_case_path
+
+    data = yaml.safe_load(resolve_case_path("pursuit-table2-n1").read_text(encoding="utf-8"))
+    data["tolerances"] = {**(data.get("tolerances") or {}), "runaway_factor": 2}
+    case = tmp_path / "strict.yaml"
+    case.write_text(yaml.safe_dump(data), encoding="utf-8")
+    args = ["simulate", str(case), "--seed", "2", "--steps", str(STOP_STEPS), "--no-figures"]
+    result = CliRunner().invoke(app, [*args, "--workers", "1", "-o", str(tmp_path / "o"), "--json"])
+    summary = json.loads(result.stdout)
+    assert summary["tolerances"] == {"runaway_factor": 2.0}
+    assert summary["stop_causes"] == ["runaway"] and summary["stopped_at"][0] < 22.0
+    assert "runaway_factor 2 × 80 m" in summary["stop_reasons"][0]
+
+
 LOOPS = {
     name: build_loop(a["settings"], a["paths"], a["in_neighbours"], load_case(name).spec.dim)
     for name, a in ((n, dec_arguments(load_case(n).spec, 1)) for n in

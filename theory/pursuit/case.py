@@ -81,7 +81,7 @@ INITIAL_FIELDS = ("position", "euler", "gamma", "gamma_dot")
 TARGET_FIELDS = ("offset", "velocity", "amplitude", "frequency", "phase")
 DEKF_FIELDS = ("Ts", "sigma", "V", "Q", "weights", "x0", "P0")
 EXPECT_KEYS = ("iss", "delta_full_rank", "strongly_connected", "simulation_bounded")
-TOLERANCE_KEYS = ("margin_tol", "weight_sum_tol")
+TOLERANCE_KEYS = ("margin_tol", "weight_sum_tol", "runaway_factor")
 
 
 @dataclass(frozen=True)

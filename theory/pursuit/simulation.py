@@ -36,6 +36,7 @@ __all__ = [
     "default_steps",
     "pursuit_simulator",
     "run_pursuit_case",
+    "runaway_factor_of",
     "simulation_observed",
     "summarize_pursuit",
     "write_pursuit_data",
@@ -109,7 +110,9 @@ def _initial_trackers(spec: PursuitSpec, start: np.ndarray) -> dict[str, np.ndar
     }
 
 
-def dec_arguments(spec: PursuitSpec, steps: int | None = None) -> dict[str, Any]:
+def dec_arguments(
+    spec: PursuitSpec, steps: int | None = None, *, runaway_factor: float = RUNAWAY_FACTOR
+) -> dict[str, Any]:
     """The keyword arguments of :func:`theory.pursuit.closed_loop.simulate_dec` for a case
     (all but ``rng``).
 
@@ -120,6 +123,9 @@ def dec_arguments(spec: PursuitSpec, steps: int | None = None) -> dict[str, Any]
     steps : int, optional
         Number of records after the first, every :data:`RECORD_INTERVAL` (default
         :func:`default_steps`).
+    runaway_factor : float
+        A run stops as a runaway beyond this many S-T curve sizes of localization error (the
+        tolerance table's ``runaway_factor``; a case's ``tolerances:`` may set it).
 
     Returns
     -------
@@ -142,6 +148,7 @@ def dec_arguments(spec: PursuitSpec, steps: int | None = None) -> dict[str, Any]
         Ts=dekf.Ts,
         dt=RECORD_INTERVAL,
         sigma=dekf.sigma,
+        runaway_factor=runaway_factor,
     )
     paths = np.array(
         [
@@ -163,7 +170,11 @@ def dec_arguments(spec: PursuitSpec, steps: int | None = None) -> dict[str, Any]
 
 
 def run_pursuit_case(
-    spec: PursuitSpec, rng: np.random.Generator, steps: int | None = None
+    spec: PursuitSpec,
+    rng: np.random.Generator,
+    steps: int | None = None,
+    *,
+    runaway_factor: float = RUNAWAY_FACTOR,
 ) -> DecRun:
     """One run of the DEC loop (2-D or 3-D) for a pursuit case.
 
@@ -181,16 +192,20 @@ def run_pursuit_case(
     -------
     DecRun
     """
-    return simulate_dec(rng=rng, **dec_arguments(spec, steps))
+    return simulate_dec(rng=rng, **dec_arguments(spec, steps, runaway_factor=runaway_factor))
 
 
-def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, Any]:
+def summarize_pursuit(
+    spec: PursuitSpec, runs: Sequence[DecRun], *, runaway_factor: float = RUNAWAY_FACTOR
+) -> dict[str, Any]:
     """Per-tracker means over runs and the coordination outcome.
 
     Parameters
     ----------
     spec : PursuitSpec
     runs : sequence of DecRun
+    runaway_factor : float
+        The runaway threshold the runs used (reported under ``tolerances``).
 
     Returns
     -------
@@ -228,7 +243,7 @@ def summarize_pursuit(spec: PursuitSpec, runs: Sequence[DecRun]) -> dict[str, An
         "stopped_at": [None if r.completed else r.stopped_at for r in runs],
         "stop_causes": [None if r.completed else r.stop_cause for r in runs],
         "stop_reasons": [None if r.completed else r.stop_reason for r in runs],
-        "tolerances": {"runaway_factor": RUNAWAY_FACTOR},
+        "tolerances": {"runaway_factor": runaway_factor},
         "iss_agreement": _agreement(spec, runs[0]),
     }
 
@@ -293,12 +308,17 @@ def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
         "steps": steps,
         "dt": RECORD_INTERVAL,
     }
-    return Simulator(case.spec, functools.partial(run_pursuit_case, steps=steps), fields, _finish)
+    run = functools.partial(run_pursuit_case, steps=steps, runaway_factor=runaway_factor_of(case))
+    return Simulator(case.spec, run, fields, _finish)
+
+
+def runaway_factor_of(case: Case) -> float:
+    """The case's ``tolerances.runaway_factor``, else the tolerance table's."""
+    return float(case.tolerances.get("runaway_factor", RUNAWAY_FACTOR))
 
 
 def _finish(case: Case, spec: Any, results: list, folder: Path, figures: bool) -> Finished:
-    del case
-    summary = summarize_pursuit(spec, results)
+    summary = summarize_pursuit(spec, results, runaway_factor=runaway_factor_of(case))
     files = write_pursuit_data(results, summary, folder)
     if figures:
         files += write_pursuit_figures(results, folder)

@@ -42,11 +42,12 @@ def default_run(case: Case):
     -------
     theory.pursuit.closed_loop.DecRun
     """
-    from theory.pursuit.simulation import run_pursuit_case
+    from theory.pursuit.simulation import run_pursuit_case, runaway_factor_of
     from theory.sim.runner import run_seeds
 
     (sequence,) = run_seeds(SIMULATION_SEED, 1)
-    return run_pursuit_case(case.spec, np.random.default_rng(sequence))
+    rng = np.random.default_rng(sequence)
+    return run_pursuit_case(case.spec, rng, runaway_factor=runaway_factor_of(case))
 
 
 def _certified(case: Case) -> None:
