@@ -187,6 +187,8 @@ def run_pursuit_case(
     steps : int, optional
         Number of records after the first, every :data:`RECORD_INTERVAL` (default
         :func:`default_steps`).
+    runaway_factor : float
+        The runaway threshold in S-T curve sizes (:func:`dec_arguments`).
 
     Returns
     -------
