@@ -153,12 +153,12 @@ def rotation_rate_check(dim: int, printed: bool = False) -> IdentityCheck:
         point.update(dict(zip(omega, (1, 0, 0), strict=True)))
         residual = sp.simplify(residual.subs(point))
     else:
-        residual = _half_angle_zero(residual, angles)
+        residual = _exact_zero(residual, angles)
     name = "Ṙ = R S(ω) with S " + ("as printed in eq. (4)" if printed else "= [ω]ₓ")
     return IdentityCheck(name, residual, residual.is_zero_matrix, rotation_dot, rotation * s)
 
 
-def _half_angle_zero(residual: sp.Matrix, angles: sp.Matrix | tuple = ()) -> sp.Matrix:
+def _exact_zero(residual: sp.Matrix, angles: sp.Matrix | tuple = ()) -> sp.Matrix:
     """``residual`` (rational in sin, cos, tan of ``angles``, and in other symbols) as the zero
     matrix when it vanishes identically, else simplified.
 
@@ -221,7 +221,7 @@ def error_dynamics_check(dim: int) -> IdentityCheck:
     e_p = rotation.T * d - eps
     u = sp.Matrix([v1, *omega])
     printed = -s * e_p + delta_matrix(eps) * u - rotation.T * (r_prime * gamma_dot + target_v)
-    residual = _half_angle_zero(kinematic - printed)
+    residual = _exact_zero(kinematic - printed)
     return IdentityCheck(
         "eq. (21) from (2)–(5), (19)", residual, residual.is_zero_matrix, kinematic, printed
     )
