@@ -15,8 +15,11 @@ was. Peak memory: the report process's and each worker's, from ``timings.json``.
 are compared byte for byte.
 
 Run from the repository root: ``python -m benchmarks.bench_report [--before REV] [--skip-before]
-[--keep DIR] [CASES…] [--only PATTERN …]`` (``--keep`` leaves the reports and their
-``timings.json`` in ``DIR/w1``, ``DIR/w2``, ``DIR/before``).
+[--keep DIR] [--repeat N] [--write-costs] [CASES…] [--only PATTERN …]`` (``--keep`` leaves the
+reports and their ``timings.json`` in ``DIR/w1``, ``DIR/w2``, ``DIR/before``; ``--repeat``
+alternates 1- and 2-worker runs N times and prints the median speed-up, since the host's speed
+drifts between runs; ``--write-costs`` stores the first 1-worker run's check costs as the
+report's bundled schedule estimates, ``theory/report/check_costs.json``).
 """
 
 from __future__ import annotations
@@ -25,6 +28,7 @@ import argparse
 import json
 import os
 import resource
+import statistics
 import subprocess
 import sys
 import tarfile
@@ -33,6 +37,10 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from theory.report.schedule import bundled_costs_path, costs_document  # noqa: E402
+
 BEFORE = "725a9f44028b"
 """The commit before issue 16 item 1 (the report ran serially in one process)."""
 
@@ -92,21 +100,22 @@ def main() -> None:
     parser.add_argument("--before", default=BEFORE, help="Revision measured as the before-cost.")
     parser.add_argument("--skip-before", action="store_true", help="Do not measure it.")
     parser.add_argument("--keep", type=Path, help="Keep the reports (and timings.json) here.")
+    parser.add_argument(
+        "--repeat", type=int, default=1, help="Alternate 1- and 2-worker runs this many times."
+    )
+    parser.add_argument(
+        "--write-costs",
+        action="store_true",
+        help=f"Write the first 1-worker run's check costs to {bundled_costs_path().name}.",
+    )
     args = parser.parse_args()
     extra = [*args.cases, *(f"--only={p}" for p in args.only)]
     with tempfile.TemporaryDirectory(prefix="bench-report-") as tmp:
         folder = Path(tmp) if args.keep is None else args.keep
         folder.mkdir(parents=True, exist_ok=True)
-        serial = run_report(ROOT, folder / "w1", 1, extra)
-        print(describe("after, 1 worker", serial), flush=True)
-        spread = run_report(ROOT, folder / "w2", 2, extra)
-        print(describe("after, 2 workers", spread), flush=True)
-        same = (folder / "w1/report.json").read_bytes() == (folder / "w2/report.json").read_bytes()
-        print(f"speed-up 1 → 2 workers: {serial['wall'] / spread['wall']:.2f}× wall "
-              f"(target 1.8–2×); report.json identical: {same}")  # fmt: skip
-        print(f"2-worker wall {spread['wall']:.1f} s (target ≤ 90 s on 2 quiet cores)")
-        worst = max(spread["timings"].get("worker_peak_rss", {}).values(), default=0)
-        print(f"worst worker peak RSS {worst / GIB:.2f} GiB (target ≤ 1 GiB)")
+        serial, spread = compare_workers(folder, extra, args.repeat)
+        if args.write_costs:
+            write_costs(serial["timings"])
         if args.skip_before:
             return
         tree = export(args.before, folder)
@@ -115,6 +124,52 @@ def main() -> None:
         print(f"cost removed: before / after, serial: {before['cpu'] / serial['cpu']:.2f}× CPU, "
               f"{before['wall'] / serial['wall']:.2f}× wall; before serial / after 2 workers: "
               f"{before['wall'] / spread['wall']:.2f}× wall")  # fmt: skip
+
+
+def compare_workers(folder: Path, extra: list[str], repeat: int) -> tuple[dict, dict]:
+    """Alternate ``--workers 1`` and ``--workers 2`` runs ``repeat`` times, each in a fresh
+    folder; print each pair's speed-up and their median. The host's speed drifts by 10 % and
+    more within minutes, so a ratio compares two runs made one right after the other.
+
+    Returns
+    -------
+    (dict, dict)
+        The first 1-worker and 2-worker results (:func:`run_report`).
+    """
+    pairs = []
+    for k in range(repeat):
+        suffix = "" if k == 0 else f"-{k + 1}"
+        serial = run_report(ROOT, folder / f"w1{suffix}", 1, extra)
+        print(describe("after, 1 worker", serial), flush=True)
+        spread = run_report(ROOT, folder / f"w2{suffix}", 2, extra)
+        print(describe("after, 2 workers", spread), flush=True)
+        same = (folder / f"w1{suffix}/report.json").read_bytes() == (
+            folder / f"w2{suffix}/report.json"
+        ).read_bytes()
+        print(f"speed-up 1 → 2 workers: {serial['wall'] / spread['wall']:.2f}× wall "
+              f"(target 1.8–2×); report.json identical: {same}")  # fmt: skip
+        print(f"2-worker wall {spread['wall']:.1f} s (target ≤ 90 s on 2 quiet cores)")
+        worst = max(spread["timings"].get("worker_peak_rss", {}).values(), default=0)
+        print(f"worst worker peak RSS {worst / GIB:.2f} GiB (target ≤ 1 GiB)")
+        pairs.append((serial, spread))
+    if repeat > 1:
+        ratios = sorted(s["wall"] / p["wall"] for s, p in pairs)
+        print(f"speed-up over {repeat} pairs: median {statistics.median(ratios):.2f}×, "
+              f"range {ratios[0]:.2f}–{ratios[-1]:.2f}×")  # fmt: skip
+    return pairs[0]
+
+
+def write_costs(timings: dict) -> None:
+    """Write ``timings`` (a 1-worker run's) as the bundled estimates of the report's schedule."""
+    path = bundled_costs_path()
+    source = (
+        f"CPU seconds of each check, `trackcert report --workers 1` on the bundled cases, "
+        f"{time.strftime('%Y-%m-%d', time.gmtime())} (python -m benchmarks.bench_report "
+        "--write-costs); only the order of the report's tasks depends on them"
+    )
+    document = costs_document(timings, source)
+    path.write_text(json.dumps(document, indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    print(f"wrote {len(document['seconds'])} check costs to {path}")
 
 
 if __name__ == "__main__":

@@ -62,6 +62,15 @@ def test_cayley_rotation_is_orthogonal() -> None:
 
 
 @pytest.mark.parametrize("dim", [2, 3])
+def test_cayley_rotation_closed_form_is_the_transform(dim: int) -> None:
+    """The closed form equals (I − A)⁻¹(I + A) as rational functions, in 2D and 3D."""
+    a = sp.Matrix(sp.symbols("a1:4")[: 3 if dim == 3 else 1])
+    eye, skew_a = sp.eye(dim), skew(a)
+    difference = cayley_rotation(a) - (eye - skew_a).inv() * (eye + skew_a)
+    assert difference.applyfunc(sp.cancel) == sp.zeros(dim, dim)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
 def test_error_dynamics_eq21(dim: int) -> None:
     check = error_dynamics_check(dim)
     assert check.holds, check.residual

@@ -22,6 +22,7 @@ from theory.core.errors import CaseError
 from theory.core.parallel import TaskRunner
 from theory.report.render import write_report
 from theory.report.runner import ProgressHook, RunResult, run_claims, select_claims
+from theory.report.schedule import load_estimates
 from theory.report.timings import timings_document, write_timings
 
 __all__ = ["build_report", "check_count", "choose_claims"]
@@ -135,6 +136,7 @@ def build_report(
             seconds=seconds,
             figure_dir=Path(figures),
             runner=runner,
+            estimates=load_estimates(Path(out_dir)),
         )
         wall = time.perf_counter() - started
         document = write_report(run, out_dir, errata_path=errata_path)

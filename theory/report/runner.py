@@ -22,6 +22,7 @@ limit (:mod:`theory.report.time_limit`), a check still running when it expires b
 from __future__ import annotations
 
 import fnmatch
+import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
@@ -36,6 +37,7 @@ from theory.core.parallel import TaskRunner, engine
 from theory.core.verdicts import expectations_verdict
 from theory.report.canonical import canonical
 from theory.report.records import MODEL_CASE, RESULT_FIELDS, Record, derive_seed, paper_of, slug
+from theory.report.schedule import Estimates, longest_first
 from theory.report.tasks import (
     CheckOutput,
     CheckTask,
@@ -78,6 +80,9 @@ class Timing:
         ``host:pid`` of that process (``""`` when its task was lost).
     peak_rss : int
         Peak resident memory of that process when the task ended, bytes.
+    started : float or None
+        When it began, in seconds after the run began (clocks of the report's machine and the
+        worker's; ``None`` when its task was lost).
     """
 
     claim: str
@@ -86,6 +91,7 @@ class Timing:
     cpu_seconds: float
     worker: str
     peak_rss: int
+    started: float | None = None
 
 
 @dataclass(frozen=True)
@@ -170,6 +176,7 @@ def run_claims(
     seconds: float | None = None,
     figure_dir: Path | None = None,
     runner: TaskRunner | None = None,
+    estimates: Estimates | None = None,
 ) -> RunResult:
     """Run each claim on each case it applies to, and the model claims once.
 
@@ -190,11 +197,14 @@ def run_claims(
         Folder under which claims accepting ``figure_dir`` draw (``None``: no figures).
     runner : TaskRunner, optional
         An open engine (:func:`theory.core.parallel.engine`); default: this process, serially.
+    estimates : Estimates, optional
+        Estimated costs of the checks: the tasks are handed to the engine longest first
+        (:func:`theory.report.schedule.longest_first`); default: in report order.
 
     Returns
     -------
     RunResult
-        Identical (records, order, seeds) whatever the runner.
+        Identical (records, order, seeds) whatever the runner and the estimates.
     """
     claims = sorted(all_claims() if claims is None else claims, key=lambda c: c.id)
     _check_distinct_names(cases)
@@ -202,9 +212,12 @@ def run_claims(
         (c, case) for case in cases for c in claims if case.kind in c.kinds
     ]
     tasks = plan_tasks(checks, seed=seed, seconds=seconds, figures=figure_dir is not None)
+    if estimates is not None:
+        tasks = longest_first(tasks, estimates)
+    began = time.time()
     with _opened(runner) as engine_runner:
         outputs = _run_tasks(engine_runner, tasks, {c.id: c for c in claims}, progress)
-    rows, skipped, timings = _collect(checks, cases, outputs, figure_dir)
+    rows, skipped, timings = _collect(checks, cases, outputs, figure_dir, began)
     rows.sort(key=lambda row: (row[1].paper, row[1].id, row[0]))
     records = tuple(r for _, r in rows)
     return RunResult(
@@ -225,8 +238,10 @@ def _collect(
     cases: Sequence[Case],
     outputs: list[TaskOutput],
     figure_dir: Path | None,
+    began: float,
 ) -> tuple[list[tuple[int, Record]], list[tuple[str, str, str]], list[Timing]]:
-    """Records (with their case's position), not-applicable pairs and timings, in check order."""
+    """Records (with their case's position), not-applicable pairs and timings (started
+    ``began`` = ``time.time()`` when the run began), in check order."""
     by_check = {(o.claim, o.case): (o, out) for out in outputs for o in out.checks}
     order = {MODEL_CASE: -1} | {case.name: i for i, case in enumerate(cases)}
     rows: list[tuple[int, Record]] = []
@@ -238,9 +253,16 @@ def _collect(
         if check.not_applicable is not None:
             skipped.append((claim.id, name, check.not_applicable))
         rows.extend((order[name], r) for r in _with_figures(check, figure_dir))
+        started = None if check.started is None else check.started - began
         timings.append(
             Timing(
-                claim.id, name, check.wall_seconds, check.cpu_seconds, task.worker, task.peak_rss
+                claim.id,
+                name,
+                check.wall_seconds,
+                check.cpu_seconds,
+                task.worker,
+                task.peak_rss,
+                started,
             )
         )
     return rows, skipped, timings

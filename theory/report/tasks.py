@@ -105,6 +105,8 @@ class CheckOutput:
     certificate_checks : dict of str to dict
         The checker's verdict on each certificate document of the records, by the SHA-256 of
         the bytes checked (:func:`~theory.report.artifacts.check_document`).
+    started : float or None
+        When the check began (``time.time()`` where it ran); ``None`` if it never ran.
     """
 
     claim: str
@@ -115,6 +117,7 @@ class CheckOutput:
     cpu_seconds: float
     figures: dict[str, bytes]
     certificate_checks: dict[str, dict[str, Any]] = field(default_factory=dict)
+    started: float | None = None
 
 
 @dataclass(frozen=True)
@@ -242,7 +245,7 @@ def failed_task(task: CheckTask, claims: dict[str, Claim], error: BaseException)
 
 def _check(claim_id: str, task: CheckTask, cache: RunCache, root: Path | None) -> CheckOutput:
     name = task.case_name
-    started, cpu = time.perf_counter(), time.process_time()
+    began, started, cpu = time.time(), time.perf_counter(), time.process_time()
     try:
         claim = get_claim(claim_id)
     except KeyError as error:
@@ -262,12 +265,10 @@ def _check(claim_id: str, task: CheckTask, cache: RunCache, root: Path | None) -
         for r in records
         if isinstance(r.evidence.get(DOCUMENT_KEY), dict)
     )
-    return CheckOutput(claim_id, name, tuple(records), reason, wall, cpu, figures, verdicts)
+    return CheckOutput(claim_id, name, tuple(records), reason, wall, cpu, figures, verdicts, began)
 
 
-def _run_one(
-    claim: Claim, task: CheckTask, cache: RunCache, folder: Path | None
-) -> list[Record]:
+def _run_one(claim: Claim, task: CheckTask, cache: RunCache, folder: Path | None) -> list[Record]:
     name = task.case_name
     seed = derive_seed(task.seed, claim.id, name) if accepts(claim.run, "seed") else None
     options: dict[str, Any] = {} if seed is None else {"seed": seed}

@@ -6,10 +6,13 @@ reproducible) and written beside it. The document::
     {"format": "trackcert-timings/1", "workers": 2, "scheduler": null,
      "wall_seconds": 81.2, "cpu_seconds": 150.3,
      "parent_peak_rss": 412000000, "worker_peak_rss": {"host:1234": 623000000, ...},
-     "checks": [{"id", "case", "wall_seconds", "cpu_seconds", "worker"}, ...]}
+     "checks": [{"id", "case", "wall_seconds", "cpu_seconds", "worker", "started_seconds"}, ...]}
 
 ``wall_seconds`` is the whole run's (claims only, not writing the report); ``cpu_seconds`` the sum
 over checks. ``checks`` keeps the report's check order; :func:`slowest` sorts them.
+``started_seconds`` is when a check began, after the run began (``null`` for a lost task): with
+``worker`` and ``wall_seconds`` it draws each worker's timeline (on a cluster, as far as the
+machines' clocks agree).
 """
 
 from __future__ import annotations
@@ -18,10 +21,12 @@ import json
 import resource
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from theory.report.runner import RunResult, Timing
 from theory.report.tasks import process_name
+
+if TYPE_CHECKING:  # the runner orders its tasks by timings (theory.report.schedule)
+    from theory.report.runner import RunResult, Timing
 
 __all__ = ["FORMAT", "slowest", "timings_document", "write_timings"]
 
@@ -84,6 +89,7 @@ def timings_document(
                 "wall_seconds": round(t.wall_seconds, 4),
                 "cpu_seconds": round(t.cpu_seconds, 4),
                 "worker": t.worker,
+                "started_seconds": None if t.started is None else round(t.started, 3),
             }
             for t in run.timings
         ],
