@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from distributed import LocalCluster
+from distributed import Client, LocalCluster
 from report_fakes import fake_registry, register_standard_fakes, write_case
 from typer.testing import CliRunner
 
@@ -124,3 +124,31 @@ def test_unreachable_scheduler_exits_2(monkeypatch, tmp_path) -> None:
     assert done.exit_code == 2, done.output
     assert "--scheduler" in done.output and "Traceback" not in done.output
     assert not (tmp_path / "out" / "report.json").exists()
+
+
+def _missing_worker_modules() -> list[str]:
+    import sys
+
+    from theory.report.tasks import worker_modules
+
+    return [m for m in worker_modules() if m not in sys.modules]
+
+
+def test_a_worker_started_with_the_preload_has_every_claim_module_before_its_first_task() -> None:
+    """``dask worker ADDRESS --preload theory.report.worker_preload``: a spawned worker (Dask's
+    default, as ``dask worker`` starts them) imports the claim modules as it starts."""
+    import dask
+
+    with (
+        dask.config.set({"distributed.worker.multiprocessing-method": "spawn"}),
+        LocalCluster(
+            n_workers=1,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            preload=["theory.report.worker_preload"],
+        ) as cluster,
+        Client(cluster) as client,
+    ):
+        (missing,) = client.run(_missing_worker_modules).values()
+    assert missing == []
