@@ -132,20 +132,23 @@ def test_start_on_the_serial_path_starts_nothing() -> None:
 
 def test_local_workers_started_in_the_background_have_the_preload_imported(tmp_path) -> None:
     """A fresh process (so that it starts its own forkserver): its two workers are up before the
-    first map and have imported the preload modules, and only those, before any task runs."""
+    first map and have imported the preload modules, and only those, before any task runs; they
+    run with :data:`CLUSTER_CONFIG`'s housekeeping intervals."""
     (tmp_path / "probe.py").write_text(
-        "import sys\n\ndef loaded(name):\n    return name in sys.modules\n"
+        "import sys\n\nimport dask\n\n\ndef loaded(name):\n    return name in sys.modules\n"
+        "\n\ndef setting(name):\n    return dask.config.get(name)\n"
     )
     script = textwrap.dedent(
         """
         import probe
-        from theory.core.parallel import engine
+        from theory.core.parallel import CLUSTER_CONFIG, engine
 
         if __name__ == "__main__":
             with engine(2, preload=["theory.tdoa.model"]) as runner:
                 runner.start()
                 print(runner.map(probe.loaded, ["theory.tdoa.model", "theory.pursuit.dekf"]))
                 print(runner.size)
+                print(runner.map(probe.setting, [k for k in CLUSTER_CONFIG if "admin" in k]))
         """
     )
     root = Path(__file__).resolve().parents[2]
@@ -159,7 +162,9 @@ def test_local_workers_started_in_the_background_have_the_preload_imported(tmp_p
         check=False,
     )
     assert done.returncode == 0, done.stderr
-    assert done.stdout.split() == ["[True,", "False]", "2"]
+    loaded, size, settings = done.stdout.splitlines()
+    assert (loaded, size) == ("[True, False]", "2")
+    assert settings == "['200ms', '5s']"  # the workers run with the cluster's quieter settings
 
 
 def test_run_cache_computes_once_per_key() -> None:

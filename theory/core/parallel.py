@@ -55,11 +55,14 @@ CONNECT_TIMEOUT = 10.0
 WORKER_MEMORY = "2GiB"
 """Memory limit of each LocalCluster worker (Dask pauses, then restarts, a worker above it)."""
 
-WORKER_CONFIG = {
+CLUSTER_CONFIG = {
     "distributed.worker.profile.enabled": False,
     "distributed.worker.multiprocessing-method": "forkserver",
+    "distributed.admin.tick.interval": "200ms",
+    "distributed.admin.system-monitor.interval": "5s",
+    "distributed.worker.memory.monitor-interval": "500ms",
 }
-"""Dask settings of LocalCluster workers.
+"""Dask settings of the local cluster (its scheduler and nannies in this process, its workers).
 
 * No statistical profiler: it samples the task thread's stack every 10 ms under the GIL and made
   the report's checks cost about 45 % more CPU on 2 workers (2-worker report: 98 s → 76 s wall,
@@ -69,7 +72,14 @@ WORKER_CONFIG = {
   the engine's ``preload`` modules: the imports (about 3 s of CPU for the report's claims) and
   the module-level work they do are paid once, not once per worker. Dask sets its thread-count
   variables (``OMP_NUM_THREADS``…, ``distributed.nanny.pre-spawn-environ``) in this process
-  before the first worker starts, so the forkserver, started then, inherits them."""
+  before the first worker starts, so the forkserver, started then, inherits them.
+* Fewer housekeeping wake-ups: the event loops' health tick every 200 ms instead of 20 ms (it
+  only times the loop, for warnings), the system monitor (metrics for a dashboard we do not
+  start) every 5 s instead of 0.5 s, the memory monitor every 0.5 s instead of 0.1 s (a worker
+  past its limit is still stopped, half a second later at most). An idle 2-worker cluster took
+  4.1 % of a core in this process and 1.9 % in each worker with Dask's defaults, 1.1 % and
+  0.4–0.5 % with these: about 3.5 s of CPU less over a one-minute report on cores that the
+  checks keep busy."""
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -267,7 +277,7 @@ class TaskRunner:
             return
         import dask
 
-        with dask.config.set(WORKER_CONFIG):  # the worker processes start with it
+        with dask.config.set(CLUSTER_CONFIG):  # the cluster's processes start with it
             _preload_forkserver(self.preload)
             self._cluster = LocalCluster(
                 n_workers=self.workers,
@@ -304,7 +314,7 @@ class TaskRunner:
 def _preload_forkserver(modules: Sequence[str]) -> None:
     """Have the forkserver import ``modules`` (and ``distributed``) before it forks any worker.
 
-    Called under :data:`WORKER_CONFIG`. Dask's ``get_mp_context`` sets its own preload list (its
+    Called under :data:`CLUSTER_CONFIG`. Dask's ``get_mp_context`` sets its own preload list (its
     required packages) on first use; ours, set after it, replaces that list. A forkserver that is
     already running (an earlier cluster of this process) keeps the modules it has.
     """
