@@ -31,7 +31,12 @@ commands were loaded lazily) in the same run.
 Every time is the best of ``--repeat``; CPU beside wall because the machine is shared (wall time
 then includes waiting for a core). :data:`BEFORE` prints the same command measured before the
 speed-up (commit 725a9f4), with the date: that code is gone, so it is not re-run.
-Usage: ``python benchmarks/bench_pursuit.py [--seconds 100] [--repeat 3] [--cases NAME ...]``
+``--baseline COMMIT`` also runs the command in that commit's tree (``git archive`` of ``theory``,
+``cases`` and ``proofs_check`` into a temporary folder), alternating with the working tree, and
+prints both and the ratio baseline / working tree: a same-run before/after, which the host's drift
+(about 10 % over minutes) cannot fake.
+Usage: ``python benchmarks/bench_pursuit.py [--seconds 100] [--repeat 3] [--cases NAME ...]
+[--baseline COMMIT]``
 """
 
 from __future__ import annotations
@@ -109,18 +114,62 @@ def _cpu() -> float:
     return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
 
 
-def _cli(arguments: list[str], codes: list[int] | None = None) -> None:
-    """``python -m theory.cli ARGUMENTS`` in a fresh process; its exit code goes to ``codes``."""
+def _cli(arguments: list[str], codes: list[int] | None = None, tree: Path = ROOT) -> None:
+    """``python -m theory.cli ARGUMENTS`` in a fresh process, with the ``theory`` package of
+    ``tree`` (the working directory comes first on the path); its exit code goes to ``codes``."""
     done = subprocess.run(
-        [sys.executable, "-m", "theory.cli", *arguments], cwd=ROOT, capture_output=True
+        [sys.executable, "-m", "theory.cli", *arguments], cwd=tree, capture_output=True
     )
     if codes is not None:
         codes.append(done.returncode)
 
 
-def _simulate(name: str, seed: int, codes: list[int]) -> None:
+def _simulate(name: str, seed: int, codes: list[int], tree: Path = ROOT) -> None:
     with tempfile.TemporaryDirectory() as folder:
-        _cli(["simulate", name, "--seed", str(seed), "-o", folder], codes)
+        _cli(["simulate", name, "--seed", str(seed), "-o", folder], codes, tree)
+
+
+def _unpack(commit: str, folder: Path) -> Path:
+    """The ``theory``, ``cases`` and ``proofs_check`` folders of ``commit`` in ``folder``."""
+    archive = subprocess.run(
+        ["git", "archive", commit, "theory", "cases", "proofs_check"],
+        cwd=ROOT, capture_output=True, check=True,
+    ).stdout  # fmt: skip
+    subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
+    return folder
+
+
+def _alternating(calls: list, repeat: int) -> list[tuple[float, float]]:
+    """Best wall and CPU of each call, the calls alternating ``repeat`` times (same load)."""
+    times: list[list[tuple[float, float]]] = [[] for _ in calls]
+    for _ in range(repeat):
+        for call, record in zip(calls, times, strict=True):
+            record.append(_best(call, 1))
+    return [(min(w for w, _ in record), min(c for _, c in record)) for record in times]
+
+
+def _baseline_rows(names: list[str], seed: int, repeat: int, commit: str) -> None:
+    print(
+        f"\nsame run, alternating: trackcert simulate CASE --seed {seed} in the tree of {commit} "
+        "(before) and the working tree (after), best of each, seconds; ratio = before / after"
+    )
+    print(
+        f"{'case':26} {'before wall':>11} {'CPU':>6} {'after wall':>10} {'CPU':>6} "
+        f"{'ratio wall':>10} {'CPU':>5}"
+    )
+    with tempfile.TemporaryDirectory() as folder:
+        tree = _unpack(commit, Path(folder))
+        for name in names:
+            codes: list[int] = []
+            before, after = _alternating(
+                [functools.partial(_simulate, name, seed, codes, tree),
+                 functools.partial(_simulate, name, seed, codes)],
+                repeat,
+            )  # fmt: skip
+            print(
+                f"{name:26} {before[0]:11.2f} {before[1]:6.2f} {after[0]:10.2f} {after[1]:6.2f} "
+                f"{before[0] / after[0]:10.2f} {before[1] / after[1]:5.2f}"
+            )
 
 
 EAGER = (
@@ -267,9 +316,12 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3, help="repetitions (best is printed)")
     parser.add_argument("--cases", nargs="*", default=list(CASES), help="bundled case names")
     parser.add_argument("--seed", type=int, default=2, help="--seed of trackcert simulate")
+    parser.add_argument("--baseline", help="commit to run the command of too, alternating")
     args = parser.parse_args()
     _startup(args.repeat)
     _command_rows(args.cases, args.seed, args.repeat)
+    if args.baseline:
+        _baseline_rows(args.cases, args.seed, args.repeat, args.baseline)
     _phase_rows(args.cases, args.seed)
     _runaway_rows(args.cases, args.seed, args.repeat)
     _oracle_rows(args.cases, args.seconds, args.repeat)

@@ -20,6 +20,7 @@ from theory.pursuit.closed_loop import (
     LoopState,
     StepControl,
     build_loop,
+    heun_step,
     integrate_until,
     simulate_dec,
 )
@@ -135,6 +136,25 @@ def test_a_run_that_needs_too_small_steps_stops_with_nan_records() -> None:
     run = simulate_dec(rng=np.random.default_rng(0), **arguments)
     assert not run.completed and "below" in run.stop_reason and run.stop_cause == "step_floor"
     assert np.isnan(run.pursuit_errors[-1]).all()
+
+
+def test_a_nan_attitude_is_an_error_not_an_accepted_step() -> None:
+    """When the body rates turn NaN at the predicted state, the corrected attitude is NaN while
+    positions and γ stay finite: the step's error is NaN (refused, the step shrinks) rather than
+    the largest finite difference, which would accept a NaN attitude."""
+    spec = load_case("pursuit-table2-n3").spec
+    _, loop = _loop(spec)
+    state = _random_state(loop, np.random.default_rng(3))
+    x_hat = np.zeros((loop.n, 2 * loop.dim))
+
+    def field(t, current, x_hat, t_hat):
+        z_dot, omega = loop.rates(t, current, x_hat, t_hat)
+        return z_dot, omega if t == 0.0 else np.full_like(omega, np.nan)
+
+    rates = field(0.0, state, x_hat, 0.0)
+    corrected, error = heun_step(loop, field, 0.0, 0.01, state, rates, (x_hat, 0.0))
+    assert np.isfinite(corrected.z).all() and np.isnan(corrected.R).all()
+    assert math.isnan(error)
 
 
 def test_full_gain_and_process_matrices_are_used() -> None:

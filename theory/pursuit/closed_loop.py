@@ -5,7 +5,9 @@ Trackers (2)–(5) with ``v = [v₁, 0(, 0)]``: ``ṗ = R[v₁, 0(, 0)]ᵀ``, ``
 (:func:`theory.pursuit.dekf.dekf_step`) on a range every ``T_s``, tracks its S-T curve with
 (48), (51), coordinates its path parameter with (45)–(47) and uses Controller Type I (49) or
 Type II (50), (52). Every formula comes from :mod:`theory.pursuit.model`, evaluated on all
-trackers at once.
+trackers at once: the vectors the controller rotates to the body frame are affine in the state and
+the estimate and come from two matrix products (:class:`_FrameMaps`), since on arrays of a few
+numbers NumPy's cost is per call (fewer calls, contiguous operands), not per number.
 
 The controllers are continuous-time laws and Theorem 2 is a continuous-time statement, so the loop
 is integrated as an ODE with error control, not with inputs held over a fixed step: a held-input
@@ -31,6 +33,7 @@ falls below ``min_step``.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -237,30 +240,114 @@ class DecLoop:
         ----------
         seed 003, eqs. (2)–(5), (45)–(51), (50b).
         """
-        d, n = self.dim, self.n
-        v_hat = x_hat[:, d:]
-        r_gamma, r_prime = self.paths.jet(state.gamma)
-        omega_d = model.desired_speed(self.omega_bar, self.laplacian, state.gamma, self.k_c)
-        # rows r′ω_d + v̂, p − r(γ) − q̂ and r′, all rotated to the body frame by one product
-        # (vᵀR = (Rᵀv)ᵀ, model.rotate_back); then u of (51) by model.input_gains
-        frames = np.empty((n, 3, d))
-        np.multiply(r_prime, omega_d[:, None], out=frames[:, 0])
-        frames[:, 0] += v_hat
-        np.subtract(state.p, r_gamma, out=frames[:, 1])
-        frames[:, 1] -= x_hat[:, :d] + (t - t_hat) * v_hat
-        frames[:, 2] = r_prime
-        body = np.matmul(frames, state.R)
-        u = body[:, :2].reshape(n, 2 * d) @ self.input_gain + self.input_offset
-        position_dot, omega = model.tracker_rates(state.R, u)
-        z_dot = np.empty(n * d + 2 * n)
-        z_dot[: n * d] = position_dot.ravel()
-        np.add(omega_d, state.e_gamma, out=z_dot[n * d : n * d + n])
-        if self.k_gamma:
-            e_hat = body[:, 1] - self.epsilon  # eq. (48)
-            z_dot[n * d + n :] = model.body_frame_feedback(e_hat, body[:, 2])
+        n, d = self.n, self.dim
+        a, b = n * d, n * (d + 1)  # z = [p (:a), γ (a:b), e_γ (b:)]
+        frames, omega_d = self._frames(t, state, x_hat, t_hat)
+        body = np.matmul(frames, state.R)  # the rows in the body frame, (vᵀR)ᵀ = Rᵀv
+        u = body[:, :2].reshape(n, 2 * d) @ self.input_gain  # eq. (51), model.input_gains
+        u += self.input_offset
+        z_dot = np.empty(b + n)
+        np.multiply(state.R[:, :, 0], u[:, :1], out=z_dot[:a].reshape(n, d))  # model.tracker_rates
+        np.add(omega_d, state.e_gamma, out=z_dot[a:b])
+        if self.k_gamma:  # ê_pᵀ(Rᵀr′) of (50b) with ê_p = Rᵀ(p − r − q̂) − ε of (48)
+            np.einsum("ij,ij->i", body[:, 1] - self.epsilon, body[:, 2], out=z_dot[b:])
         else:
-            z_dot[n * d + n :] = 0.0
-        return z_dot, omega
+            z_dot[b:] = 0.0
+        return z_dot, u[:, 1:]
+
+    def _frames(
+        self, t: float, state: LoopState, x_hat: np.ndarray, t_hat: float
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The rows r′(γ)ω_d + v̂, p − r(γ) − q̂(t) and r′(γ) of every tracker (N, 3, d), which
+        eqs. (48) and (51) need in the body frame, and ω_d of (46) (N,).
+
+        Each row is A cos(fγ + φ) + B + C + (t − t_hat)D, with A and B affine in z = [p, γ, e_γ]
+        and C, D linear in x̂ (:class:`_FrameMaps`): two matrix products and a few operations on
+        whole arrays give every row of every tracker.
+        """
+        maps, size = self._frame_maps, 3 * self.n * self.dim
+        affine = state.z @ maps.state_map  # [fγ + φ | A | B | ω_d]
+        affine += maps.state_offset
+        frames, amplitudes = affine[:size], affine[size : 2 * size]
+        np.cos(frames, out=frames)
+        frames *= amplitudes
+        frames += affine[2 * size : 3 * size]
+        estimates = x_hat.ravel() @ maps.estimate_map  # [C | D]
+        frames += estimates[:size]
+        drift = estimates[size:]
+        drift *= t - t_hat
+        frames += drift
+        return frames.reshape(self.n, 3, self.dim), affine[3 * size :]
+
+    @functools.cached_property
+    def _frame_maps(self) -> _FrameMaps:
+        """The affine maps of :meth:`_frames` (:func:`_frame_maps_of`)."""
+        return _frame_maps_of(self)
+
+    @functools.cached_property
+    def _generators(self) -> np.ndarray:
+        """G (k × d²) with vec(S(ω)) = ωG (:func:`model.skew` of the unit vectors)."""
+        k = 1 if self.dim == 2 else 3
+        return model.skew(np.eye(k)).reshape(k, self.dim**2)
+
+
+@dataclass(frozen=True, eq=False)
+class _FrameMaps:
+    """The frame rows of :meth:`DecLoop.rates` as affine functions of z and x̂.
+
+    Row k ∈ {0, 1, 2} (r′ω_d + v̂, p − r − q̂(t), r′) of tracker i, coordinate j, is entry
+    ``3d·i + d·k + j`` of A cos(fγ + φ) + B + C + (t − t_k)D, each of length ``size = 3Nd``, where
+    ``z @ state_map + state_offset`` = [fγ + φ | A | B | ω_d (N)] and ``x̂.ravel() @
+    estimate_map`` = [C | D].
+
+    Attributes
+    ----------
+    state_map : ndarray, shape (N·d + 2N, 3·size + N)
+    state_offset : ndarray, shape (3·size + N,)
+    estimate_map : ndarray, shape (2Nd, 2·size)
+    """
+
+    state_map: np.ndarray
+    state_offset: np.ndarray
+    estimate_map: np.ndarray
+
+
+def _frame_maps_of(loop: DecLoop) -> _FrameMaps:
+    """The :class:`_FrameMaps` of ``loop`` (seed 003, eqs. (15)/(16), (45)–(51)).
+
+    With the path's harmonics r_j = a_j cos(f_jγ + φ_j) (:class:`model.PathHarmonics`), whose
+    derivative is r′_j = a_j f_j cos(f_jγ + φ_j + π/2): the rows r′, −r, r′ have amplitudes af,
+    −a, af and phases φ + π/2, φ, φ + π/2; the first row's amplitude is multiplied by
+    ω_d = ω̄ − k_c(Lγ)_i (:func:`model.desired_speed`), affine in γ. B is p in the second row;
+    C is v̂ in the first row and −q̂_{k|k} in the second, D is −v̂ in the second.
+    """
+    n, d, paths = loop.n, loop.dim, loop.paths
+    a, m, rows = n * d, n * (d + 2), (n, 3, d)  # z = [p (:a), γ (a:a+n), e_γ]
+    amplitude = np.stack([paths.slope, -paths.amplitude, paths.slope], axis=1)
+    phase = np.stack([paths.phase + np.pi / 2, paths.phase, paths.phase + np.pi / 2], axis=1)
+    frequency = np.broadcast_to(paths.frequency, (n, d))
+    coupling = -loop.k_c * loop.laplacian  # ω_d = ω̄ + coupling·γ
+    angles, amplitudes, positions = (np.zeros((m, *rows)) for _ in range(3))
+    for i in range(n):
+        angles[a + i, i] = frequency[i]
+        amplitudes[a : a + n, i, 0] = np.outer(coupling[i], amplitude[i, 0])
+        positions[i * d : (i + 1) * d, i, 1] = np.eye(d)
+    speed = np.zeros((m, n))
+    speed[a : a + n] = coupling.T
+    first = np.ones(rows)
+    first[:, 0] = loop.omega_bar
+    state_map = np.concatenate(
+        [block.reshape(m, -1) for block in (angles, amplitudes, positions, speed)], axis=1
+    )
+    state_offset = np.concatenate(
+        [phase.ravel(), (amplitude * first).ravel(), np.zeros(a * 3), np.full(n, loop.omega_bar)]
+    )
+    estimate = np.zeros((n, 2, d, 2, *rows))  # x̂_i = [q̂, v̂] → [C | D]
+    for i in range(n):
+        estimate[i, 1, :, 0, i, 0] = np.eye(d)  # v̂ in the first row of C
+        estimate[i, 0, :, 0, i, 1] = -np.eye(d)  # −q̂_{k|k} in the second row of C
+        estimate[i, 1, :, 1, i, 1] = -np.eye(d)  # −v̂ in the second row of D
+    return _FrameMaps(state_map, state_offset, estimate.reshape(2 * a, 6 * a))
 
 
 Field = Callable[[float, LoopState, np.ndarray, float], Rates]
@@ -330,39 +417,47 @@ def heun_step(
     ----------
     Cox & Matthews, J. Comput. Phys. 176 (2002) (ETD2RK); Munthe-Kaas, BIT 38 (1998) (RKMK).
     """
-    weights = _etd_weights(loop.k_gamma, h)
-    free = _free_gamma(loop, state.z, rates[0], weights)
-    z1, R1 = _predict(loop, h, state, rates, (weights, free))
+    start = _start(loop, state.z, rates[0], _etd_weights(loop.k_gamma, h))
+    z1, R1 = _predict(loop, h, state, rates, start)
     rates1 = field(t + h, LoopState(z1, R1, loop.n, loop.dim), *estimate)
-    z2, R2 = _correct(loop, h, state, rates, (z1, R1), rates1, (weights, free))
+    z2, R2 = _correct(loop, h, state, rates, (z1, R1), rates1, start)
     return LoopState(z2, R2, loop.n, loop.dim), _local_error(loop, state.z, (z1, R1), (z2, R2))
 
 
-Weights = tuple[tuple[float, ...], np.ndarray]
-"""The step's ETD weights (:func:`_etd_weights`) and :func:`_free_gamma`."""
+Start = tuple[tuple[float, ...], np.ndarray, np.ndarray]
+"""What both γ-updates of a step share (:func:`_start`): the ETD weights (:func:`_etd_weights`),
+γ + w₁e_γ + g₁f₀ and ω_d at the start."""
+
+
+def _start(loop: DecLoop, z: np.ndarray, z_dot: np.ndarray, weights: tuple[float, ...]) -> Start:
+    """The weights, the part γ + w₁e_γ + g₁f₀ of both γ-updates that does not depend on ω_d, and
+    ω_d at the start of the step (γ̇ − e_γ)."""
+    _, w1, _, g1, _ = weights
+    a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)  # z = [p (:a), γ (a:b), e_γ (b:)]
+    e = z[b:]
+    free = e * w1
+    free += z[a:b]
+    free += z_dot[b:] * g1
+    return weights, free, z_dot[a:b] - e
 
 
 def _predict(
-    loop: DecLoop, h: float, state: LoopState, rates: Rates, weights: Weights
+    loop: DecLoop, h: float, state: LoopState, rates: Rates, start: Start
 ) -> tuple[np.ndarray, np.ndarray]:
     """The order-1 step: Euler in p, ETD1 in (γ, e_γ), R(I + hS(ω₀)) (:func:`heun_step`)."""
-    (z_dot, omega), z, ((decay, w1, *_), free) = rates, state.z, weights
-    a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)  # z = [p (:a), γ (a:b), e_γ (b:)]
-    e, f0 = z[b:], z_dot[b:]
-    z1 = np.empty_like(z)
-    z1[:a] = z[:a] + h * z_dot[:a]
-    z1[a:b] = free + h * (z_dot[a:b] - e)
-    z1[b:] = decay * e + w1 * f0
-    return z1, state.R + h * (state.R @ model.skew(omega))
-
-
-def _free_gamma(
-    loop: DecLoop, z: np.ndarray, z_dot: np.ndarray, weights: tuple[float, ...]
-) -> np.ndarray:
-    """γ + w₁e_γ + g₁f₀: the part of both γ-updates that does not depend on ω_d."""
-    _, w1, _, g1, _ = weights
+    (z_dot, omega), z, ((decay, w1, *_), free, speed) = rates, state.z, start
     a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)
-    return z[a:b] + w1 * z[b:] + g1 * z_dot[b:]
+    z1 = np.empty_like(z)
+    position, gamma, e = z1[:a], z1[a:b], z1[b:]
+    np.multiply(z_dot[:a], h, out=position)
+    position += z[:a]  # p + hṗ₀
+    np.multiply(speed, h, out=gamma)
+    gamma += free  # γ + w₁e_γ + g₁f₀ + hω_d
+    np.multiply(z[b:], decay, out=e)
+    e += z_dot[b:] * w1  # e^{−k_γh}e_γ + w₁f₀
+    turn = (omega @ loop._generators).reshape(state.R.shape)  # S(ω₀), model.skew
+    turn *= h
+    return z1, state.R + state.R @ turn
 
 
 def _correct(
@@ -372,22 +467,29 @@ def _correct(
     rates: Rates,
     predicted: tuple[np.ndarray, np.ndarray],
     rates1: Rates,
-    weights: Weights,
+    start: Start,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The order-2 step from the rates at both ends: Heun in p, ETD2RK in (γ, e_γ),
     R exp(½hS(ω₀ + ω₁)) (:func:`heun_step`)."""
     (z_dot, omega), (z_dot1, omega1), (z1, _) = rates, rates1, predicted
-    z, half = state.z, 0.5 * h
+    ((_, _, w2, _, g2), free, speed), z, half = start, state.z, 0.5 * h
     a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)
-    (_, _, w2, _, g2), free = weights
-    slope = z_dot1[b:] - z_dot[b:]
-    speed0 = z_dot[a:b] - z[b:]  # ω_d at the start
+    slope = z_dot1[b:] - z_dot[b:]  # f₁ − f₀
     z2 = np.empty_like(z)
-    z2[:a] = z[:a] + half * (z_dot[:a] + z_dot1[:a])
-    z2[a:b] = free + half * (speed0 + z_dot1[a:b] - z1[b:])
-    z2[a:b] += g2 * slope
-    z2[b:] = z1[b:] + w2 * slope
-    return z2, state.R @ model.exp_skew(half * (omega + omega1))
+    position, gamma, e = z2[:a], z2[a:b], z2[b:]
+    np.add(z_dot[:a], z_dot1[:a], out=position)
+    position *= half
+    position += z[:a]  # p + ½h(ṗ₀ + ṗ₁)
+    np.subtract(z_dot1[a:b], z1[b:], out=gamma)  # ω_d at the predicted state
+    gamma += speed
+    gamma *= half
+    gamma += free
+    gamma += slope * g2  # γ + w₁e_γ + g₁f₀ + ½h(ω_d₀ + ω_d₁) + g₂(f₁ − f₀)
+    np.multiply(slope, w2, out=e)
+    e += z1[b:]  # ETD1's e_γ + w₂(f₁ − f₀)
+    rotation = omega + omega1
+    rotation *= half
+    return z2, state.R @ model.exp_skew(rotation)
 
 
 def _local_error(
@@ -397,16 +499,22 @@ def _local_error(
     corrected: tuple[np.ndarray, np.ndarray],
 ) -> float:
     """Largest corrector − predictor difference: p relative to the larger of
-    :attr:`DecLoop.scale` and the largest coordinate, γ and R absolute (e_γ not controlled)."""
+    :attr:`DecLoop.scale` and the largest coordinate, γ and R absolute (e_γ not controlled).
+    NaN when any difference is NaN."""
     (z1, R1), (z2, R2) = predicted, corrected
     a, b = loop.n * loop.dim, loop.n * (loop.dim + 1)
-    difference = np.abs(z2[:b] - z1[:b])
-    length = max(loop.scale, np.abs(z[:a]).max())
-    return max(
-        float(difference[:a].max()) / length,
-        float(difference[a:b].max()),
-        float(np.abs(R2 - R1).max()),
-    )
+    difference = np.empty(b + R1.size)
+    np.subtract(z2[:b], z1[:b], out=difference[:b])
+    np.subtract(R2.ravel(), R1.ravel(), out=difference[b:])
+    np.abs(difference, out=difference)
+    positions = difference[:a]
+    positions /= max(loop.scale, _largest(np.abs(z[:a])))
+    return _largest(difference)
+
+
+def _largest(values: np.ndarray) -> float:
+    """``values.max()`` (NaN if any is NaN) by ``argmax``, which costs a third on a few numbers."""
+    return float(values[values.argmax()])
 
 
 @dataclass

@@ -187,8 +187,30 @@ def _generators(k: int) -> np.ndarray:
 
 
 _GENERATORS = {k: _generators(k).reshape(k, -1) for k in (1, 3)}
-_EYE = {2: np.eye(2), 3: np.eye(3)}
-_UNIT_TURN = _GENERATORS[1].reshape(2, 2)
+
+
+def _quaternion_basis() -> np.ndarray:
+    """B (16 × 9) with vec(exp(S(ω))) = (q ⊗ q) B for the unit quaternion q = (w, v) of ω.
+
+    Euler–Rodrigues: exp(S(ω)) = (w² − vᵀv) I + 2vvᵀ + 2w S(v), each term a quadratic form in q
+    (entry (k, l) of q ⊗ q is q_k q_l), with S of :func:`skew_rows`.
+    """
+    eye, generators = np.eye(3), _generators(3)
+    basis = np.zeros((4, 4, 3, 3))
+    basis[0, 0] = eye
+    for k in range(3):
+        basis[1 + k, 1 + k] -= eye  # −v_k² I
+        basis[0, 1 + k] += 2.0 * generators[k]  # 2w v_k G_k
+        for m in range(3):
+            basis[1 + k, 1 + m, k, m] += 2.0  # 2 v_k v_m
+    return basis.reshape(16, 9)
+
+
+_QUATERNION_BASIS = _quaternion_basis()
+_TURN_BASIS = np.array([np.eye(2).ravel(), _GENERATORS[1][0]])
+"""Rows vec(I) and vec(S(1)) in 2D: exp(S(ψ)) = cos ψ I + sin ψ S(1)."""
+_SINE_SHIFT = np.array([0.0, np.pi / 2])
+"""cos(ψ − (0, π/2)) = (cos ψ, sin ψ)."""
 
 
 def skew(omega: np.ndarray) -> np.ndarray:
@@ -205,11 +227,13 @@ def skew(omega: np.ndarray) -> np.ndarray:
 
 
 def exp_skew(omega: np.ndarray) -> np.ndarray:
-    """exp(S(ω)) stacked (Rodrigues in 3D): the rotation of a rotation vector ω, (…, k) → (…, d, d).
+    """exp(S(ω)) stacked: the rotation of a rotation vector ω, (…, k) → (…, d, d).
 
-    exp(S(ω)) = I + a S(ω) + b S(ω)² with θ = ‖ω‖, a = sin θ/θ, b = (1 − cos θ)/θ²
-    = 2 sin²(θ/2)/θ² (no cancellation for small θ) and S(ω)² = ωωᵀ − θ²I; in 2D the rotation by
-    the angle ω.
+    3D (Euler–Rodrigues): with θ = ‖ω‖ and the unit quaternion q = (w, v) = (cos(θ/2),
+    sin(θ/2) ω/θ), exp(S(ω)) = (w² − vᵀv) I + 2vvᵀ + 2w S(v) — Rodrigues' I + (sin θ/θ) S(ω) +
+    ((1 − cos θ)/θ²) S(ω)² written in half angles (no cancellation for small θ), evaluated as
+    one product (q ⊗ q) B (:func:`_quaternion_basis`). 2D: the rotation by the angle ω,
+    cos ω I + sin ω S(1).
 
     Parameters
     ----------
@@ -221,19 +245,20 @@ def exp_skew(omega: np.ndarray) -> np.ndarray:
     seed 003, eq. (3): R(t + h) = R(t) exp(h S(ω)) for ω constant over h.
     """
     omega = np.asarray(omega, dtype=float)
+    stack = omega.shape[:-1]
     if omega.shape[-1] == 1:
-        angle = omega[..., None]
-        return np.cos(angle) * _EYE[2] + np.sin(angle) * _UNIT_TURN
-    theta_sq = (omega * omega).sum(axis=-1)[..., None, None]
-    theta = np.maximum(np.sqrt(theta_sq), 1e-150)  # below it, a = 1 and b = ½ to the last bit
+        trig = np.cos(omega - _SINE_SHIFT)  # (cos ω, sin ω)
+        return (trig @ _TURN_BASIS).reshape(*stack, 2, 2)
+    theta = np.sqrt(omega[..., None, :] @ omega[..., :, None])[..., 0]
+    np.maximum(theta, 1e-150, out=theta)  # below it, w = 1 and v = ω/2 to the last bit
     half = 0.5 * theta
-    half_sin, half_cos = np.sin(half), np.cos(half)
-    a = 2.0 * half_sin * half_cos / theta
-    b = 2.0 * (half_sin / theta) ** 2
-    rotation = b * (omega[..., :, None] * omega[..., None, :])
-    rotation += a * skew(omega)
-    rotation += (1.0 - b * theta_sq) * _EYE[3]  # adds exact zeros off the diagonal
-    return rotation
+    quaternion = np.empty((*stack, 4))
+    np.cos(half, out=quaternion[..., :1])
+    np.sin(half, out=half)
+    half /= theta
+    np.multiply(omega, half, out=quaternion[..., 1:])
+    products = quaternion[..., :, None] * quaternion[..., None, :]
+    return (products.reshape(*stack, 16) @ _QUATERNION_BASIS).reshape(*stack, 3, 3)
 
 
 def euler_rotation(angles: np.ndarray) -> np.ndarray:
@@ -324,20 +349,10 @@ class PathHarmonics:
                      for k in range(3))  # fmt: skip
         return cls(a, f, phi)
 
-    def jet(self, gamma: Any) -> tuple[np.ndarray, np.ndarray]:
-        """(r(γ), r′(γ)) at ``gamma`` (…) → two (…, d) arrays, from one evaluation of the angles."""
-        angle = np.asarray(gamma, float)[..., None] * self.frequency + self.phase
-        return self.amplitude * np.cos(angle), self._falling_slope * np.sin(angle)
-
     @functools.cached_property
     def slope(self) -> np.ndarray:
         """a_k f_k: the amplitudes of r′."""
         return self.amplitude * self.frequency
-
-    @functools.cached_property
-    def _falling_slope(self) -> np.ndarray:
-        """−a_k f_k: r′_k(γ) = −a_k f_k sin(f_k γ + φ_k) (the same product as slope·(−sin))."""
-        return -self.slope
 
     def derivative(self, gamma: Any, order: int = 0) -> np.ndarray:
         """d^order r/dγ^order at ``gamma`` (…) → (…, d): a f^n cos(fγ + φ + nπ/2)."""
