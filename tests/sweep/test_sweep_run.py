@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import csv
+import importlib
+import inspect
 import json
 
 import pytest
 
+from theory.core.case_file import kind_spec
+from theory.core.discovery import kind_index
 from theory.core.errors import CaseError
-from theory.sweep.kinds import agreement
+from theory.sweep.kinds import ANALYSIS_MODULES, agreement, analysis_for, point_modules
 from theory.sweep.outputs import write_sweep
 from theory.sweep.points import Row
 from theory.sweep.run import Sweep, sweep_case
@@ -201,3 +205,19 @@ def test_rows_do_not_depend_on_the_batching(monkeypatch) -> None:
     many = sweep_case(*args, workers=1)
     assert one_batch.to_json() == many.to_json()
     assert [r.point for r in many.rows] == list(range(8))
+
+
+@pytest.mark.parametrize("kind", sorted(kind_index()))
+def test_a_points_modules_are_the_ones_its_analysis_and_simulator_import(kind: str) -> None:
+    """The engine's preload for a sweep (every name importable; the analysis module is the one
+    its judgement function imports, the simulator's the one the kind names)."""
+    modules = point_modules(kind)
+    for module in modules:
+        importlib.import_module(module)
+    assert modules[:2] == ("theory.sweep.points", kind_index()[kind])
+    analysis = analysis_for(kind)
+    if analysis is not None:
+        assert f"from {ANALYSIS_MODULES[kind]} import" in inspect.getsource(analysis)
+        assert ANALYSIS_MODULES[kind] in modules
+    simulate = kind_spec(kind).simulate
+    assert (simulate is None) or simulate.partition(":")[0] in modules

@@ -37,18 +37,21 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from theory.core.case_file import Case
+from theory.core.case_file import Case, kind_spec
+from theory.core.discovery import kind_index
 from theory.core.verdicts import Verdict
 
 __all__ = [
     "AGREEMENTS",
     "ANALYSES",
+    "ANALYSIS_MODULES",
     "PREDICTIONS",
     "Judgement",
     "agreement",
     "analysis_for",
     "dkf_judgement",
     "pf_judgement",
+    "point_modules",
     "pursuit_judgement",
     "pursuit_prediction",
     "tdoa_judgement",
@@ -189,6 +192,15 @@ ANALYSES: dict[str, Callable[[Case], Judgement]] = {
 }
 """Kind → its analysis verdict; a kind not listed is judged by its simulation alone."""
 
+ANALYSIS_MODULES: dict[str, str] = {
+    "pursuit": "theory.pursuit.iss_report",
+    "dkf": "theory.consensus.claims",
+    "tdoa": "theory.tdoa.topology_report",
+    "pf": "theory.particle.pf_report",
+}
+"""Kind → the module its analysis imports (each imports lazily, so that a sweep imports only its
+kind's): the sweep's workers are forked with it already imported (:func:`point_modules`)."""
+
 
 def pursuit_prediction(summary: Mapping[str, Any]) -> tuple[Verdict, str]:
     """Whether a pursuit run stayed within the ISS estimate its verdict certifies (Theorem 2).
@@ -219,6 +231,27 @@ PREDICTIONS: dict[str, Callable[[Mapping[str, Any]], tuple[Verdict, str]]] = {
 }
 """Kind → what a holding verdict predicts of the simulation: ``check(summary) -> (verdict,
 message)``, True when the simulation bears the prediction out."""
+
+
+def point_modules(kind: str) -> tuple[str, ...]:
+    """The modules evaluating a sweep point of ``kind`` imports: the sweep's own, the kind's,
+    its simulator's and its analysis's (the engine's ``preload``,
+    :func:`theory.core.parallel.engine`: imported once by the workers' forkserver instead of in
+    each worker's first task).
+
+    Parameters
+    ----------
+    kind : str
+        A case kind.
+
+    Returns
+    -------
+    tuple of str
+    """
+    spec = kind_spec(kind)
+    simulator = () if spec.simulate is None else (spec.simulate.partition(":")[0],)
+    analysis = (ANALYSIS_MODULES[kind],) if kind in ANALYSIS_MODULES else ()
+    return ("theory.sweep.points", kind_index()[kind], *simulator, *analysis)
 
 
 def analysis_for(kind: str) -> Callable[[Case], Judgement] | None:

@@ -34,7 +34,7 @@ from theory.core.jsonable import plain
 from theory.core.parallel import engine
 from theory.core.verdicts import Verdict, exit_code
 from theory.sweep.grid import MAX_POINTS, Param, check_size, grid_points, parse_param
-from theory.sweep.kinds import analysis_for
+from theory.sweep.kinds import analysis_for, point_modules
 from theory.sweep.links import parse_link
 from theory.sweep.paths import Target, resolve_target
 from theory.sweep.points import INVALID, Row, SweepSetup, evaluate_batch
@@ -273,7 +273,7 @@ def _run(
     progress: Callable[[int, int], None] | None,
 ) -> tuple[Row, ...]:
     total = len(points)
-    with engine(workers, scheduler) as runner:
+    with engine(workers, scheduler, preload=point_modules(setup.data["kind"])) as runner:
         batches = _batches(points, TASKS_PER_WORKER * runner.workers)
         per_task = total / len(batches)
 
