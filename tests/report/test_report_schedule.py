@@ -3,6 +3,7 @@ run's timings.json over the bundled costs, and a report that does not depend on 
 
 from __future__ import annotations
 
+import functools
 import itertools
 import json
 
@@ -13,9 +14,12 @@ from theory.core.case_file import load_case
 from theory.core.claims import all_claims
 from theory.report.runner import run_claims
 from theory.report.schedule import (
+    BATCH_SECONDS,
     COSTS_FORMAT,
+    SMALL_SECONDS,
     UNKNOWN_SECONDS,
     Estimates,
+    batches,
     bundled_costs_path,
     costs_document,
     load_estimates,
@@ -25,8 +29,13 @@ from theory.report.tasks import CheckTask, plan_tasks
 from theory.report.timings import FORMAT as TIMINGS_FORMAT
 
 
+@functools.cache
+def _case(name: str):
+    return load_case(name)
+
+
 def _task(*claims: str, case: str = "-") -> CheckTask:
-    return CheckTask(tuple(claims), None if case == "-" else load_case(case), 0, None, False)
+    return CheckTask(tuple(claims), None if case == "-" else _case(case), 0, None, False)
 
 
 def test_a_task_costs_the_sum_of_its_checks_and_unknown_checks_are_estimated() -> None:
@@ -38,15 +47,43 @@ def test_a_task_costs_the_sum_of_its_checks_and_unknown_checks_are_estimated() -
 
 @given(st.lists(st.floats(0, 100, allow_nan=False), min_size=1, max_size=30))
 def test_longest_first_is_a_stable_sort_by_decreasing_cost(costs: list[float]) -> None:
-    tasks = [_task(f"claim{i}") for i in range(len(costs))]
+    tasks = [(_task(f"claim{i}"),) for i in range(len(costs))]
     estimates = Estimates.of({(f"claim{i}", "-"): c for i, c in enumerate(costs)})
     ordered = longest_first(tasks, estimates)
-    assert sorted(ordered, key=lambda t: t.claims) == sorted(tasks, key=lambda t: t.claims)
-    seen = [estimates.task(t) for t in ordered]
+    assert sorted(ordered, key=lambda b: b[0].claims) == sorted(tasks, key=lambda b: b[0].claims)
+    seen = [estimates.task(b[0]) for b in ordered]
     assert seen == sorted(seen, reverse=True)
     for earlier, later in itertools.pairwise(ordered):
-        if estimates.task(earlier) == estimates.task(later):  # ties keep the report order
+        if estimates.task(earlier[0]) == estimates.task(later[0]):  # ties keep the report order
             assert tasks.index(earlier) < tasks.index(later)
+
+
+CASES = ("fig43-case-a", "fig43-case-b", "fig43-case-c", "fig43-case-d")
+
+
+@given(
+    st.lists(
+        st.tuples(st.sampled_from(("c1", "c2", "c3")), st.sampled_from(CASES), st.floats(0, 2)),
+        max_size=12,
+        unique_by=lambda row: row[:2],
+    )
+)
+def test_batches_hold_every_task_once_and_only_short_tasks_of_one_claim_together(rows) -> None:
+    tasks = [_task(claim, case=case) for claim, case, _ in rows]
+    estimates = Estimates.of({(claim, case): cost for claim, case, cost in rows})
+    scheduled = batches(tasks, estimates)
+    position = {(t.claims, t.case_name): i for i, t in enumerate(tasks)}
+    placed = [position[(t.claims, t.case_name)] for b in scheduled for t in b]
+    assert sorted(placed) == list(range(len(tasks)))  # every task once
+    for batch in scheduled:
+        if len(batch) > 1:
+            assert len({t.claims for t in batch}) == 1
+            assert all(estimates.task(t) < SMALL_SECONDS for t in batch)
+            assert sum(estimates.task(t) for t in batch) <= BATCH_SECONDS
+            order = [position[(t.claims, t.case_name)] for t in batch]
+            assert order == sorted(order)
+    costs = [sum(estimates.task(t) for t in b) for b in scheduled]
+    assert costs == sorted(costs, reverse=True)
 
 
 def test_the_previous_runs_timings_override_the_bundled_costs(tmp_path) -> None:
@@ -107,12 +144,23 @@ def test_the_report_is_the_same_whatever_the_order_of_its_tasks() -> None:
         seconds=None,
         figures=False,
     )
-    orders = [longest_first(planned, e) for e in (forward, backward)]
-    assert orders[0][0].case_name == orders[1][-1].case_name == "fig43-case-d"
-    assert orders[1][0].case_name == orders[0][-1].case_name == "ch5-example-1-wb"
+    orders = [batches(planned, e) for e in (forward, backward)]
+    assert orders[0][0][0].case_name == orders[1][-1][-1].case_name == "fig43-case-d"
+    assert orders[1][0][0].case_name == orders[0][-1][-1].case_name == "ch5-example-1-wb"
     runs = [
         run_claims(cases, seed=3, claims=claims, estimates=e) for e in (None, forward, backward)
     ]
     texts = {json.dumps([r.to_json() for r in run.records], sort_keys=True) for run in runs}
     assert len(texts) == 1
     assert runs[0].expectations == runs[1].expectations == runs[2].expectations
+
+
+def test_short_tasks_of_one_claim_share_a_batch_up_to_its_limit() -> None:
+    tasks = [_task("c1", case=c) for c in CASES] + [_task("c2", case="fig43-case-a")]
+    costs = {("c1", c): 0.2 for c in CASES} | {("c2", "fig43-case-a"): 0.2}
+    scheduled = batches(tasks, Estimates.of(costs))
+    sizes = sorted((len(b), b[0].claims[0]) for b in scheduled)
+    # 0.2 s each: the four c1 checks fit in one batch (0.8 s ≤ 1 s); c2 is another claim
+    assert sizes == [(1, "c2"), (4, "c1")]
+    heavy = batches(tasks, Estimates.of(dict.fromkeys(costs, SMALL_SECONDS)))
+    assert all(len(b) == 1 for b in heavy)

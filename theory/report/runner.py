@@ -33,18 +33,17 @@ from theory.core.case_file import Case, kind_spec
 from theory.core.claims import Claim, all_claims
 from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, evaluate, observations_from
-from theory.core.parallel import TaskRunner, engine
+from theory.core.parallel import Outcome, TaskRunner, engine
 from theory.core.verdicts import expectations_verdict
 from theory.report.canonical import canonical
 from theory.report.records import MODEL_CASE, RESULT_FIELDS, Record, derive_seed, paper_of, slug
-from theory.report.schedule import Estimates, longest_first
+from theory.report.schedule import Batch, Estimates, batches
 from theory.report.tasks import (
     CheckOutput,
-    CheckTask,
     TaskOutput,
     failed_task,
     plan_tasks,
-    run_task,
+    run_batch,
 )
 
 __all__ = [
@@ -198,8 +197,9 @@ def run_claims(
     runner : TaskRunner, optional
         An open engine (:func:`theory.core.parallel.engine`); default: this process, serially.
     estimates : Estimates, optional
-        Estimated costs of the checks: the tasks are handed to the engine longest first
-        (:func:`theory.report.schedule.longest_first`); default: in report order.
+        Estimated costs of the checks: the tasks are handed to the engine longest first, the
+        short ones of a claim together (:func:`theory.report.schedule.batches`); default: one
+        by one in report order.
 
     Returns
     -------
@@ -212,11 +212,10 @@ def run_claims(
         (c, case) for case in cases for c in claims if case.kind in c.kinds
     ]
     tasks = plan_tasks(checks, seed=seed, seconds=seconds, figures=figure_dir is not None)
-    if estimates is not None:
-        tasks = longest_first(tasks, estimates)
+    scheduled = [(t,) for t in tasks] if estimates is None else batches(tasks, estimates)
     began = time.time()
     with _opened(runner) as engine_runner:
-        outputs = _run_tasks(engine_runner, tasks, {c.id: c for c in claims}, progress)
+        outputs = _run_tasks(engine_runner, scheduled, {c.id: c for c in claims}, progress)
     rows, skipped, timings = _collect(checks, cases, outputs, figure_dir, began)
     rows.sort(key=lambda row: (row[1].paper, row[1].id, row[0]))
     records = tuple(r for _, r in rows)
@@ -279,25 +278,37 @@ def _opened(runner: TaskRunner | None) -> Iterator[TaskRunner]:
 
 def _run_tasks(
     runner: TaskRunner,
-    tasks: list[CheckTask],
+    scheduled: list[Batch],
     claims: dict[str, Claim],
     progress: ProgressHook | None,
 ) -> list[TaskOutput]:
-    """Every task's output, in task order; a lost task's checks become inconclusive records."""
-    outputs: list[TaskOutput | None] = [None] * len(tasks)
+    """Every task's output; a lost batch's checks become inconclusive records."""
+    outputs: list[TaskOutput] = []
     done = 0
-    for outcome in runner.completed(run_task, tasks):
-        task = tasks[outcome.index]
-        output = outcome.value
-        if outcome.error is not None or not isinstance(output, TaskOutput):
-            error = outcome.error or TypeError(f"the task returned a {type(output).__name__}")
-            output = failed_task(task, claims, error)
-        outputs[outcome.index] = output
-        done += len(task.claims)
+    for outcome in runner.completed(run_batch, scheduled):
+        batch = scheduled[outcome.index]
+        outputs.extend(_outputs(batch, outcome, claims))
+        done += sum(len(task.claims) for task in batch)
         if progress is not None:
-            where = "model" if task.case is None else task.case_name
-            progress(done, f"{task.claims[-1]} on {where}")
-    return [o for o in outputs if o is not None]
+            last = batch[-1]
+            progress(
+                done, f"{last.claims[-1]} on {'model' if last.case is None else last.case_name}"
+            )
+    return outputs
+
+
+def _outputs(batch: Batch, outcome: Outcome, claims: dict[str, Claim]) -> list[TaskOutput]:
+    """The batch's outputs, or each task's failure when the batch was lost or returned junk."""
+    value = outcome.value
+    if (
+        outcome.error is None
+        and isinstance(value, tuple)
+        and len(value) == len(batch)
+        and all(isinstance(output, TaskOutput) for output in value)
+    ):
+        return list(value)
+    error = outcome.error or TypeError(f"the task returned a {type(value).__name__}")
+    return [failed_task(task, claims, error) for task in batch]
 
 
 def _with_figures(check: CheckOutput, figure_dir: Path | None) -> tuple[Record, ...]:

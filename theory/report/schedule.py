@@ -1,4 +1,4 @@
-"""The order in which the report hands its tasks to the engine: longest first.
+"""How the report hands its tasks to the engine: longest first, short ones of a claim together.
 
 A few checks cost tens of seconds (the particle filter's online learning, the pursuit and TDOA
 closed loops) and most cost milliseconds. Handed to the workers in report order, a long task that
@@ -11,6 +11,9 @@ cost: the CPU seconds each check took
 2. in the reference run bundled with trackcert (``check_costs.json`` beside this module,
    written by ``python -m benchmarks.bench_report --write-costs``), else
 3. on average over the cases where the claim was measured, else :data:`UNKNOWN_SECONDS`.
+
+Short checks of one claim are also batched into one engine task (:func:`batches`), so that one
+worker, not every worker, pays the first run of their code.
 
 The order changes when the work is done, never what it computes: every check is seeded from its
 identity and the report is sorted afterwards (:mod:`theory.report.runner`), so ``report.json`` is
@@ -31,9 +34,13 @@ from theory.report.tasks import CheckTask
 from theory.report.timings import FORMAT as TIMINGS_FORMAT
 
 __all__ = [
+    "BATCH_SECONDS",
     "COSTS_FORMAT",
+    "SMALL_SECONDS",
     "UNKNOWN_SECONDS",
+    "Batch",
     "Estimates",
+    "batches",
     "bundled_costs_path",
     "costs_document",
     "load_estimates",
@@ -45,6 +52,16 @@ COSTS_FORMAT = "trackcert-check-costs/1"
 
 UNKNOWN_SECONDS = 0.05
 """Estimate of a check nothing is known about (a new claim): about the median check."""
+
+SMALL_SECONDS = 0.3
+"""A one-claim task estimated under this many seconds is batched with others of its claim."""
+
+BATCH_SECONDS = 1.0
+"""The most a batch of short tasks is estimated to take (keeps the last tasks short, so that
+the workers finish together)."""
+
+Batch = tuple[CheckTask, ...]
+"""Tasks run one after the other as one engine task (:func:`theory.report.tasks.run_batch`)."""
 
 
 @dataclass(frozen=True)
@@ -82,21 +99,65 @@ class Estimates:
         return sum(self.check(claim, task.case_name) for claim in task.claims)
 
 
-def longest_first(tasks: Sequence[CheckTask], estimates: Estimates) -> list[CheckTask]:
-    """``tasks`` sorted by decreasing estimated cost (ties keep their order).
+def batches(tasks: Sequence[CheckTask], estimates: Estimates) -> list[Batch]:
+    """The engine's tasks, longest first: every task alone, but for the short ones of one claim,
+    which travel together (up to :data:`BATCH_SECONDS` a batch).
+
+    A claim's short checks (under :data:`SMALL_SECONDS` each, most of the report's) cost more the
+    first time a process runs them (imports inside functions, caches, solver set-up: +37 % on the
+    checks under 0.05 s with two workers, docs/parallel.md); together, one worker pays that once
+    for them, and the engine handles a few dozen tasks instead of hundreds.
 
     Parameters
     ----------
     tasks : sequence of CheckTask
-        The report's tasks (:func:`theory.report.tasks.plan_tasks`).
+        The report's tasks (:func:`theory.report.tasks.plan_tasks`), in report order.
     estimates : Estimates
         Their costs.
 
     Returns
     -------
-    list of CheckTask
+    list of tuple of CheckTask
+        Every task once, in batches sorted by :func:`longest_first`; within a batch, report
+        order.
     """
-    return sorted(tasks, key=lambda task: -estimates.task(task))
+    grouped: list[list[CheckTask]] = []
+    filling: dict[str, int] = {}  # claim id → its batch still being filled
+    for task in tasks:
+        cost = estimates.task(task)
+        if len(task.claims) > 1 or cost >= SMALL_SECONDS:
+            grouped.append([task])
+            continue
+        claim = task.claims[0]
+        open_batch = filling.get(claim)
+        if open_batch is not None and _cost(grouped[open_batch], estimates) + cost <= BATCH_SECONDS:
+            grouped[open_batch].append(task)
+        else:
+            filling[claim] = len(grouped)
+            grouped.append([task])
+    return longest_first([tuple(batch) for batch in grouped], estimates)
+
+
+def longest_first(items: Sequence[Batch], estimates: Estimates) -> list[Batch]:
+    """``items`` sorted by decreasing estimated cost (the sum over their tasks; ties keep their
+    order).
+
+    Parameters
+    ----------
+    items : sequence of tuple of CheckTask
+        Batches of tasks.
+    estimates : Estimates
+        Their costs.
+
+    Returns
+    -------
+    list of tuple of CheckTask
+    """
+    return sorted(items, key=lambda batch: -_cost(batch, estimates))
+
+
+def _cost(batch: Sequence[CheckTask], estimates: Estimates) -> float:
+    return sum(estimates.task(task) for task in batch)
 
 
 def bundled_costs_path() -> Path:

@@ -51,6 +51,7 @@ __all__ = [
     "failed_task",
     "plan_tasks",
     "process_name",
+    "run_batch",
     "run_task",
     "worker_modules",
 ]
@@ -209,6 +210,23 @@ def run_task(task: CheckTask) -> TaskOutput:
         checks = tuple(_check(claim_id, task, cache, root) for claim_id in task.claims)
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
     return TaskOutput(checks, process_name(), peak)
+
+
+def run_batch(batch: Sequence[CheckTask]) -> tuple[TaskOutput, ...]:
+    """Run the tasks of ``batch`` one after the other, each as :func:`run_task` does (one engine
+    task: the short checks of one claim travel together, :func:`theory.report.schedule.batches`).
+
+    Parameters
+    ----------
+    batch : sequence of CheckTask
+        The tasks.
+
+    Returns
+    -------
+    tuple of TaskOutput
+        One per task, in order.
+    """
+    return tuple(run_task(task) for task in batch)
 
 
 def process_name() -> str:
