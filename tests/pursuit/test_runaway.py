@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -151,3 +152,17 @@ def test_runaway_reason_fires_exactly_above_the_threshold(instant) -> None:
     assert bool(reason) == bool(errors.max() > factor * loop.scale)
     if reason:
         assert f"tracker {int(np.argmax(errors)) + 1}'s" in reason
+
+
+@pytest.mark.parametrize("on", ["target", "estimate"])
+def test_a_tracker_on_the_target_or_its_estimate_has_no_bearing_error(on: str) -> None:
+    """The bearing is the angle between two rays; a tracker at either end has none to state."""
+    loop = LOOPS["pursuit-table1-n1"]
+    truth = np.zeros(2 * loop.dim)
+    x_hat = np.full((loop.n, 2 * loop.dim), 10 * loop.scale)
+    positions = np.zeros((loop.n, loop.dim)) if on == "target" else x_hat[:, : loop.dim].copy()
+    information = np.broadcast_to(np.eye(2 * loop.dim), (loop.n, 2 * loop.dim, 2 * loop.dim))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        reason = runaway_reason(loop, positions, x_hat, truth, information, 5.0)
+    assert "bearing error undefined" in reason and "nan" not in reason

@@ -775,15 +775,23 @@ def runaway_reason(
     if not errors[worst] > factor * loop.scale:
         return ""
     to_estimate, to_target = x_hat[worst, :d] - positions[worst], truth[:d] - positions[worst]
-    cosine = to_estimate @ to_target / (np.linalg.norm(to_estimate) * np.linalg.norm(to_target))
-    bearing = math.degrees(math.acos(min(1.0, max(-1.0, float(cosine)))))
     smallest = float(np.linalg.eigvalsh(information[worst])[0])
     return (
         f"runaway: tracker {worst + 1}'s localization error {errors[worst]:.4g} m exceeds "
-        f"runaway_factor {factor:g} × {loop.scale:g} m (the DEKF lost the target: bearing error "
-        f"{bearing:.0f}°, estimated range {np.linalg.norm(to_estimate):.4g} m, "
-        f"λ_min(Ω) = {smallest:.3g})"
+        f"runaway_factor {factor:g} × {loop.scale:g} m (the DEKF lost the target: "
+        f"{_bearing_error(to_estimate, to_target)}, estimated range "
+        f"{np.linalg.norm(to_estimate):.4g} m, λ_min(Ω) = {smallest:.3g})"
     )
+
+
+def _bearing_error(to_estimate: np.ndarray, to_target: np.ndarray) -> str:
+    """The angle between the tracker's rays to its estimate and to the target, as text (it has
+    none when the tracker sits on either point)."""
+    lengths = float(np.linalg.norm(to_estimate) * np.linalg.norm(to_target))
+    if lengths == 0.0:
+        return "bearing error undefined (the tracker is at the target or at its estimate)"
+    cosine = float(to_estimate @ to_target) / lengths
+    return f"bearing error {math.degrees(math.acos(min(1.0, max(-1.0, cosine)))):.0f}°"
 
 
 def _run(
