@@ -217,24 +217,25 @@ def _read(path: Path) -> Any:
 
 def _costs(document: Any) -> dict[tuple[str, str], float]:
     """The costs of a ``check_costs.json`` document (nothing if it is not one)."""
-    if not isinstance(document, dict) or document.get("format") != COSTS_FORMAT:
-        return {}
-    entries = document.get("seconds")
-    if not isinstance(entries, dict):
-        return {}
+    entries = _part(document, COSTS_FORMAT, "seconds", dict)
     pairs = ((key.partition(" on "), value) for key, value in entries.items())
     return _valid((claim, case, value) for (claim, _, case), value in pairs)
 
 
 def _timings(document: Any) -> dict[tuple[str, str], float]:
     """The checks' CPU seconds of a ``timings.json`` document (nothing if it is not one)."""
-    if not isinstance(document, dict) or document.get("format") != TIMINGS_FORMAT:
-        return {}
-    checks = document.get("checks")
-    if not isinstance(checks, list):
-        return {}
-    rows = (c for c in checks if isinstance(c, dict))
+    rows = (c for c in _part(document, TIMINGS_FORMAT, "checks", list) if isinstance(c, dict))
     return _valid((c.get("id"), c.get("case"), c.get("cpu_seconds")) for c in rows)
+
+
+def _part(document: Any, tag: str, key: str, kind: type) -> Any:
+    """``document[key]`` when ``document`` is a mapping of format ``tag`` and that is a ``kind``,
+    else an empty ``kind``."""
+    if isinstance(document, dict) and document.get("format") == tag:
+        part = document.get(key)
+        if isinstance(part, kind):
+            return part
+    return kind()
 
 
 def _valid(rows: Iterable[tuple[Any, Any, Any]]) -> dict[tuple[str, str], float]:
