@@ -57,6 +57,8 @@ def test_two_workers_write_the_same_report(serial_report, tmp_path) -> None:
     timings = json.loads((tmp_path / "timings.json").read_text())
     assert timings["workers"] == 2 and len(timings["worker_peak_rss"]) >= 1
     seen = {(c["id"], c["case"]) for c in timings["checks"]}
+    starts = [c["started_seconds"] for c in timings["checks"]]
+    assert all(0 <= s <= timings["wall_seconds"] for s in starts)  # each worker's timeline
     document = json.loads((tmp_path / "report.json").read_text())
     assert {(c["id"], c["case"]) for c in document["claims"]} <= seen
     assert "wall_seconds" not in (tmp_path / "report.json").read_text()

@@ -291,9 +291,8 @@ def _run_tasks(
         done += sum(len(task.claims) for task in batch)
         if progress is not None:
             last = batch[-1]
-            progress(
-                done, f"{last.claims[-1]} on {'model' if last.case is None else last.case_name}"
-            )
+            where = "model" if last.case is None else last.case_name
+            progress(done, f"{last.claims[-1]} on {where}")
     return outputs
 
 
