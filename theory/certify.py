@@ -1,9 +1,8 @@
 """Every certificate a case supports, from the domain of its kind (DESIGN.md, *Certificates*).
 
-A domain offers the certificates of its case kind from a module named ``certificates.py`` or
-``*_certificates.py`` (:mod:`theory.core.discovery`), by decorating a builder
-``(case, seed) -> (certificates, reasons)`` with :func:`register_certifier`; ``reasons`` says why
-a certificate the kind could have is missing. Today:
+A domain lists the builders of its kind's certificates, ``(case, seed) -> (certificates,
+reasons)``, in its registry (``CERTIFIERS``, read by :func:`theory.registry.certifiers`);
+``reasons`` says why a certificate the kind could have is missing. Today:
 
 * ``tdoa``: ``generic-rank`` of the network observability matrix and of each agent's block
   column (:mod:`theory.tdoa.case_certificates`);
@@ -19,66 +18,14 @@ A case whose property is decided false raises :class:`~theory.core.errors.Proper
 
 from __future__ import annotations
 
-import importlib
 import json
-from collections.abc import Callable
 from typing import Any
 
 from theory.core.case_file import Case
-from theory.core.claims import DOCUMENT_KEY, ClaimResult, NotApplicable
-from theory.core.discovery import role_modules
-from theory.core.errors import InconclusiveError, PropertyFails, SolverError
+from theory.core.errors import InconclusiveError, SolverError
+from theory.registry import certifiers
 
-__all__ = [
-    "Certified",
-    "case_certificates",
-    "certificate_bundle",
-    "certificate_results",
-    "certificates_or_inconclusive",
-    "certified_result",
-    "certifiers",
-    "register_certifier",
-]
-
-Certified = tuple[list[dict[str, Any]], list[str]]
-"""What a certifier returns: the certificates, and why any the kind could have is missing."""
-
-Certifier = Callable[[Case, int], Certified]
-
-_CERTIFIERS: dict[str, list[Certifier]] = {}
-
-
-def register_certifier(kind: str) -> Callable[[Certifier], Certifier]:
-    """Decorator registering a builder of the certificates of ``kind`` cases.
-
-    Parameters
-    ----------
-    kind : str
-        The case kind, e.g. ``tdoa``; a kind may have several certifiers (run in turn).
-
-    Returns
-    -------
-    callable
-        The decorator; it returns the builder unchanged.
-    """
-
-    def decorate(build: Certifier) -> Certifier:
-        _CERTIFIERS.setdefault(kind, []).append(build)
-        return build
-
-    return decorate
-
-
-def certifiers() -> dict[str, tuple[Certifier, ...]]:
-    """Case kind → its certifiers (imports every certificate module first), sorted by kind.
-
-    Returns
-    -------
-    dict
-    """
-    for module in role_modules("certificates"):
-        importlib.import_module(module)
-    return dict(sorted((kind, tuple(builds)) for kind, builds in _CERTIFIERS.items()))
+__all__ = ["case_certificates", "certificate_bundle"]
 
 
 def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:
@@ -154,104 +101,3 @@ def certificate_bundle(case: Case, *, seed: int = 0) -> dict[str, Any]:
     if not proofs_check.check_certificate(proofs_check.parse.loads(text)).valid:
         raise SolverError("the written certificate did not pass proofs_check (a bug)")
     return document
-
-
-def certificates_or_inconclusive(
-    claim_id: str, case: Case, make: Callable[[], Certified] | None = None
-) -> list[dict] | ClaimResult:
-    """The case's certificates, or the ``inconclusive`` result of ``claim_id`` saying why none.
-
-    Parameters
-    ----------
-    claim_id : str
-        The certificate claim asking.
-    case : Case
-        A loaded case.
-    make : callable, optional
-        Builds ``(certificates, reasons)`` from results the caller already computed (for
-        example the case's S-detectability decision); by default every certifier of the kind
-        runs (:func:`case_certificates`).
-
-    Returns
-    -------
-    list of dict or ClaimResult
-
-    Raises
-    ------
-    NotApplicable
-        If the property to certify is decided false (there is nothing to certify).
-    """
-    try:
-        return _nonempty(case, *make()) if make is not None else case_certificates(case)
-    except InconclusiveError as error:
-        return ClaimResult(claim_id, case.name, "exact", "inconclusive", message=str(error))
-    except PropertyFails as error:
-        raise NotApplicable(str(error)) from error
-
-
-def certificate_results(
-    claim_id: str,
-    case: Case,
-    evidence: Callable[[dict], dict],
-    make: Callable[[], Certified] | None = None,
-) -> list[ClaimResult]:
-    """One ``verified`` result of ``claim_id`` per certificate, carrying it as a document.
-
-    Parameters
-    ----------
-    claim_id : str
-        The certificate claim.
-    case : Case
-        A loaded case.
-    evidence : callable
-        ``evidence(certificate)`` → the evidence shown beside the document.
-    make : callable, optional
-        As in :func:`certificates_or_inconclusive`.
-
-    Returns
-    -------
-    list of ClaimResult
-        Or the one ``inconclusive`` result of :func:`certificates_or_inconclusive`.
-    """
-    certs = certificates_or_inconclusive(claim_id, case, make)
-    if isinstance(certs, ClaimResult):
-        return [certs]
-    return [
-        certified_result(
-            claim_id, case, evidence(cert), document=cert, message=cert["claim"]["statement"]
-        )
-        for cert in certs
-    ]
-
-
-def certified_result(
-    claim_id: str, case: Case, evidence: dict[str, Any], *, document: dict, message: str
-) -> ClaimResult:
-    """The ``verified`` result of a certificate claim, carrying ``document`` for the report.
-
-    Parameters
-    ----------
-    claim_id : str
-        The certificate claim.
-    case : Case
-        The case certified.
-    evidence : dict
-        Shown beside the document.
-    document : dict
-        The certificate (or bundle) the report writes and re-checks with ``proofs_check``.
-    message : str
-        What it certifies, in one sentence.
-
-    Returns
-    -------
-    ClaimResult
-        Method ``exact``: the document was accepted by ``proofs_check`` when it was built.
-    """
-    return ClaimResult(
-        claim_id,
-        case.name,
-        "exact",
-        "verified",
-        evidence={**evidence, DOCUMENT_KEY: document},
-        message=message,
-    )

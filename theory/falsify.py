@@ -7,74 +7,28 @@ ready-to-run case file. A property stating a claim the papers get wrong is regis
 ``expected_to_hold=False``: the default budget must find its counterexample (tests check this);
 a corrected property must survive.
 
-A module registers properties iff its file name is ``properties.py`` or ends in
-``_properties.py`` (:mod:`theory.core.discovery`); :func:`all_properties` imports every such module.
+Each domain lists its properties in its registry (``PROPERTIES``, read by
+:func:`theory.registry.all_properties`).
 """
 
 from __future__ import annotations
 
-import importlib
 import random
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import partial
 from typing import Any
 
 from hypothesis import HealthCheck, Phase, find, settings
-from hypothesis import strategies as st
 from hypothesis.errors import NoSuchExample
 
-from theory.core.discovery import role_modules
+from theory.core.claims import Property
 from theory.core.parallel import TaskRunner, engine
+from theory.registry import properties_for
 
-__all__ = [
-    "DEFAULT_EXAMPLES",
-    "FalsifyResult",
-    "Property",
-    "all_properties",
-    "falsify",
-    "falsify_each",
-    "properties_for",
-    "register_property",
-]
+__all__ = ["DEFAULT_EXAMPLES", "FalsifyResult", "falsify", "falsify_each"]
 
 DEFAULT_EXAMPLES = 200
-
-_PROPERTIES: dict[str, Property] = {}
-
-
-@dataclass(frozen=True)
-class Property:
-    """One wording of a claim, ready for a counterexample search.
-
-    Attributes
-    ----------
-    id : str
-        ``<claim id>/<wording>``, e.g. ``seed000.thm4.2.3/paper``.
-    claim : str
-        The registry claim id it belongs to.
-    wording : str
-        ``paper`` or ``corrected``.
-    statement : str
-        The property in one sentence.
-    examples : SearchStrategy
-        Where to search.
-    holds : callable
-        ``holds(example) -> bool``.
-    to_case : callable
-        ``to_case(example) -> dict``: a case file (plain data) reproducing the example.
-    expected_to_hold : bool
-        False for a paper wording known to be wrong.
-    """
-
-    id: str
-    claim: str
-    wording: str
-    statement: str
-    examples: st.SearchStrategy[Any]
-    holds: Callable[[Any], bool]
-    to_case: Callable[[Any], dict[str, Any]]
-    expected_to_hold: bool = True
 
 
 @dataclass(frozen=True)
@@ -105,39 +59,6 @@ class FalsifyResult:
     def found(self) -> bool:
         """Whether a counterexample was found."""
         return self.case is not None
-
-
-def register_property(prop: Property) -> Property:
-    """Add ``prop`` to the registry (ids must be unique)."""
-    if prop.wording not in ("paper", "corrected"):
-        raise ValueError(f"wording {prop.wording!r} is not 'paper' or 'corrected'")
-    if prop.id in _PROPERTIES:
-        raise ValueError(f"property {prop.id!r} registered twice")
-    _PROPERTIES[prop.id] = prop
-    return prop
-
-
-def all_properties() -> list[Property]:
-    """Every registered property, sorted by id (imports every property module first)."""
-    for module in role_modules("properties"):
-        importlib.import_module(module)
-    return sorted(_PROPERTIES.values(), key=lambda p: p.id)
-
-
-def properties_for(name: str) -> list[Property]:
-    """Properties named ``name``: a property id, or a claim id (all its wordings).
-
-    Raises
-    ------
-    KeyError
-        Listing the known names when ``name`` matches nothing.
-    """
-    props = all_properties()
-    chosen = [p for p in props if name in (p.id, p.claim)]
-    if not chosen:
-        known = sorted({p.claim for p in props} | {p.id for p in props})
-        raise KeyError(f"no property or claim named {name!r}; known: {known}")
-    return chosen
 
 
 def falsify(prop: Property, *, examples: int = DEFAULT_EXAMPLES, seed: int = 0) -> FalsifyResult:

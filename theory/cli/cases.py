@@ -6,7 +6,8 @@ import typer
 from rich.table import Table
 
 from theory.cli.common import console, print_json, reports_errors
-from theory.core.case_file import bundled_cases, load_case
+from theory.core.case_file import bundled_cases
+from theory.kinds import load_case
 
 __all__ = ["register"]
 

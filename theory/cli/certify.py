@@ -18,8 +18,8 @@ import typer
 import proofs_check.__main__
 from proofs_check.deadline import DEFAULT_SECONDS
 from theory.cli.common import COMMAND_LINE, check_output, console, print_json, reports_errors
-from theory.core.case_file import load_case
 from theory.core.errors import CaseError
+from theory.kinds import load_case
 
 __all__ = ["register", "write_atomically"]
 

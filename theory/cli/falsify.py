@@ -21,13 +21,8 @@ from theory.core.errors import CaseError
 from theory.core.limits import check_count
 from theory.core.parallel import default_workers, engine
 from theory.core.verdicts import exit_code
-from theory.falsify import (
-    DEFAULT_EXAMPLES,
-    FalsifyResult,
-    all_properties,
-    falsify_each,
-    properties_for,
-)
+from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, falsify_each
+from theory.registry import all_properties, properties_for
 
 __all__ = ["register"]
 

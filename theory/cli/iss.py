@@ -14,8 +14,8 @@ import typer
 from rich.table import Table
 
 from theory.cli.common import case_argument, console, finish, json_option, reports_errors
-from theory.core.case_file import load_case
 from theory.core.verdicts import exit_code
+from theory.kinds import load_case
 
 __all__ = ["register"]
 

@@ -26,10 +26,11 @@ from theory.cli.common import (
     scheduler_option,
     workers_option,
 )
-from theory.core.case_file import Case, load_case
+from theory.core.case_file import Case
 from theory.core.errors import CaseError
 from theory.core.limits import check_count
 from theory.core.verdicts import exit_code
+from theory.kinds import load_case
 
 __all__ = ["register", "run_pf_case"]
 

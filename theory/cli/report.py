@@ -21,9 +21,10 @@ from theory.cli.common import (
     scheduler_option,
     workers_option,
 )
-from theory.core.case_file import bundled_cases, load_case, resolve_case_path
+from theory.core.case_file import bundled_cases, resolve_case_path
 from theory.core.parallel import engine
 from theory.core.verdicts import exit_code
+from theory.kinds import load_case
 from theory.report.build import build_report, check_count, choose_claims
 from theory.report.canonical import dumps
 from theory.report.runner import RunResult

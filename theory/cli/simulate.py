@@ -1,7 +1,7 @@
 """``trackcert simulate CASE``: closed-loop simulation, data files and figures (DESIGN.md).
 
-A shell over :func:`theory.simulate.simulate_case` with the case kind's simulator
-(:func:`theory.simulate.simulator_for`: ``kind: tdoa-sim`` in :mod:`theory.tdoa.sim_summary`,
+A shell over :func:`theory.sim.simulate.simulate_case` with the case kind's simulator
+(:func:`theory.kinds.simulator_for`: ``kind: tdoa-sim`` in :mod:`theory.tdoa.sim_summary`,
 ``kind: dkf`` in :mod:`theory.consensus.dkf_report`, ``kind: pursuit`` in
 :mod:`theory.pursuit.simulation`); ``kind: pf`` cases are handed to
 :func:`theory.cli.pf.run_pf_case`, as ``trackcert pf`` runs them. Exit code
@@ -27,10 +27,10 @@ from theory.cli.common import (
     scheduler_option,
     workers_option,
 )
-from theory.core.case_file import load_case
 from theory.core.errors import CaseError
 from theory.core.limits import check_count
 from theory.core.verdicts import exit_code
+from theory.kinds import load_case
 
 __all__ = ["check_options", "register"]
 
@@ -69,7 +69,8 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Simulate the closed loop; write runs.npz, CSV tables, PNG figures and summary.json."""
         from theory.core.parallel import default_workers
-        from theory.simulate import simulate_case, simulator_for
+        from theory.kinds import simulator_for
+        from theory.sim.simulate import simulate_case
 
         check_options(output, runs, steps)
         loaded = load_case(case)

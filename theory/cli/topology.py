@@ -12,8 +12,9 @@ import typer
 from rich.table import Table
 
 from theory.cli.common import case_argument, console, finish, json_option, reports_errors
-from theory.core.case_file import Case, load_case
+from theory.core.case_file import Case
 from theory.core.verdicts import exit_code
+from theory.kinds import load_case
 from theory.tdoa.time_varying import TrajectoryResult
 from theory.tdoa.topology import TopologyResult
 from theory.tdoa.topology_report import TopologyReport, topology_report

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.core.case_file import register_kind
+from theory.core.case_file import KindSpec
 from theory.core.errors import CaseError
 from theory.core.limits import check_count, check_length
 from theory.core.tolerances import WEIGHT_SUM_TOL
@@ -36,7 +36,7 @@ from theory.core.validation import (
     row_stochastic,
 )
 
-__all__ = ["ORDERS", "DkfSpec", "parse_dkf"]
+__all__ = ["DKF", "ORDERS", "DkfSpec", "parse_dkf"]
 
 FIELDS = ("A", "C", "W", "Q", "R", "L", "order")
 ORDERS = ("consensus-then-filter", "filter-then-consensus")
@@ -173,11 +173,5 @@ def _gain(raw: object, field: str, n: int, C_i: np.ndarray) -> np.ndarray:
     return finite_matrix(raw, field, rows=n, cols=p)
 
 
-register_kind(
-    "dkf",
-    parse_dkf,
-    expect_keys=EXPECT_KEYS,
-    tolerance_keys=TOLERANCE_KEYS,
-    observe="theory.consensus.dkf_report:observe_dkf",
-    simulate="theory.consensus.dkf_report:dkf_simulator",
-)
+DKF = KindSpec("dkf", parse_dkf, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+"""The ``dkf`` case kind."""

@@ -4,7 +4,7 @@
 of kind ``dkf`` and judges the case's ``expect`` block with :mod:`theory.core.expectations`; the
 command only prints it. The kind's observer :func:`observe_dkf` reads the same analysis, so the
 report's ``case.expect.dkf`` claim and the command agree on every expectation.
-:func:`dkf_simulator` is the kind's simulator (:mod:`theory.simulate`,
+:func:`dkf_simulator` is the kind's simulator (:mod:`theory.sim.simulate`,
 :mod:`theory.consensus.simulation`).
 
 The property decided (seed 000 Def. 5.2.4): S-detectability, True/False, or None when the LMI
@@ -23,7 +23,7 @@ from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, get_claim
 from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, Observed, judge
-from theory.simulate import Finished, Simulator
+from theory.sim.simulate import Finished, Simulator
 
 __all__ = [
     "DkfReport",
@@ -180,7 +180,7 @@ def dkf_report(
 
 
 def dkf_simulator(case: Case, steps: int | None = None) -> Simulator:
-    """The simulator of ``case`` for :func:`theory.simulate.simulate_case`.
+    """The simulator of ``case`` for :func:`theory.sim.simulate.simulate_case`.
 
     Parameters
     ----------

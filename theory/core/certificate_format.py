@@ -13,11 +13,13 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from fractions import Fraction
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 import proofs_check
+from theory.core.claims import DOCUMENT_KEY, ClaimResult, NotApplicable
+from theory.core.errors import InconclusiveError, PropertyFails
 from theory.core.rationalize import (
     PRECISIONS,
     RationalizationError,
@@ -26,12 +28,33 @@ from theory.core.rationalize import (
     fraction_strings,
 )
 
-__all__ = ["FORMAT", "bundle", "checked", "envelope", "rational_bound", "rounded", "strings"]
+__all__ = [
+    "FORMAT",
+    "Certified",
+    "Certifier",
+    "bundle",
+    "certificate_results",
+    "certified_result",
+    "checked",
+    "envelope",
+    "rational_bound",
+    "rounded",
+    "strings",
+]
 
 FORMAT = proofs_check.FORMAT
 """The format version every certificate carries."""
 
+if TYPE_CHECKING:
+    from theory.core.case_file import Case
+
 Matrix = list[list[Fraction]]
+
+Certified = tuple[list[dict[str, Any]], list[str]]
+"""What a certifier returns: the certificates, and why any the kind could have is missing."""
+
+Certifier = Callable[["Case", int], Certified]
+"""``build(case, seed)`` → the certificates of a case (each accepted by ``proofs_check``)."""
 
 
 def envelope(
@@ -187,3 +210,39 @@ def rounded(
         "lmi_margin": f"{lmi_margin:g}",
     }
     return cert
+
+
+def certificate_results(
+    case: Case, make: Callable[[], Certified], evidence: Callable[[dict], dict]
+) -> list[ClaimResult]:
+    """One ``verified`` result per certificate ``make()`` builds for ``case``, as a document.
+
+    ``evidence(certificate)`` is shown beside the document. No certificate at all gives one
+    ``inconclusive`` result listing the reasons.
+
+    Raises
+    ------
+    NotApplicable
+        If the property to certify is decided false (there is nothing to certify).
+    """
+    try:
+        certs, reasons = make()
+    except InconclusiveError as error:
+        return [ClaimResult("inconclusive", "exact", message=str(error))]
+    except PropertyFails as error:
+        raise NotApplicable(str(error)) from error
+    if not certs:
+        why = f"no certificate for {case.name}: " + "; ".join(reasons)
+        return [ClaimResult("inconclusive", "exact", message=why)]
+    return [
+        certified_result(evidence(cert), document=cert, message=cert["claim"]["statement"])
+        for cert in certs
+    ]
+
+
+def certified_result(evidence: dict[str, Any], *, document: dict, message: str) -> ClaimResult:
+    """The ``verified`` result of a certificate claim, carrying ``document`` for the report
+    (method ``exact``: the document was accepted by ``proofs_check`` when it was built)."""
+    return ClaimResult(
+        "verified", "exact", evidence={**evidence, DOCUMENT_KEY: document}, message=message
+    )

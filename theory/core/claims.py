@@ -1,117 +1,113 @@
-"""The claim registry: every check the suite can run, registered once (DESIGN.md).
+"""The claim protocol: a check is ``check(case, ctx) -> list[ClaimResult]``, registered once.
 
-A :class:`Claim` has a stable id (``seed000.eq4.20``), the source it comes from, a one-line
-statement and the case kinds it applies to. Running it on a case returns a :class:`ClaimResult`
-in the closed verdict vocabulary :data:`STATUSES` and method vocabulary :data:`METHODS`. The CLI
-and the report consume these objects; nothing prints its own verdicts outside them.
-
-Modules register their claims at import time with :func:`register`. A module registers claims
-iff its file name is ``claims.py`` or ends in ``_claims.py`` (:mod:`theory.core.discovery`);
-:func:`all_claims` imports every such module first (:func:`claim_modules`), so the registry is
-complete without a hand-kept list.
+A :class:`Claim` has a stable id (``seed000.eq4.20``), its source, a one-line statement and the
+case kinds it applies to. Each module of a domain collects its claims in a :class:`ClaimSet`
+(``claims = ClaimSet()``, ``@claims.register(...)``); the domain's ``registry.py`` lists those sets
+and :mod:`theory.registry` lists the domains. :meth:`Claim.run` stamps the claim id and the case
+name on every result, so a check never types its own id.
 """
 
 from __future__ import annotations
 
-import importlib
-import inspect
-from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any
+from collections.abc import Callable, Hashable, Iterator
+from dataclasses import dataclass, field, replace
+from enum import StrEnum
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, TypeVar
 
-from theory.core.discovery import role_modules
+if TYPE_CHECKING:
+    from hypothesis.strategies import SearchStrategy
+
+    from theory.core.case_file import Case
+    from theory.core.parallel import TaskRunner
 
 __all__ = [
     "DOCUMENT_KEY",
-    "METHODS",
-    "STATUSES",
+    "MODEL_CASE",
     "Claim",
     "ClaimResult",
+    "ClaimSet",
+    "Context",
+    "Method",
     "NotApplicable",
-    "accepts",
-    "all_claims",
-    "applicable_results",
-    "claim_modules",
-    "get_claim",
-    "register",
+    "Property",
+    "RunCache",
+    "Status",
+    "status_of",
 ]
 
-STATUSES = ("verified", "refuted", "corrected", "inconclusive")
-"""verified: the claim holds; refuted: it fails (with a counterexample in the evidence);
-corrected: the paper's wording fails but the corrected statement in the evidence holds;
-inconclusive: a margin lies inside tolerance or a solver failed (the evidence says which)."""
+T = TypeVar("T")
 
-METHODS = ("symbolic", "exact-random", "numeric", "lmi", "simulation", "exact", "none")
-"""How a result was reached; ``none`` marks a check that failed to run (the report's record of
-the failure, always ``inconclusive``)."""
+
+class Status(StrEnum):
+    """The verdict vocabulary of a result (its value is what report.json records)."""
+
+    VERIFIED = "verified"  # the claim holds
+    REFUTED = "refuted"  # it fails, with a counterexample in the evidence
+    CORRECTED = "corrected"  # the paper's wording fails, the corrected statement holds
+    INCONCLUSIVE = "inconclusive"  # a margin lies inside tolerance or a solver failed
+
+
+class Method(StrEnum):
+    """How a result was reached; ``none`` marks a check that failed to run."""
+
+    SYMBOLIC = "symbolic"
+    EXACT_RANDOM = "exact-random"
+    NUMERIC = "numeric"
+    LMI = "lmi"
+    SIMULATION = "simulation"
+    EXACT = "exact"
+    NONE = "none"
+
 
 DOCUMENT_KEY = "certificate_document"
-"""Evidence key of a certificate a result carries as a JSON object; the report writes it as a file
-and re-checks it with ``proofs_check`` (:mod:`theory.report.artifacts`)."""
+"""Evidence key of a certificate carried as a JSON object; the report writes and re-checks it."""
 
-_REGISTRY: dict[str, Claim] = {}
+MODEL_CASE = "-"
+"""The case name of a claim about the model alone (run once, with ``case=None``)."""
+
+_STATUS_OF = {True: Status.VERIFIED, False: Status.REFUTED, None: Status.INCONCLUSIVE}
+
+
+def status_of(verdict: bool | None) -> Status:
+    """The status of a three-valued verdict: True verified, False refuted, None inconclusive."""
+    return _STATUS_OF[verdict]
 
 
 class NotApplicable(Exception):  # noqa: N818 (a verdict, not a failure)
-    """Raised by a check whose claim says nothing about the case, with the reason as message.
-
-    For example a lemma whose hypothesis the case does not meet, or a certificate of a property
-    another claim has decided false. The report lists the pair under ``not_applicable`` with the
-    reason; :func:`applicable_results` reads it as "no result". A check that merely returns an
-    empty list says the same without a reason (the claim's kind fits, its subject is absent).
-    """
+    """Raised by a check whose claim says nothing about the case; the message says why."""
 
 
 @dataclass(frozen=True)
 class ClaimResult:
-    """The outcome of running one claim on one case.
+    """The outcome of one claim on one case (``claim``, ``case`` stamped by :meth:`Claim.run`).
 
-    Attributes
-    ----------
-    claim : str
-        Claim id.
-    case : str
-        Case name (or ``"-"`` for a claim about the model alone).
-    method : str
-        One of :data:`METHODS`.
-    status : str
-        One of :data:`STATUSES`.
-    evidence : dict
-        JSON-serialisable numbers, factorizations, counterexamples, file paths.
-    margin : float or None
-        Distance of the deciding quantity from its threshold, in the unit the evidence states.
-    tolerance : dict
-        Named tolerances used (e.g. ``{"rank_tol": 1e-9}``).
-    message : str
-        One human sentence.
-    figures : tuple of str
-        Paths of figures produced.
+    ``margin`` is the distance of the deciding quantity from its threshold (in the unit the
+    evidence states), ``tolerance`` the named tolerances used.
     """
 
-    claim: str
-    case: str
-    method: str
-    status: str
+    status: Status
+    method: Method
     evidence: dict[str, Any] = field(default_factory=dict)
     margin: float | None = None
     tolerance: dict[str, float] = field(default_factory=dict)
     message: str = ""
     figures: tuple[str, ...] = ()
+    claim: str = ""
+    case: str = ""
 
     def __post_init__(self) -> None:
-        if self.status not in STATUSES:
-            raise ValueError(f"status {self.status!r} is not one of {STATUSES}")
-        if self.method not in METHODS:
-            raise ValueError(f"method {self.method!r} is not one of {METHODS}")
+        object.__setattr__(self, "status", Status(self.status))
+        object.__setattr__(self, "method", Method(self.method))
 
     def to_json(self, source: str = "") -> dict[str, Any]:
-        """The DESIGN.md report record ``{"id","source","case","method","status","evidence"}``."""
+        """The report record ``{"id","source","case","method","status","evidence",…}``."""
         return {
             "id": self.claim,
             "source": source,
             "case": self.case,
-            "method": self.method,
-            "status": self.status,
+            "method": str(self.method),
+            "status": str(self.status),
             "margin": self.margin,
             "tolerance": dict(self.tolerance),
             "message": self.message,
@@ -120,136 +116,164 @@ class ClaimResult:
         }
 
 
+class RunCache:
+    """Values computed once per case and run, by plain-value key (never object identity).
+
+    ``runner`` is an open engine a computation made of independent runs may spread them on
+    (``None``: serially).
+    """
+
+    def __init__(self, runner: TaskRunner | None = None) -> None:
+        self.runner = runner
+        self._values: dict[Hashable, Any] = {}
+        self.hits = 0
+        self.misses = 0
+
+    def get(self, key: Hashable, compute: Callable[[], T]) -> T:
+        """The value stored under ``key``, computed by ``compute()`` the first time."""
+        if key in self._values:
+            self.hits += 1
+            return self._values[key]
+        self.misses += 1
+        value = compute()
+        self._values[key] = value
+        return value
+
+    def put(self, key: Hashable, value: Any) -> None:
+        """Store a value computed elsewhere (a command's own analysis, shared with its claims)."""
+        self._values[key] = value
+
+
+@dataclass
+class Context:
+    """What a check receives besides its case: the case's shared cache, a seed, a figure folder.
+
+    ``seed`` is derived per claim and case by the report; ``figure_dir`` is where a drawing check
+    may put figures (``None``: do not draw).
+    """
+
+    cache: RunCache = field(default_factory=RunCache)
+    seed: int = 0
+    figure_dir: Path | None = None
+
+    def shared(self, key: Hashable, compute: Callable[[], T]) -> T:
+        """``compute()`` once per key for all the checks of one case (:meth:`RunCache.get`)."""
+        return self.cache.get(key, compute)
+
+    def figure_folder(self) -> Path | None:
+        """:attr:`figure_dir`, created, or ``None`` when figures are off."""
+        if self.figure_dir is not None:
+            self.figure_dir.mkdir(parents=True, exist_ok=True)
+        return self.figure_dir
+
+
+Check = Callable[["Case | None", Context], list[ClaimResult]]
+
+
 @dataclass(frozen=True)
 class Claim:
     """A registered check.
 
-    Attributes
-    ----------
-    id : str
-        Stable id, e.g. ``seed000.eq4.20``.
-    source : str
-        Where it comes from, e.g. ``seed 000 eq. (4.20)``.
-    statement : str
-        The claim in one line (the paper's wording, or ours for a correction).
-    kinds : tuple of str
-        Case kinds it applies to; empty for claims about the model alone (run once, case ``-``).
-    run : callable
-        ``run(case) -> list[ClaimResult]`` (``case`` is ``None`` for model claims).
+    ``kinds`` are the case kinds it applies to (empty: a claim about the model alone, run once
+    with ``case=None``). ``shares_work``: its check reads work other checks of the case compute
+    (:meth:`Context.shared`), so the report runs it in one task with them. ``seeded``: its check
+    draws random numbers from :attr:`Context.seed`, which the report records.
     """
 
     id: str
     source: str
     statement: str
     kinds: tuple[str, ...]
-    run: Callable[[Any], list[ClaimResult]]
+    check: Check
+    shares_work: bool = False
+    seeded: bool = False
+
+    def run(self, case: Case | None, ctx: Context | None = None) -> list[ClaimResult]:
+        """The check's results on ``case``, stamped with this id and the case name.
+
+        Raises
+        ------
+        NotApplicable
+            When the claim says nothing about the case.
+        TypeError
+            When the check returns something other than a list of :class:`ClaimResult`.
+        """
+        results = self.check(case, Context() if ctx is None else ctx)
+        if not isinstance(results, list | tuple) or not all(
+            isinstance(r, ClaimResult) for r in results
+        ):
+            raise TypeError(f"{self.id}: the check must return a list of ClaimResult")
+        name = MODEL_CASE if case is None else case.name
+        return [replace(r, claim=self.id, case=name) for r in results]
+
+    def results(self, case: Case | None, ctx: Context | None = None) -> list[ClaimResult]:
+        """:meth:`run`, with :class:`NotApplicable` read as no result."""
+        try:
+            return self.run(case, ctx)
+        except NotApplicable:
+            return []
 
 
-def register(
-    claim_id: str, *, source: str, statement: str, kinds: tuple[str, ...] = ()
-) -> Callable[[Callable[[Any], list[ClaimResult]]], Callable[[Any], list[ClaimResult]]]:
-    """Decorator registering ``run`` as the check for ``claim_id`` (ids must be unique).
+class ClaimSet:
+    """The claims of one module, in the order registered; ids unique within the set."""
 
-    Parameters
-    ----------
-    claim_id : str
-        Stable id, e.g. ``seed000.eq4.20``.
-    source : str
-        Where the claim comes from, e.g. ``seed 000 eq. (4.20)``.
-    statement : str
-        The claim in one line.
-    kinds : tuple of str
-        Case kinds it applies to; empty for claims about the model alone.
+    def __init__(self) -> None:
+        self._claims: list[Claim] = []
 
-    Returns
-    -------
-    callable
-        The decorator; it stores a :class:`Claim` with these fields and returns ``run``
-        unchanged.
+    def register(
+        self,
+        claim_id: str,
+        *,
+        source: str,
+        statement: str,
+        kinds: tuple[str, ...] = (),
+        shares_work: bool = False,
+        seeded: bool = False,
+    ) -> Callable[[Check], Check]:
+        """Decorator adding ``check`` as the claim ``claim_id`` (the function is returned as is)."""
 
-    Raises
-    ------
-    ValueError
-        From the decorator, if ``claim_id`` is already registered.
+        def decorate(check: Check) -> Check:
+            if any(c.id == claim_id for c in self._claims):
+                raise ValueError(f"claim id {claim_id!r} registered twice")
+            claim = Claim(claim_id, source, statement, tuple(kinds), check, shares_work, seeded)
+            self._claims.append(claim)
+            return check
+
+        return decorate
+
+    def add(self, claim: Claim) -> Claim:
+        """Add a claim built elsewhere (e.g. an expectations claim)."""
+        if any(c.id == claim.id for c in self._claims):
+            raise ValueError(f"claim id {claim.id!r} registered twice")
+        self._claims.append(claim)
+        return claim
+
+    def __iter__(self) -> Iterator[Claim]:
+        return iter(self._claims)
+
+    def __len__(self) -> int:
+        return len(self._claims)
+
+
+@dataclass(frozen=True)
+class Property:
+    """One wording of a claim for a counterexample search (``trackcert falsify``).
+
+    ``id`` is ``<claim id>/<wording>``; ``wording`` is ``paper`` or ``corrected``; ``examples``
+    is where to search; ``holds(example)`` must be true on each; ``to_case(example)`` is a case
+    file (plain data) reproducing the example. ``expected_to_hold`` is False for a paper wording
+    known to be wrong: the default budget must find its counterexample.
     """
 
-    def decorate(run: Callable[[Any], list[ClaimResult]]) -> Callable[[Any], list[ClaimResult]]:
-        if claim_id in _REGISTRY:
-            raise ValueError(f"claim id {claim_id!r} registered twice")
-        _REGISTRY[claim_id] = Claim(claim_id, source, statement, tuple(kinds), run)
-        return run
+    id: str
+    claim: str
+    wording: str
+    statement: str
+    examples: SearchStrategy[Any]
+    holds: Callable[[Any], bool]
+    to_case: Callable[[Any], dict[str, Any]]
+    expected_to_hold: bool = True
 
-    return decorate
-
-
-def accepts(run: Callable[..., Any], keyword: str) -> bool:
-    """Whether a claim's ``run`` takes the keyword argument ``keyword`` (``seed``, ``cache``…).
-
-    Parameters
-    ----------
-    run : callable
-        The check.
-    keyword : str
-        The keyword.
-
-    Returns
-    -------
-    bool
-        ``False`` also when the signature cannot be read; a ``**kwargs`` does not count.
-    """
-    try:
-        parameters = inspect.signature(run).parameters
-    except (TypeError, ValueError):
-        return False
-    return keyword in parameters
-
-
-def applicable_results(claim: Claim, case: Any, *, cache: Any = None) -> list[ClaimResult]:
-    """``claim.run(case)``, with :class:`NotApplicable` read as no result.
-
-    Parameters
-    ----------
-    claim : Claim
-        A registered claim.
-    case : Case or None
-        The case (``None`` for a claim about the model alone).
-    cache : RunCache, optional
-        The case's :class:`~theory.core.run_cache.RunCache`, passed to a check that accepts
-        ``cache`` (so that checks of one case share their work).
-
-    Returns
-    -------
-    list of ClaimResult
-    """
-    options = {"cache": cache} if cache is not None and accepts(claim.run, "cache") else {}
-    try:
-        return claim.run(case, **options)
-    except NotApplicable:
-        return []
-
-
-def claim_modules() -> tuple[str, ...]:
-    """The modules that register claims: every ``claims.py`` / ``*_claims.py`` of the domain
-    packages (:func:`theory.core.discovery.role_modules`).
-
-    Returns
-    -------
-    tuple of str
-        Dotted module names.
-    """
-    return tuple(role_modules("claims"))
-
-
-def all_claims() -> list[Claim]:
-    """Every registered claim, sorted by id (imports :func:`claim_modules` first)."""
-    for module in claim_modules():
-        importlib.import_module(module)
-    return sorted(_REGISTRY.values(), key=lambda c: c.id)
-
-
-def get_claim(claim_id: str) -> Claim:
-    """The claim registered as ``claim_id``; ``KeyError`` listing the known ids otherwise."""
-    claims = {c.id: c for c in all_claims()}
-    if claim_id not in claims:
-        raise KeyError(f"unknown claim {claim_id!r}; known: {sorted(claims)}")
-    return claims[claim_id]
+    def __post_init__(self) -> None:
+        if self.wording not in ("paper", "corrected"):
+            raise ValueError(f"wording {self.wording!r} is not 'paper' or 'corrected'")

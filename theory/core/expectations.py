@@ -2,13 +2,13 @@
 
 One mechanism for every command and the report (see ``docs/report.md``):
 
-1. **Observing.** Every case kind has one observer: a function ``observe(case) -> Observed``
-   registered with the kind (:func:`theory.core.case_file.register_kind`, ``observe=``), which
-   runs the analysis its command runs and returns the value of every expect key it decides
-   (``kind: pf`` has none: its claims observe, see 2). A claim result that observes expect keys
-   puts them in its evidence under :data:`EXPECTATIONS_KEY` (``{"observable": [True, False]}``)
-   and the keys it could not decide under :data:`UNDECIDED_KEY`; the ``case.expect.<kind>``
-   claims of :func:`expectation_claim` do so with the kind's observer.
+1. **Observing.** Every case kind but ``pf`` has one observer, ``observe(case, ctx) ->
+   Observed``, given to its ``case.expect.<kind>`` claim (:func:`expectation_claim`) in the
+   domain's registry: it runs the analysis its command runs and returns the value of every
+   expect key it decides (``kind: pf`` has none: its claims observe, see 2). A claim result
+   that observes expect keys puts them in its evidence under :data:`EXPECTATIONS_KEY`
+   (``{"observable": [True, False]}``) and the keys it could not decide under
+   :data:`UNDECIDED_KEY`.
 2. **Gathering.** :func:`observations_from` turns one observer's or one claim result's values
    into observations ``(source, values, status)``: listed undecided keys are ``inconclusive``,
    the rest take the result's status (``verified`` for an observer).
@@ -33,6 +33,9 @@ from dataclasses import dataclass
 from decimal import Decimal
 from typing import Any
 
+from theory.core.claims import Claim, ClaimResult, status_of
+from theory.core.verdicts import expectations_verdict
+
 __all__ = [
     "EXPECTATIONS_KEY",
     "RULES",
@@ -46,7 +49,6 @@ __all__ = [
     "judge",
     "matches",
     "observations_from",
-    "observe_case",
 ]
 
 EXPECTATIONS_KEY = "expectations"
@@ -283,93 +285,47 @@ def judge(case: Any, observed: Observed, *, source: str) -> list[Expectation]:
     -------
     list of Expectation
     """
-    from theory.core.case_file import kind_spec
-
     found = observations_from(source, observed.evidence(), "verified")
     answered = {k: v for k, v in case.expect.items() if k in observed.values}
-    return evaluate(case.name, answered, found, kind_spec(case.kind).expect_rules)
-
-
-def observe_case(case: Any, **computed: Any) -> Observed:
-    """What the observer of ``case``'s kind finds (:attr:`KindSpec.observe`).
-
-    Parameters
-    ----------
-    case : Case
-        A loaded case.
-    **computed : Any
-        Results the caller already computed for the case (e.g. ``analysis=`` of a dkf case),
-        passed on to the observer so nothing is computed twice.
-
-    Returns
-    -------
-    Observed
-
-    Raises
-    ------
-    ValueError
-        If the kind has no observer (its claims observe its keys, e.g. ``kind: pf``).
-    """
-    from theory.core.case_file import kind_spec
-
-    observer = kind_spec(case.kind).observer()
-    if observer is None:
-        raise ValueError(f"kind {case.kind!r} has no observer: its claims observe its keys")
-    return observer(case, **computed)
+    return evaluate(case.name, answered, found, case.expect_rules)
 
 
 def expectation_claim(
     kind: str,
     *,
     command: str,
+    observe: Callable[[Any, Any], Observed],
     method: str = "numeric",
-    observe: Callable[[Any], Observed] | None = None,
-) -> None:
-    """Register ``case.expect.<kind>``: the case's expect block judged by the kind's observer.
+) -> Claim:
+    """The claim ``case.expect.<kind>``: a case's expect block judged by the kind's observer.
 
-    The claim runs what ``trackcert <command>`` runs and judges each expected key with
-    :func:`judge`; its status is ``refuted`` when one is unmet, ``inconclusive`` when one is
-    inconclusive (or unchecked), ``verified`` when all are met (:mod:`theory.core.verdicts`), and
-    its evidence carries the observed values (:data:`EXPECTATIONS_KEY`, :data:`UNDECIDED_KEY`)
-    for the report to judge with the other claims' observations.
-
-    Parameters
-    ----------
-    kind : str
-        The case kind.
-    command : str
-        The command whose analysis the observer runs (named in the claim's wording).
-    method : str
-        The claim's method (:data:`theory.core.claims.METHODS`).
-    observe : callable, optional
-        ``observe(case) -> Observed``; default :func:`observe_case` (the kind's observer).
+    It runs ``observe(case, ctx)`` (what ``trackcert <command>`` runs) and judges each expected
+    key with :func:`judge`: ``refuted`` when one is unmet, ``inconclusive`` when one is
+    inconclusive or unchecked, ``verified`` when all are met; its evidence carries the observed
+    values for the report to judge with the other claims' observations.
     """
-    from theory.core.claims import ClaimResult, register
-    from theory.core.verdicts import expectations_verdict, verdict_status
 
-    claim_id = f"case.expect.{kind}"
-
-    @register(
-        claim_id,
-        source=f"the case file's expect block (checked as trackcert {command} checks it)",
-        statement=f"Every expectation a {kind} case states is what trackcert {command} finds.",
-        kinds=(kind,),
-    )
-    def run(case: Any, **computed: Any) -> list[ClaimResult]:
-        observed = (observe or observe_case)(case, **computed)
-        verdicts = judge(case, observed, source=claim_id)
-        verdict = expectations_verdict(verdicts)
+    def check(case: Any, ctx: Any) -> list[ClaimResult]:
+        observed = observe(case, ctx)
+        verdicts = judge(case, observed, source=f"case.expect.{kind}")
         shown = [e.describe() for e in verdicts if not e.met]
         return [
             ClaimResult(
-                claim=claim_id,
-                case=case.name,
-                method=method,
-                status=verdict_status(verdict),
-                evidence=observed.evidence(case.expect),
+                status_of(expectations_verdict(verdicts)),
+                method,
+                observed.evidence(case.expect),
                 message="; ".join(shown) or f"{len(verdicts)} expectation(s) met",
             )
         ]
+
+    return Claim(
+        f"case.expect.{kind}",
+        f"the case file's expect block (checked as trackcert {command} checks it)",
+        f"Every expectation a {kind} case states is what trackcert {command} finds.",
+        (kind,),
+        check,
+        shares_work=True,
+    )
 
 
 def _verdict(expected: Any, found: tuple[Observation, ...], rule: str) -> str:

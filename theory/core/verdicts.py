@@ -6,7 +6,8 @@ inside its tolerance, a solver failed) — or judges a case's ``expect`` block
 :func:`expectations_verdict`: every expectation met → True, one unmet → False, otherwise (one
 inconclusive or unchecked, none unmet) → None. Then
 
-- True → exit 0 (:data:`EXIT_HOLDS`), claim status ``verified``;
+- True → exit 0 (:data:`EXIT_HOLDS`), claim status ``verified``
+  (:func:`theory.core.claims.status_of`);
 - False → exit 1 (:data:`EXIT_FAILS`), claim status ``refuted``;
 - None → exit 3 (:data:`EXIT_INCONCLUSIVE`), claim status ``inconclusive``;
 - bad input → exit 2 (:data:`EXIT_BAD_INPUT`).
@@ -26,9 +27,9 @@ __all__ = [
     "EXIT_HOLDS",
     "EXIT_INCONCLUSIVE",
     "Verdict",
+    "all_hold",
     "exit_code",
     "expectations_verdict",
-    "verdict_status",
 ]
 
 EXIT_HOLDS, EXIT_FAILS, EXIT_BAD_INPUT, EXIT_INCONCLUSIVE = 0, 1, 2, 3
@@ -37,7 +38,6 @@ Verdict = bool | None
 """True holds, False fails, None inconclusive."""
 
 _EXIT = {True: EXIT_HOLDS, False: EXIT_FAILS, None: EXIT_INCONCLUSIVE}
-_STATUS = {True: "verified", False: "refuted", None: "inconclusive"}
 
 
 def exit_code(verdict: Verdict) -> int:
@@ -55,20 +55,12 @@ def exit_code(verdict: Verdict) -> int:
     return _EXIT[verdict]
 
 
-def verdict_status(verdict: Verdict) -> str:
-    """The claim status of a verdict: ``verified``, ``refuted`` or ``inconclusive``.
-
-    Parameters
-    ----------
-    verdict : bool or None
-        A verdict.
-
-    Returns
-    -------
-    str
-        One of :data:`theory.core.claims.STATUSES`.
-    """
-    return _STATUS[verdict]
+def all_hold(verdicts: Iterable[Verdict]) -> Verdict:
+    """Three-valued conjunction: False if one fails, else None if one is undecided, else True."""
+    seen = set(verdicts)
+    if False in seen:
+        return False
+    return None if None in seen else True
 
 
 def expectations_verdict(expectations: Iterable[Any]) -> Verdict:

@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.core.case_file import register_kind
+from theory.core.case_file import KindSpec
 from theory.core.errors import CaseError
 from theory.core.limits import check_count, check_estimate, check_length
 from theory.core.network import adjacency_from_edges
@@ -57,7 +57,15 @@ from theory.core.validation import (
 from theory.particle.dcrw import DcrwParams
 from theory.particle.filter import EXCHANGE_WEIGHTS, RECEIVED_HEADINGS, PfConfig, PfNetwork
 
-__all__ = ["MODELS", "PARAM_NAMES", "PfSpec", "check_pf_expect", "check_pf_work", "parse_pf"]
+__all__ = [
+    "MODELS",
+    "PARAM_NAMES",
+    "PF",
+    "PfSpec",
+    "check_pf_expect",
+    "check_pf_work",
+    "parse_pf",
+]
 
 FIELDS = (
     "nodes",
@@ -347,10 +355,11 @@ def _check_node_entry(field: str, key: str, node: object, value: object, filters
         )
 
 
-register_kind(
+PF = KindSpec(
     "pf",
     parse_pf,
     expect_keys=EXPECT_KEYS,
     tolerance_keys=TOLERANCE_KEYS,
     check_expect=check_pf_expect,
 )
+"""The ``pf`` case kind."""

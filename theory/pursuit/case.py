@@ -44,7 +44,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.core.case_file import register_kind
+from theory.core.case_file import KindSpec
 from theory.core.errors import CaseError
 from theory.core.limits import check_length
 from theory.core.network import adjacency_from_edges, uniform_weights
@@ -60,7 +60,7 @@ from theory.core.validation import (
     row_stochastic,
 )
 
-__all__ = ["DekfSettings", "PursuitSpec", "TargetMotion", "TrackerPath", "parse_pursuit"]
+__all__ = ["PURSUIT", "DekfSettings", "PursuitSpec", "TargetMotion", "TrackerPath", "parse_pursuit"]
 
 FIELDS = (
     "dim",
@@ -397,11 +397,5 @@ def _initial_covariances(raw: object, n: int, size: int, field: str) -> np.ndarr
     return np.broadcast_to(matrix, (n, size, size)).copy()
 
 
-register_kind(
-    "pursuit",
-    parse_pursuit,
-    expect_keys=EXPECT_KEYS,
-    tolerance_keys=TOLERANCE_KEYS,
-    observe="theory.pursuit.iss_report:observe_iss",
-    simulate="theory.pursuit.simulation:pursuit_simulator",
-)
+PURSUIT = KindSpec("pursuit", parse_pursuit, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+"""The ``pursuit`` case kind."""

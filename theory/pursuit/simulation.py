@@ -26,7 +26,7 @@ from theory.pursuit.case import PursuitSpec
 from theory.pursuit.closed_loop import DecRun, DecSettings, simulate_dec
 from theory.pursuit.model import desired_speed
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
-from theory.simulate import Finished, Simulator
+from theory.sim.simulate import Finished, Simulator
 
 __all__ = [
     "DEFAULT_DURATION",
@@ -281,7 +281,7 @@ def simulation_observed(summary: dict[str, Any]) -> Observed:
 
 
 def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
-    """The simulator of a ``kind: pursuit`` case for :func:`theory.simulate.simulate_case`.
+    """The simulator of a ``kind: pursuit`` case for :func:`theory.sim.simulate.simulate_case`.
 
     Parameters
     ----------

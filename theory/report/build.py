@@ -17,9 +17,10 @@ from pathlib import Path
 from typing import Any
 
 from theory.core.case_file import Case
-from theory.core.claims import Claim, all_claims
+from theory.core.claims import Claim
 from theory.core.errors import CaseError
 from theory.core.parallel import TaskRunner
+from theory.registry import all_claims
 from theory.report.render import write_report
 from theory.report.runner import ProgressHook, RunResult, run_claims, select_claims
 from theory.report.schedule import load_estimates

@@ -10,7 +10,7 @@ from collections import Counter
 from collections.abc import Sequence
 from typing import Any
 
-from theory.core.claims import STATUSES
+from theory.core.claims import Status
 from theory.core.expectations import VERDICTS
 from theory.report.artifacts import Artifacts
 from theory.report.errata import ErratumEntry
@@ -69,7 +69,7 @@ def build_document(
         "seed": run.seed,
         "summary": {
             "results": len(claims),
-            "statuses": {s: statuses.get(s, 0) for s in STATUSES},
+            "statuses": {s.value: statuses.get(s.value, 0) for s in Status},
             "expectations": {v: verdicts.get(v, 0) for v in VERDICTS},
             "all_expectations_met": run.all_expectations_met,
         },

@@ -16,8 +16,8 @@ from typing import Any
 
 import theory
 from theory.core.case_file import Case, bundled_case_dir
-from theory.core.claims import all_claims, claim_modules
 from theory.core.tolerances import table
+from theory.registry import all_claims
 from theory.report.records import Record
 from theory.report.time_limit import enforceable
 
@@ -85,7 +85,7 @@ def environment(
         "seed": seed,
         "seed_rule": SEED_RULE,
         "cases": [_case(case) for case in cases],
-        "claim_modules": list(claim_modules()),
+        "claim_modules": sorted({c.check.__module__ for c in all_claims()}),
         "claims_registered": len(all_claims()),
         "tolerances": _tolerances(records),
         "tolerance_table": table(),

@@ -11,12 +11,9 @@ import re
 from dataclasses import dataclass, replace
 from typing import Any
 
-from theory.core.claims import ClaimResult
+from theory.core.claims import MODEL_CASE, ClaimResult
 
 __all__ = ["MODEL_CASE", "RESULT_FIELDS", "Record", "derive_seed", "paper_of", "slug"]
-
-MODEL_CASE = "-"
-"""Case name of results about the model alone (claims registered with ``kinds=()``)."""
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,7 @@ from typing import Any
 import jinja2
 from markupsafe import Markup
 
-from theory.core.claims import STATUSES
+from theory.core.claims import Status
 from theory.core.errors import CaseError
 from theory.report.artifacts import CertificateChecker, collect, prechecked
 from theory.report.canonical import dumps, layout
@@ -185,7 +185,7 @@ def _views(document: dict[str, Any]) -> dict[str, Any]:
     return {
         "sections": sections,
         "errata_sections": _errata_sections(errata),
-        "status_order": STATUSES,
+        "status_order": tuple(s.value for s in Status),
     }
 
 

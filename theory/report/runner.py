@@ -7,14 +7,13 @@ run as tasks (:mod:`theory.report.tasks`) on a :class:`~theory.core.parallel.Tas
 in this process by default, on Dask workers when the caller opens an engine with more. Every
 exception a check raises, every malformed answer it returns, and every task the engine loses
 becomes a :class:`Record` with status ``inconclusive``, method ``"none"`` and the error in its
-message and evidence, so the report always completes. A claim whose ``run`` accepts a keyword
-``seed`` receives one derived from the report's seed, its id and the case name
-(:func:`derive_seed`), so reruns are identical whatever the number of workers or the order in which
-they finish. A claim whose ``run`` accepts ``cache`` shares a
-:class:`~theory.core.run_cache.RunCache` with the other such claims of its case. A claim whose
-``run`` accepts a keyword ``figure_dir`` receives, when the caller gives a figure folder, a fresh
-sub-folder ``<claim>/<case>`` to draw its figures in (it returns their paths in ``figures``); the
-figures travel back from the worker as bytes and are written under the caller's folder. With a time
+message and evidence, so the report always completes. Each check's
+:class:`~theory.core.claims.Context` carries a seed derived from the report's seed, its id and the
+case name (:func:`derive_seed`), so reruns are identical whatever the number of workers or the
+order in which they finish; claims registered with ``shares_work`` share one
+:class:`~theory.core.claims.RunCache` per case; with a figure folder, a check draws into a fresh
+sub-folder ``<claim>/<case>`` (returning the paths in ``figures``), and the figures travel back
+from the worker as bytes and are written under the caller's folder. With a time
 limit (:mod:`theory.report.time_limit`), a check still running when it expires becomes an
 ``inconclusive`` record saying so, and the report goes on with the next one.
 """
@@ -29,12 +28,13 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
-from theory.core.case_file import Case, kind_spec
-from theory.core.claims import Claim, all_claims
+from theory.core.case_file import Case
+from theory.core.claims import Claim
 from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, evaluate, observations_from
 from theory.core.parallel import Outcome, TaskRunner, engine
 from theory.core.verdicts import expectations_verdict
+from theory.registry import all_claims
 from theory.report.canonical import canonical
 from theory.report.records import MODEL_CASE, RESULT_FIELDS, Record, derive_seed, paper_of, slug
 from theory.report.schedule import Batch, Estimates, batches
@@ -186,7 +186,7 @@ def run_claims(
     seed : int
         The report's seed; each claim accepting ``seed`` gets :func:`derive_seed` of it.
     claims : sequence of Claim, optional
-        Defaults to every registered claim (:func:`theory.core.claims.all_claims`); workers
+        Defaults to every registered claim (:func:`theory.registry.all_claims`); workers
         look each one up by id in their own registry.
     progress : callable, optional
         ``progress(done, label)`` as each task completes (:data:`ProgressHook`).
@@ -340,6 +340,6 @@ def _expectations(cases: Sequence[Case], records: Sequence[Record]) -> tuple[Exp
             if r.case == case.name
             for found in observations_from(r.id, r.evidence, r.status)
         ]
-        rules = kind_spec(case.kind).expect_rules
+        rules = case.expect_rules
         verdicts.extend(evaluate(case.name, canonical(case.expect), observations, rules))
     return tuple(verdicts)

@@ -10,8 +10,8 @@ checker's verdict on each certificate document a claim returned
 (:func:`theory.report.artifacts.check_document`: certificates are re-verified in parallel, not
 after all the checks) and the worker's peak memory.
 
-Claims of one case whose ``run`` accepts the keyword ``cache`` share one task and one
-:class:`~theory.core.run_cache.RunCache` (:func:`plan_tasks`), so that work they have in common (an
+Claims of one case registered with ``shares_work`` share one task and one
+:class:`~theory.core.claims.RunCache` (:func:`plan_tasks`), so that work they have in common (an
 LMI solution, a simulation, Monte Carlo runs) is done once; every other check is a task of its own.
 """
 
@@ -33,12 +33,11 @@ from theory.core.claims import (
     DOCUMENT_KEY,
     Claim,
     ClaimResult,
+    Context,
     NotApplicable,
-    accepts,
-    claim_modules,
-    get_claim,
+    RunCache,
 )
-from theory.core.run_cache import RunCache
+from theory.registry import domains, get_claim
 from theory.report.artifacts import check_document
 from theory.report.canonical import canonical
 from theory.report.records import MODEL_CASE, Record, derive_seed, paper_of, slug
@@ -169,25 +168,20 @@ def plan_tasks(
     sharing: dict[str, int] = {}
     for claim, case in checks:
         name = MODEL_CASE if case is None else case.name
-        if accepts(claim.run, "cache") and name in sharing:
+        if claim.shares_work and name in sharing:
             task = tasks[sharing[name]]
             tasks[sharing[name]] = replace(task, claims=(*task.claims, claim.id))
             continue
-        if accepts(claim.run, "cache"):
+        if claim.shares_work:
             sharing[name] = len(tasks)
         tasks.append(CheckTask((claim.id,), case, seed, seconds, figures))
     return tasks
 
 
 def worker_modules() -> tuple[str, ...]:
-    """The modules a worker imports to run any check: this one and every claim module (the
-    engine's ``preload``, :func:`theory.core.parallel.engine`).
-
-    Returns
-    -------
-    tuple of str
-    """
-    return (__name__, *claim_modules())
+    """The modules a worker imports to run any check: this one and every domain's registry,
+    which imports its claims (the engine's ``preload``, :func:`theory.core.parallel.engine`)."""
+    return (__name__, *(domain.__name__ for domain in domains()))
 
 
 def run_task(task: CheckTask) -> TaskOutput:
@@ -255,8 +249,7 @@ def failed_task(task: CheckTask, claims: dict[str, Claim], error: BaseException)
     outputs = []
     for claim_id in task.claims:
         claim = claims[claim_id]
-        seed = derive_seed(task.seed, claim.id, name) if accepts(claim.run, "seed") else None
-        record = failure(claim, name, error, seed)
+        record = failure(claim, name, error, _recorded_seed(claim, task))
         outputs.append(CheckOutput(claim_id, name, (record,), None, 0.0, 0.0, {}))
     return TaskOutput(tuple(outputs), "", 0)
 
@@ -267,7 +260,7 @@ def _check(claim_id: str, task: CheckTask, cache: RunCache, root: Path | None) -
     try:
         claim = get_claim(claim_id)
     except KeyError as error:
-        missing = Claim(claim_id, "", "", (), lambda case: [])
+        missing = Claim(claim_id, "", "", (), lambda case, ctx: [])
         record = failure(missing, name, error, None)
         return CheckOutput(claim_id, name, (record,), None, 0.0, 0.0, {})
     folder = None if root is None else root / slug(claim.id) / slug(name)
@@ -286,19 +279,19 @@ def _check(claim_id: str, task: CheckTask, cache: RunCache, root: Path | None) -
     return CheckOutput(claim_id, name, tuple(records), reason, wall, cpu, figures, verdicts, began)
 
 
+def _recorded_seed(claim: Claim, task: CheckTask) -> int | None:
+    """The claim's derived seed, recorded for a ``seeded`` claim only."""
+    return derive_seed(task.seed, claim.id, task.case_name) if claim.seeded else None
+
+
 def _run_one(claim: Claim, task: CheckTask, cache: RunCache, folder: Path | None) -> list[Record]:
     name = task.case_name
-    seed = derive_seed(task.seed, claim.id, name) if accepts(claim.run, "seed") else None
-    options: dict[str, Any] = {} if seed is None else {"seed": seed}
-    if accepts(claim.run, "cache"):
-        options["cache"] = cache
-    if folder is not None and accepts(claim.run, "figure_dir"):
-        folder.mkdir(parents=True, exist_ok=True)
-        options["figure_dir"] = folder
+    seed = _recorded_seed(claim, task)
+    ctx = Context(cache, derive_seed(task.seed, claim.id, name), folder)
     try:
         with time_limit(task.seconds):
-            results = claim.run(task.case, **options)
-        return [_record(claim, name, result, seed) for result in _checked(results)]
+            results = claim.run(task.case, ctx)
+        return [_record(claim, name, result, seed) for result in results]
     except NotApplicable:
         raise
     except (Exception, SystemExit, TimeLimitExceeded) as error:  # one check never stops the report
@@ -322,15 +315,6 @@ def _ship_figures(
             names.append(name)
         shipped.append(replace(record, result=replace(record.result, figures=tuple(names))))
     return shipped, figures
-
-
-def _checked(results: object) -> list[ClaimResult]:
-    if not isinstance(results, list | tuple):
-        raise TypeError(f"the check returned a {type(results).__name__}, not a list of results")
-    for result in results:
-        if not isinstance(result, ClaimResult):
-            raise TypeError(f"the check returned a {type(result).__name__}, not a ClaimResult")
-    return list(results)
 
 
 def _record(claim: Claim, case: str, result: ClaimResult, seed: int | None) -> Record:
@@ -379,7 +363,7 @@ def failure(claim: Claim, case: str, error: BaseException, seed: int | None) -> 
         else f"the check failed to run: {kind}: {error}"
     )
     evidence = {"error": {"type": kind, "message": str(error), "where": _where(error)}}
-    result = ClaimResult(claim.id, case, "none", "inconclusive", evidence, message=message)
+    result = ClaimResult("inconclusive", "none", evidence, message=message, claim=claim.id, case=case)
     return _wrap(claim, result, seed)
 
 

@@ -37,8 +37,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from theory.core.case_file import Case, kind_spec
-from theory.core.discovery import kind_index
+from theory.core.case_file import Case
 from theory.core.verdicts import Verdict
 
 __all__ = [
@@ -248,10 +247,11 @@ def point_modules(kind: str) -> tuple[str, ...]:
     -------
     tuple of str
     """
-    spec = kind_spec(kind)
-    simulator = () if spec.simulate is None else (spec.simulate.partition(":")[0],)
+    from theory.kinds import KINDS, SIMULATED, simulator
+
+    simulated = (simulator(kind).__module__,) if kind in SIMULATED else ()
     analysis = (ANALYSIS_MODULES[kind],) if kind in ANALYSIS_MODULES else ()
-    return ("theory.sweep.points", kind_index()[kind], *simulator, *analysis)
+    return ("theory.sweep.points", KINDS[kind].parse.__module__, *simulated, *analysis)
 
 
 def analysis_for(kind: str) -> Callable[[Case], Judgement] | None:

@@ -4,12 +4,12 @@
 settings), so a point gives the same row in any process and any order; :func:`evaluate_batch`
 runs a batch of points as one engine task (:mod:`theory.core.parallel`).
 
-A point whose data the case loader rejects (:func:`theory.core.case_file.parse_case`), or whose
+A point whose data the case loader rejects (:func:`theory.kinds.parse_case`), or whose
 analysis refuses it (a :class:`~theory.core.errors.CaseError`), is a row with status
 ``invalid`` and the loader's message. A solver failure makes the verdict inconclusive. The
 simulation is one run (``runs = 1``) with root seed ``sim_seed`` (run 0 uses child 0 of
 ``SeedSequence(sim_seed)``, as ``trackcert simulate --seed sim_seed`` does), summarised by the
-kind's own simulator (:func:`theory.simulate.simulator_for`, its ``finish`` with no figures).
+kind's own simulator (:func:`theory.kinds.simulator_for`, its ``finish`` with no figures).
 """
 
 from __future__ import annotations
@@ -22,15 +22,16 @@ from typing import Any
 
 import numpy as np
 
-from theory.core.case_file import Case, kind_spec, parse_case
+from theory.core.case_file import Case
+from theory.core.claims import status_of
 from theory.core.errors import CaseError, InconclusiveError, SolverError
 from theory.core.expectations import Observed, judge
 from theory.core.verdicts import (
     EXIT_BAD_INPUT,
     exit_code,
     expectations_verdict,
-    verdict_status,
 )
+from theory.kinds import SIMULATED, parse_case
 from theory.sweep.kinds import Judgement, agreement, analysis_for
 from theory.sweep.paths import Target, apply_values
 
@@ -151,8 +152,8 @@ def simulate_point(
     CaseError
         If the simulator refuses the case (e.g. a pursuit case with ε₁ = 0).
     """
+    from theory.kinds import simulator_for
     from theory.sim.runner import monte_carlo
-    from theory.simulate import simulator_for
 
     simulator = simulator_for(case, steps)
     runs = monte_carlo(simulator.spec, runs=1, seed=seed, workers=1, simulate=simulator.run)
@@ -211,7 +212,7 @@ def evaluate_point(setup: SweepSetup, point: int, values: Sequence[Any]) -> Row:
         judgement = _judge(case)
     except CaseError as error:
         return Row(point, values, INVALID, message=str(error))
-    simulate = setup.simulate and kind_spec(case.kind).simulate is not None
+    simulate = setup.simulate and case.kind in SIMULATED
     seed = _seed(setup, values) if simulate else None
     summary: dict[str, Any] = {}
     observed: Observed | None = None
@@ -228,7 +229,7 @@ def evaluate_point(setup: SweepSetup, point: int, values: Sequence[Any]) -> Row:
     return Row(
         point,
         values,
-        verdict_status(judgement.verdict),
+        status_of(judgement.verdict).value,
         judgement.margin,
         judgement.tolerances,
         seed,

@@ -28,11 +28,12 @@ from typing import Any
 
 import yaml
 
-from theory.core.case_file import kind_spec, load_case, resolve_case_path
+from theory.core.case_file import resolve_case_path
 from theory.core.errors import CaseError
 from theory.core.jsonable import plain
 from theory.core.parallel import engine
 from theory.core.verdicts import Verdict, exit_code
+from theory.kinds import SIMULATED, load_case
 from theory.sweep.grid import MAX_POINTS, Param, check_size, grid_points, parse_param
 from theory.sweep.kinds import analysis_for, point_modules
 from theory.sweep.links import parse_link
@@ -253,7 +254,7 @@ def _check_settings(kind: str, steps: int | None, simulate: bool) -> None:
 
 
 def _settings(setup: SweepSetup, max_points: int) -> dict[str, Any]:
-    simulated = setup.simulate and kind_spec(setup.data["kind"]).simulate is not None
+    simulated = setup.simulate and setup.data["kind"] in SIMULATED
     swept_seed = any(t.is_seed for t in setup.targets)
     return {
         "steps": setup.steps,

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.core.case_file import register_kind
+from theory.core.case_file import KindSpec
 from theory.core.errors import CaseError
 from theory.core.limits import check_estimate, check_length
 from theory.core.network import (
@@ -45,7 +45,7 @@ from theory.core.validation import (
     row_stochastic,
 )
 
-__all__ = ["TdoaSpec", "check_tdoa_expect", "parse_tdoa"]
+__all__ = ["TDOA", "TdoaSpec", "check_tdoa_expect", "parse_tdoa"]
 
 FIELDS = ("T", "dim", "agents", "target", "edges", "comm_range", "directed", "weights")
 EXPECT_KEYS = (
@@ -339,11 +339,11 @@ def _list_of(value: object, kind: type, length: int) -> bool:
     )
 
 
-register_kind(
+TDOA = KindSpec(
     "tdoa",
     parse_tdoa,
     expect_keys=EXPECT_KEYS,
     tolerance_keys=TOLERANCE_KEYS,
     check_expect=check_tdoa_expect,
-    observe="theory.tdoa.topology_report:observe_topology",
 )
+"""The ``tdoa`` case kind."""

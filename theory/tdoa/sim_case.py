@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from theory.core.case_file import register_kind
+from theory.core.case_file import KindSpec
 from theory.core.errors import CaseError
 from theory.core.limits import check_count, check_estimate, check_length
 from theory.core.network import adjacency_from_edges
@@ -60,7 +60,7 @@ from theory.core.validation import (
 from theory.tdoa.filters import FILTERS
 from theory.tdoa.formation import assign_offsets, crown_vertices, cube_vertices
 
-__all__ = ["TdoaSimSpec", "check_sim_work", "parse_tdoa_sim"]
+__all__ = ["TDOA_SIM", "TdoaSimSpec", "check_sim_work", "parse_tdoa_sim"]
 
 KIND = "tdoa-sim"
 FIELDS = (
@@ -310,12 +310,11 @@ def _offsets(block: Mapping[str, Any], agents: np.ndarray) -> np.ndarray:
     return finite_matrix(shape, f"{KIND}.formation", rows=n, cols=3)
 
 
-register_kind(
+TDOA_SIM = KindSpec(
     KIND,
     parse_tdoa_sim,
     expect_keys=EXPECT_KEYS,
     tolerance_keys=TOLERANCE_KEYS,
-    observe="theory.tdoa.sim_summary:observe_tdoa_sim",
     expect_rules={"max_final_error": "at_most"},
-    simulate="theory.tdoa.sim_summary:tdoa_simulator",
 )
+"""The ``tdoa-sim`` case kind."""

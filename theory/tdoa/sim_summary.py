@@ -1,6 +1,6 @@
 """A ``kind: tdoa-sim`` case simulated: the kind's simulator and observer (seed 000 §4.3–4.4).
 
-:func:`tdoa_simulator` is what ``trackcert simulate`` runs (:mod:`theory.simulate`): the closed
+:func:`tdoa_simulator` is what ``trackcert simulate`` runs (:mod:`theory.sim.simulate`): the closed
 loop :func:`theory.tdoa.scenario.run_tdoa_scenario`, summarised by
 :func:`theory.tdoa.metrics.summarize_runs`, written by :mod:`theory.tdoa.outputs` and
 :mod:`theory.tdoa.figures`. :func:`sim_observed` reads the expect keys off a summary:
@@ -24,7 +24,7 @@ from typing import Any
 from theory.core.case_file import Case
 from theory.core.expectations import Observed
 from theory.core.tolerances import ERROR_BOUND_SIGMAS
-from theory.simulate import Finished, Simulator
+from theory.sim.simulate import Finished, Simulator
 
 __all__ = [
     "ERROR_BOUND_SIGMAS",
@@ -68,7 +68,7 @@ def sim_observed(summary: dict[str, Any]) -> Observed:
 
 
 def tdoa_simulator(case: Case, steps: int | None = None) -> Simulator:
-    """The simulator of ``case`` for :func:`theory.simulate.simulate_case`.
+    """The simulator of ``case`` for :func:`theory.sim.simulate.simulate_case`.
 
     Parameters
     ----------

@@ -1,7 +1,6 @@
 """Closed-loop simulation of a case: the kind's simulator run over seeds (``trackcert simulate``).
 
-A kind that ``trackcert simulate`` runs names a simulator when it registers
-(:func:`theory.core.case_file.register_kind`, ``simulate="module:function"``):
+A kind that ``trackcert simulate`` runs has a simulator (:func:`theory.kinds.simulator_for`):
 ``simulator(case, steps) -> Simulator`` says what one run is (a picklable
 ``run(spec, rng)``), which fields the record gets, and how the runs are summarised, written and
 observed (:class:`Finished`). :func:`simulate_case` runs it on the engine
@@ -18,13 +17,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from theory.core.case_file import Case, kind_spec
-from theory.core.errors import CaseError
+from theory.core.case_file import Case
 from theory.core.expectations import Expectation, Observed, judge
 from theory.core.jsonable import plain
 from theory.core.verdicts import Verdict, expectations_verdict
 
-__all__ = ["Finished", "Simulation", "Simulator", "simulate_case", "simulator_for"]
+__all__ = ["Finished", "Simulation", "Simulator", "simulate_case"]
 
 SOURCE = "trackcert simulate"
 """The observations' source in the command's verdict records."""
@@ -125,31 +123,6 @@ class Simulation:
         }
 
 
-def simulator_for(case: Case, steps: int | None = None) -> Simulator:
-    """The simulator of ``case``'s kind.
-
-    Parameters
-    ----------
-    case : Case
-        A loaded case.
-    steps : int, optional
-        Overrides the number of steps.
-
-    Returns
-    -------
-    Simulator
-
-    Raises
-    ------
-    CaseError
-        If the kind names no simulator.
-    """
-    make = kind_spec(case.kind).simulator()
-    if make is None:
-        raise CaseError("kind", "a kind trackcert simulate runs", case.kind, file=case.file)
-    return make(case, steps)
-
-
 def simulate_case(
     case: Case,
     simulator: Simulator,
@@ -169,7 +142,7 @@ def simulate_case(
     case : Case
         The case.
     simulator : Simulator
-        From :func:`simulator_for` (or an interim one).
+        From :func:`theory.kinds.simulator_for` (or an interim one).
     folder : Path
         Where data, figures and ``summary.json`` go (created).
     runs, seed, workers : int
