@@ -26,8 +26,8 @@ from theory.consensus.primal_certificates import (
     projection_gains,
 )
 from theory.consensus.strategies import dkf_problems, self_weight_examples
+from theory.core.exact import RationalizationError
 from theory.core.observability import unobservable_eigenvalues
-from theory.core.rationalize import RationalizationError
 
 SMALL = dkf_problems(max_states=2, max_agents=3, integer_data=True, a_bound=2.0)
 

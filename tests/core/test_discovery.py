@@ -11,13 +11,13 @@ import sys
 from pathlib import Path
 
 import pytest
+from theory.core.discovery import ROLES, domain_packages, kind_index, role_modules
 
 import theory
 from theory.certify import certifiers
 from theory.core import discovery
 from theory.core.case_file import kind_spec, known_kinds
 from theory.core.claims import all_claims, claim_modules
-from theory.core.discovery import ROLES, domain_packages, kind_index, role_modules
 
 CLAIM_IDS = (
     "case.expect.dkf",

@@ -50,7 +50,7 @@ def test_modules_include_those_checked_before() -> None:
         "theory.consensus.case",
         "theory.consensus.claims",
         "theory.consensus.conditions",
-        "theory.core.rationalize",
+        "theory.core.exact",
         "theory.consensus.riccati",
         "theory.consensus.s_detectability",
         "theory.consensus.self_weight",

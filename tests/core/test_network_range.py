@@ -8,8 +8,8 @@ import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
+from theory.core.exact import exact_decimal
 from theory.core.network import adjacency_from_range
-from theory.core.rationalize import exact_decimal
 
 decimals = st.integers(-999, 999).map(lambda k: k / 10)
 

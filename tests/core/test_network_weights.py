@@ -1,5 +1,5 @@
 """Named consensus weights: one rule in floats and in exact rationals (``theory.core.network``),
-and the two exact readings of a float (``theory.core.rationalize``)."""
+and the two exact readings of a float (``theory.core.exact``)."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from theory.core.exact import RationalizationError, exact_decimal, exact_float
 from theory.core.network import (
     NAMED_WEIGHTS,
     exact_metropolis_weights,
@@ -18,7 +19,6 @@ from theory.core.network import (
     metropolis_weights,
     uniform_weights,
 )
-from theory.core.rationalize import RationalizationError, exact_decimal, exact_float
 from theory.core.tolerances import ROUNDING_TOL
 
 

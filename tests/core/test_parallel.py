@@ -14,10 +14,10 @@ import pytest
 from distributed import LocalCluster
 from hypothesis import given
 from hypothesis import strategies as st
+from theory.core.run_cache import RunCache, shared
 
 from theory.core.errors import CaseError
 from theory.core.parallel import SCHEDULER_SETTING, engine, scheduler_address
-from theory.core.run_cache import RunCache, shared
 from theory.sim.runner import monte_carlo
 
 # Workers unpickle this module's functions by value: the test folder is not importable there.

@@ -22,7 +22,7 @@ from theory.consensus.certificates import (
     mjls_stability_certificate,
     s_detectability_certificate,
 )
-from theory.core.rationalize import RationalizationError
+from theory.core.exact import RationalizationError
 from theory.tdoa.covariance_certificates import (
     covariance_bound_certificate,
     ekf_covariance_bound_certificate,
@@ -332,7 +332,7 @@ def test_checker_operators_match_the_paper_formulas(network, operator) -> None:
     """``proofs_check.operators`` (exact) agrees with eqs. (5.12)–(5.13), (C.6) written out here,
     and the adjoints satisfy ``⟨T(V), S⟩ = ⟨V, T*(S)⟩``."""
     from proofs_check.operators import apply_operator
-    from theory.core.rationalize import exact_matrix
+    from theory.core.exact import exact_matrix
 
     W, gammas = network
     rng = np.random.default_rng(len(W) * 7 + gammas[0].shape[0])

@@ -8,9 +8,9 @@ import inspect
 import json
 
 import pytest
+from theory.core.discovery import kind_index
 
 from theory.core.case_file import kind_spec
-from theory.core.discovery import kind_index
 from theory.core.errors import CaseError
 from theory.sweep.kinds import ANALYSIS_MODULES, agreement, analysis_for, point_modules
 from theory.sweep.outputs import write_sweep

@@ -15,8 +15,8 @@ from hypothesis import strategies as st
 
 from proofs_check import MalformedError, check_certificate
 from theory.core.case_file import load_case, parse_case
+from theory.core.exact import RationalizationError, rational_unit_vector
 from theory.core.observability import numeric_rank
-from theory.core.rationalize import RationalizationError, rational_unit_vector
 from theory.tdoa.certificate_claims import generic_rank_claim
 from theory.tdoa.rank_certificates import (
     exact_weights,

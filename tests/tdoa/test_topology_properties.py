@@ -10,7 +10,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 from topology_strategies import edge_lists, scenes, spec_of
 
-from theory.core.rationalize import exact_decimal
+from theory.core.exact import exact_decimal
 from theory.tdoa.strategies import rational_rotations, similarity_image
 from theory.tdoa.topology import analyze_topology
 

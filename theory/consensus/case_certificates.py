@@ -10,12 +10,11 @@ from __future__ import annotations
 
 from theory.certify import Certified, register_certifier
 from theory.consensus.certificates import s_detectability_certificate
-from theory.consensus.exact_linalg import rational_matrix
 from theory.consensus.primal_certificates import exact_gain_certificate, primal_lyapunov
 from theory.consensus.s_detectability import SDetectability, decide_s_detectability
 from theory.core.case_file import Case
 from theory.core.errors import PropertyFails
-from theory.core.rationalize import RationalizationError
+from theory.core.exact import RationalizationError, rational_matrix
 
 __all__ = ["decision_certificates", "dkf_certificates"]
 

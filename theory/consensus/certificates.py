@@ -3,10 +3,10 @@
 Each builder takes the data of a claim (floats are read as the decimals they print as, or exact
 ``Fraction`` entries), a floating witness from a solver, checks that the witness is strictly
 feasible with a relative margin above ``certificate_margin``, rounds it to rationals
-(:mod:`theory.core.rationalize`) and keeps the first rounding that the independent checker
+(:mod:`theory.core.exact`) and keeps the first rounding that the independent checker
 :mod:`proofs_check` accepts. The result is a certificate dict in the format of
 ``docs/certificates.md`` (``"format": "trackcert-certificate/1"``). Nothing weaker is ever
-emitted: failure raises :class:`~theory.core.rationalize.RationalizationError`.
+emitted: failure raises :class:`~theory.core.exact.RationalizationError`.
 
 Kinds built here: ``mjls-stability`` (seed 000 Lemma 5.2.2) and ``s-detectability``
 (Def. 5.2.4), from a float witness (:func:`s_detectability_certificate`) or from exact gains and
@@ -34,7 +34,7 @@ from theory.core.certificate_format import (
     rounded,
     strings,
 )
-from theory.core.rationalize import (
+from theory.core.exact import (
     PRECISIONS,
     RationalizationError,
     exact_matrix,

@@ -24,17 +24,17 @@ import control
 import networkx as nx
 import numpy as np
 
-from theory.consensus.exact_linalg import (
+from theory.consensus.exact_radius import nonnegative_radius_below
+from theory.consensus.exact_self_weight import detectable_exact, self_weight_ok_exact
+from theory.consensus.infeasibility import blind_flats
+from theory.consensus.operators import spectral_radius
+from theory.core.exact import (
     fractions_of,
     identity,
     rational_eigenvalues,
     rational_matrix,
     to_fmpq,
 )
-from theory.consensus.exact_radius import nonnegative_radius_below
-from theory.consensus.exact_self_weight import detectable_exact, self_weight_ok_exact
-from theory.consensus.infeasibility import blind_flats
-from theory.consensus.operators import spectral_radius
 from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
 from theory.core.tolerances import EIGEN_TOL, VALUE_TOL
 

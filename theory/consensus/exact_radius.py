@@ -20,20 +20,20 @@ from fractions import Fraction
 import numpy as np
 
 from proofs_check.linalg import first_asymmetry, positive_definite
-from theory.consensus.exact_linalg import (
-    Matrix,
-    fractions_of,
-    identity,
-    kron,
-    rational_matrix,
-    to_fmpq,
-)
 from theory.consensus.operators import (
     closed_loop,
     covariance_operator_matrix,
     spectral_radius,
 )
-from theory.core.rationalize import stochastic_matrix
+from theory.core.exact import (
+    Matrix,
+    fractions_of,
+    identity,
+    kron,
+    rational_matrix,
+    stochastic_matrix,
+    to_fmpq,
+)
 from theory.core.tolerances import EXACT_DIM, RADIUS_TOL
 
 __all__ = [

@@ -3,7 +3,7 @@
 ``w_ii r_σ(A_iᵘ)² < 1`` is decided without floating point, so boundary cases such as seed 000
 Example 1's ``W_c`` (``w_ii = 0.25``, ``r_σ = 2``: exactly on the bound) get a verdict:
 
-1. the data are read as the decimals written (:func:`theory.core.rationalize.exact_decimal`,
+1. the data are read as the decimals written (:func:`theory.core.exact.exact_decimal`,
    re-exported as ``to_fraction``: 0.24 is 6/25);
 2. the unobservable subspace ``N = null O`` (observability matrix, eq. (4.18)) gets a rational
    basis ``V`` from the reduced row echelon form; ``A_u = (V'V)⁻¹ V' A V`` (exact: ``N`` is
@@ -23,8 +23,8 @@ from fractions import Fraction
 import numpy as np
 from flint import fmpq_mat
 
-from theory.consensus.exact_linalg import fractions_of, null_basis, rational_matrix, to_fmpq
-from theory.core.rationalize import exact_decimal as to_fraction
+from theory.core.exact import exact_decimal as to_fraction
+from theory.core.exact import fractions_of, null_basis, rational_matrix, to_fmpq
 
 __all__ = [
     "detectable_exact",

@@ -34,9 +34,16 @@ import networkx as nx
 import numpy as np
 
 from proofs_check.linalg import matmul
-from theory.consensus.exact_linalg import Matrix, null_basis, rational_eigenvalues, rational_matrix
 from theory.core.certificate_format import checked, envelope, rational_bound, strings
-from theory.core.rationalize import RationalizationError, fraction_strings, stochastic_matrix
+from theory.core.exact import (
+    Matrix,
+    RationalizationError,
+    fraction_strings,
+    null_basis,
+    rational_eigenvalues,
+    rational_matrix,
+    stochastic_matrix,
+)
 from theory.core.tolerances import MAX_FLATS, PERRON_BITS, bits_ladder
 
 __all__ = [

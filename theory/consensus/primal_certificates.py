@@ -28,7 +28,6 @@ from theory.consensus.certificates import (
     exact_s_detectability_certificate,
     s_detectability_certificate,
 )
-from theory.consensus.exact_linalg import Matrix, fractions_of, rational_matrix, to_fmpq
 from theory.consensus.exact_radius import exact_lyapunov
 from theory.consensus.operators import (
     closed_loop,
@@ -37,7 +36,15 @@ from theory.consensus.operators import (
     vec_tuple,
 )
 from theory.core.certificate_format import rational_bound
-from theory.core.rationalize import RationalizationError, dyadic_matrix, stochastic_matrix
+from theory.core.exact import (
+    Matrix,
+    RationalizationError,
+    dyadic_matrix,
+    fractions_of,
+    rational_matrix,
+    stochastic_matrix,
+    to_fmpq,
+)
 from theory.core.tolerances import EXACT_DIM, ROUNDING_BITS, bits_ladder
 
 __all__ = [

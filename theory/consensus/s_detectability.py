@@ -60,7 +60,7 @@ from theory.consensus.primal_certificates import (
     primal_certificate,
     primal_lyapunov,
 )
-from theory.core.rationalize import RationalizationError
+from theory.core.exact import RationalizationError
 from theory.core.tolerances import CERT_TOL, LMI_MARGIN
 
 __all__ = [

@@ -20,7 +20,7 @@ import numpy as np
 import proofs_check
 from theory.core.claims import DOCUMENT_KEY, ClaimResult, NotApplicable
 from theory.core.errors import InconclusiveError, PropertyFails
-from theory.core.rationalize import (
+from theory.core.exact import (
     PRECISIONS,
     RationalizationError,
     dyadic_matrix,

@@ -16,7 +16,7 @@ from fractions import Fraction
 import numpy as np
 from scipy.sparse.csgraph import connected_components
 
-from theory.core.rationalize import exact_decimal
+from theory.core.exact import exact_decimal
 
 __all__ = [
     "NAMED_WEIGHTS",
@@ -63,7 +63,7 @@ def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray
     """Undirected adjacency of agents at ``positions`` closer than ``comm_range``.
 
     The rule is strict (``<``), as in seed 000 §4.4, and decided exactly on the numbers as
-    written (:func:`theory.core.rationalize.exact_decimal`): pairs whose float squared distance
+    written (:func:`theory.core.exact.exact_decimal`): pairs whose float squared distance
     lies within a rounding bound of ``comm_range²`` are re-compared in rationals, so an agent at
     exactly the range is never linked and one a hair inside always is.
 

@@ -40,7 +40,7 @@ import scipy.linalg
 from scipy.sparse.csgraph import connected_components
 
 from theory.core.errors import InconclusiveError, PropertyFails
-from theory.core.rationalize import exact_decimal
+from theory.core.exact import exact_decimal
 from theory.core.tolerances import INEQUALITY_RTOL, ISS_DIGITS, MARGIN_TOL
 from theory.pursuit.case import PursuitSpec, TrackerPath
 from theory.pursuit.iss_exact import (
@@ -719,7 +719,7 @@ def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
     """Plain data for an exact ISS certificate of ``spec`` (see docs/theory/pursuit-iss.md).
 
     ``data`` holds the case's matrices and constants as exact rationals (``fractions.Fraction``;
-    a case number denotes its shortest decimal, :func:`theory.core.rationalize.exact_decimal`),
+    a case number denotes its shortest decimal, :func:`theory.core.exact.exact_decimal`),
     ``witness`` the certificate's constants, rounded in the safe direction at ``iss_digits``
     significant digits (λ below λ_min(K), k̄ above ‖K‖, s above √μ, a below a(L), b above
     ‖R^{1/2}W‖, ρ below √r_min, κ above √(r_max/r_min)) and moved further that way until their

@@ -1,7 +1,7 @@
 """Exact decisions of the seed 003 ISS conditions: nothing here compares a float with a threshold.
 
 Every number of a ``kind: pursuit`` case denotes its shortest decimal
-(:func:`theory.core.rationalize.exact_decimal`), so the matrices the conditions are about are
+(:func:`theory.core.exact.exact_decimal`), so the matrices the conditions are about are
 rational, and each condition is decided in rational arithmetic:
 
 * ``K ≻ 0`` (seed 003 eq. (66); K = diag(K_p, k_γ) or K_p): Sylvester's test by exact Bareiss
@@ -25,7 +25,7 @@ from fractions import Fraction
 import numpy as np
 
 from proofs_check.linalg import positive_definite
-from theory.core.rationalize import exact_decimal
+from theory.core.exact import exact_decimal
 from theory.core.tolerances import ISS_SAFE_STEPS
 
 __all__ = [

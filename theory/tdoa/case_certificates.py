@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from theory.certify import Certified, register_certifier
 from theory.core.case_file import Case
-from theory.core.rationalize import RationalizationError
+from theory.core.exact import RationalizationError
 from theory.tdoa.rank_certificates import generic_rank_certificates
 
 __all__ = ["tdoa_certificates"]

@@ -17,7 +17,7 @@ import numpy as np
 from proofs_check.linalg import Matrix, identity, matmul, sub
 from theory.consensus.certificates import decrease_strings, float_margin
 from theory.core.certificate_format import envelope, rational_bound, rounded, strings
-from theory.core.rationalize import (
+from theory.core.exact import (
     PRECISIONS,
     exact_matrix,
     fraction_strings,

@@ -1,7 +1,7 @@
 """Exact TDOA geometry on rational coordinates: affine ranks, direction ranks, mirror images.
 
 A case's coordinates are the decimals the user wrote
-(:func:`theory.core.rationalize.exact_decimal`),
+(:func:`theory.core.exact.exact_decimal`),
 so every geometric predicate the topology verdicts rest on can be decided exactly:
 
 * **coplanarity / collinearity** of agents — the rank of their rational differences
@@ -25,7 +25,7 @@ from math import isqrt
 
 import flint
 
-from theory.core.rationalize import exact_decimal
+from theory.core.exact import exact_decimal
 
 __all__ = [
     "exact_affine_rank",

@@ -26,8 +26,8 @@ from fractions import Fraction
 
 import numpy as np
 
+from theory.core.exact import exact_decimal
 from theory.core.observability import RANK_TOL, numeric_rank
-from theory.core.rationalize import exact_decimal
 from theory.core.tolerances import INCONCLUSIVE_FACTOR
 from theory.tdoa.exact_geometry import exact_affine_rank, exact_direction_rank
 from theory.tdoa.model import unit_directions
@@ -143,7 +143,7 @@ def stacked_jacobian_position(
 
 
 def rational(value: float | int | Fraction) -> Fraction:
-    """The rational a user wrote (``0.1 → 1/10``): :func:`theory.core.rationalize.exact_decimal`.
+    """The rational a user wrote (``0.1 → 1/10``): :func:`theory.core.exact.exact_decimal`.
 
     Parameters
     ----------

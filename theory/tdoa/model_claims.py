@@ -17,8 +17,8 @@ import sympy as sp
 
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, register
+from theory.core.exact import exact_float
 from theory.core.network import exact_metropolis_weights
-from theory.core.rationalize import exact_float
 from theory.core.tolerances import ROUNDING_TOL
 from theory.tdoa.model import cv_continuous, cv_discrete, cv_discrete_symbolic
 

@@ -24,7 +24,7 @@ import flint
 import networkx as nx
 import numpy as np
 
-from theory.core.rationalize import exact_float
+from theory.core.exact import exact_float
 
 __all__ = ["path_lemma_failures", "path_lengths"]
 

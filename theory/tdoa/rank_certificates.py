@@ -30,8 +30,7 @@ import flint
 import numpy as np
 import scipy.linalg
 
-from theory.core.observability import RANK_TOL, numeric_rank
-from theory.core.rationalize import (
+from theory.core.exact import (
     RationalizationError,
     exact_decimal,
     first_success,
@@ -39,6 +38,7 @@ from theory.core.rationalize import (
     rational_unit_vector,
     stochastic_matrix,
 )
+from theory.core.observability import RANK_TOL, numeric_rank
 from theory.tdoa import networked_observability
 from theory.tdoa.case import TdoaSpec
 from theory.tdoa.model import cv_discrete, tdoa_jacobian
@@ -78,7 +78,7 @@ def exact_weights(spec: TdoaSpec) -> list[list[Fraction]]:
     Metropolis: ``w_ij = 1/(1 + max(d_i, d_j))`` on edges, ``w_ii = 1 − Σ_j w_ij``; uniform:
     ``w_ij = 1/(d_i + 1)`` on ``N_i ∪ {i}`` (both by
     :func:`theory.tdoa.networked_observability.exact_weights`); explicit: the decimals of the case
-    file, projected onto exact row sums one (:func:`~theory.core.rationalize.stochastic_matrix`).
+    file, projected onto exact row sums one (:func:`~theory.core.exact.stochastic_matrix`).
 
     Parameters
     ----------

@@ -26,8 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from theory.core.exact import exact_decimal
 from theory.core.observability import RANK_TOL
-from theory.core.rationalize import exact_decimal
 from theory.core.tolerances import CLUSTER_TOL
 
 __all__ = [

@@ -24,8 +24,8 @@ import numpy as np
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
+from theory.core.exact import exact_decimal
 from theory.core.network import metropolis_weights, uniform_weights
-from theory.core.rationalize import exact_decimal
 from theory.strategy_helpers import check_range, generators, orthonormal_matrix
 
 __all__ = [
@@ -321,7 +321,7 @@ def rational_rotations(draw: st.DrawFn, *, dim: int = 3) -> list[list[Fraction]]
     2-D: ``[[c, −s], [s, c]]`` from a Pythagorean triple with hypotenuse ``5^k`` (signs and the
     order of the legs drawn); 3-D: the rotation of an integer quaternion of norm ``2^a 5^b``.
     Rotated decimal coordinates stay finite decimals, so a case file can state them exactly
-    (:func:`theory.core.rationalize.exact_decimal` reads them back unchanged).
+    (:func:`theory.core.exact.exact_decimal` reads them back unchanged).
 
     Parameters
     ----------

@@ -20,13 +20,12 @@ from theory.consensus.certificates import (
     mjls_stability_certificate,
     s_detectability_certificate,
 )
-from theory.consensus.exact_linalg import rational_matrix
 from theory.consensus.infeasibility import infeasibility_certificate
 from theory.consensus.primal_certificates import exact_gain_certificate
 from theory.consensus.s_detectability import decide_s_detectability, s_detectability_witness
 from theory.core.case_file import load_case
 from theory.core.certificate_format import bundle
-from theory.core.rationalize import dyadic_matrix, fraction_strings
+from theory.core.exact import dyadic_matrix, fraction_strings, rational_matrix
 from theory.pursuit.certificates import iss_certificate
 from theory.tdoa.covariance_certificates import (
     covariance_bound_certificate,
