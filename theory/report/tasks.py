@@ -363,7 +363,9 @@ def failure(claim: Claim, case: str, error: BaseException, seed: int | None) -> 
         else f"the check failed to run: {kind}: {error}"
     )
     evidence = {"error": {"type": kind, "message": str(error), "where": _where(error)}}
-    result = ClaimResult("inconclusive", "none", evidence, message=message, claim=claim.id, case=case)
+    result = ClaimResult(
+        "inconclusive", "none", evidence, message=message, claim=claim.id, case=case
+    )
     return _wrap(claim, result, seed)
 
 
