@@ -1,30 +1,84 @@
-"""The case kinds: each domain's :class:`~theory.core.case_file.KindSpec`, and their simulators.
+"""The case kinds, each defined by its domain's ``case`` module, and the simulator of each
+simulated kind.
 
-Loading a case imports the parsers only (numpy and the core); a simulator is imported when a
-case of its kind is simulated.
+Both tables are explicit and lazy: loading a case imports the parser of its own kind only, and a
+simulator is imported when a case of its kind is simulated (``trackcert topology`` never imports
+the particle filter).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from theory.consensus.case import DKF
 from theory.core import case_file
 from theory.core.case_file import Case, KindSpec
 from theory.core.errors import CaseError
-from theory.particle.case import PF
-from theory.pursuit.case import PURSUIT
-from theory.tdoa.case import TDOA
-from theory.tdoa.sim_case import TDOA_SIM
 
 if TYPE_CHECKING:
     from theory.sim.simulate import Simulator
 
-__all__ = ["KINDS", "SIMULATED", "load_case", "parse_case", "simulator", "simulator_for"]
+__all__ = [
+    "KINDS",
+    "SIMULATED",
+    "load_case",
+    "parse_case",
+    "simulator",
+    "simulator_for",
+]
 
-KINDS: dict[str, KindSpec] = {k.name: k for k in (TDOA, TDOA_SIM, DKF, PURSUIT, PF)}
+
+def _tdoa() -> KindSpec:
+    from theory.tdoa.case import TDOA
+
+    return TDOA
+
+
+def _tdoa_sim() -> KindSpec:
+    from theory.tdoa.sim_case import TDOA_SIM
+
+    return TDOA_SIM
+
+
+def _dkf() -> KindSpec:
+    from theory.consensus.case import DKF
+
+    return DKF
+
+
+def _pursuit() -> KindSpec:
+    from theory.pursuit.case import PURSUIT
+
+    return PURSUIT
+
+
+def _pf() -> KindSpec:
+    from theory.particle.case import PF
+
+    return PF
+
+
+class _Kinds(Mapping[str, KindSpec]):
+    """Kind name → its :class:`KindSpec`, each imported when first looked up."""
+
+    def __init__(self, loaders: dict[str, Callable[[], KindSpec]]) -> None:
+        self._loaders = loaders
+
+    def __getitem__(self, kind: str) -> KindSpec:
+        return self._loaders[kind]()
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(sorted(self._loaders))
+
+    def __len__(self) -> int:
+        return len(self._loaders)
+
+
+KINDS: Mapping[str, KindSpec] = _Kinds(
+    {"tdoa": _tdoa, "tdoa-sim": _tdoa_sim, "dkf": _dkf, "pursuit": _pursuit, "pf": _pf}
+)
+"""Every case kind by name (looking one up imports that kind's module only)."""
 
 SIMULATED = ("dkf", "pursuit", "tdoa-sim")
 """Kinds ``trackcert simulate`` runs (``pf`` has its own command, ``trackcert pf``)."""

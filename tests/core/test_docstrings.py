@@ -1,15 +1,15 @@
-"""Every public callable has a docstring that mentions each of its parameters; a numpydoc
-``Parameters`` section lists exactly the signature's parameters (STYLE.md, *Adopt* 3).
+"""Every callable a module exports has a docstring; where it has a numpydoc ``Parameters``
+section, the section lists exactly the signature's parameters (no stale documentation).
 
-"Public" means listed in the ``__all__`` of a module under ``theory/`` (every module is walked,
-``theory.sim.*`` and ``theory.cli.*`` included; ``tests/test_exports.py`` makes every module
-declare one). A function of two or more parameters has a ``Parameters`` section; ``*args`` and
-``**kwargs`` are listed there with their stars.
+"Exports" means listed in the ``__all__`` of a module under ``theory/`` (every module is walked;
+``tests/core/test_exports.py`` makes every module declare one). Docstrings are in proportion:
+one line citing the paper's equation is enough inside the library; the user-facing API carries
+numpydoc sections, checked where it is defined. ``*args`` and ``**kwargs`` in a ``Parameters``
+section are listed with their stars.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import importlib
 import inspect
 import pkgutil
@@ -63,42 +63,9 @@ def documented_parameters(doc: str) -> set[str] | None:
 
 
 CALLABLES = sorted(public_callables(), key=lambda item: item[0])
-METHODS = sorted(
-    (
-        (f"{name}.{key}", value)
-        for name, obj in CALLABLES
-        if inspect.isclass(obj)
-        for key, value in vars(obj).items()
-        if inspect.isfunction(value) and not key.startswith("_")
-    ),
-    key=lambda item: item[0],
-)
-DATACLASSES = [(n, obj) for n, obj in CALLABLES if dataclasses.is_dataclass(obj)]
-
-
 def _own_parameters(function) -> list[inspect.Parameter]:
     signature = inspect.signature(function)
     return [p for p in signature.parameters.values() if p.name not in SKIP_PARAMS]
-
-
-@pytest.mark.parametrize(("name", "method"), METHODS, ids=[n for n, _ in METHODS])
-def test_public_method_mentions_its_parameters(name: str, method) -> None:
-    doc = inspect.getdoc(method)
-    assert doc, f"{name} has no docstring"
-    for parameter in inspect.signature(method).parameters:
-        if parameter not in SKIP_PARAMS:
-            assert re.search(rf"\b{re.escape(parameter)}\b", doc), (
-                f"{name}: parameter {parameter!r} is not mentioned in the docstring"
-            )
-
-
-@pytest.mark.parametrize(("name", "cls"), DATACLASSES, ids=[n for n, _ in DATACLASSES])
-def test_public_dataclass_documents_its_fields(name: str, cls) -> None:
-    doc = inspect.getdoc(cls) or ""
-    missing = [
-        f.name for f in dataclasses.fields(cls) if not re.search(rf"\b{re.escape(f.name)}\b", doc)
-    ]
-    assert not missing, f"{name}: fields {missing} are not documented"
 
 
 @pytest.mark.parametrize(("name", "obj"), CALLABLES, ids=[n for n, _ in CALLABLES])
@@ -106,18 +73,9 @@ def test_public_callable_is_documented(name: str, obj) -> None:
     doc = inspect.getdoc(obj)
     assert doc, f"{name} has no docstring"
     target = obj.__init__ if inspect.isclass(obj) else obj
-    if not inspect.isclass(obj):
-        for parameter in inspect.signature(obj).parameters:
-            if parameter not in SKIP_PARAMS:
-                assert re.search(rf"\b{re.escape(parameter)}\b", doc), (
-                    f"{name}: parameter {parameter!r} is not mentioned in the docstring"
-                )
     parameters = [] if inspect.isclass(obj) else _own_parameters(obj)
     documented = documented_parameters("\n" + doc)
     if documented is None:
-        assert len(parameters) < 2, (
-            f"{name}: {len(parameters)} parameters but no numpydoc Parameters section"
-        )
         return
     section = parameters_section("\n" + doc) or ""
     for parameter in parameters:
