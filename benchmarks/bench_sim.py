@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from concurrent.futures import ProcessPoolExecutor
 
-from theory.core.case_file import load_case
+from theory.kinds import load_case
 from theory.pursuit.closed_loop import DecSettings, simulate_dec
 from theory.pursuit.dekf import table_target
 from theory.sim.runner import monte_carlo

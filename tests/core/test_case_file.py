@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 import yaml
 
-from theory.core.case_file import bundled_cases, load_case, parse_case
+from theory.core.case_file import bundled_cases
 from theory.core.errors import CaseError
+from theory.kinds import load_case, parse_case
 
 BASE = {
     "name": "t",

@@ -10,7 +10,6 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.case_file import load_case
 from theory.core.claims import get_claim
 from theory.core.expectations import (
     EXPECTATIONS_KEY,
@@ -23,6 +22,7 @@ from theory.core.expectations import (
     observations_from,
 )
 from theory.core.verdicts import exit_code, expectations_verdict, verdict_status
+from theory.kinds import load_case
 
 json_values = st.recursive(
     st.none()

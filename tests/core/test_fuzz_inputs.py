@@ -30,8 +30,9 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import bundled_cases, load_case, parse_case
+from theory.core.case_file import bundled_cases
 from theory.core.errors import CaseError
+from theory.kinds import load_case, parse_case
 
 HOSTILE = Path(__file__).resolve().parents[1] / "data" / "hostile"
 CERTIFICATES = Path(__file__).resolve().parents[1] / "data" / "certificates" / "valid"

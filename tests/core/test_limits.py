@@ -12,9 +12,10 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import bundled_cases, parse_case
+from theory.core.case_file import bundled_cases
 from theory.core.errors import CaseError
 from theory.core.limits import LIMITS, check_count, check_estimate, limit, table
+from theory.kinds import parse_case
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "cli.md"
 

@@ -14,8 +14,8 @@ import pytest
 from distributed import LocalCluster
 from hypothesis import given
 from hypothesis import strategies as st
-from theory.core.run_cache import RunCache, shared
 
+from theory.core.claims import Context, RunCache
 from theory.core.errors import CaseError
 from theory.core.parallel import SCHEDULER_SETTING, engine, scheduler_address
 from theory.sim.runner import monte_carlo
@@ -71,7 +71,7 @@ def test_monte_carlo_is_identical_on_one_and_two_workers(cluster) -> None:
 
 def test_particle_monte_carlo_is_identical_on_one_and_two_workers(cluster) -> None:
     """seed 002's runs are tasks too (``theory.particle.experiments.monte_carlo``)."""
-    from theory.core.case_file import load_case
+    from theory.kinds import load_case
     from theory.particle.experiments import monte_carlo as pf_monte_carlo
 
     spec = load_case("pf-topology-b").spec
@@ -176,7 +176,9 @@ def test_run_cache_computes_once_per_key() -> None:
 
     assert cache.get("a", compute("a")) == "A"
     assert cache.get("a", compute("again")) == "A"
-    assert shared(cache, "b", compute("b")) == "B"
-    assert shared(None, "a", compute("none")) == "NONE"
-    assert calls == ["a", "b", "none"]
-    assert (cache.hits, cache.misses) == (1, 2)
+    assert Context(cache).shared("b", compute("b")) == "B"
+    assert Context().shared("a", compute("fresh")) == "FRESH"  # a fresh context: its own cache
+    cache.put("c", "given")
+    assert Context(cache).shared("c", compute("c")) == "given"
+    assert calls == ["a", "b", "fresh"]
+    assert (cache.hits, cache.misses) == (2, 2)

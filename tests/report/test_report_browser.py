@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 from report_fakes import fake_registry, register_standard_fakes, result, write_case
 
-from theory.core.case_file import load_case
+from theory.kinds import load_case
 from theory.report.render import write_report
 from theory.report.runner import run_claims
 

@@ -11,9 +11,9 @@ from report_fakes import fake_registry, register_standard_fakes, write_case
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import load_case
 from theory.core.claims import all_claims
 from theory.core.parallel import Outcome, engine
+from theory.kinds import load_case
 from theory.report.runner import run_claims
 from theory.report.tasks import plan_tasks
 

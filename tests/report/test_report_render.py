@@ -14,9 +14,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 from report_fakes import fake_registry, register_standard_fakes, result, write_case
 
-from theory.core.case_file import load_case
 from theory.core.claims import NotApplicable
 from theory.core.errors import CaseError
+from theory.kinds import load_case
 from theory.report.artifacts import check_document, check_with_cli, prechecked
 from theory.report.canonical import canonical, dumps
 from theory.report.errata import parse_errata

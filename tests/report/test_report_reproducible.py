@@ -13,7 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from theory.core.case_file import bundled_cases, load_case
+from theory.core.case_file import bundled_cases
+from theory.kinds import load_case
 from theory.report.render import write_report
 from theory.report.runner import run_claims
 

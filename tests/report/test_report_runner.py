@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 from report_fakes import fake_registry, register_standard_fakes, result, write_case
 
-from theory.core.case_file import load_case
 from theory.core.claims import NotApplicable, all_claims, applicable_results
 from theory.core.errors import CaseError
+from theory.kinds import load_case
 from theory.report.runner import MODEL_CASE, derive_seed, paper_of, run_claims, select_claims
 
 

@@ -10,8 +10,8 @@ import json
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.case_file import load_case
 from theory.core.claims import all_claims
+from theory.kinds import load_case
 from theory.report.runner import run_claims
 from theory.report.schedule import (
     BATCH_SECONDS,

@@ -12,7 +12,7 @@ from report_fakes import fake_registry, register_standard_fakes, result, write_c
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import load_case
+from theory.kinds import load_case
 from theory.report.runner import run_claims
 from theory.report.time_limit import TimeLimitExceeded, enforceable, time_limit
 
