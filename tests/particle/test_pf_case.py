@@ -11,8 +11,9 @@ import yaml
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import bundled_cases, load_case, parse_case
+from theory.core.case_file import bundled_cases
 from theory.core.errors import CaseError
+from theory.kinds import load_case, parse_case
 from theory.particle.experiments import (
     compare_variants,
     convergence_verdicts,
@@ -109,7 +110,8 @@ def test_summary_and_verdicts_follow_their_definitions():
 def test_compare_variants_is_a_paired_z_test():
     mc, _ = _small("pf-topology-b")
     same = compare_variants(mc, mc, 1, improvement_tol=3.0)
-    assert same["mean_difference"] == 0.0 and same["verdict"] == "not lower"
+    assert same.mean_difference == 0.0 and same.lower is False
+    assert same.evidence()["verdict"] == "not lower"
     with pytest.raises(ValueError, match="metric"):
         compare_variants(mc, mc, 1, improvement_tol=3.0, metric="final")
 
