@@ -19,7 +19,7 @@ under ``evidence["expectations"]``, keyed like the ``expect`` block, so that ``t
 key that names a node (``consensus_helps: 4``) is that node when the claim holds there,
 ``false`` when it fails there, and ``null`` when the Monte Carlo runs cannot decide.
 
-The figures (matplotlib, Agg backend) are built from :class:`MonteCarlo` results only.
+The figures are built from :class:`MonteCarlo` results only (matplotlib without pyplot).
 """
 
 from __future__ import annotations
@@ -31,10 +31,6 @@ from functools import partial
 from pathlib import Path
 from typing import Any, Literal
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 
 from theory.core.case_file import Case
@@ -44,7 +40,7 @@ from theory.core.tolerances import PF_TOLERANCES
 from theory.particle.case import PARAM_NAMES, PF, Model, PfConfig, PfSpec
 from theory.particle.dcrw import sample_dcrw_path, weibull_logpdf, wrapped_cauchy_logpdf
 from theory.particle.filter import PfRun, build_motion, run_filter, simulate_measurements
-from theory.sim.figures import save_figure
+from theory.sim.figures import new_figure, save_figure
 
 __all__ = [
     "DEFAULT_TOLERANCES",
@@ -253,6 +249,11 @@ def convergence_verdicts(
     return verdicts
 
 
+def verdict_words(verdicts: dict[int, Convergence]) -> dict[int, str]:
+    """Node id → the verdict's words (for evidence and messages)."""
+    return {node: verdict.value for node, verdict in verdicts.items()}
+
+
 def convergence_margin(
     tail_errors: np.ndarray,
     filters: tuple[int, ...],
@@ -328,11 +329,6 @@ def learned_bias(fits: np.ndarray, truth: np.ndarray) -> tuple[np.ndarray, np.nd
     bias = fits.mean(axis=0) - truth
     bias[0] = float(np.angle(np.mean(np.exp(1j * fits[:, 0])) * np.exp(-1j * truth[0])))
     return bias, fits.std(axis=0, ddof=1) / np.sqrt(len(fits))
-
-
-def verdict_words(verdicts: dict[int, Convergence]) -> dict[int, str]:
-    """Node id → the verdict's words (for evidence and messages)."""
-    return {node: verdict.value for node, verdict in verdicts.items()}
 
 
 def _tolerances(case: Case) -> dict[str, float]:
@@ -603,7 +599,7 @@ def check_learned_pdfs(case: Case, ctx: Context) -> list[ClaimResult]:
 def plot_errors(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
     """Mean norm error ``E_i(k)`` (eq. 3.20) per node with the 10–90 % band over runs (Figs.
     3.2–3.3), written to ``path``."""
-    fig, ax = plt.subplots(figsize=(6, 3.5))
+    fig, ax = new_figure(figsize=(6, 3.5))
     steps = np.arange(mc.errors.shape[1])
     for f, node in enumerate(spec.network.filters):
         low, high = np.quantile(mc.errors[:, :, f], [0.1, 0.9], axis=0)
@@ -623,9 +619,8 @@ def plot_particles(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
     """Run 0's weighted particle clouds at the snapshot steps, with nodes, links and target
     (Fig. 3.1)."""
     steps = sorted(mc.snapshots)
-    fig, axes = plt.subplots(
-        1, max(1, len(steps)), figsize=(4 * max(1, len(steps)), 4), squeeze=False
-    )
+    width = max(1, len(steps))
+    fig, axes = new_figure(1, width, figsize=(4 * width, 4), squeeze=False)
     nodes = spec.network.nodes
     for ax, k in zip(axes[0], steps, strict=False):
         for i, j in np.argwhere(np.triu(spec.network.hears)):
@@ -649,7 +644,7 @@ def plot_particles(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
 def plot_learned_pdfs(mc: MonteCarlo, spec: PfSpec, path: Path) -> Path:
     """Learned turning-angle and step-length PDFs (every run, per node) against the true ones
     (Fig. 3.6)."""
-    fig, (left, right) = plt.subplots(1, 2, figsize=(9, 3.5))
+    fig, (left, right) = new_figure(1, 2, figsize=(9, 3.5))
     phi = np.linspace(-np.pi, np.pi, 361)
     delta = np.linspace(1e-3, 4 * spec.target.lam, 300)
     for f, node in enumerate(spec.network.filters):
