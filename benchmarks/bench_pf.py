@@ -15,9 +15,9 @@ import timeit
 import numpy as np
 
 from theory.particle import dcrw
-from theory.particle.dcrw import DcrwParams, sample_wrapped_cauchy
-from theory.particle.filter import PfConfig, PfNetwork, initial_state, measure, pf_step
-from theory.particle.motion import DcrwMotion
+from theory.particle.case import DcrwParams, PfConfig, PfNetwork
+from theory.particle.dcrw import sample_wrapped_cauchy
+from theory.particle.filter import DcrwMotion, initial_state, measure, pf_step
 from theory.particle.pf_vs_ekf import EkfConfig, consensus_weights, ekf_step
 from theory.tdoa.model import cv_discrete
 

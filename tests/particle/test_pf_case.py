@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import copy
 import json
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -11,8 +13,9 @@ import yaml
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import bundled_cases, load_case, parse_case
+from theory.core.case_file import bundled_cases
 from theory.core.errors import CaseError
+from theory.kinds import load_case, parse_case
 from theory.particle.experiments import (
     compare_variants,
     convergence_verdicts,
@@ -109,7 +112,8 @@ def test_summary_and_verdicts_follow_their_definitions():
 def test_compare_variants_is_a_paired_z_test():
     mc, _ = _small("pf-topology-b")
     same = compare_variants(mc, mc, 1, improvement_tol=3.0)
-    assert same["mean_difference"] == 0.0 and same["verdict"] == "not lower"
+    assert same.mean_difference == 0.0 and same.lower is False
+    assert same.evidence()["verdict"] == "not lower"
     with pytest.raises(ValueError, match="metric"):
         compare_variants(mc, mc, 1, improvement_tol=3.0, metric="final")
 
@@ -166,3 +170,19 @@ def test_summary_table_has_a_row_per_variant_and_node():
     )
     assert len(table) == 2 + expected
     assert all(line.count("|") == 10 for line in table)
+
+
+def test_loading_a_pf_case_imports_neither_the_filter_nor_scipy_optimize():
+    """The case module holds the scenario's data, so validating a case stays cheap."""
+    script = (
+        "import json, sys\n"
+        "from theory.kinds import load_case\n"
+        "load_case('pf-topology-b')\n"
+        "heavy = ['theory.particle.filter', 'theory.particle.dcrw', 'scipy.optimize',"
+        " 'scipy.stats']\n"
+        "print(json.dumps([m for m in heavy if m in sys.modules]))\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True
+    )
+    assert json.loads(done.stdout.strip().splitlines()[-1]) == []

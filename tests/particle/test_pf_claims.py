@@ -15,12 +15,14 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import bundled_cases, load_case, parse_case
-from theory.core.claims import all_claims, get_claim
+from theory.core.case_file import bundled_cases
+from theory.core.claims import Context
 from theory.core.errors import CaseError
 from theory.core.expectations import EXPECTATIONS_KEY, evaluate
+from theory.kinds import load_case, parse_case
 from theory.particle.case import PARAM_NAMES
-from theory.particle.claims import learned_bias
+from theory.particle.experiments import learned_bias
+from theory.registry import all_claims, get_claim
 from theory.report.canonical import canonical
 
 runner = CliRunner()
@@ -158,6 +160,6 @@ def test_cli_pf_exit_code_follows_the_expectations(tmp_path):
 
 def test_the_convergence_claim_draws_the_error_curves(tmp_path):
     case = _small("pf-topology-a", runs=2)
-    (result,) = get_claim("seed002.sec3.convergence").run(case, figure_dir=tmp_path)
+    (result,) = get_claim("seed002.sec3.convergence").run(case, Context(figure_dir=tmp_path))
     assert result.figures == (str(tmp_path / "errors.png"),)
     assert (tmp_path / "errors.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -9,18 +9,18 @@ from hypothesis import strategies as st
 from scipy import integrate, stats
 
 from theory.particle import dcrw
+from theory.particle.case import DcrwParams
 from theory.particle.dcrw import (
-    DcrwParams,
     fit_weibull,
     fit_wrapped_cauchy,
     sample_dcrw_path,
     sample_weibull,
     sample_wrapped_cauchy,
+    standard_errors,
     weibull_logpdf,
     wrap_angle,
     wrapped_cauchy_logpdf,
 )
-from theory.particle.dcrw_claims import standard_errors
 
 Z_TOL = 4.0  # deviations allowed, in asymptotic standard errors
 N = 5000

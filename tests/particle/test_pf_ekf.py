@@ -8,9 +8,9 @@ import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.case_file import load_case
-from theory.core.claims import get_claim
-from theory.particle.filter import PfNetwork, simulate_measurements
+from theory.kinds import load_case
+from theory.particle.case import PfNetwork
+from theory.particle.filter import simulate_measurements
 from theory.particle.pf_vs_ekf import (
     EkfConfig,
     compare_on_same_data,
@@ -19,6 +19,7 @@ from theory.particle.pf_vs_ekf import (
     measurement_ranks,
     run_ekf,
 )
+from theory.registry import get_claim
 from theory.tdoa.model import cv_discrete
 
 TRIANGLE = np.array([[0.0, 35.0], [-30.31, -17.5], [30.31, -17.5]])

@@ -8,11 +8,15 @@ from hypothesis import given
 from hypothesis import strategies as st
 from scipy import stats
 
-from theory.particle.dcrw import DcrwParams, sample_dcrw_path
+from theory.kinds import load_case
+from theory.particle.case import DcrwParams, ExchangeWeights, Model, PfConfig, PfNetwork
+from theory.particle.dcrw import sample_dcrw_path
 from theory.particle.filter import (
-    PfConfig,
-    PfNetwork,
+    DcrwMotion,
+    GaussianMotion,
     PfState,
+    UniformMotion,
+    build_motion,
     consensus_exchange,
     estimate,
     initial_state,
@@ -23,8 +27,8 @@ from theory.particle.filter import (
     propagate,
     run_filter,
     simulate_measurements,
+    truncated_normal,
 )
-from theory.particle.motion import DcrwMotion, GaussianMotion, UniformMotion, truncated_normal
 
 TRIANGLE = np.array([[0.0, 30.0], [-26.0, -15.0], [26.0, -15.0]])
 seeds = st.integers(0, 2**32 - 1)
@@ -345,3 +349,25 @@ def test_truncated_normal_is_scipys_truncnorm_draw_for_draw(a, b, loc, scale, se
 def test_truncated_normal_needs_a_negative_lower_bound():
     with pytest.raises(ValueError, match="a < 0"):
         truncated_normal(np.random.default_rng(0), 0.5, 1.0, 0.0, 1.0, (2,))
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda spec: PfConfig(exchange_weights="sendr"),
+        lambda spec: PfConfig(received_heading="uniformly"),
+        lambda spec: build_motion(spec, "kalman"),
+    ],
+)
+def test_misspelt_choices_are_refused(make):
+    """The filter's closed vocabularies raise on a value outside them instead of falling back."""
+    with pytest.raises(ValueError):
+        make(load_case("pf-path3").spec)
+
+
+def test_choices_given_as_words_become_members():
+    config = PfConfig(exchange_weights="local")
+    assert config.exchange_weights is ExchangeWeights.LOCAL
+    spec = load_case("pf-path3").spec
+    assert isinstance(build_motion(spec, "gaussian"), GaussianMotion)
+    assert isinstance(build_motion(spec, Model.DCRW), DcrwMotion)

@@ -7,10 +7,15 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.claims import get_claim
-from theory.particle.dcrw import DcrwParams, sample_dcrw_path, sample_weibull, sample_wrapped_cauchy
-from theory.particle.learning import OnlineLearner, movement_samples
-from theory.particle.motion import UniformMotion
+from theory.particle.case import DcrwParams
+from theory.particle.dcrw import (
+    movement_samples,
+    sample_dcrw_path,
+    sample_weibull,
+    sample_wrapped_cauchy,
+)
+from theory.particle.filter import OnlineLearner, UniformMotion
+from theory.registry import get_claim
 
 
 @given(st.integers(0, 2**32 - 1))

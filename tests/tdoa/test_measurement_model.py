@@ -16,7 +16,8 @@ import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.particle.filter import PfNetwork, log_likelihood, measure
+from theory.particle.case import PfNetwork
+from theory.particle.filter import log_likelihood, measure
 from theory.particle.pf_vs_ekf import EkfConfig, consensus_weights, ekf_step
 from theory.strategies import networks, tdoa_scenes
 from theory.tdoa.averaging import average_round

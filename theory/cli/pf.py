@@ -1,6 +1,6 @@
 """``trackcert pf CASE``: Monte Carlo runs of the distributed TDOA particle filter (seed 002 §3.3).
 
-A shell over :func:`theory.particle.pf_report.pf_report`: prints the per-node error summary, the
+A shell over :func:`theory.particle.report.pf_report`: prints the per-node error summary, the
 verdicts of every registered claim for ``kind: pf`` cases, and each key of the case's ``expect``
 block with the value the claims observed (judged by :mod:`theory.core.expectations`, as
 ``trackcert report`` judges it); with ``-o DIR`` the library writes ``DIR/pf.json`` and the
@@ -72,7 +72,7 @@ def run_pf_case(
     workers: int | None = None,
     scheduler: str | None = None,
 ) -> int:
-    """Print :func:`theory.particle.pf_report.pf_report` of ``case`` and return the exit code.
+    """Print :func:`theory.particle.report.pf_report` of ``case`` and return the exit code.
 
     Parameters
     ----------
@@ -94,7 +94,7 @@ def run_pf_case(
     """
     from theory.core.parallel import engine
     from theory.particle.case import check_pf_work
-    from theory.particle.pf_report import pf_report
+    from theory.particle.report import pf_report
 
     if out is not None:
         check_output(out, "-o/--out", folder=True)

@@ -1,6 +1,8 @@
 """``kind: pf`` case files: a distributed TDOA particle-filter scenario (seed 002 §3.3).
 
-Block fields (defaults are seed 002 §3.3.1's where it gives them, ours otherwise)::
+The scenario's data (network, filter parameters, target DCRW) are defined here, so that loading a
+case imports neither the filter nor scipy. Block fields (seed 002 §3.3.1's defaults where it
+gives them, ours otherwise)::
 
     pf:
       nodes: [[x, y], ...]        # stationary node positions (the thesis gives none: state yours)
@@ -22,7 +24,8 @@ Block fields (defaults are seed 002 §3.3.1's where it gives them, ours otherwis
       uniform_max_step: 8.0       # the learner's uniform prior on step length
       learning: {min_samples: 10, gamma_max: 0.95, burn_in: 5}
 
-``expect`` keys (every node id a filtering node; judged by :mod:`theory.particle.claims`)::
+``expect`` keys (every node id a filtering node; observed by the claims of
+:mod:`theory.particle.experiments` and :mod:`theory.particle.pf_vs_ekf`)::
 
     converges: {1: true, 5: false}     # node id → whether its PF converges (Figs. 3.2–3.3)
     consensus_helps: 4                 # the consensus step lowers this node's error (Fig. 3.4)
@@ -35,7 +38,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from enum import StrEnum
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -54,83 +58,131 @@ from theory.core.validation import (
     positive_number,
     require,
 )
-from theory.particle.dcrw import DcrwParams
-from theory.particle.filter import EXCHANGE_WEIGHTS, RECEIVED_HEADINGS, PfConfig, PfNetwork
 
 __all__ = [
-    "MODELS",
     "PARAM_NAMES",
     "PF",
+    "DcrwParams",
+    "ExchangeWeights",
+    "Model",
+    "PfConfig",
+    "PfNetwork",
     "PfSpec",
+    "ReceivedHeading",
     "check_pf_expect",
     "check_pf_work",
     "parse_pf",
 ]
 
-FIELDS = (
-    "nodes",
-    "edges",
-    "filters",
-    "workspace",
-    "particles",
-    "share",
-    "steps",
-    "runs",
-    "seed",
-    "noise_sigma",
-    "filter_sigma",
-    "target",
-    "model",
-    "exchange_weights",
-    "exchange_rounds",
-    "received_heading",
-    "uniform_max_step",
-    "learning",
-)
-EXPECT_KEYS = (
-    "converges",
-    "consensus_helps",
-    "learned_beats_gaussian",
-    "learned_pdfs_centre",
-    "learned_biased",
-)
-NODE_KEYS = ("consensus_helps", "learned_beats_gaussian", "learned_pdfs_centre")
+
+E = TypeVar("E", bound=StrEnum)
+
+
+class Model(StrEnum):
+    """The particles' propagation model (seed 002 §3.3.2)."""
+
+    DCRW = "dcrw"  # the target's true DCRW
+    GAUSSIAN = "gaussian"  # the thesis's mis-specified truncated normals
+    LEARNED = "learned"  # refitted online from the node's own estimates
+
+
+class ExchangeWeights(StrEnum):
+    """The weight a received particle gets (a choice seed 002 §3.2.1 leaves open)."""
+
+    SENDER = "sender"  # the normalised weight its sender gave it (the thesis's message)
+    LOCAL = "local"  # re-weighted with the receiver's own likelihood
+
+
+class ReceivedHeading(StrEnum):
+    """The heading a received particle gets."""
+
+    SENDER = "sender"  # the sender's, travelling with the particle
+    UNIFORM = "uniform"  # drawn afresh (the thesis's message carries no heading)
+
+
 PARAM_NAMES = ("mu", "gamma", "kappa", "lambda")
 """The DCRW parameters (μ, γ, κ, λ) of seed 002 eqs. (3.1)–(3.2), in the order fits report them."""
-TOLERANCE_KEYS = ("converge_tol", "diverge_tol", "improvement_tol")
-MODELS = ("dcrw", "gaussian", "learned")
-LEARNING_FIELDS = ("min_samples", "gamma_max", "burn_in")
-COINCIDENT_WHY = (
-    " (the TDOA of seed 002 eq. (3.9) between coincident nodes is identically 0: it carries no"
-    " information, so such a scene is refused as for kind tdoa)"
-)
+
+
+@dataclass(frozen=True)
+class DcrwParams:
+    """Wrapped-Cauchy turn ``(μ, γ)``, ``0 ≤ γ < 1``, and Weibull step ``(κ, λ)`` (seed 002
+    eqs. (3.1)–(3.2))."""
+
+    mu: float
+    gamma: float
+    kappa: float
+    lam: float
+
+    def __post_init__(self) -> None:
+        if not (0.0 <= self.gamma < 1.0 and self.kappa > 0 and self.lam > 0):
+            raise ValueError(
+                f"DCRW parameters need 0 ≤ γ < 1, κ > 0, λ > 0; got γ={self.gamma!r}, "
+                f"κ={self.kappa!r}, λ={self.lam!r}"
+            )
+
+    def as_array(self) -> np.ndarray:
+        """``[μ, γ, κ, λ]`` in :data:`PARAM_NAMES` order."""
+        return np.array([self.mu, self.gamma, self.kappa, self.lam])
+
+
+@dataclass(frozen=True)
+class PfConfig:
+    """The distributed PF's parameters (seed 002 §3.2.1; §3.3.1: P = 100, m = 10).
+
+    ``share`` is ``m`` (0 disables the consensus step), ``sigma`` the TDOA noise the filter
+    assumes (eq. 3.11), ``estimate_fraction`` the share of particles averaged (eq. 3.13);
+    ``exchange_rounds`` rounds of exchange per step let received particles travel on.
+    """
+
+    particles: int = 100
+    share: int = 10
+    sigma: float = 1.0
+    estimate_fraction: float = 0.2
+    exchange_weights: ExchangeWeights = ExchangeWeights.SENDER
+    exchange_rounds: int = 1
+    received_heading: ReceivedHeading = ReceivedHeading.SENDER
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "exchange_weights", ExchangeWeights(self.exchange_weights))
+        object.__setattr__(self, "received_heading", ReceivedHeading(self.received_heading))
+        if not (0 < self.estimate_fraction <= 1 and self.sigma > 0 and self.particles >= 1):
+            raise ValueError("need P ≥ 1, σ > 0 and 0 < estimate_fraction ≤ 1")
+        if self.share < 0 or self.exchange_rounds < 1:
+            raise ValueError("need m ≥ 0 and exchange_rounds ≥ 1")
+
+
+@dataclass(frozen=True, eq=False)
+class PfNetwork:
+    """Node positions ``(N, 2)``, who hears whom (``hears[i, j]``: ``j ∈ N_i``) and the nodes
+    running a filter (all 0-based; seed 002 §3.3.1 filters at nodes 1, 4 and 5)."""
+
+    nodes: np.ndarray
+    hears: np.ndarray
+    filters: tuple[int, ...]
+
+    @property
+    def measurement_mask(self) -> np.ndarray:
+        """``(F, N)`` mask of the TDOA components each filtering node measures."""
+        return self.hears[list(self.filters)]
+
+    @property
+    def filter_neighbours(self) -> np.ndarray:
+        """``(F, D)`` filter-indices of each filter's filtering neighbours, padded with −1 last."""
+        index = {node: f for f, node in enumerate(self.filters)}
+        rows = [
+            [index[j] for j in np.flatnonzero(self.hears[i]) if j in index] for i in self.filters
+        ]
+        width = max((len(r) for r in rows), default=0)
+        return np.array([r + [-1] * (width - len(r)) for r in rows], dtype=int).reshape(
+            len(rows), width
+        )
 
 
 @dataclass(frozen=True, eq=False)
 class PfSpec:
-    """A validated PF scenario (see the module docstring for the fields).
-
-    Attributes
-    ----------
-    network : PfNetwork
-        Nodes, links and filtering nodes.
-    config : PfConfig
-        The filter's parameters.
-    workspace : ndarray, shape (2, 2)
-        Box of the initial particles and of the target's start.
-    steps, runs, seed : int
-        Target moves, Monte Carlo runs, base seed.
-    noise_sigma : float
-        True TDOA noise standard deviation (m).
-    target : DcrwParams
-        The true DCRW.
-    model : str
-        Propagation model: ``dcrw``, ``gaussian`` or ``learned``.
-    uniform_max_step : float
-        Step range of the learner's uniform prior.
-    learning : dict
-        Overrides of :class:`~theory.particle.learning.OnlineLearner`'s guards.
-    """
+    """A validated PF scenario (the module docstring gives the fields); ``workspace`` is
+    ``[[xmin, xmax], [ymin, ymax]]``, ``learning`` overrides the online learner's guards."""
 
     network: PfNetwork
     config: PfConfig
@@ -140,19 +192,33 @@ class PfSpec:
     seed: int
     noise_sigma: float
     target: DcrwParams
-    model: str
+    model: Model
     uniform_max_step: float
     learning: dict[str, float]
 
 
-def parse_pf(block: Mapping[str, Any]) -> PfSpec:
-    """Validate a ``pf:`` block.
+FIELDS = tuple(
+    "nodes edges filters workspace particles share steps runs seed noise_sigma filter_sigma target"
+    " model exchange_weights exchange_rounds received_heading uniform_max_step learning".split()
+)
+EXPECT_KEYS = (
+    "converges",
+    "consensus_helps",
+    "learned_beats_gaussian",
+    "learned_pdfs_centre",
+    "learned_biased",
+)
+NODE_KEYS = ("consensus_helps", "learned_beats_gaussian", "learned_pdfs_centre")
+TOLERANCE_KEYS = ("converge_tol", "diverge_tol", "improvement_tol")
+LEARNING_FIELDS = ("min_samples", "gamma_max", "burn_in")
+COINCIDENT_WHY = (
+    " (the TDOA of seed 002 eq. (3.9) between coincident nodes is identically 0: it carries no"
+    " information, so such a scene is refused as for kind tdoa)"
+)
 
-    Raises
-    ------
-    CaseError
-        For any missing, unknown or invalid field, naming it.
-    """
+
+def parse_pf(block: Mapping[str, Any]) -> PfSpec:
+    """Validate a ``pf:`` block (a :class:`CaseError` names any bad field)."""
     check_keys(block, FIELDS, "pf")
     raw_nodes = require(block, "nodes", "pf")
     check_length(raw_nodes, "agents", "pf.nodes")
@@ -187,35 +253,20 @@ def parse_pf(block: Mapping[str, Any]) -> PfSpec:
         seed=positive_int(block.get("seed", 0), "pf.seed", minimum=0),
         noise_sigma=noise,
         target=_target(block.get("target", {"mu": 0, "gamma": 0.7, "kappa": 2, "lambda": 3})),
-        model=one_of(block.get("model", "dcrw"), MODELS, "pf.model"),
+        model=_choice(block, "model", Model.DCRW),
         uniform_max_step=positive_number(block.get("uniform_max_step", 8.0), "pf.uniform_max_step"),
         learning=_learning(block.get("learning", {})),
     )
 
 
 def check_pf_work(config: PfConfig, filters: int, steps: int, runs: int, field: str) -> None:
-    """Refuse a pf run whose memory or work would exceed the limits (:mod:`theory.core.limits`).
+    """Refuse a pf run whose memory or work would exceed :mod:`theory.core.limits`, naming
+    ``field`` (``pf.particles`` when the particles take most memory).
 
     Each filter keeps, per particle, a position, a heading and a weight (seed 002 §3.2.1) plus
     the resampling and likelihood temporaries: 16 floats (128 B) are counted per particle; the
     error records add 16 B per filter, step and run. The work is one particle update per
     particle, filter, exchange round, step and run.
-
-    Parameters
-    ----------
-    config : PfConfig
-        The filter's parameters (particles, exchange rounds).
-    filters, steps, runs : int
-        Filtering nodes, target moves, Monte Carlo runs.
-    field : str
-        The field (or option, such as ``--runs``) named when the work, or the memory of the
-        error records, is too much.
-
-    Raises
-    ------
-    CaseError
-        Naming ``field`` (``pf.particles`` when the particles take most memory), the estimate
-        and the limit.
     """
     particles, rounds = config.particles, config.exchange_rounds
     states, records = 128.0 * filters * particles, 16.0 * filters * (steps + 1) * runs
@@ -228,6 +279,11 @@ def check_pf_work(config: PfConfig, filters: int, steps: int, runs: int, field: 
     work = float(filters) * particles * rounds * (steps + 1) * runs
     what = f"{filters} filters × {particles:,} particles × {rounds} exchange rounds × steps × runs"
     check_estimate("work", work, field, what)
+
+
+def _choice(block: Mapping[str, Any], key: str, default: E) -> E:
+    kind = type(default)
+    return kind(one_of(block.get(key, default.value), [e.value for e in kind], f"pf.{key}"))
 
 
 def _config(block: Mapping[str, Any], noise: float, hears: np.ndarray, filters: tuple) -> PfConfig:
@@ -246,13 +302,9 @@ def _config(block: Mapping[str, Any], noise: float, hears: np.ndarray, filters: 
         particles=particles,
         share=share,
         sigma=positive_number(block.get("filter_sigma", noise), "pf.filter_sigma"),
-        exchange_weights=one_of(
-            block.get("exchange_weights", "sender"), EXCHANGE_WEIGHTS, "pf.exchange_weights"
-        ),
+        exchange_weights=_choice(block, "exchange_weights", ExchangeWeights.SENDER),
         exchange_rounds=positive_int(block.get("exchange_rounds", 1), "pf.exchange_rounds"),
-        received_heading=one_of(
-            block.get("received_heading", "sender"), RECEIVED_HEADINGS, "pf.received_heading"
-        ),
+        received_heading=_choice(block, "received_heading", ReceivedHeading.SENDER),
     )
 
 
@@ -278,7 +330,7 @@ def _ids(raw: object, n: int, field: str) -> tuple[int, ...]:
 
 
 def _target(raw: object) -> DcrwParams:
-    block = check_keys(raw, ("mu", "gamma", "kappa", "lambda"), "pf.target")
+    block = check_keys(raw, PARAM_NAMES, "pf.target")
     mu = finite_number(require(block, "mu", "pf.target"), "pf.target.mu")
     gamma = positive_number(
         require(block, "gamma", "pf.target"), "pf.target.gamma", allow_zero=True
@@ -306,23 +358,9 @@ def _learning(raw: object) -> dict[str, float]:
 
 
 def check_pf_expect(spec: PfSpec, expect: Mapping[str, Any]) -> None:
-    """Validate the values of a pf case's ``expect`` block against ``spec``.
-
-    Node ids must be filtering nodes (1-based); ``converges`` maps them to true/false and
-    ``learned_biased`` to a list of parameter names of :data:`PARAM_NAMES`, in that order.
-
-    Parameters
-    ----------
-    spec : PfSpec
-        The validated scenario (gives the filtering nodes).
-    expect : mapping
-        The case's ``expect`` block, keys already checked.
-
-    Raises
-    ------
-    CaseError
-        Naming the ``expect`` field, the expected form and what was found.
-    """
+    """Validate the values of a pf case's ``expect`` block: node ids are filtering nodes
+    (1-based), ``converges`` maps them to true/false and ``learned_biased`` to parameter names of
+    :data:`PARAM_NAMES`, in that order."""
     filters = sorted(f + 1 for f in spec.network.filters)
     node = f"a filtering node id (one of {filters})"
     for key, value in expect.items():

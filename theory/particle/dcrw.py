@@ -9,58 +9,47 @@ Maximum-likelihood fits: the wrapped Cauchy by maximising the log-likelihood ove
 ``E[e^{iφ}] = γ e^{iμ}``; the Weibull by the profile-likelihood equation in ``κ`` (one monotone
 root, bracketed Newton steps) with ``λ = (mean δ^κ)^{1/κ}``. Both are cross-checked against
 ``scipy.stats`` in the tests.
+
+The claims about the model alone draw a long sample with a fixed seed and compare the fit with
+the truth in ``z_tol`` asymptotic standard errors, from the Fisher information of each
+distribution: wrapped Cauchy ``Var(γ̂) = (1 − γ²)²/(2n)``, ``Var(μ̂) = (1 − γ²)²/(2nγ²)``;
+Weibull ``Var(κ̂) = 6κ²/(π² n)``, ``Var(λ̂) = λ²(1 + 6(1 − γ_E)²/π²)/(κ² n)``.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from scipy import optimize
 
+from theory.core.case_file import Case
+from theory.core.claims import ClaimResult, ClaimSet, Context, Method, status_of
 from theory.core.errors import SolverError
+from theory.core.tolerances import Z_TOL
+from theory.particle.case import PARAM_NAMES, DcrwParams
 
 __all__ = [
-    "DcrwParams",
+    "REFERENCE",
+    "SAMPLES",
+    "SEED",
+    "claims",
     "fit_dcrw",
     "fit_weibull",
     "fit_wrapped_cauchy",
+    "movement_samples",
     "sample_dcrw_path",
     "sample_weibull",
     "sample_wrapped_cauchy",
+    "standard_errors",
     "weibull_logpdf",
     "wrap_angle",
     "wrapped_cauchy_logpdf",
 ]
 
+claims = ClaimSet()
 
-@dataclass(frozen=True)
-class DcrwParams:
-    """Parameters of the DCRW (seed 002 eqs. (3.1)–(3.2)).
-
-    Attributes
-    ----------
-    mu : float
-        Mean turning angle (rad), wrapped to ``(−π, π]``.
-    gamma : float
-        Wrapped-Cauchy clustering parameter, ``0 ≤ γ < 1`` (0: uniform turns; → 1: straight).
-    kappa : float
-        Weibull shape ``κ > 0``.
-    lam : float
-        Weibull scale ``λ > 0``.
-    """
-
-    mu: float
-    gamma: float
-    kappa: float
-    lam: float
-
-    def __post_init__(self) -> None:
-        if not (0.0 <= self.gamma < 1.0 and self.kappa > 0 and self.lam > 0):
-            raise ValueError(
-                f"DCRW parameters need 0 ≤ γ < 1, κ > 0, λ > 0; got γ={self.gamma!r}, "
-                f"κ={self.kappa!r}, λ={self.lam!r}"
-            )
+REFERENCE = DcrwParams(mu=0.4, gamma=0.7, kappa=2.0, lam=3.0)
+SAMPLES, SEED = 20_000, 2
+EULER_GAMMA = 0.5772156649015329
 
 
 def wrap_angle(angle: np.ndarray | float) -> np.ndarray:
@@ -70,41 +59,13 @@ def wrap_angle(angle: np.ndarray | float) -> np.ndarray:
 
 
 def wrapped_cauchy_logpdf(phi: np.ndarray, mu: float, gamma: float) -> np.ndarray:
-    """Log of eq. (3.1): ``(1 − γ²) / (2π (1 + γ² − 2γ cos(φ − μ)))``.
-
-    Parameters
-    ----------
-    phi : ndarray
-        Turning angles (rad).
-    mu : float
-        Mean turning angle.
-    gamma : float
-        Clustering parameter, ``0 ≤ γ < 1``.
-
-    References
-    ----------
-    seed 002, eq. (3.1).
-    """
+    """Log of eq. (3.1): ``(1 − γ²) / (2π (1 + γ² − 2γ cos(φ − μ)))``."""
     phi = np.asarray(phi, dtype=float)
     return np.log1p(-(gamma**2)) - np.log(2 * np.pi * (1 + gamma**2 - 2 * gamma * np.cos(phi - mu)))
 
 
 def weibull_logpdf(delta: np.ndarray, kappa: float, lam: float) -> np.ndarray:
-    """Log of eq. (3.2): ``(κ/λ)(δ/λ)^{κ−1} exp(−(δ/λ)^κ)``.
-
-    Parameters
-    ----------
-    delta : ndarray
-        Step lengths, ``δ > 0``.
-    kappa : float
-        Shape ``κ > 0``.
-    lam : float
-        Scale ``λ > 0``.
-
-    References
-    ----------
-    seed 002, eq. (3.2).
-    """
+    """Log of eq. (3.2): ``(κ/λ)(δ/λ)^{κ−1} exp(−(δ/λ)^κ)``."""
     z = np.asarray(delta, dtype=float) / lam
     return np.log(kappa / lam) + (kappa - 1) * np.log(z) - z**kappa
 
@@ -112,20 +73,8 @@ def weibull_logpdf(delta: np.ndarray, kappa: float, lam: float) -> np.ndarray:
 def sample_wrapped_cauchy(
     rng: np.random.Generator, mu: np.ndarray | float, gamma: np.ndarray | float, size: tuple
 ) -> np.ndarray:
-    """Draw turning angles from eq. (3.1).
-
-    A wrapped Cauchy is ``μ + a·tan(π(U − ½))`` wrapped to ``(−π, π]``, with ``γ = e^{−a}``;
-    ``γ = 0`` is the uniform distribution.
-
-    Parameters
-    ----------
-    rng : numpy.random.Generator
-        Source of randomness.
-    mu, gamma : float or ndarray
-        Parameters, broadcast against ``size`` (e.g. one row per node).
-    size : tuple of int
-        Output shape.
-    """
+    """Turning angles of eq. (3.1) (parameters broadcast against ``size``): ``μ + a·tan(π(U − ½))``
+    wrapped, with ``γ = e^{−a}``; ``γ = 0`` is uniform."""
     gamma = np.asarray(gamma, dtype=float)
     u = rng.random(size)
     positive = gamma > 0
@@ -137,17 +86,7 @@ def sample_wrapped_cauchy(
 def sample_weibull(
     rng: np.random.Generator, kappa: np.ndarray | float, lam: np.ndarray | float, size: tuple
 ) -> np.ndarray:
-    """Draw step lengths from eq. (3.2) by inversion, ``λ(−ln U)^{1/κ}``.
-
-    Parameters
-    ----------
-    rng : numpy.random.Generator
-        Source of randomness.
-    kappa, lam : float or ndarray
-        Shape and scale, broadcast against ``size``.
-    size : tuple of int
-        Output shape.
-    """
+    """Step lengths of eq. (3.2) by inversion, ``λ(−ln U)^{1/κ}`` (broadcast against ``size``)."""
     return np.asarray(lam) * (-np.log1p(-rng.random(size))) ** (1.0 / np.asarray(kappa))
 
 
@@ -159,25 +98,8 @@ def sample_dcrw_path(
     start: np.ndarray,
     heading: float | None = None,
 ) -> np.ndarray:
-    """A DCRW trajectory ``p(0), …, p(steps)`` (eqs. (3.3)–(3.5)).
-
-    Parameters
-    ----------
-    params : DcrwParams
-        The true model.
-    steps : int
-        Number of moves.
-    rng : numpy.random.Generator
-        Source of randomness.
-    start : ndarray, shape (2,)
-        ``p(0)``.
-    heading : float, optional
-        ``θ(0)``; drawn uniformly on ``(−π, π]`` when omitted.
-
-    Returns
-    -------
-    ndarray, shape (steps + 1, 2)
-    """
+    """A trajectory ``p(0) = start, …, p(steps)``, shape ``(steps + 1, 2)`` (eqs. (3.3)–(3.5));
+    ``θ(0)`` uniform on ``(−π, π]`` unless ``heading`` is given."""
     theta0 = rng.uniform(-np.pi, np.pi) if heading is None else heading
     turns = sample_wrapped_cauchy(rng, params.mu, params.gamma, (steps,))
     lengths = sample_weibull(rng, params.kappa, params.lam, (steps,))
@@ -188,40 +110,31 @@ def sample_dcrw_path(
     )
 
 
+def movement_samples(track: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Turning angles and step lengths implied by successive positions ``(K, 2)``
+    (eqs. (3.17)–(3.19)).
+
+    ``φ̂(k) = wrap(θ̂(k) − θ̂(k−1))`` with ``θ̂(k) = atan2(Δy, Δx)`` (``K − 2`` values) and
+    ``δ̂(k) = ‖χ(k) − χ(k−1)‖`` (``K − 1`` values, zeros dropped: eq. (3.2) has support ``δ > 0``).
+    """
+    moves = np.diff(np.asarray(track, dtype=float), axis=0)
+    headings = np.arctan2(moves[:, 1], moves[:, 0])
+    steps = np.linalg.norm(moves, axis=1)
+    return wrap_angle(np.diff(headings)), steps[steps > 0]
+
+
 def fit_wrapped_cauchy(
     phi: np.ndarray, *, gamma_max: float = 1 - 1e-9, tie_tol: float = 1e-9
 ) -> tuple[float, float]:
-    """Maximum-likelihood ``(μ, γ)`` of eq. (3.1) from turning angles.
+    """Maximum-likelihood ``(μ, γ)`` of eq. (3.1) from turning angles (seed 002 §3.2.2).
 
     The log-likelihood ``n log(1 − |ψ|²) − Σ log|e^{iφ_j} − ψ|²`` (``ψ = γ e^{iμ}``) is maximised
     over the open unit disk by damped Newton steps (exact gradient and Hessian), started from the
     circular moments, falling back to BFGS in the coordinates ``ψ = v / √(1 + |v|²)`` (so
     ``1 − |ψ|² = 1/(1 + |v|²)`` exactly) if Newton does not converge. The maximum is interior
-    exactly when no angle carries half or more of the sample (Kent & Tyler 1988); otherwise the
-    supremum is at ``γ = 1`` at the repeated angle, and the result is that angle with
-    ``γ = gamma_max``.
-
-    Parameters
-    ----------
-    phi : ndarray
-        Turning angles (rad).
-    gamma_max : float
-        Upper clamp on ``γ`` (the fit of a straight path tends to 1).
-    tie_tol : float
-        Angles closer than this (rad) count as one repeated angle.
-
-    Returns
-    -------
-    (mu, gamma) : tuple of float
-
-    Raises
-    ------
-    SolverError
-        If the optimiser fails.
-
-    References
-    ----------
-    seed 002, eq. (3.1) and §3.2.2 (MATLAB ``mle``); Kent & Tyler (1988) for existence.
+    exactly when no angle (within ``tie_tol``) carries half or more of the sample (Kent & Tyler
+    1988); otherwise the supremum is at ``γ = 1`` at the repeated angle, and the result is that
+    angle with ``γ = gamma_max``.
     """
     z = np.exp(1j * np.asarray(phi, dtype=float))
     if z.size == 0:
@@ -359,26 +272,11 @@ def _wrapped_cauchy_objective(v: np.ndarray, z: np.ndarray) -> tuple[float, np.n
 def fit_weibull(
     delta: np.ndarray, *, kappa_bounds: tuple[float, float] = (1e-2, 1e3)
 ) -> tuple[float, float]:
-    """Maximum-likelihood ``(κ, λ)`` of eq. (3.2) from positive step lengths.
+    """Maximum-likelihood ``(κ, λ)`` of eq. (3.2) from positive step lengths (seed 002 §3.2.2).
 
     Solves the profile equation ``Σ δ^κ ln δ / Σ δ^κ − 1/κ − mean(ln δ) = 0`` (increasing in ``κ``)
-    by bracketed Newton steps (:func:`_weibull_root`) inside ``kappa_bounds``; at a bound the root
-    is clamped to it (e.g. all lengths equal: κ → ∞). Then ``λ = (mean δ^κ)^{1/κ}``.
-
-    Parameters
-    ----------
-    delta : ndarray
-        Step lengths, all > 0.
-    kappa_bounds : tuple of float
-        Search interval for ``κ``.
-
-    Returns
-    -------
-    (kappa, lam) : tuple of float
-
-    References
-    ----------
-    seed 002, eq. (3.2) and §3.2.2.
+    by bracketed Newton steps inside ``kappa_bounds``; at a bound the root is clamped to it (e.g.
+    all lengths equal: κ → ∞). Then ``λ = (mean δ^κ)^{1/κ}``.
     """
     x = np.asarray(delta, dtype=float)
     if x.size == 0 or np.any(x <= 0):
@@ -439,21 +337,94 @@ def _weibull_root(
 
 
 def fit_dcrw(turns: np.ndarray, steps: np.ndarray, *, gamma_max: float = 1 - 1e-9) -> DcrwParams:
-    """ML fit of all four DCRW parameters (eqs. (3.1)–(3.2)).
-
-    Parameters
-    ----------
-    turns : ndarray
-        Turning angles (rad), for :func:`fit_wrapped_cauchy`.
-    steps : ndarray
-        Step lengths ``> 0``, for :func:`fit_weibull`.
-    gamma_max : float
-        Upper clamp on ``γ``.
-
-    Returns
-    -------
-    DcrwParams
-    """
+    """ML fit of all four DCRW parameters (eqs. (3.1)–(3.2)), ``γ`` clamped to ``gamma_max``."""
     mu, gamma = fit_wrapped_cauchy(turns, gamma_max=gamma_max)
     kappa, lam = fit_weibull(steps)
     return DcrwParams(mu, gamma, kappa, lam)
+
+
+def standard_errors(params: DcrwParams, n: int) -> dict[str, float]:
+    """Asymptotic ML standard errors of ``(μ, γ, κ, λ)`` from ``n`` samples (module docstring)."""
+    wc = (1 - params.gamma**2) / np.sqrt(2 * n)
+    mu = wc / params.gamma if params.gamma > 0 else float("inf")
+    kappa = np.sqrt(6 / np.pi**2) * params.kappa / np.sqrt(n)
+    lam = (
+        params.lam
+        * np.sqrt(1 + 6 * (1 - EULER_GAMMA) ** 2 / np.pi**2)
+        / (params.kappa * np.sqrt(n))
+    )
+    return {"mu": float(mu), "gamma": float(wc), "kappa": float(kappa), "lambda": float(lam)}
+
+
+def _fit_result(fitted: dict[str, float], message: str) -> list[ClaimResult]:
+    """Each fitted parameter's distance from :data:`REFERENCE` in standard errors, ≤ ``z_tol``."""
+    truth = dict(zip(PARAM_NAMES, REFERENCE.as_array().tolist(), strict=True))
+    se = standard_errors(REFERENCE, SAMPLES)
+    z = {
+        k: abs(float(wrap_angle(v - truth[k])) if k == "mu" else v - truth[k]) / se[k]
+        for k, v in fitted.items()
+    }
+    worst = max(z.values())
+    evidence = {
+        "true": {k: truth[k] for k in fitted},
+        "fitted": fitted,
+        "standard_errors": {k: se[k] for k in fitted},
+        "z": z,
+        "samples": SAMPLES,
+        "seed": SEED,
+    }
+    return [
+        ClaimResult(
+            status_of(worst <= Z_TOL),
+            Method.NUMERIC,
+            evidence,
+            margin=Z_TOL - worst,
+            tolerance={"z_tol": Z_TOL},
+            message=f"{message}: largest deviation {worst:.2f} standard errors",
+        )
+    ]
+
+
+@claims.register(
+    "seed002.eq3.1",
+    source="seed 002, eq. (3.1) and §3.2.2",
+    statement="The wrapped-Cauchy turning angle's (μ, γ) are recovered by maximum likelihood.",
+)
+def check_wrapped_cauchy(case: Case | None, ctx: Context) -> list[ClaimResult]:
+    """Fit (μ, γ) to ``SAMPLES`` draws of eq. (3.1)."""
+    rng = np.random.default_rng(SEED)
+    phi = sample_wrapped_cauchy(rng, REFERENCE.mu, REFERENCE.gamma, (SAMPLES,))
+    mu, gamma = fit_wrapped_cauchy(phi)
+    return _fit_result({"mu": mu, "gamma": gamma}, "wrapped Cauchy ML")
+
+
+@claims.register(
+    "seed002.eq3.2",
+    source="seed 002, eq. (3.2) and §3.2.2",
+    statement="The Weibull step length's (κ, λ) are recovered by maximum likelihood.",
+)
+def check_weibull(case: Case | None, ctx: Context) -> list[ClaimResult]:
+    """Fit (κ, λ) to ``SAMPLES`` draws of eq. (3.2)."""
+    rng = np.random.default_rng(SEED)
+    delta = sample_weibull(rng, REFERENCE.kappa, REFERENCE.lam, (SAMPLES,))
+    kappa, lam = fit_weibull(delta)
+    return _fit_result({"kappa": kappa, "lambda": lam}, "Weibull ML")
+
+
+@claims.register(
+    "seed002.eq3.17",
+    source="seed 002, eqs. (3.3)–(3.5) and (3.17)–(3.19)",
+    statement=(
+        "Headings, wrapped turning angles and step lengths computed from successive positions "
+        "of a DCRW path recover its parameters by maximum likelihood."
+    ),
+)
+def check_track_learning(case: Case | None, ctx: Context) -> list[ClaimResult]:
+    """Simulate a long exact DCRW path, apply eqs. (3.17)–(3.19), fit all four parameters."""
+    rng = np.random.default_rng(SEED)
+    path = sample_dcrw_path(REFERENCE, SAMPLES + 1, rng, start=np.zeros(2))
+    turns, steps = movement_samples(path)
+    mu, gamma = fit_wrapped_cauchy(turns)
+    kappa, lam = fit_weibull(steps)
+    fitted = {"mu": mu, "gamma": gamma, "kappa": kappa, "lambda": lam}
+    return _fit_result(fitted, "eqs. (3.17)–(3.19) on an exact path")

@@ -1,4 +1,4 @@
-"""The distributed TDOA particle filter of seed 002 §3.2.1 (2D), vectorised over nodes/particles.
+"""The distributed TDOA particle filter of seed 002 §3.2 (2D), vectorised over nodes/particles.
 
 Every filtering node ``i`` keeps ``P`` particles (positions, headings) and at each time step ``k``:
 
@@ -8,46 +8,65 @@ Every filtering node ``i`` keeps ``P`` particles (positions, headings) and at ea
    replaces its own ``|N_i| m`` lowest-weighted particles with those received, then renormalises;
 4. estimates ``χ_i`` from the top 20 % of particles (eq. 3.13, weights renormalised over them);
 5. resamples ``P`` particles multinomially;
-6. propagates them with a motion model (eqs. 3.14–3.16, :mod:`theory.particle.motion`).
+6. propagates them with a motion model (eqs. 3.14–3.16).
 
-Choices the thesis leaves open (documented in ``docs/particle-filter.md``), as parameters of
-:class:`PfConfig`:
-
-``exchange_weights``
-    ``"sender"`` (default, the thesis's message ``[w̄, x, y]``): a received particle keeps the
-    normalised weight its sender gave it, and node ``i``'s whole set is renormalised to sum 1.
-    ``"local"``: node ``i`` re-weights received particles with its own likelihood (same
-    normalising constant as its own particles) before renormalising.
-``exchange_rounds``
-    Rounds of exchange per time step (default 1). In each round every node sends the top ``m`` of
-    its *current* set, so with 2 or more rounds particles received in round 1 can be forwarded
-    in round 2. With one round, information travels one hop per time step (through resampling).
-``received_heading``
-    ``"sender"`` (default): the heading travels with the particle (one extra number per message).
-    ``"uniform"``: the thesis's message carries no heading; a fresh uniform heading is drawn.
+Choices the thesis leaves open (documented in ``docs/particle-filter.md``) are fields of
+:class:`~theory.particle.case.PfConfig`: the weight a received particle keeps (its sender's,
+renormalised with the receiver's set, or the receiver's own likelihood), the heading it carries
+(the sender's, or a fresh uniform one), and the rounds of exchange per step (with two or more,
+particles received in round 1 are forwarded in round 2; with one, information travels one hop per
+step through resampling).
 
 The TDOA model ``d_i^n`` (eq. 3.9) and the measurements (eqs. 3.6–3.8) are those of seed 000
 eqs. (4.3)–(4.4), evaluated by the one implementation in :mod:`theory.tdoa.model` (broadcast over
-filtering nodes × particles).
+filtering nodes × particles). Weights are computed in the log domain (the maximum subtracted
+before exponentiating), which equals eqs. (3.11)–(3.12) after normalisation but never underflows.
 
-Weights are computed in the log domain (subtracting the maximum before exponentiating), which
-equals eqs. (3.11)–(3.12) after normalisation but never underflows to ``0/0``.
+Motion models (step 6) draw a turning angle and a step length per particle, ``(nodes,
+particles)`` arrays, and ``observe(estimates)`` returns the model for the next step:
+:class:`DcrwMotion` (the true DCRW), :class:`GaussianMotion` (the thesis's mis-specified baseline
+of §3.3.2), :class:`UniformMotion` (the learner's prior "uniform distribution at k = 0"; the
+maximum step is ours, the thesis gives no range) and :class:`OnlineLearner` (§3.2.2): each node
+forms turning angles and step lengths from its own successive estimates (eqs. 3.17–3.19), refits
+``(μ, γ, κ, λ)`` by maximum likelihood and propagates with the fitted DCRW, with the prior before
+its first accepted fit. Guards against degenerate early fits (the thesis fits from ``k > 3``,
+where the likelihood of (3.1) is maximised at ``γ → 1``): no fit before ``min_samples`` turning
+angles (10); ``γ`` clamped to ``gamma_max`` (0.95) and ``κ`` to ``kappa_bounds`` (0.5, 10), so one
+straight or evenly-stepped stretch cannot freeze the particles onto a line or a step length; the
+first ``burn_in`` (5) estimates unused, since before convergence the estimate jumps across the
+workspace.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Protocol, Self
 
 import numpy as np
+from scipy import special
+from scipy.stats._continuous_distns import _log_gauss_mass
 
+from theory.particle.case import (
+    DcrwParams,
+    ExchangeWeights,
+    Model,
+    PfConfig,
+    PfNetwork,
+    PfSpec,
+    ReceivedHeading,
+)
+from theory.particle.dcrw import fit_dcrw, movement_samples, sample_weibull, sample_wrapped_cauchy
 from theory.tdoa.model import range_differences
 
 __all__ = [
-    "PfConfig",
-    "PfNetwork",
+    "DcrwMotion",
+    "GaussianMotion",
+    "Motion",
+    "OnlineLearner",
     "PfRun",
     "PfState",
+    "UniformMotion",
+    "build_motion",
     "consensus_exchange",
     "estimate",
     "initial_state",
@@ -60,87 +79,18 @@ __all__ = [
     "propagate",
     "run_filter",
     "simulate_measurements",
+    "truncated_normal",
 ]
 
-EXCHANGE_WEIGHTS = ("sender", "local")
-RECEIVED_HEADINGS = ("sender", "uniform")
 
+class Motion(Protocol):
+    """A propagation model (module docstring)."""
 
-@dataclass(frozen=True)
-class PfConfig:
-    """Parameters of the distributed PF (seed 002 §3.2.1, §3.3.1 defaults P = 100, m = 10).
+    def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
+        """Turning angles and step lengths, each of ``shape`` ``(F, P)``, drawn from ``rng``."""
 
-    Attributes
-    ----------
-    particles : int
-        ``P`` per node.
-    share : int
-        ``m``, the particles each node broadcasts (0 disables the consensus step).
-    sigma : float
-        Standard deviation of the TDOA noise assumed by the filter (eq. 3.11), in metres.
-    estimate_fraction : float
-        Fraction of highest-weighted particles averaged in the estimate (eq. 3.13; 0.2).
-    exchange_weights : str
-        ``"sender"`` or ``"local"`` (module docstring).
-    exchange_rounds : int
-        Exchange rounds per step (module docstring).
-    received_heading : str
-        ``"sender"`` or ``"uniform"`` (module docstring).
-    """
-
-    particles: int = 100
-    share: int = 10
-    sigma: float = 1.0
-    estimate_fraction: float = 0.2
-    exchange_weights: str = "sender"
-    exchange_rounds: int = 1
-    received_heading: str = "sender"
-
-    def __post_init__(self) -> None:
-        if self.exchange_weights not in EXCHANGE_WEIGHTS:
-            raise ValueError(f"exchange_weights must be one of {EXCHANGE_WEIGHTS}")
-        if self.received_heading not in RECEIVED_HEADINGS:
-            raise ValueError(f"received_heading must be one of {RECEIVED_HEADINGS}")
-        if not (0 < self.estimate_fraction <= 1 and self.sigma > 0 and self.particles >= 1):
-            raise ValueError("need P ≥ 1, σ > 0 and 0 < estimate_fraction ≤ 1")
-        if self.share < 0 or self.exchange_rounds < 1:
-            raise ValueError("need m ≥ 0 and exchange_rounds ≥ 1")
-
-
-@dataclass(frozen=True, eq=False)
-class PfNetwork:
-    """Stationary nodes, who hears whom, and which nodes run a filter (all 0-based).
-
-    Attributes
-    ----------
-    nodes : ndarray, shape (N, 2)
-        Node positions ``ρ_i``.
-    hears : ndarray of bool, shape (N, N)
-        ``hears[i, j]``: node ``i`` receives node ``j``'s TOA (``j ∈ N_i``).
-    filters : tuple of int
-        Nodes running the PF (seed 002 §3.3.1: nodes 1, 4 and 5).
-    """
-
-    nodes: np.ndarray
-    hears: np.ndarray
-    filters: tuple[int, ...]
-
-    @property
-    def measurement_mask(self) -> np.ndarray:
-        """``(F, N)`` mask of the TDOA components each filtering node measures."""
-        return self.hears[list(self.filters)]
-
-    @property
-    def filter_neighbours(self) -> np.ndarray:
-        """``(F, D)`` filter-indices of each filter's filtering neighbours, padded with −1 last."""
-        index = {node: f for f, node in enumerate(self.filters)}
-        rows = [
-            [index[j] for j in np.flatnonzero(self.hears[i]) if j in index] for i in self.filters
-        ]
-        width = max((len(r) for r in rows), default=0)
-        return np.array([r + [-1] * (width - len(r)) for r in rows], dtype=int).reshape(
-            len(rows), width
-        )
+    def observe(self, estimates: np.ndarray) -> Self:
+        """The model to use after the estimates ``χ(k)``, ``(F, 2)``."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -154,42 +104,20 @@ class PfState:
 
 @dataclass(frozen=True, eq=False)
 class PfRun:
-    """One filter run.
-
-    Attributes
-    ----------
-    estimates : ndarray, shape (K+1, F, 2)
-        ``χ_i(k)`` of every filtering node.
-    errors : ndarray, shape (K+1, F)
-        ``E_i(k)`` (eq. 3.20).
-    snapshots : dict
-        Step → weighted particles ``(F, P, 3)`` (x, y, w̄) after consensus.
-    motion : object
-        The motion model at the end of the run (the learner holds its fits).
-    """
+    """One filter run: ``estimates (K+1, F, 2)``, errors ``E_i(k)`` ``(K+1, F)`` (eq. 3.20), the
+    weighted particles ``(F, P, 3)`` (x, y, w̄) at the snapshot steps, the final motion model."""
 
     estimates: np.ndarray
     errors: np.ndarray
     snapshots: dict[int, np.ndarray]
-    motion: Any
+    motion: Motion
 
 
 def initial_state(
     n_filters: int, particles: int, bounds: np.ndarray, rng: np.random.Generator
 ) -> PfState:
-    """Particles uniform on the workspace (§3.2.1, *Initialization*).
-
-    Parameters
-    ----------
-    n_filters : int
-        Number of filtering nodes ``F``.
-    particles : int
-        ``P`` per node.
-    bounds : ndarray, shape (2, 2)
-        ``[[xmin, xmax], [ymin, ymax]]``.
-    rng : numpy.random.Generator
-        Source of randomness. Headings are uniform on ``(−π, π]``, weights ``1/P``.
-    """
+    """Particles uniform on the workspace ``bounds``, headings uniform, weights ``1/P`` (§3.2.1,
+    *Initialization*)."""
     low, high = np.asarray(bounds, float)[:, 0], np.asarray(bounds, float)[:, 1]
     positions = low + (high - low) * rng.random((n_filters, particles, 2))
     headings = rng.uniform(-np.pi, np.pi, (n_filters, particles))
@@ -199,24 +127,8 @@ def initial_state(
 def measure(
     target: np.ndarray, network: PfNetwork, noise_sigma: float, rng: np.random.Generator
 ) -> np.ndarray:
-    """TDOA measurements ``y_i = h_i(p) + w_i`` of every filtering node (eqs. (3.6)–(3.8)).
-
-    Parameters
-    ----------
-    target : ndarray, shape (2,)
-        True position ``p(k)``.
-    network : PfNetwork
-        Nodes and links.
-    noise_sigma : float
-        Standard deviation of ``w_i`` (m).
-    rng : numpy.random.Generator
-        Source of the noise.
-
-    Returns
-    -------
-    ndarray, shape (F, N)
-        Entries outside :attr:`PfNetwork.measurement_mask` are 0.
-    """
+    """TDOA measurements ``y_i = h_i(p) + w_i`` of every filtering node, ``(F, N)``, 0 outside
+    the measurement mask (eqs. (3.6)–(3.8))."""
     clean = range_differences(target, network.nodes, np.asarray(network.filters, dtype=int))
     mask = network.measurement_mask
     noise = noise_sigma * rng.standard_normal(mask.shape)
@@ -226,38 +138,15 @@ def measure(
 def simulate_measurements(
     path: np.ndarray, network: PfNetwork, noise_sigma: float, rng: np.random.Generator
 ) -> np.ndarray:
-    """:func:`measure` at every point of ``path``: an ``(K + 1, F, N)`` array.
-
-    Parameters
-    ----------
-    path : ndarray, shape (K + 1, 2)
-        True positions.
-    network, noise_sigma, rng :
-        As for :func:`measure`.
-    """
+    """:func:`measure` at every point of ``path``: an ``(K + 1, F, N)`` array."""
     return np.asarray([measure(p, network, noise_sigma, rng) for p in path])
 
 
 def log_likelihood(
     positions: np.ndarray, y: np.ndarray, network: PfNetwork, sigma: float
 ) -> np.ndarray:
-    """``−‖y_i − d_i^n‖² / (2σ²)`` of each particle (eqs. (3.9)–(3.11)), up to a constant.
-
-    Parameters
-    ----------
-    positions : ndarray, shape (F, Q, 2)
-        ``Q`` candidate positions per filtering node.
-    y : ndarray, shape (F, N)
-        Measurements (:func:`measure`).
-    network : PfNetwork
-        Nodes and links.
-    sigma : float
-        Noise standard deviation assumed by the filter.
-
-    Returns
-    -------
-    ndarray, shape (F, Q)
-    """
+    """``−‖y_i − d_i^n‖² / (2σ²)`` ``(F, Q)`` of ``Q`` positions per node ``(F, Q, 2)``, up to a
+    constant (eqs. (3.9)–(3.11))."""
     filters = np.asarray(network.filters, dtype=int)[:, None]
     predicted = range_differences(positions, network.nodes, filters)
     mask = network.measurement_mask[:, None, :]
@@ -279,30 +168,8 @@ def consensus_exchange(
     *,
     y: np.ndarray | None,
 ) -> PfState:
-    """The consensus step of seed 002 §3.2.1 step 3 (see the module docstring for the choices).
-
-    Parameters
-    ----------
-    state : PfState
-        Weighted particles after the measurement update.
-    network : PfNetwork
-        Nodes and links (exchange only between filtering neighbours).
-    config : PfConfig
-        ``share`` (m), ``exchange_weights``, ``exchange_rounds``, ``received_heading``.
-    rng : numpy.random.Generator
-        For uniform headings of received particles.
-    y : ndarray or None
-        Measurements, needed by ``exchange_weights="local"``.
-
-    Returns
-    -------
-    PfState
-
-    Raises
-    ------
-    ValueError
-        If a node would replace ``P`` or more particles (the thesis asks ``m < P/N``).
-    """
+    """The consensus step of seed 002 §3.2.1 step 3 (``y``: the measurements, needed for local
+    weights); ``ValueError`` if a node would replace ``P`` or more particles (``m < P/N``)."""
     neighbours = network.filter_neighbours
     m, P = config.share, config.particles
     if m == 0 or neighbours.shape[1] == 0:
@@ -333,9 +200,9 @@ def _exchange_round(
     pick = top[safe, np.tile(np.arange(m), width)]
     positions = state.positions[safe, pick]
     headings = state.headings[safe, pick]
-    if config.received_heading == "uniform":
+    if config.received_heading is ReceivedHeading.UNIFORM:
         headings = rng.uniform(-np.pi, np.pi, headings.shape)
-    if config.exchange_weights == "sender":
+    if config.exchange_weights is ExchangeWeights.SENDER:
         weights = state.weights[safe, pick]
     else:
         own = log_likelihood(state.positions, y, network, config.sigma)
@@ -356,22 +223,11 @@ def _exchange_round(
 
 
 def estimate(state: PfState, fraction: float = 0.2) -> np.ndarray:
-    """``χ_i``: weighted mean of the top ``fraction`` of particles (eq. (3.13)).
+    """``χ_i`` ``(F, 2)``: weighted mean of the top ``fraction`` of particles (eq. (3.13)).
 
     The weights of the selected particles are renormalised to sum 1 (the thesis writes
     ``χ_i = W_i^T C_i`` with the unrenormalised weights, which shrinks the estimate towards the
     origin; see ``docs/errata.md``).
-
-    Parameters
-    ----------
-    state : PfState
-        Weighted particles.
-    fraction : float
-        Share of the highest-weighted particles used (0.2 in the thesis).
-
-    Returns
-    -------
-    ndarray, shape (F, 2)
     """
     count = max(1, int(np.ceil(fraction * state.weights.shape[1])))
     top = np.argpartition(-state.weights, count - 1, axis=1)[:, :count]
@@ -381,22 +237,10 @@ def estimate(state: PfState, fraction: float = 0.2) -> np.ndarray:
 
 
 def multinomial_resample(state: PfState, rng: np.random.Generator) -> PfState:
-    """Draw ``P`` particles with replacement with probabilities ``w̄`` (§3.2.1 step 5), per node.
+    """Draw ``P`` particles per node with replacement with probabilities ``w̄`` (§3.2.1 step 5).
 
     All nodes are searched at once: row ``f``'s cumulative weights are shifted by ``f`` so that one
     ``searchsorted`` on the flattened, increasing array serves every node.
-
-    Parameters
-    ----------
-    state : PfState
-        Weighted particles.
-    rng : numpy.random.Generator
-        Source of randomness.
-
-    Returns
-    -------
-    PfState
-        Equal weights ``1/P``; headings travel with their particles.
     """
     n_filters, P = state.weights.shape
     cumulative = np.cumsum(state.weights, axis=1)
@@ -412,18 +256,8 @@ def multinomial_resample(state: PfState, rng: np.random.Generator) -> PfState:
     )
 
 
-def propagate(state: PfState, motion: Any, rng: np.random.Generator) -> PfState:
-    """Time update eqs. (3.14)–(3.16): turn, then step along the new heading.
-
-    Parameters
-    ----------
-    state : PfState
-        Particles to move.
-    motion : object
-        A model with ``sample(rng, shape) -> (turns, steps)`` (:mod:`theory.particle.motion`).
-    rng : numpy.random.Generator
-        Source of randomness.
-    """
+def propagate(state: PfState, motion: Motion, rng: np.random.Generator) -> PfState:
+    """Time update eqs. (3.14)–(3.16): turn, then step along the new heading."""
     turn, step = motion.sample(rng, state.weights.shape)
     headings = state.headings + turn
     move = step[..., None] * np.stack([np.cos(headings), np.sin(headings)], axis=-1)
@@ -435,30 +269,11 @@ def pf_step(
     y: np.ndarray,
     network: PfNetwork,
     config: PfConfig,
-    motion: Any,
+    motion: Motion,
     rng: np.random.Generator,
 ) -> tuple[PfState, np.ndarray, PfState]:
-    """One iteration (steps 1–6 of seed 002 §3.2.1).
-
-    Parameters
-    ----------
-    state : PfState
-        Particles for time ``k``.
-    y : ndarray, shape (F, N)
-        Measurements at ``k``.
-    network, config :
-        Nodes and filter parameters.
-    motion : object
-        Propagation model.
-    rng : numpy.random.Generator
-        Source of randomness.
-
-    Returns
-    -------
-    (next_state, estimates, weighted) :
-        particles for ``k + 1``; ``χ_i(k)`` of shape ``(F, 2)``; the weighted set after consensus
-        (for figures).
-    """
+    """Steps 1–6 of seed 002 §3.2.1: the particles for ``k + 1``, ``χ_i(k)`` ``(F, 2)`` and the
+    weighted set after consensus."""
     weighted, chi = pf_update(state, y, network, config, rng)
     return propagate(multinomial_resample(weighted, rng), motion, rng), chi, weighted
 
@@ -466,17 +281,7 @@ def pf_step(
 def pf_update(
     state: PfState, y: np.ndarray, network: PfNetwork, config: PfConfig, rng: np.random.Generator
 ) -> tuple[PfState, np.ndarray]:
-    """Steps 1–4 of seed 002 §3.2.1: weights, consensus exchange, estimate ``χ_i(k)``.
-
-    Parameters
-    ----------
-    state, y, network, config, rng :
-        As for :func:`pf_step`.
-
-    Returns
-    -------
-    (weighted, estimates) : PfState and ndarray of shape (F, 2)
-    """
+    """Steps 1–4 of seed 002 §3.2.1: weights, consensus exchange, estimate ``χ_i(k)``."""
     weights = normalise_log_weights(log_likelihood(state.positions, y, network, config.sigma))
     weighted = consensus_exchange(replace(state, weights=weights), network, config, rng, y=y)
     return weighted, estimate(weighted, config.estimate_fraction)
@@ -486,37 +291,16 @@ def run_filter(
     path: np.ndarray,
     network: PfNetwork,
     config: PfConfig,
-    motion: Any,
+    motion: Motion,
     rng: np.random.Generator,
     *,
     bounds: np.ndarray,
     measurements: np.ndarray,
     snapshot_steps: tuple[int, ...] = (),
 ) -> PfRun:
-    """Run the distributed PF along a target path ``p(0), …, p(K)``.
-
-    Parameters
-    ----------
-    path : ndarray, shape (K + 1, 2)
-        True target positions.
-    network, config : PfNetwork, PfConfig
-        The nodes and the filter's parameters.
-    motion : object
-        A model of :mod:`theory.particle.motion` or :class:`theory.particle.learning.OnlineLearner`;
-        after each estimate the filter continues with ``motion.observe(chi)``.
-    rng : numpy.random.Generator
-        The filter's randomness (initial particles, exchange, resampling, propagation).
-    bounds : ndarray, shape (2, 2)
-        Workspace for the uniform initial particles.
-    measurements : ndarray, shape (K + 1, F, N)
-        TDOA measurements ``y_i(k)`` (:func:`simulate_measurements`).
-    snapshot_steps : tuple of int
-        Steps at which to keep the weighted particle sets ``(F, P, 3)`` (x, y, w̄) for figures.
-
-    Returns
-    -------
-    PfRun
-    """
+    """Run the distributed PF on ``measurements`` ``(K + 1, F, N)`` of a target path ``p(0), …,
+    p(K)``, from particles uniform on ``bounds``; after each estimate the filter continues with
+    ``motion.observe(χ)``, and keeps the weighted particles at ``snapshot_steps``."""
     state = initial_state(len(network.filters), config.particles, bounds, rng)
     estimates, snapshots = [], {}
     for k, y in enumerate(measurements):
@@ -529,3 +313,145 @@ def run_filter(
     chis = np.asarray(estimates)
     errors = np.linalg.norm(chis - np.asarray(path)[:, None, :], axis=-1)
     return PfRun(chis, errors, snapshots, motion)
+
+
+@dataclass(frozen=True)
+class DcrwMotion:
+    """Propagate with a known DCRW ``params`` (seed 002 eqs. (3.1)–(3.2), (3.14)–(3.16))."""
+
+    params: DcrwParams
+
+    def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
+        """Turning angles and step lengths, each of ``shape``, drawn from ``rng``."""
+        p = self.params
+        return (
+            sample_wrapped_cauchy(rng, p.mu, p.gamma, shape),
+            sample_weibull(rng, p.kappa, p.lam, shape),
+        )
+
+    def observe(self, estimates: np.ndarray) -> DcrwMotion:
+        """A fixed model ignores the estimates."""
+        return self
+
+
+@dataclass(frozen=True)
+class GaussianMotion:
+    """Truncated-normal turning angle ``N(0, turn_sigma²)`` on ``(−π, π]`` and step
+    ``N(step_mean, step_sigma²)`` on ``δ ≥ 0`` (seed 002 §3.3.2, the Gaussian baseline)."""
+
+    turn_sigma: float = np.pi / 4
+    step_mean: float = 2.0
+    step_sigma: float = 1.0
+
+    def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
+        """Turning angles and steps, each of ``shape``, drawn from ``rng``."""
+        bound = np.pi / self.turn_sigma
+        turn = truncated_normal(rng, -bound, bound, 0.0, self.turn_sigma, shape)
+        low = -self.step_mean / self.step_sigma
+        step = truncated_normal(rng, low, np.inf, self.step_mean, self.step_sigma, shape)
+        return turn, step
+
+    def observe(self, estimates: np.ndarray) -> GaussianMotion:
+        """A fixed model ignores the estimates."""
+        return self
+
+
+@dataclass(frozen=True)
+class UniformMotion:
+    """Uniform turning angle on ``(−π, π]`` and uniform step on ``[0, max_step]``."""
+
+    max_step: float
+
+    def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
+        """Turning angles and step lengths, each of ``shape``, drawn from ``rng``."""
+        return rng.uniform(-np.pi, np.pi, shape), rng.uniform(0.0, self.max_step, shape)
+
+    def observe(self, estimates: np.ndarray) -> UniformMotion:
+        """A fixed model ignores the estimates."""
+        return self
+
+
+def truncated_normal(
+    rng: np.random.Generator, a: float, b: float, loc: float, scale: float, shape: tuple
+) -> np.ndarray:
+    """``scipy.stats.truncnorm.rvs(a, b, loc, scale, size=shape, random_state=rng)`` for
+    ``a < 0``, the same numbers without its per-call overhead.
+
+    scipy draws ``q ~ U[0, 1)`` and inverts the CDF in log space,
+    ``x = ndtri_exp(log(Φ(a) + q·(Φ(b) − Φ(a))))``, the sum formed as its ``logsumexp`` of the two
+    logs does (the larger one taken out, ``log1p`` of the ratio); the interval's log-mass depends
+    on ``(a, b)`` only and is computed once here instead of per draw.
+    """
+    if not a < 0:
+        raise ValueError(f"truncated_normal needs a < 0, got a={a!r}")
+    q = rng.uniform(size=shape)
+    first = special.log_ndtr(a)
+    second = np.log(q) + _log_gauss_mass(a, b)
+    top, tie = np.maximum(first, second), first == second
+    ratio = np.where(tie, 0.0, np.exp(np.minimum(first, second) - top))
+    log_cdf = np.log1p(ratio) + np.log(np.where(tie, 2.0, 1.0)) + top
+    return special.ndtri_exp(log_cdf) * scale + loc
+
+
+@dataclass(frozen=True, eq=False)
+class OnlineLearner:
+    """A propagation model refitting a DCRW per node after every estimate (seed 002 §3.2.2).
+
+    ``history`` holds the estimates seen, each ``(F, 2)``; ``params`` ``(F, 4)`` the fitted
+    ``(μ, γ, κ, λ)``, ``nan`` rows for nodes not yet fitted (module docstring for the guards).
+    """
+
+    prior: UniformMotion
+    min_samples: int = 10
+    gamma_max: float = 0.95
+    kappa_bounds: tuple[float, float] = (0.5, 10.0)
+    burn_in: int = 5
+    history: tuple[np.ndarray, ...] = ()
+    params: np.ndarray | None = None
+
+    @property
+    def fitted(self) -> np.ndarray:
+        """``(F,)`` bool: which nodes have switched to their learned DCRW."""
+        return np.zeros(0, bool) if self.params is None else ~np.isnan(self.params[:, 0])
+
+    def observe(self, estimates: np.ndarray) -> OnlineLearner:
+        """Append ``χ(k)`` ``(F, 2)`` of every node and refit where there are enough samples."""
+        history = (*self.history, np.asarray(estimates, dtype=float))
+        tracks = np.asarray(history[self.burn_in :])
+        params = np.full((len(estimates), 4), np.nan)
+        for f in range(len(estimates)) if tracks.shape[0] >= 3 else ():
+            turns, steps = movement_samples(tracks[:, f])
+            if turns.size >= self.min_samples and steps.size:
+                fit = fit_dcrw(turns, steps, gamma_max=self.gamma_max)
+                kappa = float(np.clip(fit.kappa, *self.kappa_bounds))
+                params[f] = (fit.mu, fit.gamma, kappa, _scale_for(steps, kappa))
+        return replace(self, history=history, params=params)
+
+    def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
+        """Turns and steps of ``shape`` ``(F, P)``, drawn from ``rng``: the learned DCRW where
+        fitted, the prior elsewhere."""
+        turn, step = self.prior.sample(rng, shape)
+        if self.params is None or not self.fitted.any():
+            return turn, step
+        p = np.where(self.fitted[:, None], self.params, [[0.0, 0.0, 1.0, 1.0]])
+        learned_turn = sample_wrapped_cauchy(rng, p[:, :1], p[:, 1:2], shape)
+        learned_step = sample_weibull(rng, p[:, 2:3], p[:, 3:4], shape)
+        use = self.fitted[:, None]
+        return np.where(use, learned_turn, turn), np.where(use, learned_step, step)
+
+
+def _scale_for(steps: np.ndarray, kappa: float) -> float:
+    """ML Weibull scale for a fixed shape ``κ``: ``λ = (mean δ^κ)^{1/κ}``."""
+    return float(np.mean(steps**kappa) ** (1.0 / kappa))
+
+
+def build_motion(spec: PfSpec, model: Model) -> Motion:
+    """The propagation model ``model`` of ``spec``: its true DCRW, the Gaussian baseline, or an
+    online learner over the uniform prior with the case's learning settings."""
+    match Model(model):
+        case Model.DCRW:
+            return DcrwMotion(spec.target)
+        case Model.GAUSSIAN:
+            return GaussianMotion()
+        case Model.LEARNED:
+            return OnlineLearner(UniformMotion(spec.uniform_max_step), **spec.learning)

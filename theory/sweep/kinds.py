@@ -19,7 +19,7 @@ function (nothing is re-derived here):
   deciding singular value clears ``rank_tol · σ_max`` (inconclusive below
   ``inconclusive_factor``).
 * ``pf`` — ``trackcert pf``: the case's ``expect`` block judged by the pf claims
-  (:func:`theory.particle.pf_report.pf_report`; its Monte Carlo is the verdict). No margin.
+  (:func:`theory.particle.report.pf_report`; its Monte Carlo is the verdict). No margin.
 * ``tdoa-sim`` (and any kind not listed in :data:`ANALYSES`) — ``trackcert simulate``: the case's
   ``expect`` block judged against the point's own simulation.
 
@@ -171,7 +171,7 @@ def pf_judgement(case: Case) -> Judgement:
     -------
     Judgement
     """
-    from theory.particle.pf_report import pf_report
+    from theory.particle.report import pf_report
 
     report = pf_report(case)
     unmet = [e.describe() for e in report.expectations if not e.met]
@@ -195,7 +195,7 @@ ANALYSIS_MODULES: dict[str, str] = {
     "pursuit": "theory.pursuit.iss_report",
     "dkf": "theory.consensus.claims",
     "tdoa": "theory.tdoa.topology_report",
-    "pf": "theory.particle.pf_report",
+    "pf": "theory.particle.report",
 }
 """Kind → the module its analysis imports (each imports lazily, so that a sweep imports only its
 kind's): the sweep's workers are forked with it already imported (:func:`point_modules`)."""

@@ -1,11 +1,10 @@
 """What ``trackcert pf`` (and ``trackcert simulate`` on a ``kind: pf`` case) reports.
 
 :func:`pf_report` runs the case's Monte Carlo (seed 002 §3.3, :mod:`theory.particle.experiments`)
-and every registered claim of kind ``pf``; the claims observe the case's ``expect`` keys in their
-evidence (``kind: pf`` has no separate observer), and the block is judged from those
-observations with :mod:`theory.core.expectations`, exactly as ``trackcert report`` judges it.
-With a folder it writes ``pf.json`` and the figures. The command only prints the record and
-exits with the expectations' verdict (:mod:`theory.core.verdicts`).
+and every ``pf`` claim of the domain's registry on it; the claims observe the case's ``expect``
+keys in their evidence (``kind: pf`` has no separate observer), and the block is judged from
+those observations with :mod:`theory.core.expectations`, exactly as ``trackcert report`` judges
+it. With a folder it writes ``pf.json`` and the figures.
 """
 
 from __future__ import annotations
@@ -17,37 +16,35 @@ from pathlib import Path
 from typing import Any
 
 from theory.core.case_file import Case
-from theory.core.claims import ClaimResult, all_claims, applicable_results, get_claim
+from theory.core.claims import ClaimResult, Context, RunCache
 from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, evaluate, observations_from
 from theory.core.jsonable import plain
 from theory.core.parallel import TaskRunner
-from theory.core.run_cache import RunCache
 from theory.core.verdicts import Verdict, expectations_verdict
+from theory.particle.experiments import (
+    MonteCarlo,
+    monte_carlo,
+    node_summary,
+    shared_monte_carlo,
+    write_figures,
+)
+from theory.particle.registry import CLAIMS
 
 __all__ = ["SNAPSHOT_STEPS", "PfReport", "pf_report"]
 
 SNAPSHOT_STEPS = (0, 5, 20)
 """Steps whose particle clouds the figures show."""
 
+PF_CLAIMS = tuple(sorted((c for c in CLAIMS if "pf" in c.kinds), key=lambda c: c.id))
+SOURCES = {c.id: c.source for c in PF_CLAIMS}
+
 
 @dataclass(frozen=True)
 class PfReport:
-    """The record ``trackcert pf`` prints (and writes as ``pf.json``).
-
-    Attributes
-    ----------
-    case : Case
-        The case, with the runs and seed used.
-    agents : list of dict
-        Per-node error summary (:func:`theory.particle.experiments.node_summary`).
-    claims : tuple of ClaimResult
-        Every registered ``pf`` claim's results on the case.
-    expectations : tuple of Expectation
-        The case's ``expect`` block judged against the claims' observations.
-    figures : tuple of str
-        Figure files written (none without a folder).
-    """
+    """The record ``trackcert pf`` prints (and writes as ``pf.json``): the case with the runs and
+    seed used, the per-node error summary, the ``pf`` claims' results, the expectations judged
+    from them, and the figures written."""
 
     case: Case
     agents: list[dict[str, Any]]
@@ -72,7 +69,7 @@ class PfReport:
             "share": spec.config.share,
             "config": plain(vars(spec.config)),
             "agents": self.agents,
-            "claims": [r.to_json(get_claim(r.claim).source) for r in self.claims],
+            "claims": [r.to_json(SOURCES[r.claim]) for r in self.claims],
             "expectations": [e.to_json() for e in self.expectations],
             "figures": list(self.figures),
         }
@@ -87,33 +84,12 @@ def pf_report(
     runner: TaskRunner | None = None,
     progress: Callable[[int], None] | None = None,
 ) -> PfReport:
-    """Run ``case`` (``kind: pf``), its claims and its expectations; write ``out`` if given.
+    """Run ``case`` (``kind: pf``, else a :class:`CaseError`), its claims and its expectations.
 
-    Parameters
-    ----------
-    case : Case
-        A loaded case; anything but ``kind: pf`` is refused.
-    runs, seed : int, optional
-        Monte Carlo runs and base seed (``None``: the case's own).
-    out : Path, optional
-        Folder for ``pf.json`` and figures (``None``: write nothing).
-    runner : TaskRunner, optional
-        An open engine for the Monte Carlo runs (default: this process, serially); the claims
-        share them through one :class:`~theory.core.run_cache.RunCache`.
-    progress : callable, optional
-        Called with the number of the case's runs finished.
-
-    Returns
-    -------
-    PfReport
-
-    Raises
-    ------
-    CaseError
-        If the case is not ``kind: pf``.
+    ``runs`` and ``seed`` default to the case's; the Monte Carlo runs go to ``runner`` (default:
+    this process) and are shared by the claims; ``progress`` is called with the number of runs
+    finished; ``out`` is the folder for ``pf.json`` and the figures (``None``: write nothing).
     """
-    from theory.particle.experiments import node_summary, shared_monte_carlo
-
     if case.kind != "pf":
         raise CaseError(
             "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
@@ -122,14 +98,9 @@ def pf_report(
         case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
     )
     case = replace(case, spec=spec)
-    cache = RunCache(runner)
-    mc = shared_monte_carlo(spec, cache=cache, progress=progress)
-    claims = [
-        result
-        for claim in all_claims()
-        if "pf" in claim.kinds
-        for result in applicable_results(claim, case, cache=cache)
-    ]
+    ctx = Context(RunCache(runner))
+    mc = shared_monte_carlo(spec, ctx, progress=progress)
+    claims = [result for claim in PF_CLAIMS for result in claim.results(case, ctx)]
     observed = [
         found for r in claims for found in observations_from(r.claim, plain(r.evidence), r.status)
     ]
@@ -141,10 +112,7 @@ def pf_report(
     return report
 
 
-def _figures(case: Case, mc: Any, folder: Path) -> tuple[str, ...]:
-    from theory.particle.experiments import monte_carlo
-    from theory.particle.figures import write_figures
-
+def _figures(case: Case, mc: MonteCarlo, folder: Path) -> tuple[str, ...]:
     first = monte_carlo(case.spec, runs=1, snapshot_steps=SNAPSHOT_STEPS)  # = run 0 of mc
     snapshots = replace(mc, snapshots=first.snapshots)
     return tuple(write_figures(snapshots, case.spec, folder, case.name))
