@@ -12,17 +12,22 @@ from typer.testing import CliRunner
 
 from theory.cli import app
 from theory.consensus.properties import jointly_detectable, strongly_connected
-from theory.core.case_file import parse_case
-from theory.falsify import DEFAULT_EXAMPLES, all_properties, falsify
+from theory.falsify import DEFAULT_EXAMPLES, falsify
+from theory.kinds import parse_case
 from theory.pursuit.properties import (
     PursuitExample,
     coordination_terms,
     phi_terms,
     pursuit_terms,
 )
+from theory.registry import all_properties
 from theory.strategies import TdoaScene
-from theory.tdoa.geometry_properties import component_rank, scene_case
-from theory.tdoa.networked_properties import WeightedScene, analyze_weighted_scene
+from theory.tdoa.observability.properties import (
+    WeightedScene,
+    analyze_weighted_scene,
+    component_rank,
+    scene_case,
+)
 
 runner = CliRunner()
 PROPERTIES = all_properties()

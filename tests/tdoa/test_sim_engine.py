@@ -9,20 +9,21 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.case_file import parse_case
 from theory.core.errors import CaseError
 from theory.core.network import metropolis_weights
-from theory.tdoa.agents import (
+from theory.kinds import parse_case
+from theory.tdoa.estimation.agents import (
+    assign_offsets,
     braking_control,
+    crown_vertices,
+    cube_vertices,
     flat_outputs,
     linearizing_control,
     rk4_step,
     steering_dynamics,
 )
-from theory.tdoa.averaging import average_round
-from theory.tdoa.ekf import ekf_update
-from theory.tdoa.formation import assign_offsets, crown_vertices, cube_vertices
-from theory.tdoa.measurements import neighbour_lists, tdoa_jacobians, tdoa_predictions
+from theory.tdoa.estimation.filters import average_round, ekf_update
+from theory.tdoa.model import neighbour_lists, tdoa_jacobians, tdoa_predictions
 
 angles = st.floats(-math.pi, math.pi)
 seeds = st.integers(0, 2**32 - 1)

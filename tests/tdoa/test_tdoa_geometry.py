@@ -11,16 +11,16 @@ import sympy as sp
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.core.case_file import load_case
 from theory.core.network import adjacency_from_edges, metropolis_weights
-from theory.tdoa.geometry import (
+from theory.kinds import load_case
+from theory.tdoa.geometry.directions import (
     analyze_geometry,
     direction_differences,
-    exact_direction_rank,
     stacked_jacobian_position,
 )
+from theory.tdoa.geometry.exact import exact_direction_rank
 from theory.tdoa.model import cv_discrete, tdoa_jacobian
-from theory.tdoa.networked_observability import analyze_network
+from theory.tdoa.observability.network import analyze_network
 
 SEPARATION = 2.0
 """Draws with two points closer than this (scene units) are rejected as near-degenerate."""
