@@ -1,5 +1,5 @@
-"""``trackcert topology``: bundled cases meet their ``expect`` blocks, DESIGN.md JSON keys, exit
-codes 0/1/2/3, and the registered claims."""
+"""``trackcert topology``: bundled cases meet their ``expect`` blocks, the documented JSON keys,
+exit codes 0/1/2/3, and the registered claims."""
 
 from __future__ import annotations
 

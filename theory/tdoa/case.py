@@ -54,7 +54,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from theory.core.case_file import KindSpec
+from theory.core.case_file import Case, KindSpec
 from theory.core.errors import CaseError
 from theory.core.limits import check_count, check_estimate, check_length
 from theory.core.network import (
@@ -64,7 +64,8 @@ from theory.core.network import (
     uniform_weights,
     weights_support,
 )
-from theory.core.tolerances import COINCIDENCE_TOL, PERIOD_TOL
+from theory.core.observability import RANK_TOL
+from theory.core.tolerances import COINCIDENCE_TOL, INCONCLUSIVE_FACTOR, PERIOD_TOL
 from theory.core.validation import (
     bounded_coordinates,
     check_keys,
@@ -93,6 +94,7 @@ __all__ = [
     "check_tdoa_expect",
     "parse_tdoa",
     "parse_tdoa_sim",
+    "rank_tolerances",
 ]
 
 
@@ -389,6 +391,14 @@ def _list_of(value: object, kind: type, length: int) -> bool:
     return ok and all(
         isinstance(v, kind) and (kind is bool or not isinstance(v, bool)) for v in value
     )
+
+
+def rank_tolerances(case: Case) -> dict[str, float]:
+    """The case's ``rank_tol`` and ``inconclusive_factor`` (the tolerance table's otherwise)."""
+    return {
+        "rank_tol": case.tolerances.get("rank_tol", RANK_TOL),
+        "inconclusive_factor": case.tolerances.get("inconclusive_factor", INCONCLUSIVE_FACTOR),
+    }
 
 
 TDOA = KindSpec(

@@ -60,7 +60,7 @@ from typing import Any
 
 import numpy as np
 from hypothesis import strategies as st
-from scipy.linalg import eigh
+from scipy.linalg import block_diag, eigh
 
 from theory.core.claims import Property
 from theory.core.network import components, metropolis_weights
@@ -291,21 +291,12 @@ def _error_moments(
     )
     out = []
     for K in gains:
-        closed = _block_diagonal([np.eye(n) - K_i @ H_i for K_i, H_i in zip(K, H, strict=True)])
-        noise = _block_diagonal([geometry.r * K_i @ K_i.T for K_i in K])
+        closed = block_diag(*[np.eye(n) - K_i @ H_i for K_i, H_i in zip(K, H, strict=True)])
+        noise = block_diag(*[geometry.r * K_i @ K_i.T for K_i in K])
         sigma = mix @ (closed @ sigma @ closed.T + noise) @ mix.T
         out.append(np.array([sigma[i * n : (i + 1) * n, i * n : (i + 1) * n] for i in range(N)]))
         sigma = predict @ sigma @ predict.T + process
     return np.array(out)
-
-
-def _block_diagonal(blocks: list[np.ndarray]) -> np.ndarray:
-    """``blkdiag(blocks)`` of equal square blocks."""
-    n = blocks[0].shape[0]
-    out = np.zeros((n * len(blocks), n * len(blocks)))
-    for i, block in enumerate(blocks):
-        out[i * n : (i + 1) * n, i * n : (i + 1) * n] = block
-    return out
 
 
 def _component_crb(geometry: FrozenGeometry, steps: int) -> np.ndarray:
@@ -385,7 +376,7 @@ def _fixed_gain_operator(
     closed = [np.eye(n) - gains[j] @ H[j] for j in part]
     W = geometry.W[np.ix_(part, part)]
     blocks = [np.kron(c @ A, c @ A) for c in closed]
-    operator = np.kron(W, np.eye(n * n)) @ _block_diagonal(blocks)
+    operator = np.kron(W, np.eye(n * n)) @ block_diag(*blocks)
     local = np.array(
         [
             c @ BQB @ c.T + geometry.r * gains[j] @ gains[j].T

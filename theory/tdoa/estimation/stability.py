@@ -278,13 +278,8 @@ def lemma_a11_claim(case: None, ctx: Context) -> list[ClaimResult]:
     gaussian = {f"d={d}": gaussian_drift(d) for d in GAUSSIAN_DIMENSIONS}
     tight, printed_fails = _tightness(processes), _printed_failures(processes)
     holds = _corrected_holds(processes, proof, gaussian) and all(tight)
-    status = (
-        Status.REFUTED
-        if not holds
-        else Status.CORRECTED
-        if any(printed_fails.values())
-        else Status.VERIFIED
-    )
+    status = Status.CORRECTED if any(printed_fails.values()) else Status.VERIFIED
+    status = status if holds else Status.REFUTED
     survey = processes[0]["steps"][1]
     evidence = {
         **_counterexample(survey),

@@ -79,7 +79,7 @@ def crb_trace(
     near-singular but full-rank geometry gets its finite trace ``σ² Σ 1/s_i²`` from the singular
     values of ``G`` (not of ``J``, which would square their ratio). Other pair sets use the float
     test ``λ_min ≤ information_tol · λ_max``.
-"""
+    """
     pairs = list(itertools.combinations(range(len(positions)), 2)) if pairs is None else pairs
     nodes = _connected_nodes(pairs)
     if nodes is None:

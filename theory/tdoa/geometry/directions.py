@@ -29,7 +29,7 @@ from theory.core.claims import ClaimResult, ClaimSet, Context, Method, Status
 from theory.core.network import components
 from theory.core.observability import RANK_TOL, numeric_rank
 from theory.core.tolerances import INCONCLUSIVE_FACTOR
-from theory.tdoa.case import TDOA
+from theory.tdoa.case import TDOA, rank_tolerances
 from theory.tdoa.geometry.exact import exact_affine_rank, exact_direction_rank
 from theory.tdoa.model import unit_directions
 
@@ -39,7 +39,6 @@ __all__ = [
     "claims",
     "coplanar_claim",
     "direction_differences",
-    "stacked_jacobian_position",
 ]
 
 claims = ClaimSet()
@@ -79,15 +78,6 @@ def direction_differences(target: np.ndarray, agents: np.ndarray) -> np.ndarray:
     """``[u_i − u_1]_{i ≥ 2}``: a stand-in for the stacked Jacobian of a connected set."""
     units = unit_directions(target, agents)
     return units[1:] - units[0]
-
-
-def stacked_jacobian_position(
-    target: np.ndarray, agents: np.ndarray, hears: np.ndarray
-) -> np.ndarray:
-    """Position block of every TDOA row ``u_r − u_s`` with ``hears[r, s]`` (seed 000 eq. (4.7))."""
-    units = unit_directions(target, agents)
-    pairs = np.argwhere(hears)
-    return units[pairs[:, 0]] - units[pairs[:, 1]] if pairs.size else np.zeros((0, agents.shape[1]))
 
 
 def analyze_geometry(
@@ -151,18 +141,16 @@ def coplanar_claim(case: Case | None, ctx: Context) -> list[ClaimResult]:
     """Exact rank loss against coplanarity, per component and step (model: two bundled cases)."""
     if case is None:
         return [_coplanar_model()]
-    rank_tol = case.tolerances.get("rank_tol", RANK_TOL)
-    factor = case.tolerances.get("inconclusive_factor", INCONCLUSIVE_FACTOR)
-    return [_coplanar_step(case, k, rank_tol, factor) for k in range(case.spec.steps)]
+    return [_coplanar_step(case, k, **rank_tolerances(case)) for k in range(case.spec.steps)]
 
 
-def _coplanar_step(case: Case, k: int, rank_tol: float, factor: float) -> ClaimResult:
+def _coplanar_step(case: Case, k: int, rank_tol: float, inconclusive_factor: float) -> ClaimResult:
     spec = case.spec
     agents, target = spec.agents[k], spec.target[k]
     rows, status = [], Status.VERIFIED
     for part in components(spec.hears[k]):
         geometry = analyze_geometry(
-            target, agents[part], rank_tol=rank_tol, inconclusive_factor=factor
+            target, agents[part], rank_tol=rank_tol, inconclusive_factor=inconclusive_factor
         )
         exact = exact_direction_rank(target.tolist(), agents[part].tolist())
         if len(part) < geometry.dim + 1:
@@ -185,7 +173,7 @@ def _coplanar_step(case: Case, k: int, rank_tol: float, factor: float) -> ClaimR
         status,
         Method.EXACT,
         {"step": k + 1, "components": rows},
-        tolerance={"rank_tol": rank_tol, "inconclusive_factor": factor},
+        tolerance={"rank_tol": rank_tol, "inconclusive_factor": inconclusive_factor},
         message=f"step {k + 1}: rank loss is decided by the cone condition (exact rank), "
         "not by the agents' coplanarity.",
     )

@@ -24,7 +24,6 @@ __all__ = [
     "exact_direction_rank",
     "exact_mirror",
     "rational_points",
-    "rational_square_root",
     "same_ray_pair",
     "sqrt_sum_vanishes",
 ]
@@ -57,7 +56,7 @@ def exact_affine_rank(points: Sequence[Point]) -> int:
     return len(_rref(differences, len(pts[0]))[0])
 
 
-def rational_square_root(x: Fraction) -> Fraction | None:
+def _rational_square_root(x: Fraction) -> Fraction | None:
     """``√x`` when it is rational (``x ≥ 0`` a square of a rational), else ``None``."""
     if x < 0:
         return None
@@ -78,7 +77,7 @@ def sqrt_sum_vanishes(terms: Sequence[tuple[Fraction, Fraction]]) -> bool:
         if c == 0:
             continue
         for entry in classes:
-            ratio = rational_square_root(q / entry[0])
+            ratio = _rational_square_root(q / entry[0])
             if ratio is not None:
                 entry[1] += c * ratio
                 break

@@ -84,7 +84,7 @@ def network_observability(
     positions = target[None, :] - directions
     H = scipy.linalg.block_diag(
         *[
-            tdoa_jacobian(target, positions, i, nb) if nb else np.zeros((0, 2 * dim))
+            tdoa_jacobian(target, positions, i, nb) if len(nb) else np.zeros((0, 2 * dim))
             for i, nb in enumerate(neighbours)
         ]
     )

@@ -18,6 +18,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
+import networkx as nx
 import numpy as np
 import sympy as sp
 
@@ -25,8 +26,7 @@ from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, Method, Status, status_of
 from theory.core.errors import CaseError
 from theory.core.network import adjacency_from_edges, components, exact_weights
-from theory.core.observability import RANK_TOL
-from theory.core.tolerances import INCONCLUSIVE_FACTOR
+from theory.tdoa.case import rank_tolerances
 from theory.tdoa.geometry.directions import DirectionGeometry, analyze_geometry
 from theory.tdoa.geometry.exact import exact_direction_rank
 from theory.tdoa.model import cv_discrete, tdoa_jacobian
@@ -130,15 +130,10 @@ def _witness_rows(
 
 
 def _distance(edges: Sequence[tuple[int, int]], source: int, target: int) -> int:
-    frontier, seen, steps = {source}, {source}, 0
-    while target not in frontier:
-        frontier = {b for a, b in edges if a in frontier} | {a for a, b in edges if b in frontier}
-        frontier -= seen
-        seen |= frontier
-        steps += 1
-        if not frontier:
-            return 10**9
-    return steps
+    try:
+        return nx.shortest_path_length(nx.Graph(list(edges)), source, target)
+    except (nx.NetworkXNoPath, nx.NodeNotFound):
+        return 10**9
 
 
 def fig43_analysis(case: str, *, rule: str = "metropolis", seed: int = 0) -> dict:
@@ -199,7 +194,7 @@ class TdoaStep:
 def evaluate_tdoa_step(case: Case, step: int) -> TdoaStep:
     """Analyse 0-based step ``step`` of a ``kind: tdoa`` case (its tolerances, else defaults)."""
     spec = case.spec
-    rank_tol, factor = _tolerance(case).values()
+    rank_tol, factor = rank_tolerances(case).values()
     agents, target, hears = spec.agents[step], spec.target[step], spec.hears[step]
     H = [
         tdoa_jacobian(target, agents, i, list(np.flatnonzero(hears[i])))
@@ -223,13 +218,6 @@ def evaluate_tdoa_step(case: Case, step: int) -> TdoaStep:
 
 def _steps(case: Case) -> list[TdoaStep]:
     return [evaluate_tdoa_step(case, k) for k in range(case.spec.steps)]
-
-
-def _tolerance(case: Case) -> dict[str, float]:
-    return {
-        "rank_tol": case.tolerances.get("rank_tol", RANK_TOL),
-        "inconclusive_factor": case.tolerances.get("inconclusive_factor", INCONCLUSIVE_FACTOR),
-    }
 
 
 @claims.register(
@@ -306,7 +294,7 @@ def _theorem_step(case: Case, k: int, step: TdoaStep) -> ClaimResult:
         Method.NUMERIC,
         evidence,
         margin=min(net.margin, net.unit_circle_margin),
-        tolerance={**_tolerance(case), "unit_circle_tol": net.unit_circle_tol},
+        tolerance={**rank_tolerances(case), "unit_circle_tol": net.unit_circle_tol},
         message=f"step {k + 1}: paper predicts observable={heuristic_ok}; the pair is "
         f"observable={net.observable}, detectable={net.detectable}.",
     )
@@ -352,6 +340,6 @@ def _rank_sum_step(case: Case, k: int, net: NetworkObservability) -> ClaimResult
         Method.NUMERIC,
         evidence,
         margin=net.margin,
-        tolerance=_tolerance(case),
+        tolerance=rank_tolerances(case),
         message=f"step {k + 1}: rank O = {net.network_rank}, Σ rank O_i = {net.rank_sum}.",
     )

@@ -79,6 +79,7 @@ __all__ = [
     "weighted_scenes",
 ]
 
+
 def component_rank(scene: TdoaScene) -> tuple[int, bool]:
     """Rank of the stacked position Jacobian of all agents of ``scene``, and whether the
     decision is conclusive (every singular value clears the threshold by 10³)."""
@@ -580,6 +581,7 @@ _STATEMENTS = {
     "mirror": "the target at height 0, 10⁻¹², 10⁻⁹ or 10⁻³ above the plane of its receivers",
     "split": "a bridging pair at the communication range ± 0, 10⁻¹², 10⁻⁹ or 10⁻³",
 }
+
 
 def _scene_property(
     property_id: str,

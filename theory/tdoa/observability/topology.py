@@ -266,7 +266,7 @@ class _Scene:
 class _RankDecision:
     """The rank of a stacked TDOA Jacobian: exact, with the float SVD beside it.
 
-    ``rank`` is the exact rank (:func:`~theory.tdoa.exact_geometry.exact_direction_rank`);
+    ``rank`` is the exact rank (:func:`~theory.tdoa.geometry.exact.exact_direction_rank`);
     ``doubt`` says why the verdict is inconclusive (full rank exactly, but the float singular
     value within ``inconclusive_factor`` of ``rank_tol · σ_max``), ``None`` when it is not.
     """
@@ -414,12 +414,17 @@ def _components(hears: np.ndarray) -> tuple[list[list[int]], np.ndarray]:
     return parts, component_of
 
 
-def _reach_groups(hears: np.ndarray) -> list[tuple[list[int], list[int]]]:
-    """Agents of a directed network sharing one reach set ``R(i)``: strongly connected classes."""
+def _condensation(hears: np.ndarray) -> nx.DiGraph:
+    """The strongly connected classes of the information flow (``s → r`` when ``r`` hears ``s``)."""
     flow = nx.DiGraph()
     flow.add_nodes_from(range(hears.shape[0]))
     flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(hears), strict=True))
-    condensed = nx.condensation(flow)
+    return nx.condensation(flow)
+
+
+def _reach_groups(hears: np.ndarray) -> list[tuple[list[int], list[int]]]:
+    """Agents of a directed network sharing one reach set ``R(i)``: strongly connected classes."""
+    condensed = _condensation(hears)
     groups = []
     for node in condensed.nodes:
         members = sorted(condensed.nodes[node]["members"])
@@ -589,10 +594,7 @@ def _upstream_leaders(
     localize iff its own stacked Jacobian has rank ``d``; every other agent's error is driven by
     the closed classes upstream of it through ``W_TT ⊗ A``, which is stable (``ρ(W_TT) < 1``).
     """
-    flow = nx.DiGraph()
-    flow.add_nodes_from(range(scene.hears.shape[0]))
-    flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(scene.hears), strict=True))
-    condensed = nx.condensation(flow)
+    condensed = _condensation(scene.hears)
     ranks = {}
     for node in condensed:
         if condensed.in_degree(node) == 0:

@@ -10,14 +10,9 @@ for uniform observability of the time-varying pair in general (``docs/topology.m
 The property decided: every agent can localize the target at every step. Verdict True/False when
 every deciding singular value clears ``inconclusive_factor`` times its threshold, ``None``
 (inconclusive) otherwise. The kind's observer runs the same analysis as the command, so the
-report's ``case.expect.tdoa`` claim and the command agree on every expectation. The claims:
-
-* ``seed000.thm4.2.3.heuristic``: "an agent can localize iff it is part of a connected
-  (sub)network of ≥ 4 non-coplanar agents" (≥ 3 non-collinear in 2-D), per agent;
-* ``seed000.thm4.2.3.network``: the same condition for every agent ⇔ the networked pair
-  ``(W ⊗ A, D_H)`` is observable;
-* ``seed000.cor4.2.4``: along a trajectory, every step satisfying the hypothesis has every agent
-  localizing (and, in the paper's words, the networked system observable).
+report's ``case.expect.tdoa`` claim and the command agree on every expectation. The claims
+compare the paper's "≥ 4 connected non-coplanar agents" (Thm 4.2.3, Cor. 4.2.4) with the exact
+per-agent verdicts, the networked pair's rank and detectability, step by step.
 """
 
 from __future__ import annotations
@@ -31,7 +26,7 @@ from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, Method, Status
 from theory.core.errors import CaseError, SolverError
 from theory.core.expectations import Expectation, Observed, judge
-from theory.tdoa.case import TdoaSpec
+from theory.tdoa.case import TdoaSpec, rank_tolerances
 from theory.tdoa.observability.topology import TopologyResult, analyze_topology, observed_values
 
 __all__ = [
@@ -69,8 +64,7 @@ class TrajectoryResult:
         return all(step.conclusive for step in self.steps)
 
     def to_json(self) -> dict[str, Any]:
-        """The ``--json`` record: step 0's verdicts, ``time_varying`` when the scene moves,
-        ``expectations`` (``met``, ``mismatches``, ``verdicts``) and ``verdict``."""
+        """Per-step summary: ranks, detectability and which agents fail."""
         return {
             "first_failure_step": self.first_failure_step,
             "unobservable_steps": list(self.unobservable_steps),
@@ -114,11 +108,11 @@ def run_topology(case: Case, *, network_rank: bool = True, **tolerances: float) 
     linear-algebra routine fails (reported as inconclusive)."""
     if case.kind != "tdoa":
         raise CaseError("kind", "tdoa (trackcert topology checks TDOA cases)", case.kind)
-    chosen = _tolerances(case)
+    chosen = rank_tolerances(case)
     chosen.update({k: v for k, v in tolerances.items() if v is not None})
-    if not 0 < chosen.get("rank_tol", 0.5) < 1:
+    if not 0 < chosen["rank_tol"] < 1:
         raise CaseError("--rank-tol", "a relative tolerance in (0, 1)", chosen["rank_tol"])
-    if chosen.get("inconclusive_factor", 1.0) < 1:
+    if chosen["inconclusive_factor"] < 1:
         raise CaseError("--inconclusive-factor", "a factor ≥ 1", chosen["inconclusive_factor"])
     try:
         return analyze_trajectory(case.spec, network_rank=network_rank, **chosen)
@@ -170,8 +164,8 @@ class TopologyReport:
         return _fails_sentence(result)
 
     def to_json(self) -> dict[str, Any]:
-        """The DESIGN.md ``--json`` record: step 0's verdicts, ``time_varying`` when the scene
-        moves, ``expectations`` (``met``, ``mismatches``, ``verdicts``) and ``verdict``."""
+        """The ``--json`` record: step 0's verdicts, ``time_varying`` when the scene moves,
+        ``expectations`` (``met``, ``mismatches``, ``verdicts``) and ``verdict``."""
         data: dict[str, Any] = {"case": self.case.name, "source": self.case.source}
         data.update(self.result.steps[0].to_json())
         if len(self.result.steps) > 1:
@@ -231,12 +225,8 @@ def _fails_sentence(result: TrajectoryResult) -> str:
 _SOURCE = "seed 000 §4.2.2, Thm 4.2.3; seed 001 Theorem 1"
 
 
-def _tolerances(case: Case) -> dict[str, float]:
-    return {k: v for k, v in case.tolerances.items() if k in ("rank_tol", "inconclusive_factor")}
-
-
 def _first_step(case: Case) -> TopologyResult:
-    return analyze_topology(case.spec, 0, **_tolerances(case))
+    return analyze_topology(case.spec, 0, **rank_tolerances(case))
 
 
 def _inconclusive(result: TopologyResult) -> ClaimResult:
@@ -336,9 +326,7 @@ def network_claim(case: Case, ctx: Context) -> list[ClaimResult]:
             f"paper predicts observable={predicted}, the pair has rank {net.rank}/{net.n_states}"
         )
     return [
-        ClaimResult(
-            status, Method.NUMERIC, evidence, net.margin, dict(result.tolerances), message
-        )
+        ClaimResult(status, Method.NUMERIC, evidence, net.margin, dict(result.tolerances), message)
     ]
 
 
@@ -354,7 +342,7 @@ def cor_4_2_4_claim(case: Case, ctx: Context) -> list[ClaimResult]:
     observable, as the paper words it)? Static cases give no result."""
     if case.spec.steps < 2:
         return []
-    trajectory = analyze_trajectory(case.spec, **_tolerances(case))
+    trajectory = analyze_trajectory(case.spec, **rank_tolerances(case))
     if not trajectory.conclusive:
         return [_inconclusive(next(s for s in trajectory.steps if not s.conclusive))]
     hypothesis = [s for s in trajectory.steps if all(a.heuristic_4_noncoplanar for a in s.agents)]

@@ -141,13 +141,8 @@ def window_claim(case: None, ctx: Context) -> list[ClaimResult]:
     gap = mirror_gap(SCENES["3 static receivers (2 TDOA rows)"][0])
     as_predicted = all(s["window_rank"] == s["predicted_window_rank"] for s in scenes.values())
     conclusive = all(s["conclusive"] for s in scenes.values())
-    status = (
-        Status.REFUTED
-        if not as_predicted
-        else Status.CORRECTED
-        if conclusive
-        else Status.INCONCLUSIVE
-    )
+    status = Status.CORRECTED if conclusive else Status.INCONCLUSIVE
+    status = status if as_predicted else Status.REFUTED
     return [
         ClaimResult(
             status,
