@@ -33,9 +33,9 @@ from theory.kinds import load_case
 from theory.pursuit.closed_loop import DecSettings, simulate_dec
 from theory.pursuit.dekf import table_target
 from theory.sim.runner import monte_carlo
-from theory.tdoa.agents import linearizing_control
-from theory.tdoa.scenario import run_tdoa_scenario, run_tdoa_scenarios
-from theory.tdoa.simulation_claims import B_SWEEP, SWEEP_MAX_STEPS, SWEEP_SEEDS
+from theory.tdoa.estimation.agents import linearizing_control
+from theory.tdoa.estimation.scenario import run_tdoa_scenario, run_tdoa_scenarios
+from theory.tdoa.estimation.simulation import B_SWEEP, SWEEP_MAX_STEPS, SWEEP_SEEDS
 
 
 def _timed(function, *args, **kwargs) -> float:

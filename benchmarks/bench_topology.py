@@ -38,7 +38,7 @@ import numpy as np  # noqa: E402
 from theory.core.network import adjacency_from_range, metropolis_weights  # noqa: E402
 from theory.tdoa.case import TdoaSpec  # noqa: E402
 from theory.tdoa.model import cv_discrete, unit_directions  # noqa: E402
-from theory.tdoa.topology import analyze_topology  # noqa: E402
+from theory.tdoa.observability.topology import analyze_topology  # noqa: E402
 
 MEAN_DEGREE = 8.0
 SIDE = 100.0

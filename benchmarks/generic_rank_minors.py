@@ -2,7 +2,8 @@
 
 Baseline, measured in the same run: sympy determinants of the actual rows of O (berkowitz) on a
 seeded sample of minors, extrapolated to all C(18, 6) = 18564. Candidate: the vectorised Laplace
-expansion of ``theory.tdoa.generic_rank.minor_expansions``. Prints the ratio; asserts nothing.
+expansion of ``theory.tdoa.observability.single_agent.minor_expansions``. Prints the ratio;
+asserts nothing.
 
 Run: ``python benchmarks/generic_rank_minors.py [--sample 20] [--seed 0]``.
 """
@@ -14,7 +15,7 @@ import time
 
 import numpy as np
 
-from theory.tdoa.generic_rank import minor_expansions, symbolic_single_agent_matrix
+from theory.tdoa.observability.single_agent import minor_expansions, symbolic_single_agent_matrix
 
 
 def main() -> None:

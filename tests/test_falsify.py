@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 
 from theory.cli import app
 from theory.consensus.properties import jointly_detectable, strongly_connected
-from theory.falsify import DEFAULT_EXAMPLES, all_properties, falsify
+from theory.falsify import DEFAULT_EXAMPLES, falsify
 from theory.kinds import parse_case
 from theory.pursuit.properties import (
     PursuitExample,
@@ -20,9 +20,14 @@ from theory.pursuit.properties import (
     phi_terms,
     pursuit_terms,
 )
+from theory.registry import all_properties
 from theory.strategies import TdoaScene
-from theory.tdoa.geometry_properties import component_rank, scene_case
-from theory.tdoa.networked_properties import WeightedScene, analyze_weighted_scene
+from theory.tdoa.observability.properties import (
+    WeightedScene,
+    analyze_weighted_scene,
+    component_rank,
+    scene_case,
+)
 
 runner = CliRunner()
 PROPERTIES = all_properties()

@@ -5,7 +5,7 @@ reasons)``, in its registry (``CERTIFIERS``, read by :func:`theory.registry.cert
 ``reasons`` says why a certificate the kind could have is missing. Today:
 
 * ``tdoa``: ``generic-rank`` of the network observability matrix and of each agent's block
-  column (:mod:`theory.tdoa.case_certificates`);
+  column (:mod:`theory.tdoa.observability.certificates`);
 * ``dkf``: ``s-detectability`` with the gains of the LMI witness and, when the case fixes gains,
   with those gains (:mod:`theory.consensus.case_certificates`);
 * ``pursuit``: ``iss`` (:mod:`theory.pursuit.certificates`).

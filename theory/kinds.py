@@ -36,7 +36,7 @@ def _tdoa() -> KindSpec:
 
 
 def _tdoa_sim() -> KindSpec:
-    from theory.tdoa.sim_case import TDOA_SIM
+    from theory.tdoa.case import TDOA_SIM
 
     return TDOA_SIM
 
@@ -105,7 +105,7 @@ def simulator(kind: str) -> Callable[[Case, int | None], Any]:
 
         return pursuit_simulator
     if kind == "tdoa-sim":
-        from theory.tdoa.sim_summary import tdoa_simulator
+        from theory.tdoa.estimation.simulation import tdoa_simulator
 
         return tdoa_simulator
     raise ValueError(f"kind {kind!r} is not simulated; simulated kinds: {SIMULATED}")

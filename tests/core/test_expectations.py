@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.claims import get_claim
+from theory.core.claims import Context
 from theory.core.expectations import (
     EXPECTATIONS_KEY,
     UNDECIDED_KEY,
@@ -23,6 +23,7 @@ from theory.core.expectations import (
 )
 from theory.core.verdicts import exit_code, expectations_verdict, verdict_status
 from theory.kinds import load_case
+from theory.registry import get_claim
 
 json_values = st.recursive(
     st.none()
@@ -163,11 +164,11 @@ def test_one_exit_code_policy_on_expectation_verdicts(verdicts, verdict, code, s
 def test_a_command_and_the_report_claim_judge_a_case_alike() -> None:
     """``trackcert topology``'s verdict records and ``case.expect.tdoa``'s status come from the
     same observer and the same judge."""
-    from theory.tdoa.topology_report import observe_topology, topology_report
+    from theory.tdoa.observability.trajectory import observe_topology, topology_report
 
     case = load_case("fig43-case-d")
     command = topology_report(case).expectations
-    direct = judge(case, observe_topology(case), source="test")
+    direct = judge(case, observe_topology(case, Context()), source="test")
     assert [e.verdict for e in command] == [e.verdict for e in direct] == ["met"] * len(case.expect)
     (result,) = get_claim("case.expect.tdoa").run(case)
     assert result.status == "verified"

@@ -54,7 +54,7 @@ def test_modules_include_those_checked_before() -> None:
         "theory.consensus.riccati",
         "theory.consensus.s_detectability",
         "theory.consensus.self_weight",
-        "theory.tdoa.rank_certificates",
+        "theory.tdoa.observability.certificates",
     }
     earlier |= {f"theory.sim.{info.name}" for info in pkgutil.iter_modules(theory.sim.__path__)}
     assert earlier <= set(MODULES), sorted(earlier - set(MODULES))

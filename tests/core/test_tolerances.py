@@ -49,13 +49,14 @@ def test_modules_use_the_table_values() -> None:
     """The domain modules' own names for their tolerances are the table's objects."""
     from theory.consensus import certificates, conditions, properties, s_detectability
     from theory.particle.experiments import DEFAULT_TOLERANCES
-    from theory.tdoa import networked_observability, spectral_rank, uniqueness
+    from theory.tdoa.geometry import uniqueness
+    from theory.tdoa.observability import network, spectral
 
     assert s_detectability.LMI_MARGIN == tolerances.LMI_MARGIN
     assert certificates.CERTIFICATE_MARGIN == tolerances.CERTIFICATE_MARGIN
-    assert properties.UNIT_CIRCLE_TOL == networked_observability.UNIT_CIRCLE_TOL == 1e-6
+    assert properties.UNIT_CIRCLE_TOL == network.UNIT_CIRCLE_TOL == 1e-6
     assert conditions.VALUE_TOL == tolerances.VALUE_TOL
-    assert spectral_rank.CLUSTER_TOL == tolerances.CLUSTER_TOL
+    assert spectral.CLUSTER_TOL == tolerances.CLUSTER_TOL
     assert uniqueness.UNIQUENESS_TOL == tolerances.UNIQUENESS_TOL
     assert DEFAULT_TOLERANCES == {k: TOLERANCES[k].default for k in DEFAULT_TOLERANCES}
 

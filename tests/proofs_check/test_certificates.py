@@ -23,7 +23,7 @@ from theory.consensus.certificates import (
     s_detectability_certificate,
 )
 from theory.core.exact import RationalizationError
-from theory.tdoa.covariance_certificates import (
+from theory.tdoa.estimation.stability import (
     covariance_bound_certificate,
     ekf_covariance_bound_certificate,
 )

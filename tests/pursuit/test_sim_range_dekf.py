@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from theory.pursuit.dekf import encircling_paths, range_dekf, st_curve, table_target
-from theory.tdoa.ekf import ekf_update
+from theory.tdoa.estimation.filters import ekf_update
 
 TS = 2.0
 Q_TABLE_I = 1e-3 * np.diag([1, 1, 0.1, 0.1])

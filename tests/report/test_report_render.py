@@ -217,7 +217,7 @@ def test_certificates_are_copied_and_checked(monkeypatch, tmp_path) -> None:
 
 def test_certificate_documents_are_written_and_checked(monkeypatch, tmp_path) -> None:
     """A certificate carried in the evidence becomes a file that proofs_check accepts."""
-    from theory.tdoa.rank_certificates import generic_rank_certificates
+    from theory.tdoa.observability.certificates import generic_rank_certificates
 
     register = fake_registry(monkeypatch)
     (document, *_) = generic_rank_certificates(load_case(write_case(tmp_path, "case-a")).spec)
@@ -241,7 +241,7 @@ def test_certificate_documents_are_checked_once_where_their_claim_ran(
     monkeypatch, tmp_path
 ) -> None:
     """The task's verdict (on the same bytes) is the report's: the checker does not run again."""
-    from theory.tdoa.rank_certificates import generic_rank_certificates
+    from theory.tdoa.observability.certificates import generic_rank_certificates
 
     register = fake_registry(monkeypatch)
     case = load_case(write_case(tmp_path, "case-a"))

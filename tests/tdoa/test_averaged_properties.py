@@ -1,6 +1,6 @@
 """Theory ⇄ simulation for the averaged TDOA filter (seed 000 §4.2.2, Thm 4.2.3, App. A).
 
-The property ``seed000.thm4.2.3.averaged-filter/corrected`` (``theory/tdoa/averaged_properties``)
+The property ``seed000.thm4.2.3.averaged-filter/corrected`` (``theory/tdoa/estimation/averaged.py``)
 over random scenes and networks; a fixed scene with one observable and one unobservable component
 against the closed forms; the frozen-geometry filter against the closed-loop simulation it stands
 for; and a Monte Carlo of the linearized model (the generic engine) against the exact second
@@ -15,30 +15,28 @@ import numpy as np
 import yaml
 from hypothesis import given
 
-from theory.core.case_file import parse_case
 from theory.core.network import metropolis_weights
-from theory.falsify import properties_for
+from theory.kinds import parse_case
+from theory.registry import properties_for
 from theory.sim.runner import monte_carlo
-from theory.tdoa.averaged_bounds import (
+from theory.tdoa.estimation.averaged import (
+    BURN_IN,
+    HORIZON,
+    NOISES,
+    FilterExample,
     FrozenGeometry,
     analyze_components,
     certify_boundedness,
+    check_example,
+    example_from_spec,
+    filter_example_case,
+    filter_examples,
     linearized_run,
     prior_propagation,
     psd_violation,
     simulate_linearized,
 )
-from theory.tdoa.averaged_properties import (
-    BURN_IN,
-    HORIZON,
-    NOISES,
-    FilterExample,
-    check_example,
-    example_from_spec,
-    filter_example_case,
-    filter_examples,
-)
-from theory.tdoa.scenario import run_tdoa_scenario
+from theory.tdoa.estimation.scenario import run_tdoa_scenario
 from theory.tdoa.strategies import TdoaScene
 
 PAPER, CORRECTED = sorted(

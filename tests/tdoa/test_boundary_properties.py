@@ -1,6 +1,6 @@
 """Never wrong near a boundary (issue 17): the topology verdicts at 0, 10⁻¹², 10⁻⁹, 10⁻³ from
 coplanarity, collinearity, the receivers' plane and the communication range, judged by the
-independent exact oracle of :mod:`theory.tdoa.boundary_properties`."""
+independent exact oracle of :mod:`theory.tdoa.observability.properties`."""
 
 from __future__ import annotations
 
@@ -9,7 +9,8 @@ from fractions import Fraction
 import pytest
 from hypothesis import given
 
-from theory.tdoa.boundary_properties import (
+from theory.tdoa.case import parse_tdoa
+from theory.tdoa.observability.properties import (
     FAMILIES,
     BoundaryScene,
     _sqrt_sum_is_zero,
@@ -20,8 +21,7 @@ from theory.tdoa.boundary_properties import (
     scene_block,
     truth,
 )
-from theory.tdoa.case import parse_tdoa
-from theory.tdoa.topology import analyze_topology
+from theory.tdoa.observability.topology import analyze_topology
 
 F = Fraction
 

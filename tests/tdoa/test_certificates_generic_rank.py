@@ -14,16 +14,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from proofs_check import MalformedError, check_certificate
-from theory.core.case_file import load_case, parse_case
 from theory.core.exact import RationalizationError, rational_unit_vector
 from theory.core.observability import numeric_rank
-from theory.tdoa.certificate_claims import generic_rank_claim
-from theory.tdoa.rank_certificates import (
-    exact_weights,
+from theory.kinds import load_case, parse_case
+from theory.registry import get_claim
+from theory.tdoa.model import neighbour_lists
+from theory.tdoa.observability.certificates import (
     generic_rank_certificates,
-    neighbour_lists,
     network_observability,
-    network_steps,
+    scene_weights,
 )
 
 CASE = Path(__file__).resolve().parents[2] / "cases" / "fig43-case-d.yaml"
@@ -58,7 +57,7 @@ def test_round_trip_and_the_certified_rank_is_the_generic_one(spec, seed) -> Non
     certs = generic_rank_certificates(spec, seed=seed)
     probe = np.random.default_rng(seed + 1000).standard_normal((spec.n_agents, spec.dim))
     probe /= np.linalg.norm(probe, axis=1, keepdims=True)
-    W = np.array(exact_weights(spec), dtype=float)
+    W = np.array(scene_weights(spec), dtype=float)
     O = network_observability(probe, neighbour_lists(spec.hears[0]), W, spec.T)
     width = 2 * spec.dim
     for cert in certs:
@@ -72,7 +71,7 @@ def test_round_trip_and_the_certified_rank_is_the_generic_one(spec, seed) -> Non
 
 def test_exact_weights_are_the_design_rules() -> None:
     spec = load_case(CASE).spec
-    W = exact_weights(spec)
+    W = scene_weights(spec)
     assert np.allclose(np.array(W, dtype=float), spec.weights[0], atol=1e-15)
     assert W[0][:2] == [Fraction(2, 3), Fraction(1, 3)]
     assert all(sum(row) == 1 for row in W)
@@ -81,7 +80,7 @@ def test_exact_weights_are_the_design_rules() -> None:
 def test_fig43_case_d_is_generically_observable() -> None:
     """Seed 000 Fig. 4.3 (d): a path of 4 agents; O (24 columns) has generic rank 24 and every
     agent's block column generic rank 6."""
-    (result,) = generic_rank_claim(load_case(CASE))
+    (result,) = get_claim("seed000.eq4.36.certified").run(load_case(CASE))
     assert result.evidence["ranks_at_least"] == {0: 24, 1: 6, 2: 6, 3: 6, 4: 6}
     assert result.status == "verified" and result.evidence["steps"] == [1]
     assert "at least 24 of 24" in result.message and "at least 6, 6, 6, 6" in result.message
@@ -91,13 +90,13 @@ def test_a_time_varying_scene_is_certified_once_per_network() -> None:
     """Seed 000 Cor. 4.2.4: each distinct network along the trajectory gets its certificates;
     together they cover every step, and each checks exactly."""
     spec = load_case("topology-distance-rule-split").spec
-    groups = network_steps(spec)
+    groups = spec.networks()
     assert sorted(k for steps in groups for k in steps) == list(range(spec.steps))
     certs = generic_rank_certificates(spec)
     covered = {tuple(c["produced_by"]["steps"]) for c in certs}
     assert covered == {tuple(k + 1 for k in steps) for steps in groups}
     assert all(check_certificate(json.loads(json.dumps(c))).valid for c in certs)
-    results = generic_rank_claim(load_case("topology-distance-rule-split"))
+    results = get_claim("seed000.eq4.36.certified").run(load_case("topology-distance-rule-split"))
     assert len(results) == len(groups) and {r.status for r in results} == {"verified"}
     for result, steps in zip(results, groups, strict=True):
         assert result.evidence["steps"] == [k + 1 for k in steps]
@@ -113,7 +112,7 @@ def test_network_steps_group_equal_networks() -> None:
         hears=np.concatenate([spec.hears, ~spec.hears & ~np.eye(4, dtype=bool)[None], spec.hears]),
         weights=np.concatenate([spec.weights, spec.weights, spec.weights]),
     )
-    assert network_steps(repeated) == [(0, 2), (1,)]
+    assert repeated.networks() == [(0, 2), (1,)]
 
 
 def _leaves(value, path=()):

@@ -1,4 +1,4 @@
-"""Exact TDOA geometry (:mod:`theory.tdoa.exact_geometry`) against independent computations."""
+"""Exact TDOA geometry (:mod:`theory.tdoa.geometry.exact`) against independent computations."""
 
 from __future__ import annotations
 
@@ -7,14 +7,14 @@ from fractions import Fraction
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.tdoa.boundary_properties import _direction_rank, _sqrt_sum_is_zero
-from theory.tdoa.exact_geometry import (
+from theory.tdoa.geometry.exact import (
     exact_affine_rank,
     exact_direction_rank,
     exact_mirror,
     same_ray_pair,
     sqrt_sum_vanishes,
 )
+from theory.tdoa.observability.properties import _direction_rank, _sqrt_sum_is_zero
 
 F = Fraction
 small = st.integers(-6, 6)

@@ -11,15 +11,15 @@ import sympy as sp
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.network import adjacency_from_edges
-from theory.tdoa.fig43 import (
+from theory.core.network import adjacency_from_edges, exact_weights
+from theory.tdoa.model import cv_discrete_symbolic
+from theory.tdoa.observability.fig43 import (
     FIG43_EDGES,
     agent_rank_witness,
     fig43_analysis,
     shared_lambda_jacobians,
 )
-from theory.tdoa.model import cv_discrete_symbolic
-from theory.tdoa.networked_observability import exact_weights, network_generic_rank
+from theory.tdoa.observability.network import network_generic_rank
 
 
 def test_shared_lambda_structure_matches_appendix_b() -> None:

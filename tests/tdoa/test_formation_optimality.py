@@ -6,9 +6,8 @@ import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.claims import get_claim
-from theory.tdoa.crb import crb_trace, optimal_crb_trace
-from theory.tdoa.formation_optimality import range_crb_trace, unit_circle
+from theory.registry import get_claim
+from theory.tdoa.geometry.crb import crb_trace, optimal_crb_trace, range_crb_trace, unit_circle
 
 bearings = st.lists(st.floats(0, 360, allow_nan=False), min_size=3, max_size=8)
 polygons = st.lists(st.tuples(st.integers(3, 5), st.floats(0, 360)), min_size=1, max_size=3)

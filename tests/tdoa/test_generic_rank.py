@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.tdoa.generic_rank import (
+from theory.tdoa.observability.single_agent import (
     exact_rank,
     minor_expansions,
     paper_eq_4_20_determinant,

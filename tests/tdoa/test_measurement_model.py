@@ -20,14 +20,15 @@ from theory.particle.case import PfNetwork
 from theory.particle.filter import log_likelihood, measure
 from theory.particle.pf_vs_ekf import EkfConfig, consensus_weights, ekf_step
 from theory.strategies import networks, tdoa_scenes
-from theory.tdoa.averaging import average_round
-from theory.tdoa.filters import measurement_step
-from theory.tdoa.measurements import neighbour_lists, tdoa_jacobians, tdoa_predictions
+from theory.tdoa.estimation.filters import average_round, measurement_step
 from theory.tdoa.model import (
+    neighbour_lists,
     range_difference_gradients,
     range_differences,
     tdoa_jacobian,
+    tdoa_jacobians,
     tdoa_measurement,
+    tdoa_predictions,
     unit_directions,
 )
 
@@ -256,8 +257,8 @@ def test_unit_directions_broadcast_over_points() -> None:
 @given(seeds)
 def test_pf_comparison_ekf_step_is_the_tdoa_filter(seed: int) -> None:
     """The averaged EKF that seed 002's comparison runs (``pf_vs_ekf.ekf_step``) is the network
-    filter of :mod:`theory.tdoa.filters` on the filtering nodes, then one averaging round: the
-    PF package can use the one TDOA filter instead of its own loop."""
+    filter of :mod:`theory.tdoa.estimation.filters` on the filtering nodes, then one averaging
+    round: the PF package can use the one TDOA filter instead of its own loop."""
     rng = np.random.default_rng(seed)
     nodes = rng.uniform(-40, 40, (5, 2))
     hears = np.zeros((5, 5), bool)

@@ -11,11 +11,14 @@ import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.case_file import bundled_cases, load_case, parse_case
-from theory.core.claims import get_claim
+from theory.core.case_file import bundled_cases
+from theory.core.claims import Context
 from theory.core.network import exact_metropolis_weights, metropolis_weights
-from theory.tdoa import model_claims
+from theory.kinds import load_case, parse_case
+from theory.registry import get_claim
+from theory.tdoa import model
 from theory.tdoa.model import cv_discrete
+from theory.tdoa.observability import weights
 
 
 def test_discretization_claim_is_verified() -> None:
@@ -44,8 +47,8 @@ def test_discretization_claim_refutes_a_wrong_printed_A(monkeypatch) -> None:
         eye, zero = sp.eye(dim), sp.zeros(dim, dim)
         return sp.Matrix(sp.BlockMatrix([[eye, T / 2 * eye], [zero, eye]]))
 
-    monkeypatch.setattr(model_claims, "cv_discrete_symbolic", wrong)
-    (result,) = model_claims.check_discretization()
+    monkeypatch.setattr(model, "cv_discrete_symbolic", wrong)
+    (result,) = model.discretization_claim(None, Context())
     assert result.status == "refuted" and not result.evidence["3d"]["A_exact"]
 
 
@@ -54,8 +57,8 @@ def test_discretization_claim_refutes_a_wrong_floating_model(monkeypatch) -> Non
         A, B = cv_discrete(T, dim)
         return A, B * (1 + 1e-15)
 
-    monkeypatch.setattr(model_claims, "cv_discrete", rounded)
-    (result,) = model_claims.check_discretization()
+    monkeypatch.setattr(model, "cv_discrete", rounded)
+    (result,) = model.discretization_claim(None, Context())
     assert result.status == "refuted" and not result.evidence["2d"]["library_exact"]
 
 
@@ -78,7 +81,7 @@ def test_exact_metropolis_is_symmetric_doubly_stochastic(adjacency: np.ndarray) 
     assert all(exact[i][i] > 0 for i in range(n))
     eigenvalues = np.linalg.eigvalsh(W)
     assert eigenvalues.min() > -1 and eigenvalues.max() <= 1 + 1e-12
-    assert np.abs(metropolis_weights(adjacency) - W).max() <= model_claims.ROUNDING_TOL
+    assert np.abs(metropolis_weights(adjacency) - W).max() <= weights.ROUNDING_TOL
 
 
 def test_metropolis_claim_on_the_bundled_cases() -> None:
@@ -104,9 +107,9 @@ def test_metropolis_claim_on_the_bundled_cases() -> None:
 def test_metropolis_claim_refutes_wrong_floating_weights() -> None:
     case = load_case(bundled_cases()["fig43-case-d"])
     case.spec.weights[0, 0, 0] += 1e-12
-    (result,) = model_claims.check_metropolis_weights(case)
+    (result,) = weights.metropolis_claim(case, Context())
     assert result.status == "refuted"
-    assert result.evidence["steps_shown"][0]["max_float_deviation"] > model_claims.ROUNDING_TOL
+    assert result.evidence["steps_shown"][0]["max_float_deviation"] > weights.ROUNDING_TOL
 
 
 def test_metropolis_claim_does_not_apply_to_uniform_weights() -> None:
@@ -121,7 +124,7 @@ def test_metropolis_claim_does_not_apply_to_uniform_weights() -> None:
             "weights": "uniform",
         },
     }
-    assert model_claims.check_metropolis_weights(parse_case(data)) == []
+    assert weights.metropolis_claim(parse_case(data), Context()) == []
 
 
 def test_exact_weights_are_the_design_rule() -> None:
@@ -150,7 +153,7 @@ def test_metropolis_claim_checks_every_step_of_a_time_varying_network() -> None:
         },
     }
     case = parse_case(data)
-    (result,) = model_claims.check_metropolis_weights(case)
+    (result,) = weights.metropolis_claim(case, Context())
     steps = result.evidence["steps_shown"]
     assert result.status == "verified" and result.evidence["n_steps"] == 3
     assert steps[0]["W"] != steps[1]["W"]

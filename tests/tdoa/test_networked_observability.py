@@ -11,20 +11,24 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.core.network import adjacency_from_edges, metropolis_weights, uniform_weights
+from theory.core.network import (
+    adjacency_from_edges,
+    exact_weights,
+    metropolis_weights,
+    uniform_weights,
+)
 from theory.core.observability import numeric_rank, observability_matrix
-from theory.tdoa.generic_rank import exact_rank
 from theory.tdoa.model import cv_discrete, tdoa_jacobian
-from theory.tdoa.networked_observability import (
+from theory.tdoa.observability.network import (
     agent_observability_blocks,
     analyze_network,
     exact_network_matrix,
-    exact_weights,
     network_generic_rank,
     network_observability_matrix,
     networked_pair,
     unobservable_subspace,
 )
+from theory.tdoa.observability.single_agent import exact_rank
 
 SEPARATION = 2.0
 """Near-degenerate draws are rejected: points closer than this (scene units) are discarded."""

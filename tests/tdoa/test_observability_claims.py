@@ -7,9 +7,11 @@ import json
 import numpy as np
 import pytest
 
-from theory.core.case_file import bundled_cases, load_case
-from theory.core.claims import STATUSES, all_claims, get_claim
-from theory.tdoa.observability_claims import evaluate_tdoa_step
+from theory.core.case_file import bundled_cases
+from theory.core.claims import Status
+from theory.kinds import load_case
+from theory.registry import all_claims, get_claim
+from theory.tdoa.observability.fig43 import evaluate_tdoa_step
 
 IDS = {
     "seed000.eq4.20": "verified",
@@ -55,7 +57,7 @@ def test_case_claims_return_closed_vocabulary_json(name: str) -> None:
     for claim in all_claims():
         if "tdoa" in claim.kinds:
             for result in claim.run(case):
-                assert result.status in STATUSES and result.case == case.name
+                assert result.status in set(Status) and result.case == case.name
                 json.dumps(result.to_json(claim.source))
 
 

@@ -7,9 +7,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.case_file import load_case
-from theory.core.claims import get_claim
-from theory.tdoa.path_lemma import path_lemma_failures, path_lengths
+from theory.kinds import load_case
+from theory.registry import get_claim
+from theory.tdoa.observability.weights import path_lemma_failures, path_lengths
 
 
 @st.composite

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 from scipy.linalg import block_diag
 
-from theory.core.case_file import load_case
-from theory.core.claims import get_claim
-from theory.tdoa.appendix_a import lemma_a12_along
+from theory.kinds import load_case
+from theory.registry import get_claim
+from theory.tdoa.estimation.scenario import hears_at, run_tdoa_scenario, weights_at
+from theory.tdoa.estimation.stability import lemma_a12_along
 from theory.tdoa.model import cv_discrete, tdoa_jacobian
-from theory.tdoa.scenario import hears_at, run_tdoa_scenario, weights_at
 
 
 def _run(name: str, steps: int = 15):

@@ -10,11 +10,11 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.case_file import load_case
+from theory.kinds import load_case
 from theory.sim.runner import monte_carlo
-from theory.tdoa.crb import crb_trace, optimal_crb_trace, platonic_solids, tdoa_fisher
-from theory.tdoa.metrics import summarize_runs
-from theory.tdoa.scenario import run_tdoa_scenario
+from theory.tdoa.estimation.scenario import run_tdoa_scenario
+from theory.tdoa.estimation.simulation import summarize_runs
+from theory.tdoa.geometry.crb import crb_trace, optimal_crb_trace, platonic_solids, tdoa_fisher
 
 BOUND_RTOL = 1e-9
 """Relative tolerance on reaching the bound d²σ²/N² (floating point only)."""

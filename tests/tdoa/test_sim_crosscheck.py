@@ -18,11 +18,11 @@ import numpy as np
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.core.case_file import parse_case
 from theory.core.network import components
 from theory.core.observability import numeric_rank, observability_matrix
+from theory.kinds import parse_case
+from theory.tdoa.estimation.scenario import run_tdoa_scenario
 from theory.tdoa.model import cv_discrete, tdoa_jacobian
-from theory.tdoa.scenario import run_tdoa_scenario
 
 STEPS = 40
 P0 = 100.0
@@ -160,7 +160,7 @@ def test_four_connected_agents_localize_three_do_not() -> None:
 
 
 def test_the_ch5_examples_claim_draws_its_figure(tmp_path):
-    from theory.core.claims import get_claim
+    from theory.registry import get_claim
 
     (result,) = get_claim("seed000.sec5.3.sim-examples").run(None, steps=40, figure_dir=tmp_path)
     (figure,) = result.figures

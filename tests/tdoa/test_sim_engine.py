@@ -9,20 +9,24 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.case_file import parse_case
 from theory.core.errors import CaseError
 from theory.core.network import metropolis_weights
-from theory.tdoa.agents import (
+from theory.kinds import parse_case
+from theory.tdoa.case import CovNorm, Filter, Linearize
+from theory.tdoa.estimation.agents import (
+    assign_offsets,
     braking_control,
+    crown_vertices,
+    cube_vertices,
     flat_outputs,
     linearizing_control,
     rk4_step,
     steering_dynamics,
 )
-from theory.tdoa.averaging import average_round
-from theory.tdoa.ekf import ekf_update
-from theory.tdoa.formation import assign_offsets, crown_vertices, cube_vertices
-from theory.tdoa.measurements import neighbour_lists, tdoa_jacobians, tdoa_predictions
+from theory.tdoa.estimation.filters import average_round, ekf_update, measurement_step
+from theory.tdoa.estimation.scenario import covariance_norms
+from theory.tdoa.model import neighbour_lists, tdoa_jacobians, tdoa_predictions
+from theory.tdoa.observability.network import network_generic_rank
 
 angles = st.floats(-math.pi, math.pi)
 seeds = st.integers(0, 2**32 - 1)
@@ -182,3 +186,25 @@ def test_block_defaults_and_infinite_threshold() -> None:
     assert spec.b == math.inf and spec.rounds == 1 and spec.filter == "averaged"
     assert np.allclose(spec.P0, 100 * np.eye(6)) and np.allclose(spec.Q, 0.01 * np.eye(3))
     assert parse_case(_case(tau=0.1)).spec.rounds == 10
+
+
+def test_closed_vocabularies_refuse_a_misspelling() -> None:
+    """A misspelt filter, norm or parametrization raises instead of falling into a default."""
+    spec = parse_case(_case(filter="centralized", linearize="truth", cov_norm="frobenius")).spec
+    assert (spec.filter, spec.linearize, spec.cov_norm) == (
+        Filter.CENTRALIZED,
+        Linearize.TRUTH,
+        CovNorm.FROBENIUS,
+    )
+    with pytest.raises(CaseError, match="one of"):
+        parse_case(_case(cov_norm="spectrum"))
+    x, P = np.zeros((2, 6)), np.tile(np.eye(6), (2, 1, 1))
+    positions = np.array([[0.0, 0, 0], [10, 0, 0]])
+    neighbours = neighbour_lists(~np.eye(2, dtype=bool))
+    readings = [np.zeros(1), np.zeros(1)]
+    with pytest.raises(ValueError, match="centralised"):
+        measurement_step("centralised", x, P, readings, positions, neighbours, 1.0)
+    with pytest.raises(ValueError, match="spectrl"):
+        covariance_norms(P, "spectrl")
+    with pytest.raises(ValueError, match="edge"):
+        network_generic_rank(~np.eye(2, dtype=bool), [[1, 0], [0, 1]], parametrization="edge")

@@ -12,11 +12,11 @@ import yaml
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import load_case
-from theory.core.claims import get_claim
+from theory.kinds import load_case
+from theory.registry import get_claim
 from theory.sim.runner import monte_carlo
-from theory.tdoa.metrics import summarize_runs
-from theory.tdoa.scenario import TdoaRun, run_tdoa_scenario, run_tdoa_scenarios
+from theory.tdoa.estimation.scenario import TdoaRun, run_tdoa_scenario, run_tdoa_scenarios
+from theory.tdoa.estimation.simulation import summarize_runs
 
 runner = CliRunner()
 

@@ -9,9 +9,9 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.core.claims import get_claim
-from theory.tdoa import stochastic_stability as ss
-from theory.tdoa import stochastic_stability_claims as ssc
+from theory.core.claims import Context
+from theory.registry import get_claim
+from theory.tdoa.estimation import stability as ss
 
 ONE = Fraction(1)
 
@@ -31,7 +31,7 @@ def test_the_claim_is_corrected() -> None:
         assert process["A10_holds_at_every_atom"]
         assert all(row["corrected_holds"] for row in process["steps"])
     assert all(
-        ks == list(range(1, ssc.STEPS + 1)) for ks in result.evidence["printed_fails_at_k"].values()
+        ks == list(range(1, ss.STEPS + 1)) for ks in result.evidence["printed_fails_at_k"].values()
     )
     note = result.evidence["bounded_with_probability_one"]
     stay = list(note["d=1_sigma=1_M=5"]["P(stay ≤ 5)"].values())
@@ -130,6 +130,6 @@ def test_negative_k_raises() -> None:
 
 def test_the_printed_bound_in_place_of_the_corrected_one_is_refuted(monkeypatch) -> None:
     """Known-bad input: if the suite believed (A.11) as printed, the exact laws break it."""
-    monkeypatch.setattr(ssc, "corrected_bound", ss.printed_bound)
-    (result,) = ssc.check_stochastic_stability()
+    monkeypatch.setattr(ss, "corrected_bound", ss.printed_bound)
+    (result,) = ss.lemma_a11_claim(None, Context())
     assert result.status == "refuted"

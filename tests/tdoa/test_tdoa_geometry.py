@@ -11,16 +11,15 @@ import sympy as sp
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.core.case_file import load_case
 from theory.core.network import adjacency_from_edges, metropolis_weights
-from theory.tdoa.geometry import (
+from theory.kinds import load_case
+from theory.tdoa.geometry.directions import (
     analyze_geometry,
     direction_differences,
-    exact_direction_rank,
-    stacked_jacobian_position,
 )
-from theory.tdoa.model import cv_discrete, tdoa_jacobian
-from theory.tdoa.networked_observability import analyze_network
+from theory.tdoa.geometry.exact import exact_direction_rank
+from theory.tdoa.model import cv_discrete, tdoa_jacobian, unit_directions
+from theory.tdoa.observability.network import analyze_network
 
 SEPARATION = 2.0
 """Draws with two points closer than this (scene units) are rejected as near-degenerate."""
@@ -87,7 +86,9 @@ def test_general_position_connected_set_is_observable_for_every_agent(scene, dat
     n = len(agents)
     edges = [(data.draw(st.integers(0, i - 1)), i) for i in range(1, n)]
     adjacency = adjacency_from_edges(n, np.array(edges))
-    stacked = stacked_jacobian_position(target, agents, adjacency)
+    units = unit_directions(target, agents)
+    pairs = np.argwhere(adjacency)
+    stacked = units[pairs[:, 0]] - units[pairs[:, 1]]
     assert np.linalg.matrix_rank(stacked, tol=1e-9 * np.linalg.norm(stacked, 2)) == 3
     H = [tdoa_jacobian(target, agents, i, list(np.flatnonzero(adjacency[i]))) for i in range(n)]
     result = analyze_network(cv_discrete(1.0, 3)[0], metropolis_weights(adjacency), H)

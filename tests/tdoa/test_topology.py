@@ -11,14 +11,15 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 from topology_strategies import edge_lists, scenes, spec_of
 
-from theory.core.case_file import bundled_cases, load_case
+from theory.core.case_file import bundled_cases
 from theory.core.network import adjacency_from_range
 from theory.core.observability import numeric_rank
+from theory.kinds import load_case
+from theory.tdoa.geometry.uniqueness import tdoa_solutions
 from theory.tdoa.model import cv_discrete, tdoa_jacobian, tdoa_measurement
-from theory.tdoa.networked_observability import agent_observability_blocks, analyze_network
-from theory.tdoa.time_varying import analyze_trajectory
-from theory.tdoa.topology import analyze_topology
-from theory.tdoa.uniqueness import tdoa_solutions
+from theory.tdoa.observability.network import agent_observability_blocks, analyze_network
+from theory.tdoa.observability.topology import analyze_topology
+from theory.tdoa.observability.trajectory import analyze_trajectory
 
 
 def dense_blocks(spec, step=0):

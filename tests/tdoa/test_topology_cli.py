@@ -1,5 +1,5 @@
-"""``trackcert topology``: bundled cases meet their ``expect`` blocks, DESIGN.md JSON keys, exit
-codes 0/1/2/3, and the registered claims."""
+"""``trackcert topology``: bundled cases meet their ``expect`` blocks, the documented JSON keys,
+exit codes 0/1/2/3, and the registered claims."""
 
 from __future__ import annotations
 
@@ -11,10 +11,11 @@ import yaml
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import bundled_cases, load_case
-from theory.core.claims import STATUSES, all_claims, get_claim
-from theory.tdoa.time_varying import analyze_trajectory
-from theory.tdoa.topology_report import topology_report
+from theory.core.case_file import bundled_cases
+from theory.core.claims import Status
+from theory.kinds import load_case
+from theory.registry import all_claims, get_claim
+from theory.tdoa.observability.trajectory import analyze_trajectory, topology_report
 
 runner = CliRunner()
 TDOA_CASES = [name for name, path in bundled_cases().items() if load_case(path).kind == "tdoa"]
@@ -151,7 +152,7 @@ def test_registered_claims_run_on_every_tdoa_case() -> None:
         case = load_case(name)
         for claim_id in ("seed000.thm4.2.3.heuristic", "seed000.thm4.2.3.network"):
             (result,) = get_claim(claim_id).run(case)
-            assert result.status in STATUSES and result.case == name
+            assert result.status in set(Status) and result.case == name
             json.dumps(result.to_json())
 
 

@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 from topology_strategies import edge_lists, scenes, spec_of
 
 from theory.core.exact import exact_decimal
+from theory.tdoa.observability.topology import analyze_topology
 from theory.tdoa.strategies import rational_rotations, similarity_image
-from theory.tdoa.topology import analyze_topology
 
 
 def verdicts(result):

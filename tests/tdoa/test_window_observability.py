@@ -6,9 +6,9 @@ import numpy as np
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.core.claims import get_claim
 from theory.core.observability import numeric_rank
-from theory.tdoa.window_observability import SCENES, mirror_gap, window_observability
+from theory.registry import get_claim
+from theory.tdoa.observability.window import SCENES, mirror_gap, window_observability
 
 coordinate = st.floats(-20, 20, allow_nan=False)
 point = st.tuples(coordinate, coordinate, coordinate).map(np.array)

@@ -1,8 +1,8 @@
 """``trackcert generic``: symbolic generic observability of one agent (seed 000 §4.2.1).
 
-A shell over :func:`theory.tdoa.generic_report.generic_report` and
-:func:`~theory.tdoa.generic_report.fig43_report`; exit code (:mod:`theory.core.verdicts`) 0 when the
-derivation reproduces the statement, 1 when a check disagrees, 2 on bad options.
+A shell over :func:`theory.tdoa.observability.single_agent.generic_report` and
+:func:`theory.tdoa.observability.fig43.fig43_report`; exit code (:mod:`theory.core.verdicts`) 0
+when the derivation reproduces the statement, 1 when a check disagrees, 2 on bad options.
 """
 
 from __future__ import annotations
@@ -11,7 +11,8 @@ import typer
 
 from theory.cli.common import print_json, reports_errors
 from theory.core.verdicts import exit_code
-from theory.tdoa.generic_report import GenericReport, fig43_report, generic_report
+from theory.tdoa.observability.fig43 import fig43_report
+from theory.tdoa.observability.single_agent import GenericReport, generic_report
 
 __all__ = ["register"]
 

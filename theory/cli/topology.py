@@ -1,6 +1,6 @@
 """``trackcert topology CASE``: distributed TDOA observability of every agent (DESIGN.md).
 
-A shell over :func:`theory.tdoa.topology_report.topology_report`. Exit codes
+A shell over :func:`theory.tdoa.observability.trajectory.topology_report`. Exit codes
 (:mod:`theory.core.verdicts`): 0 every agent can localize the target at every step, 1 some agent
 cannot, 2 bad input, 3 inconclusive (a deciding singular value lies within
 ``inconclusive_factor`` of its threshold, or a linear-algebra routine failed).
@@ -15,9 +15,12 @@ from theory.cli.common import case_argument, console, finish, json_option, repor
 from theory.core.case_file import Case
 from theory.core.verdicts import exit_code
 from theory.kinds import load_case
-from theory.tdoa.time_varying import TrajectoryResult
-from theory.tdoa.topology import TopologyResult
-from theory.tdoa.topology_report import TopologyReport, topology_report
+from theory.tdoa.observability.topology import TopologyResult
+from theory.tdoa.observability.trajectory import (
+    TopologyReport,
+    TrajectoryResult,
+    topology_report,
+)
 
 __all__ = ["register"]
 

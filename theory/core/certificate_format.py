@@ -4,7 +4,7 @@ A certificate is ``{"format", "kind", "source", "case"?, "claim", "data", "witne
 "produced_by"?}`` with every number an exact rational string (``docs/certificates.md``); a bundle
 is ``{"format", "kind": "bundle", "case"?, "certificates"}``. The builders of each domain
 (:mod:`theory.consensus.certificates`, :mod:`theory.consensus.infeasibility`,
-:mod:`theory.tdoa.covariance_certificates`, …) compute claim, data and witness; this module
+:mod:`theory.tdoa.estimation.stability`, …) compute claim, data and witness; this module
 wraps them, and :func:`rounded` turns a floating witness into the first dyadic rounding that the
 independent checker :mod:`proofs_check` accepts — never into anything weaker.
 """

@@ -12,14 +12,14 @@ and a node with fewer can still estimate the target if it is connected to a netw
 enough. It decides, at seeded random target positions, the rank of each node's TDOA Jacobian
 (position block), the observability of its constant-velocity pair ``(A, H_i)``, and that of its
 connected component (all the component's TDOA rows stacked), exactly on the positions as
-written (:mod:`theory.tdoa.exact_geometry`), the float SVD at ``rank_tol`` beside it.
+written (:mod:`theory.tdoa.geometry.exact`), the float SVD at ``rank_tol`` beside it.
 
 The EKF is the simulation engine's averaged EKF of seed 000 eqs. (4.26)–(4.35) (seed 002's
 reference [36]), run in 2D on the PF's network: each filtering node corrects with its own TDOA
-vector (:func:`theory.tdoa.ekf.ekf_update`, Joseph form, geometry of
-:mod:`theory.tdoa.measurements`), averages state and covariance with its filtering neighbours
-(:func:`theory.tdoa.averaging.average_round`, Metropolis weights) and predicts with the
-constant-velocity model (:func:`theory.tdoa.ekf.ekf_predict`). Nodes without a measurement only
+vector (:func:`theory.tdoa.estimation.filters.ekf_update`, Joseph form, geometry of
+:mod:`theory.tdoa.model`), averages state and covariance with its filtering neighbours
+(:func:`theory.tdoa.estimation.filters.average_round`, Metropolis weights) and predicts with the
+constant-velocity model (:func:`theory.tdoa.estimation.filters.ekf_predict`). Nodes without a measurement only
 average and predict.
 """
 
@@ -46,11 +46,9 @@ from theory.particle.experiments import (
     one_run,
     verdict_words,
 )
-from theory.tdoa.averaging import average_round
-from theory.tdoa.ekf import ekf_predict, ekf_update
-from theory.tdoa.exact_geometry import exact_direction_rank
-from theory.tdoa.measurements import tdoa_jacobians, tdoa_predictions
-from theory.tdoa.model import cv_discrete, tdoa_jacobian
+from theory.tdoa.estimation.filters import average_round, ekf_predict, ekf_update
+from theory.tdoa.geometry.exact import exact_direction_rank
+from theory.tdoa.model import cv_discrete, tdoa_jacobian, tdoa_jacobians, tdoa_predictions
 
 __all__ = [
     "Comparison",
@@ -181,7 +179,7 @@ def measurement_ranks(
 
     Every rank is exact on the positions as written (the random targets as the decimals of their
     floats): the position block ``G`` of a connected set's stacked TDOA Jacobian has rank
-    ``dim aff{u_j}`` (:func:`theory.tdoa.exact_geometry.exact_direction_rank`), and for the
+    ``dim aff{u_j}`` (:func:`theory.tdoa.geometry.exact.exact_direction_rank`), and for the
     constant-velocity pair ``rank [G 0; G T G; …] = 2 rank G`` (``T ≠ 0``). The float SVD at
     ``rank_tol`` is kept as evidence: ``min_margin`` is the smallest factor by which a float
     decision on an exactly *full* rank clears its threshold (∞ when every full rank is well

@@ -1,9 +1,9 @@
 """Writing figures: the one place that lays out, saves and closes a matplotlib figure.
 
-Every simulation draws its own figures in its domain package (e.g. :mod:`theory.tdoa.figures`,
-:mod:`theory.particle.experiments`) and saves them here. :func:`new_figure` makes a figure without
-pyplot (no global figure manager to close, nothing to import but :mod:`matplotlib.figure`);
-figures made with pyplot are closed after saving.
+Every simulation draws its own figures in its domain package (e.g.
+:mod:`theory.tdoa.estimation.simulation`, :mod:`theory.particle.experiments`) and saves them here.
+:func:`new_figure` makes a figure without pyplot (no global figure manager to close, nothing to
+import but :mod:`matplotlib.figure`); figures made with pyplot are closed after saving.
 """
 
 from __future__ import annotations

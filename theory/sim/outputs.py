@@ -2,7 +2,7 @@
 
 Generic writers for any simulation's runs (dataclasses of arrays) and summaries; the TDOA,
 pursuit and consensus simulations build their files from them (e.g.
-:func:`theory.tdoa.outputs.write_data`).
+:func:`theory.tdoa.estimation.simulation.write_data`).
 """
 
 from __future__ import annotations

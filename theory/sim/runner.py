@@ -3,8 +3,8 @@
 Run ``i`` of ``runs`` uses the ``i``-th child of ``numpy.random.SeedSequence(seed)``, so its
 result does not depend on the number of Dask workers nor on the order they finish. The
 engine knows no model: it calls ``simulate(spec, rng)`` — e.g. the TDOA closed loop
-:func:`theory.tdoa.scenario.run_tdoa_scenario`, the consensus filter or the pursuit loop — and
-returns what it returns.
+:func:`theory.tdoa.estimation.scenario.run_tdoa_scenario`, the consensus filter or the pursuit
+loop — and returns what it returns.
 """
 
 from __future__ import annotations

@@ -15,7 +15,7 @@ function (nothing is re-derived here):
   depends on it). Margin: the LMI witness's relative margin (``None`` when not S-detectable);
   tolerances ``lmi_margin``, ``cert_tol``, ``rank_tol``, ``value_tol``.
 * ``tdoa`` — ``trackcert topology``: every agent localizes the target at every step
-  (:func:`theory.tdoa.topology_report.run_topology`). Margin: the least factor by which a
+  (:func:`theory.tdoa.observability.trajectory.run_topology`). Margin: the least factor by which a
   deciding singular value clears ``rank_tol · σ_max`` (inconclusive below
   ``inconclusive_factor``).
 * ``pf`` — ``trackcert pf``: the case's ``expect`` block judged by the pf claims
@@ -146,7 +146,7 @@ def tdoa_judgement(case: Case) -> Judgement:
     -------
     Judgement
     """
-    from theory.tdoa.topology_report import TopologyReport, run_topology
+    from theory.tdoa.observability.trajectory import TopologyReport, run_topology
 
     result = run_topology(case)
     report = TopologyReport(case, result, ())
@@ -194,7 +194,7 @@ ANALYSES: dict[str, Callable[[Case], Judgement]] = {
 ANALYSIS_MODULES: dict[str, str] = {
     "pursuit": "theory.pursuit.iss_report",
     "dkf": "theory.consensus.claims",
-    "tdoa": "theory.tdoa.topology_report",
+    "tdoa": "theory.tdoa.observability.trajectory",
     "pf": "theory.particle.report",
 }
 """Kind → the module its analysis imports (each imports lazily, so that a sweep imports only its

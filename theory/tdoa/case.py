@@ -1,31 +1,62 @@
-"""``kind: tdoa`` case files: agents, target, network and weights (DESIGN.md, seed 000 ch. 4).
+"""The two TDOA case kinds: ``kind: tdoa`` (a scene) and ``kind: tdoa-sim`` (a closed loop).
 
-Block fields::
+``tdoa:`` block (seed 000 ch. 4)::
 
-    tdoa:
-      T: 1.0                     # ping period (s), > 0; default 1
-      dim: 3                     # 2 or 3; default: inferred from the coordinates
-      agents: [[x, y, z], ...]   # N × dim, or a trajectory: steps × N × dim
-      target: [x, y, z]          # dim, or a trajectory: steps × dim
-      edges: [[1, 2], ...]       # 1-based pairs; or comm_range: 21 (strict "<")
-      directed: false            # with edges: [s, r] means s sends to r
-      weights: metropolis        # metropolis | uniform | an explicit N × N matrix
+    T: 1.0                     # ping period (s), > 0; default 1
+    dim: 3                     # 2 or 3; default: inferred from the coordinates
+    agents: [[x, y, z], ...]   # N × dim, or a trajectory: steps × N × dim
+    target: [x, y, z]          # dim, or a trajectory: steps × dim
+    edges: [[1, 2], ...]       # 1-based pairs; or comm_range: 21 (strict "<")
+    directed: false            # with edges: [s, r] means s sends to r
+    weights: metropolis        # metropolis | uniform | an explicit N × N matrix
 
 With an explicit matrix and neither ``edges`` nor ``comm_range``, the edges are read off the
 matrix's support (directed if it is not symmetric).
+
+``tdoa-sim:`` block (seed 000 §4.4 defaults in brackets)::
+
+    agents: [[x, y, z], ...]     # initial positions, N × 3 (required)
+    target: [17, -5, -15]        # initial target position (required)
+    target_velocity: [0, 0, 0]   # initial target velocity [0]
+    Q: 0.01                      # white-acceleration covariance: number (· I₃) or 3 × 3
+    R: 1.0                       # TDOA noise variance r, R_i = r I_{|N_i|}
+    T: 1.0                       # ping period (s)
+    tau: 0.1                     # consensus period (s); T/tau must be an integer
+    P0: 100                      # initial covariance: number (· I₆) or 6 × 6
+    x0: [0, 0, 0, 0, 0, 0]       # initial estimate of every agent [0]
+    b: 0                         # movement threshold: move iff ‖P_i‖ > b; .inf never moves
+    edges: [[1, 2], ...]         # fixed undirected topology (1-based), or
+    comm_range: 21               # distance rule "closer than comm_range" (re-evaluated each τ)
+    weights: metropolis          # metropolis | uniform | explicit N × N (with edges only)
+    filter: averaged             # averaged | decentralized | centralized
+    linearize: estimate          # estimate (the EKF) | truth (linearized filter, for checks)
+    steps: 100                   # number of pings after the first
+    formation: cube              # cube | crown | explicit N × 3 offsets d_i
+    formation_radius: 10         # circumradius of the cube / radius of the crown
+    formation_height: 5          # half-height of the crown
+    pole: 0.5                    # closed-loop pole −λ of the linearized agents (1/s)
+    max_input: [2, 2, 2]         # actuator limits |u₁| (m/s³), |u₂|, |u₃| (rad/s²); .inf: none
+    substeps: 2                  # Runge–Kutta steps per τ
+    cov_norm: spectral           # spectral | frobenius: the norm ‖P_i‖ of the trigger
+
+A tdoa-sim run can be checked against ``bounded_error`` (every agent's final localization error
+below ``tolerances.error_bound``) and ``max_final_error``.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from enum import StrEnum
+from typing import Any, TypeVar
 
 import numpy as np
 
-from theory.core.case_file import KindSpec
+from theory.core.case_file import Case, KindSpec
 from theory.core.errors import CaseError
-from theory.core.limits import check_estimate, check_length
+from theory.core.limits import check_count, check_estimate, check_length
 from theory.core.network import (
     adjacency_from_edges,
     adjacency_from_range,
@@ -33,19 +64,72 @@ from theory.core.network import (
     uniform_weights,
     weights_support,
 )
-from theory.core.tolerances import COINCIDENCE_TOL
+from theory.core.observability import RANK_TOL
+from theory.core.tolerances import COINCIDENCE_TOL, INCONCLUSIVE_FACTOR, PERIOD_TOL
 from theory.core.validation import (
     bounded_coordinates,
     check_keys,
     distinct_points,
     finite_array,
     finite_matrix,
+    finite_vector,
+    one_of,
+    positive_definite,
+    positive_int,
     positive_number,
     require,
     row_stochastic,
 )
 
-__all__ = ["TDOA", "TdoaSpec", "check_tdoa_expect", "parse_tdoa"]
+__all__ = [
+    "TDOA",
+    "TDOA_SIM",
+    "CovNorm",
+    "Filter",
+    "Linearize",
+    "TdoaSimSpec",
+    "TdoaSpec",
+    "WeightRule",
+    "check_sim_work",
+    "check_tdoa_expect",
+    "parse_tdoa",
+    "parse_tdoa_sim",
+    "rank_tolerances",
+]
+
+
+E = TypeVar("E", bound=StrEnum)
+
+
+class WeightRule(StrEnum):
+    """How a scene's consensus weights are made."""
+
+    METROPOLIS = "metropolis"
+    UNIFORM = "uniform"
+    EXPLICIT = "explicit"
+
+
+class Filter(StrEnum):
+    """The network filters of seed 000 §4.2 (``trackcert simulate``'s ``filter``)."""
+
+    AVERAGED = "averaged"  # own update, then averaging with neighbours (§4.2.2)
+    DECENTRALIZED = "decentralized"  # own update, never averaged (§4.2.1)
+    CENTRALIZED = "centralized"  # one EKF on every agent's rows: the baseline
+
+
+class Linearize(StrEnum):
+    """Where a tdoa-sim filter evaluates its Jacobians."""
+
+    ESTIMATE = "estimate"  # the EKF
+    TRUTH = "truth"  # at the true target: the Riccati recursion of the linearized system
+
+
+class CovNorm(StrEnum):
+    """The norm ``‖P_i‖`` of the movement trigger."""
+
+    SPECTRAL = "spectral"
+    FROBENIUS = "frobenius"
+
 
 FIELDS = ("T", "dim", "agents", "target", "edges", "comm_range", "directed", "weights")
 EXPECT_KEYS = (
@@ -63,28 +147,10 @@ TOLERANCE_KEYS = ("rank_tol", "inconclusive_factor", "weight_sum_tol")
 
 @dataclass(frozen=True, eq=False)
 class TdoaSpec:
-    """A validated TDOA scene.
+    """A validated TDOA scene; arrays have a leading axis of ``steps`` (1 when static).
 
-    Attributes
-    ----------
-    T : float
-        Ping period.
-    dim : int
-        2 or 3.
-    agents : ndarray, shape (steps, N, dim)
-        Agent positions at each step (``steps = 1`` for a static scene).
-    target : ndarray, shape (steps, dim)
-        Target position at each step.
-    hears : ndarray of bool, shape (steps, N, N)
-        ``hears[k, r, s]``: agent ``r`` receives from agent ``s`` at step ``k``.
-    weights : ndarray, shape (steps, N, N)
-        Row-stochastic consensus matrix at each step.
-    weights_rule : str
-        ``metropolis``, ``uniform`` or ``explicit``.
-    directed : bool
-        Whether the communication graph may be directed.
-    comm_range : float or None
-        The distance rule, when the edges come from one.
+    ``hears[k, r, s]``: agent ``r`` receives from agent ``s`` at step ``k``; ``weights[k]`` is the
+    row-stochastic consensus matrix there; ``comm_range`` the distance rule, if any.
     """
 
     T: float
@@ -93,7 +159,7 @@ class TdoaSpec:
     target: np.ndarray
     hears: np.ndarray
     weights: np.ndarray
-    weights_rule: str
+    weights_rule: WeightRule
     directed: bool
     comm_range: float | None
 
@@ -107,15 +173,27 @@ class TdoaSpec:
         """Number of time steps described (1 for a static scene)."""
         return self.agents.shape[0]
 
+    def networks(self) -> list[tuple[int, ...]]:
+        """The 0-based steps grouped by network (equal ``hears`` and ``W``), in order."""
+        groups: dict[bytes, list[int]] = {}
+        for k in range(self.steps):
+            key = np.asarray(self.hears[k], bool).tobytes() + np.asarray(self.weights[k]).tobytes()
+            groups.setdefault(key, []).append(k)
+        return [tuple(steps) for steps in groups.values()]
+
+    def at_step(self, k: int) -> TdoaSpec:
+        """The static scene of step ``k``."""
+        return dataclasses.replace(
+            self,
+            agents=self.agents[k : k + 1],
+            target=self.target[k : k + 1],
+            hears=self.hears[k : k + 1],
+            weights=self.weights[k : k + 1],
+        )
+
 
 def parse_tdoa(block: Mapping[str, Any]) -> TdoaSpec:
-    """Validate a ``tdoa:`` block (see the module docstring for the fields).
-
-    Raises
-    ------
-    CaseError
-        For any missing, unknown or invalid field, naming it.
-    """
+    """Validate a ``tdoa:`` block; a :class:`CaseError` names any bad field."""
     check_keys(block, FIELDS, "tdoa")
     T = positive_number(block.get("T", 1.0), "tdoa.T")
     agents, target = _positions(block)
@@ -144,12 +222,8 @@ def _check_sizes(raw_agents: object, raw_target: object) -> None:
 
 
 def _check_memory(steps: int, n: int, rows: int) -> None:
-    """Refuse a scene whose arrays would exceed the memory budget (before they are made).
-
-    ``O`` of seed 000 eq. (4.36) has ``6N·M`` rows and ``6N`` columns (``M`` TDOA rows, one
-    per received link, known once the topology is); the parser itself keeps ``steps × N × N``
-    links and weights.
-    """
+    """Refuse a scene whose arrays would exceed the memory budget: ``O`` of seed 000 eq. (4.36)
+    has ``6N·M`` rows (``M`` TDOA rows) and ``6N`` columns, the parser keeps ``steps × N²``."""
     estimate = 8.0 * (6 * n * rows) * (6 * n) + 9.0 * steps * n * n
     check_estimate(
         "memory_bytes",
@@ -196,11 +270,8 @@ def _positions(block: Mapping[str, Any]) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _check_distinct(agents: np.ndarray, target: np.ndarray) -> None:
-    """Refuse coincident agents, or the target on an agent, at any step.
-
-    Both use :func:`~theory.core.validation.distinct_points`'s rule: distance at most
-    ``coincidence_tol`` times the points' own magnitude (seed 000 eq. (4.3) divides by it).
-    """
+    """Refuse coincident agents, or the target on an agent, at any step (within
+    ``coincidence_tol`` of the points' magnitude: seed 000 eq. (4.3) divides by the distance)."""
     static = agents.shape[0] == 1
     for k in range(agents.shape[0]):
         where = "" if static else f" at step {k + 1}"
@@ -262,8 +333,8 @@ def _edges(raw: object, n: int) -> np.ndarray:
     return np.asarray(raw, dtype=int) - 1
 
 
-def _weights(raw: object, hears: np.ndarray, directed: bool) -> tuple[np.ndarray, str]:
-    if raw == "metropolis":
+def _weights(raw: object, hears: np.ndarray, directed: bool) -> tuple[np.ndarray, WeightRule]:
+    if raw == WeightRule.METROPOLIS:
         if directed or not all(np.array_equal(h, h.T) for h in hears):
             raise CaseError(
                 "tdoa.weights",
@@ -271,9 +342,9 @@ def _weights(raw: object, hears: np.ndarray, directed: bool) -> tuple[np.ndarray
                 "metropolis",
                 hint="Metropolis weights are defined for undirected graphs.",
             )
-        return np.stack([metropolis_weights(h) for h in hears]), "metropolis"
-    if raw == "uniform":
-        return np.stack([uniform_weights(h) for h in hears]), "uniform"
+        return np.stack([metropolis_weights(h) for h in hears]), WeightRule.METROPOLIS
+    if raw == WeightRule.UNIFORM:
+        return np.stack([uniform_weights(h) for h in hears]), WeightRule.UNIFORM
     if isinstance(raw, list):
         steps, n, _ = hears.shape
         if steps > 1 and not np.all(hears == hears[0]):
@@ -284,7 +355,7 @@ def _weights(raw: object, hears: np.ndarray, directed: bool) -> tuple[np.ndarray
             )
         matrix = finite_matrix(raw, "tdoa.weights", rows=n, cols=n)
         row_stochastic(matrix, "tdoa.weights", support=hears[0])
-        return np.broadcast_to(matrix, (steps, n, n)).copy(), "explicit"
+        return np.broadcast_to(matrix, (steps, n, n)).copy(), WeightRule.EXPLICIT
     raise CaseError("tdoa.weights", "metropolis, uniform, or an N × N row-stochastic matrix", raw)
 
 
@@ -293,24 +364,7 @@ FLAGS = ("network_observable", "network_detectable")
 
 
 def check_tdoa_expect(spec: TdoaSpec, expect: Mapping[str, Any]) -> None:
-    """Validate the values of a tdoa case's ``expect`` block against ``spec``.
-
-    Per-agent verdicts are lists of N booleans, network flags are booleans, ``network_rank``
-    and ``first_failure_step`` are non-negative integers (or null: no failing step), and
-    ``unobservable_steps`` is a list of N integers between 0 and the number of steps.
-
-    Parameters
-    ----------
-    spec : TdoaSpec
-        The validated scene (gives N and the number of steps).
-    expect : mapping
-        The case's ``expect`` block, keys already checked.
-
-    Raises
-    ------
-    CaseError
-        Naming the ``expect`` field, the expected form and what was found.
-    """
+    """Validate a tdoa ``expect`` block's values against ``spec`` (N agents, the steps)."""
     n = spec.n_agents
     for key, value in expect.items():
         field = f"expect.{key}"
@@ -339,6 +393,14 @@ def _list_of(value: object, kind: type, length: int) -> bool:
     )
 
 
+def rank_tolerances(case: Case) -> dict[str, float]:
+    """The case's ``rank_tol`` and ``inconclusive_factor`` (the tolerance table's otherwise)."""
+    return {
+        "rank_tol": case.tolerances.get("rank_tol", RANK_TOL),
+        "inconclusive_factor": case.tolerances.get("inconclusive_factor", INCONCLUSIVE_FACTOR),
+    }
+
+
 TDOA = KindSpec(
     "tdoa",
     parse_tdoa,
@@ -347,3 +409,220 @@ TDOA = KindSpec(
     check_expect=check_tdoa_expect,
 )
 """The ``tdoa`` case kind."""
+
+
+SIM = "tdoa-sim"
+SIM_FIELDS = (
+    "agents",
+    "target",
+    "target_velocity",
+    "Q",
+    "R",
+    "T",
+    "tau",
+    "P0",
+    "x0",
+    "b",
+    "edges",
+    "comm_range",
+    "weights",
+    "filter",
+    "linearize",
+    "steps",
+    "formation",
+    "formation_radius",
+    "formation_height",
+    "pole",
+    "max_input",
+    "substeps",
+    "cov_norm",
+)
+
+
+@dataclass(frozen=True, eq=False)
+class TdoaSimSpec:
+    """A validated closed-loop TDOA scenario (fields in the module docstring).
+
+    ``target`` is the initial state ``[p; ṗ]``; ``b`` is ``math.inf`` for "never move";
+    ``hears`` is ``None`` with ``comm_range``; ``weights`` a rule name or an explicit matrix;
+    ``offsets`` the formation offsets ``d_i`` of seed 000 eq. (4.45).
+    """
+
+    agents: np.ndarray
+    target: np.ndarray
+    Q: np.ndarray
+    r: float
+    T: float
+    tau: float
+    P0: np.ndarray
+    x0: np.ndarray
+    b: float
+    hears: np.ndarray | None
+    comm_range: float | None
+    weights: WeightRule | np.ndarray
+    filter: Filter
+    linearize: Linearize
+    steps: int
+    offsets: np.ndarray
+    pole: float
+    max_input: tuple[float, float, float]
+    substeps: int
+    cov_norm: CovNorm
+
+    @property
+    def n_agents(self) -> int:
+        """Number of agents ``N``."""
+        return self.agents.shape[0]
+
+    @property
+    def rounds(self) -> int:
+        """Consensus rounds per ping, ``T/τ``."""
+        return round(self.T / self.tau)
+
+
+def parse_tdoa_sim(block: Mapping[str, Any]) -> TdoaSimSpec:
+    """Validate a ``tdoa-sim:`` block; a :class:`CaseError` names any bad field."""
+    check_keys(block, SIM_FIELDS, SIM)
+    raw_agents = require(block, "agents", SIM)
+    check_length(raw_agents, "agents", f"{SIM}.agents")
+    agents = finite_matrix(raw_agents, f"{SIM}.agents", cols=3)
+    n = bounded_coordinates(agents, f"{SIM}.agents").shape[0]
+    if n < 2:
+        raise CaseError(f"{SIM}.agents", "at least 2 agents", n)
+    position = finite_vector(require(block, "target", SIM), f"{SIM}.target", length=3)
+    bounded_coordinates(position, f"{SIM}.target")
+    velocity = finite_vector(
+        block.get("target_velocity", [0, 0, 0]), f"{SIM}.target_velocity", length=3
+    )
+    T = positive_number(block.get("T", 1.0), f"{SIM}.T")
+    tau = positive_number(block.get("tau", T), f"{SIM}.tau")
+    ratio = T / tau
+    if (
+        not math.isfinite(ratio)
+        or ratio < 1 - PERIOD_TOL
+        or abs(ratio - round(ratio)) > PERIOD_TOL * ratio
+    ):
+        raise CaseError(f"{SIM}.tau", "a period dividing T (T/tau a positive integer)", tau)
+    hears, comm_range = _sim_topology(block, n)
+    steps = check_count(
+        "steps", positive_int(block.get("steps", 100), f"{SIM}.steps"), f"{SIM}.steps"
+    )
+    substeps = positive_int(block.get("substeps", 2), f"{SIM}.substeps")
+    check_sim_work(n, steps, round(ratio), substeps, f"{SIM}.steps")
+    return TdoaSimSpec(
+        agents=agents,
+        target=np.concatenate([position, velocity]),
+        Q=_covariance(block.get("Q", 0.01), 3, f"{SIM}.Q"),
+        r=positive_number(block.get("R", 1.0), f"{SIM}.R"),
+        T=T,
+        tau=tau,
+        P0=_covariance(block.get("P0", 100.0), 6, f"{SIM}.P0"),
+        x0=finite_vector(block.get("x0", [0] * 6), f"{SIM}.x0", length=6),
+        b=_threshold(block.get("b", 0.0)),
+        hears=hears,
+        comm_range=comm_range,
+        weights=_sim_weights(block.get("weights", "metropolis"), hears, n),
+        filter=_member(Filter, block.get("filter", "averaged"), f"{SIM}.filter"),
+        linearize=_member(Linearize, block.get("linearize", "estimate"), f"{SIM}.linearize"),
+        steps=steps,
+        offsets=_offsets(block, agents),
+        pole=positive_number(block.get("pole", 0.5), f"{SIM}.pole"),
+        max_input=_limits(block.get("max_input", [2.0, 2.0, 2.0])),
+        substeps=substeps,
+        cov_norm=_member(CovNorm, block.get("cov_norm", "spectral"), "cov_norm"),
+    )
+
+
+def _member(vocabulary: type[E], value: object, field: str, allowed: tuple[str, ...] = ()) -> E:
+    """``value`` as a member of ``vocabulary`` (restricted to ``allowed``), else a CaseError."""
+    return vocabulary(one_of(value, allowed or tuple(m.value for m in vocabulary), field))
+
+
+def check_sim_work(n: int, steps: int, rounds: int, substeps: int, field: str) -> None:
+    """Refuse a run whose memory or work exceeds :mod:`theory.core.limits`, naming ``field``.
+
+    Per agent and ping: a 6-state estimate, its 6 × 6 covariance and the 9-state kinematics
+    (51 floats, 408 B); per ping: one N × N exchange per round and one RK4 step per substep.
+    """
+    check_estimate("memory_bytes", 408.0 * n * (steps + 1), field, f"408 B × {n} agents × steps")
+    work = float(steps + 1) * rounds * (n * n + substeps * n)
+    check_estimate("work", work, field, f"steps × {rounds} rounds × (N² + {substeps} substeps × N)")
+
+
+def _covariance(value: object, size: int, field: str) -> np.ndarray:
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return positive_number(value, field) * np.eye(size)
+    return positive_definite(finite_matrix(value, field, rows=size, cols=size), field)
+
+
+def _threshold(value: object) -> float:
+    if isinstance(value, str) and value.strip().lower() in ("inf", ".inf", "infinity"):
+        return math.inf
+    if isinstance(value, float) and math.isinf(value) and value > 0:
+        return math.inf
+    return positive_number(value, f"{SIM}.b", allow_zero=True)
+
+
+def _limits(value: object) -> tuple[float, float, float]:
+    field = f"{SIM}.max_input"
+    if not isinstance(value, list | tuple) or len(value) != 3:
+        raise CaseError(field, "three limits [u1, u2, u3] (numbers or .inf)", value)
+    return tuple(_positive_or_inf(v, f"{field}[{k + 1}]") for k, v in enumerate(value))
+
+
+def _positive_or_inf(value: object, field: str) -> float:
+    if isinstance(value, float) and math.isinf(value) and value > 0:
+        return math.inf
+    return positive_number(value, field)
+
+
+def _sim_topology(block: Mapping[str, Any], n: int) -> tuple[np.ndarray | None, float | None]:
+    has_edges, has_range = "edges" in block, "comm_range" in block
+    if has_edges == has_range:
+        raise CaseError(f"{SIM}.edges", "exactly one of edges or comm_range", "both or neither")
+    if has_range:
+        return None, positive_number(block["comm_range"], f"{SIM}.comm_range")
+    edges = finite_matrix(block["edges"], f"{SIM}.edges", cols=2, allow_empty_rows=True)
+    if edges.size and (np.any(edges != np.round(edges)) or edges.min() < 1 or edges.max() > n):
+        raise CaseError(f"{SIM}.edges", f"pairs of agent ids in 1..{n}", edges.tolist())
+    if np.any(edges[:, 0] == edges[:, 1]):
+        raise CaseError(f"{SIM}.edges", "pairs of distinct agents", edges.tolist())
+    return adjacency_from_edges(n, edges.astype(int) - 1), None
+
+
+def _sim_weights(value: object, hears: np.ndarray | None, n: int) -> WeightRule | np.ndarray:
+    field = f"{SIM}.weights"
+    if isinstance(value, str):
+        return _member(WeightRule, value, field, ("metropolis", "uniform"))
+    if hears is None:
+        raise CaseError(field, "metropolis or uniform with comm_range", "an explicit matrix")
+    matrix = finite_matrix(value, field, rows=n, cols=n)
+    return row_stochastic(matrix, field, support=hears)
+
+
+def _offsets(block: Mapping[str, Any], agents: np.ndarray) -> np.ndarray:
+    from theory.tdoa.estimation.agents import assign_offsets, crown_vertices, cube_vertices
+
+    shape = block.get("formation", "cube")
+    n = agents.shape[0]
+    radius = positive_number(block.get("formation_radius", 10.0), f"{SIM}.formation_radius")
+    if shape == "cube":
+        if n != 8:
+            raise CaseError(f"{SIM}.formation", "explicit offsets unless N = 8 (cube)", shape)
+        return assign_offsets(agents, cube_vertices(radius))
+    if shape == "crown":
+        height = positive_number(block.get("formation_height", 5.0), f"{SIM}.formation_height")
+        return assign_offsets(agents, crown_vertices(n, radius, height))
+    if isinstance(shape, str):
+        raise CaseError(f"{SIM}.formation", "cube, crown or an N × 3 list of offsets", shape)
+    return finite_matrix(shape, f"{SIM}.formation", rows=n, cols=3)
+
+
+TDOA_SIM = KindSpec(
+    SIM,
+    parse_tdoa_sim,
+    expect_keys=("bounded_error", "max_final_error"),
+    tolerance_keys=("error_bound",),
+    expect_rules={"max_final_error": "at_most"},
+)
+"""The ``tdoa-sim`` case kind."""

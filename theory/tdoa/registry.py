@@ -3,46 +3,37 @@
 from __future__ import annotations
 
 from theory.core.expectations import expectation_claim
-from theory.tdoa import (
-    averaged_properties,
-    boundary_properties,
-    case_certificates,
-    certificate_claims,
-    formation_claims,
-    geometry_properties,
-    model_claims,
-    networked_properties,
-    observability_claims,
-    path_lemma_claims,
-    simulation_claims,
-    stochastic_stability_claims,
-    topology_claims,
-    window_observability_claims,
+from theory.tdoa import model
+from theory.tdoa.estimation import averaged, simulation, stability
+from theory.tdoa.geometry import crb, directions
+from theory.tdoa.observability import (
+    certificates,
+    fig43,
+    properties,
+    single_agent,
+    trajectory,
+    weights,
+    window,
 )
-from theory.tdoa.sim_summary import observe_tdoa_sim
-from theory.tdoa.topology_report import observe_topology
 
 __all__ = ["CERTIFIERS", "CLAIMS", "PROPERTIES"]
 
 CLAIMS = (
-    *observability_claims.claims,
-    *topology_claims.claims,
-    *model_claims.claims,
-    *formation_claims.claims,
-    *path_lemma_claims.claims,
-    *stochastic_stability_claims.claims,
-    *window_observability_claims.claims,
-    *simulation_claims.claims,
-    *certificate_claims.claims,
-    expectation_claim("tdoa", command="topology", observe=observe_topology),
+    *model.claims,
+    *single_agent.claims,
+    *window.claims,
+    *directions.claims,
+    *fig43.claims,
+    *weights.claims,
+    *trajectory.claims,
+    *certificates.claims,
+    *crb.claims,
+    *stability.claims,
+    *simulation.claims,
+    expectation_claim("tdoa", command="topology", observe=trajectory.observe_topology),
     expectation_claim(
-        "tdoa-sim", command="simulate", observe=observe_tdoa_sim, method="simulation"
+        "tdoa-sim", command="simulate", observe=simulation.observe_tdoa_sim, method="simulation"
     ),
 )
-PROPERTIES = (
-    *averaged_properties.PROPERTIES,
-    *boundary_properties.PROPERTIES,
-    *geometry_properties.PROPERTIES,
-    *networked_properties.PROPERTIES,
-)
-CERTIFIERS = {"tdoa": (case_certificates.tdoa_certificates,)}
+PROPERTIES = (*properties.PROPERTIES, *averaged.PROPERTIES)
+CERTIFIERS = {"tdoa": (certificates.tdoa_certificates,)}

@@ -1,6 +1,6 @@
 """Public hypothesis strategies for TDOA scenes, networks and consensus weights (seed 000 ch. 4).
 
-Users import these in their own property tests (STYLE.md, *Adopt* 11)::
+Users import these in their own property tests::
 
     from hypothesis import given
     from theory.tdoa.strategies import tdoa_scenes
@@ -48,18 +48,8 @@ WEIGHT_KINDS = ("metropolis", "uniform", "random", "singular")
 
 @dataclass(frozen=True, eq=False)
 class TdoaScene:
-    """A target and receivers. ``family`` says which geometric family it was drawn from.
-
-    Attributes
-    ----------
-    target : ndarray, shape (dim,)
-        Target position.
-    agents : ndarray, shape (N, dim)
-        Receiver positions, one row per agent.
-    family : str
-        One of ``general``, ``coplanar``, ``cone``, ``target-in-plane`` (see
-        :func:`tdoa_scenes`).
-    """
+    """A target (``dim``,) and receivers (N, dim); ``family`` is the geometric family it was drawn
+    from (:data:`SCENE_FAMILIES`)."""
 
     target: np.ndarray
     agents: np.ndarray
@@ -75,28 +65,11 @@ def networks(
     connected: bool | None = True,
     directed: bool = False,
 ) -> np.ndarray:
-    """Boolean "hears" matrices ``H[r, s]`` (no self-loops) of ``min_agents`` to ``max_agents``.
+    """Boolean "hears" matrices ``H[r, s]`` (no self-loops) of ``min_agents`` to ``max_agents``
+    agents (``InvalidArgument`` for impossible bounds).
 
-    Parameters
-    ----------
-    min_agents, max_agents : int
-        Bounds on the number of agents (``1 ≤ min_agents ≤ max_agents``).
-    connected : bool or None
-        ``True`` gives (strongly, when directed) connected graphs, ``False`` gives graphs with at
-        least two (weak) components (so at least 2 agents; needs ``max_agents ≥ 2``), ``None``
-        either.
-    directed : bool
-        Whether ``H`` may be asymmetric; undirected graphs give symmetric ``H``.
-
-    Returns
-    -------
-    SearchStrategy of ndarray of bool, shape (N, N)
-
-    Raises
-    ------
-    InvalidArgument
-        For impossible bounds.
-    """
+    ``connected=True`` gives (strongly, when ``directed``) connected graphs, ``False`` graphs with
+    at least two (weak) components, ``None`` either; undirected graphs give symmetric ``H``."""
     check_range("min_agents", min_agents, "max_agents", max_agents, 1)
     if connected is False and max_agents < 2:
         raise InvalidArgument("a disconnected network needs max_agents ≥ 2")
@@ -134,34 +107,13 @@ def weight_matrices(
     directed: bool = False,
     connected: bool | None = True,
 ) -> np.ndarray:
-    """Row-stochastic ``W`` with positive diagonal on a drawn network.
+    """Row-stochastic ``W`` with positive diagonal on a network drawn by :func:`networks`.
 
-    The network is drawn by :func:`networks` with ``min_agents``, ``max_agents``, ``directed``
-    and ``connected``.
-
-    Parameters
-    ----------
-    min_agents, max_agents : int
-        Bounds on the number of agents.
-    kind : str
-        One of :data:`WEIGHT_KINDS`: ``metropolis`` (symmetric, doubly stochastic; undirected
-        only), ``uniform``, ``random`` (positive random weights on the support), or ``singular``
-        (uniform weights on a complete graph — singular on purpose: W = J/N has rank 1; needs
-        ``min_agents ≥ 2``, and ``directed`` and ``connected`` are ignored).
-    directed : bool
-        Draw a directed network (not with ``metropolis``).
-    connected : bool or None
-        As for :func:`networks`.
-
-    Returns
-    -------
-    SearchStrategy of ndarray, shape (N, N)
-
-    Raises
-    ------
-    InvalidArgument
-        For an unknown ``kind``, ``metropolis`` with ``directed``, or impossible bounds.
-    """
+    ``kind`` (:data:`WEIGHT_KINDS`): ``metropolis`` (symmetric, doubly stochastic; undirected only),
+    ``uniform``, ``random`` (positive random weights on the support), or ``singular`` (uniform
+    weights on a complete graph, ``W = J/N`` of rank 1; ``directed`` and ``connected`` ignored).
+    ``InvalidArgument`` for an unknown ``kind``, ``metropolis`` with ``directed``, or impossible
+    bounds."""
     if kind not in WEIGHT_KINDS:
         raise InvalidArgument(f"kind={kind!r}; expected one of {WEIGHT_KINDS}")
     if kind == "metropolis" and directed:
@@ -197,35 +149,13 @@ def tdoa_scenes(
 ) -> TdoaScene:
     """TDOA scenes in ``dim`` dimensions with ``min_agents`` to ``max_agents`` receivers.
 
-    The degenerate families are exact up to floating-point rounding of the coordinates.
-
-    Parameters
-    ----------
-    dim : int
-        2 or 3.
-    min_agents, max_agents : int
-        Bounds on the number of receivers (``2 ≤ min_agents ≤ max_agents``).
-    family : str
-        One of :data:`SCENE_FAMILIES`: ``general`` (random points, receivers at least
-        ``min_separation·scale`` from the target), ``coplanar`` (3D: receivers in a plane,
-        target off it), ``cone`` (3D: receivers on a circular cone with apex at the target — the
-        stacked TDOA Jacobian loses rank there), ``target-in-plane`` (3D: receivers and target in
-        one plane).
-    scale : float
-        Length scale (``> 0``): the target is drawn in ``[−scale, scale]^dim`` and the receivers'
-        offsets from it (in-plane offsets, for the planar families) are shorter than ``scale``.
-    min_separation : float
-        Those offsets are at least ``min_separation·scale`` long (``0 < min_separation < 1``).
-
-    Returns
-    -------
-    SearchStrategy of TdoaScene
-
-    Raises
-    ------
-    InvalidArgument
-        For an unknown ``dim`` or ``family``, a 3D family with ``dim=2``, or impossible bounds.
-    """
+    ``family`` (:data:`SCENE_FAMILIES`): ``general`` (random points at least
+    ``min_separation·scale`` from the target), ``coplanar`` (3-D: receivers in a plane, target off
+    it), ``cone`` (3-D: receivers on a circular cone with apex at the target, where the stacked TDOA
+    Jacobian loses rank), ``target-in-plane`` (3-D: receivers and target in one plane); exact up to
+    the rounding of the coordinates. The target is drawn in ``[−scale, scale]^dim``, the receivers'
+    offsets are shorter than ``scale``. ``InvalidArgument`` for an unknown ``dim`` or ``family``, a
+    3-D family with ``dim=2``, or impossible bounds."""
     _check_scene_arguments(dim, min_agents, max_agents, family, scale, min_separation)
     n = draw(st.integers(min_agents, max_agents))
     rng = draw(generators())
@@ -277,19 +207,7 @@ def _family_offsets(
 
 
 def is_connected(hears: np.ndarray, *, strongly: bool = False) -> bool:
-    """Whether the "hears" graph is (strongly) connected — used to test :func:`networks`.
-
-    Parameters
-    ----------
-    hears : ndarray of bool, shape (N, N)
-        ``hears[r, s]``: agent ``r`` receives from agent ``s``.
-    strongly : bool
-        Ask for strong connectivity; otherwise weak connectivity is enough.
-
-    Returns
-    -------
-    bool
-    """
+    """Whether the "hears" graph is (strongly) connected: used to test :func:`networks`."""
     graph = nx.from_numpy_array(hears.T.astype(int), create_using=nx.DiGraph)
     return nx.is_strongly_connected(graph) if strongly else nx.is_weakly_connected(graph)
 
@@ -316,27 +234,11 @@ def _quaternion_rotation(q: tuple[int, int, int, int]) -> list[list[Fraction]]:
 
 @st.composite
 def rational_rotations(draw: st.DrawFn, *, dim: int = 3) -> list[list[Fraction]]:
-    """Exactly orthogonal rational rotations whose entries are finite decimals.
+    """Exactly orthogonal rational rotations with finite-decimal entries, so rotated decimal
+    coordinates stay finite decimals a case file states exactly.
 
-    2-D: ``[[c, −s], [s, c]]`` from a Pythagorean triple with hypotenuse ``5^k`` (signs and the
-    order of the legs drawn); 3-D: the rotation of an integer quaternion of norm ``2^a 5^b``.
-    Rotated decimal coordinates stay finite decimals, so a case file can state them exactly
-    (:func:`theory.core.exact.exact_decimal` reads them back unchanged).
-
-    Parameters
-    ----------
-    dim : int
-        2 or 3.
-
-    Returns
-    -------
-    list of list of Fraction
-
-    Raises
-    ------
-    InvalidArgument
-        For another ``dim``.
-    """
+    2-D: ``[[c, −s], [s, c]]`` from a Pythagorean triple with hypotenuse ``5^k``; 3-D: the rotation
+    of an integer quaternion of norm ``2^a 5^b``. ``InvalidArgument`` for another ``dim``."""
     if dim == 3:
         return _quaternion_rotation(draw(st.sampled_from(_QUATERNIONS)))
     if dim != 2:
@@ -360,23 +262,8 @@ def similarity_image(
     scale: Fraction,
     shift: list[Fraction],
 ) -> list[list[Fraction]]:
-    """``scale · R p + shift`` for every point, in exact rationals (points read as written).
-
-    Parameters
-    ----------
-    points : array or nested list, shape (m, d)
-        Points (floats are read as the decimals they print as).
-    rotation : list of list of Fraction
-        A ``d × d`` rotation (:func:`rational_rotations`).
-    scale : Fraction
-        A positive factor.
-    shift : list of Fraction
-        A translation.
-
-    Returns
-    -------
-    list of list of Fraction
-    """
+    """``scale · R p + shift`` for every point (floats read as the decimals they print as), in
+    exact rationals."""
     rows = [[exact_decimal(x) for x in point] for point in np.asarray(points).tolist()]
     return [
         [

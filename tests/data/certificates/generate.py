@@ -23,15 +23,15 @@ from theory.consensus.certificates import (
 from theory.consensus.infeasibility import infeasibility_certificate
 from theory.consensus.primal_certificates import exact_gain_certificate
 from theory.consensus.s_detectability import decide_s_detectability, s_detectability_witness
-from theory.core.case_file import load_case
 from theory.core.certificate_format import bundle
 from theory.core.exact import dyadic_matrix, fraction_strings, rational_matrix
+from theory.kinds import load_case
 from theory.pursuit.certificates import iss_certificate
-from theory.tdoa.covariance_certificates import (
+from theory.tdoa.estimation.stability import (
     covariance_bound_certificate,
     ekf_covariance_bound_certificate,
 )
-from theory.tdoa.rank_certificates import generic_rank_certificates
+from theory.tdoa.observability.certificates import generic_rank_certificates
 
 HERE = Path(__file__).resolve().parent
 
