@@ -19,8 +19,8 @@ reference [36]), run in 2D on the PF's network: each filtering node corrects wit
 vector (:func:`theory.tdoa.estimation.filters.ekf_update`, Joseph form, geometry of
 :mod:`theory.tdoa.model`), averages state and covariance with its filtering neighbours
 (:func:`theory.tdoa.estimation.filters.average_round`, Metropolis weights) and predicts with the
-constant-velocity model (:func:`theory.tdoa.estimation.filters.ekf_predict`). Nodes without a measurement only
-average and predict.
+constant-velocity model (:func:`theory.tdoa.estimation.filters.ekf_predict`). Nodes without a
+measurement only average and predict.
 """
 
 from __future__ import annotations
