@@ -31,9 +31,9 @@ from theory.consensus.operators import (
     L_map,
     L_matrix,
     closed_loop,
+    float_lyapunov,
     gains_stabilize,
     spectral_radius,
-    unvec_tuple,
     vec_tuple,
 )
 from theory.consensus.riccati import (
@@ -484,9 +484,7 @@ def _averaged_bound(spec: DkfSpec, gains: tuple[np.ndarray, ...]) -> AveragedBou
     (``M^j = Γ_j``, ``U_i = Q + L_i R_i L_iᵀ``, ``P_0 = 10 I``; seed 000 eqs. (A.53)–(A.54))."""
     M = closed_loop(spec.A, spec.C, gains)
     n, N = spec.n, spec.n_agents
-    identity = vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
-    X = unvec_tuple(np.linalg.solve(np.eye(N * n * n) - J_matrix(spec.W, M), identity), N, n)
-    X = (X + X.transpose(0, 2, 1)) / 2
+    X = float_lyapunov(J_matrix(spec.W, M), N, n)
     U = np.stack([spec.Q + Li @ Ri @ Li.T for Li, Ri in zip(gains, spec.R, strict=True)])
     return check_averaged_bound(spec.W, M, X, np.broadcast_to(10 * np.eye(n), (N, n, n)), U)
 

@@ -41,8 +41,7 @@ from theory.consensus.operators import (
     closed_loop,
     covariance_operator_matrix,
     exact_lyapunov,
-    unvec_tuple,
-    vec_tuple,
+    float_lyapunov,
 )
 from theory.core.certificate_format import checked, envelope, rational_bound, rounded, strings
 from theory.core.exact import (
@@ -276,16 +275,11 @@ def primal_lyapunov(
 ) -> np.ndarray | None:
     """The float ``X = Σ_k T^k(I)`` solving ``X − T(X) = I`` for the order's operator, or None
     when ``I − T`` is singular or ``X ⊁ 0`` (seed 000 Lemma 5.2.2, "only if")."""
-    N, n = np.asarray(W).shape[0], np.asarray(A).shape[0]
     T = covariance_operator_matrix(W, closed_loop(A, C, gains), order)
     try:
-        x = np.linalg.solve(
-            np.eye(T.shape[0]) - T, vec_tuple(np.broadcast_to(np.eye(n), (N, n, n)))
-        )
+        X = float_lyapunov(T, np.asarray(W).shape[0], np.asarray(A).shape[0])
     except np.linalg.LinAlgError:
         return None
-    X = unvec_tuple(x, N, n)
-    X = (X + X.transpose(0, 2, 1)) / 2
     return X if all(np.linalg.eigvalsh(Xi)[0] > 0 for Xi in X) else None
 
 

@@ -66,6 +66,7 @@ __all__ = [
     "covariance_operator_matrix",
     "exact_lyapunov",
     "exact_operator_matrix",
+    "float_lyapunov",
     "gains_stabilize",
     "nonnegative_radius_below",
     "radius_below",
@@ -166,6 +167,14 @@ def J_matrix(W: np.ndarray, Gamma: np.ndarray) -> np.ndarray:
 def covariance_operator_matrix(W: np.ndarray, Gamma: np.ndarray, order: Order | str) -> np.ndarray:
     """The covariance-bound operator of a filter order: L (consensus first) or J."""
     return L_matrix(W, Gamma) if Order(order).operator == "L" else J_matrix(W, Gamma)
+
+
+def float_lyapunov(T: np.ndarray, N: int, n: int) -> np.ndarray:
+    """The symmetrized float ``X`` with ``X − T(X) = (I, …, I)`` for the matrix ``T`` of an
+    operator on N-tuples of ``n × n`` matrices (``LinAlgError`` when ``I − T`` is singular)."""
+    x = np.linalg.solve(np.eye(T.shape[0]) - T, vec_tuple(np.broadcast_to(np.eye(n), (N, n, n))))
+    X = unvec_tuple(x, N, n)
+    return (X + X.transpose(0, 2, 1)) / 2
 
 
 def spectral_radius(M: np.ndarray, *, dense_limit: int = 400) -> float:

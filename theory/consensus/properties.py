@@ -326,7 +326,9 @@ class RiccatiAgreement:
     stabilizing_steps: tuple[int, ...] = ()
 
 
-def _riccati(problem: DkfProblem, Q, R, P0, order: Order) -> tuple[np.ndarray, list]:
+def _riccati(
+    problem: DkfProblem, Q: np.ndarray, R: list[np.ndarray], P0: np.ndarray, order: Order
+) -> tuple[np.ndarray, list]:
     P, gains = [np.asarray(P0, float)], []
     while len(gains) < RICCATI_HORIZON and np.linalg.norm(P[-1], 2, axis=(1, 2)).max() <= BLOWUP:
         g, nxt = coupled_riccati_step(problem.A, problem.C, problem.W, Q, R, P[-1], order=order)

@@ -240,7 +240,14 @@ def check_covariance_bound(
     )
 
 
-def _noise_samples(rng, samples, Q, C, R, gains):
+def _noise_samples(
+    rng: np.random.Generator,
+    samples: int,
+    Q: np.ndarray,
+    C: Sequence[np.ndarray],
+    R: Sequence[np.ndarray],
+    gains: Sequence[np.ndarray],
+) -> np.ndarray:
     n = Q.shape[0]
     omega = rng.multivariate_normal(np.zeros(n), Q, size=samples)
     parts = []

@@ -181,9 +181,6 @@ def is_psd(M: flint.fmpq_mat) -> bool:
     return True
 
 
-# ---------------------------------------------------------------- symbolic proofs
-
-
 def free_algebra_residuals() -> dict[str, str]:
     """Both sides of App. C.2 expanded in the free algebra with involution (every size at once).
 
