@@ -7,7 +7,7 @@ reasons)``, in its registry (``CERTIFIERS``, read by :func:`theory.registry.cert
 * ``tdoa``: ``generic-rank`` of the network observability matrix and of each agent's block
   column (:mod:`theory.tdoa.observability.certificates`);
 * ``dkf``: ``s-detectability`` with the gains of the LMI witness and, when the case fixes gains,
-  with those gains (:mod:`theory.consensus.case_certificates`);
+  with those gains (:mod:`theory.consensus.analysis`);
 * ``pursuit``: ``iss`` (:mod:`theory.pursuit.certificates`).
 
 A case whose property is decided false raises :class:`~theory.core.errors.PropertyFails`:

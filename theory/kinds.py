@@ -97,7 +97,7 @@ def parse_case(data: object, *, file: str = "<data>") -> Case:
 def simulator(kind: str) -> Callable[[Case, int | None], Any]:
     """``simulate(case, steps)`` of a kind of :data:`SIMULATED` (imported now)."""
     if kind == "dkf":
-        from theory.consensus.dkf_report import dkf_simulator
+        from theory.consensus.kalman_filter import dkf_simulator
 
         return dkf_simulator
     if kind == "pursuit":

@@ -13,12 +13,11 @@ from typer.testing import CliRunner
 
 from proofs_check import check_certificate
 from theory.cli import app
-from theory.consensus.certificate_claims import dkf_certificate_claim
-from theory.consensus.certificates import s_detectability_certificate
-from theory.consensus.primal_certificates import primal_lyapunov
+from theory.consensus.certificates import primal_lyapunov, s_detectability_certificate
 from theory.consensus.s_detectability import s_detectability_witness
-from theory.core.case_file import load_case
 from theory.core.claims import NotApplicable
+from theory.kinds import load_case
+from theory.registry import get_claim
 from theory.strategies import dkf_problems
 
 runner = CliRunner()
@@ -76,8 +75,9 @@ def test_paper_example_1_certified_only_below_the_self_weight_bound(tmp_path: Pa
 
 
 def test_dkf_certificate_claim_results() -> None:
-    good = dkf_certificate_claim(load_case("ch5-example-2-wg"))
+    claim = get_claim("seed000.def5.2.4.certified")
+    good = claim.run(load_case("ch5-example-2-wg"))
     assert [r.status for r in good] == ["verified"]
     assert good[0].method == "exact"
     with pytest.raises(NotApplicable, match="not S-detectable"):
-        dkf_certificate_claim(load_case("ch5-example-2-wb"))
+        claim.run(load_case("ch5-example-2-wb"))

@@ -5,7 +5,7 @@ The truth comes from exact arguments (docs/theory/s-detectability.md, "Boundary 
 Example 1 with self-weight w on agents 1 and 2 is S-detectable iff w < 1/4, Example 2 with
 self-weight w on agent 3 iff w · 1.7205² < 1 (blind-set necessity, Theorem 4; sufficiency with the
 projection gains). The sweeps toward both thresholds, and the radius of fixed gains through 1, are
-the registered properties of :mod:`theory.consensus.boundary_properties`
+the registered properties of :mod:`theory.consensus.properties`
 (``tests/consensus/test_dkf_boundary_properties.py``); here: the weights of issue 17, the
 self-weight bisection and the scaling invariances.
 """
@@ -18,8 +18,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from theory.consensus.riccati import coupled_riccati
-from theory.consensus.s_detectability import decide_s_detectability
-from theory.consensus.self_weight import max_self_weight
+from theory.consensus.s_detectability import decide_s_detectability, max_self_weight
 from theory.consensus.strategies import (
     SELF_WEIGHT_THRESHOLDS,
     dkf_problems,

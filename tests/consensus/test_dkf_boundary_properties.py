@@ -1,5 +1,5 @@
 """Seed 000 ch. 5 near its thresholds (issue 17 item 1): the registered boundary properties of
-:mod:`theory.consensus.boundary_properties` in CI's bounded profile, their independent truths
+:mod:`theory.consensus.properties` in CI's bounded profile, their independent truths
 checked against the closed forms, and the claims whose bands became exact decisions."""
 
 from __future__ import annotations
@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 from hypothesis import given
 
-from theory.consensus.boundary_properties import (
+from theory.consensus.analysis import riccati_converges
+from theory.consensus.properties import (
     ScaledProblem,
     SelfWeightPoint,
     projected_self_weight,
@@ -20,9 +21,9 @@ from theory.consensus.boundary_properties import (
 )
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.consensus.strategies import DkfProblem
-from theory.core.case_file import parse_case
-from theory.core.claims import NotApplicable, get_claim
-from theory.falsify import all_properties
+from theory.core.claims import NotApplicable
+from theory.kinds import parse_case
+from theory.registry import all_properties, get_claim
 
 PROPERTIES = {
     p.id: p
@@ -127,6 +128,4 @@ def test_lemma_a21_hypothesis_is_exact_on_the_boundary() -> None:
     ],
 )
 def test_riccati_converges_rests_on_the_exact_verdict(status, verdict, expected) -> None:
-    from theory.consensus.dkf_report import riccati_converges
-
     assert riccati_converges(status, verdict) is expected

@@ -7,8 +7,10 @@ import copy
 import numpy as np
 import pytest
 
-from theory.core.case_file import bundled_cases, load_case, parse_case
+from theory.consensus.case import Order
+from theory.core.case_file import bundled_cases
 from theory.core.errors import CaseError
+from theory.kinds import load_case, parse_case
 
 BASE = {
     "name": "t",
@@ -64,6 +66,14 @@ def test_bad_fields_are_named(field, value, where):
     assert info.value.file == "x.yaml"
 
 
+def test_unknown_order_lists_the_two_orders():
+    with pytest.raises(CaseError) as info:
+        parse_case(changed("order", "consensus-then-filtr"))
+    assert info.value.expected == "one of ['consensus-then-filter', 'filter-then-consensus']"
+    with pytest.raises(ValueError, match="consensus-then-filtr"):
+        Order("consensus-then-filtr")
+
+
 def test_valid_block_keeps_zero_row_agents_and_directed_weights():
     case = parse_case(
         changed("L", [[[1], [0]], [], [[1, 0], [0, 1]]]) | {"expect": {"s_detectable": True}}
@@ -71,9 +81,9 @@ def test_valid_block_keeps_zero_row_agents_and_directed_weights():
     spec = case.spec
     assert spec.C[1].shape == (0, 2) and spec.R[1].shape == (0, 0) and spec.L[1].shape == (2, 0)
     assert not np.array_equal(spec.W, spec.W.T)
-    assert spec.order == "consensus-then-filter"
+    assert spec.order is Order.CONSENSUS_THEN_FILTER
     reverse = parse_case(changed("order", "filter-then-consensus"))
-    assert reverse.spec.order == "filter-then-consensus"
+    assert reverse.spec.order is Order.FILTER_THEN_CONSENSUS
 
 
 def test_bundled_ch5_cases_load_and_cite_their_source():

@@ -8,15 +8,15 @@ from hypothesis import strategies as st
 
 from theory.consensus.conditions import (
     necessary_conditions,
+    schur_stable,
     self_weight_bounds,
     source_components,
     unobservable_partition,
     w_detectability,
 )
-from theory.consensus.exact_self_weight import schur_stable
 from theory.consensus.s_detectability import decide_s_detectability
-from theory.core.case_file import load_case
 from theory.core.observability import unobservable_eigenvalues
+from theory.kinds import load_case
 from theory.strategies import dkf_problems
 
 

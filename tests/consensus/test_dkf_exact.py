@@ -12,18 +12,21 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from proofs_check import check_certificate
-from theory.consensus.exact_radius import (
-    exact_lyapunov,
-    gains_stabilize,
-    nonnegative_radius_below,
-)
-from theory.consensus.exact_self_weight import detectable_exact
-from theory.consensus.infeasibility import blind_set_witness, infeasibility_certificate
-from theory.consensus.operators import closed_loop, covariance_operator_matrix, spectral_radius
-from theory.consensus.primal_certificates import (
+from theory.consensus.case import Order
+from theory.consensus.certificates import (
     exact_gain_certificate,
     primal_certificate,
     projection_gains,
+)
+from theory.consensus.conditions import detectable_exact
+from theory.consensus.infeasibility import blind_set_witness, infeasibility_certificate
+from theory.consensus.operators import (
+    closed_loop,
+    covariance_operator_matrix,
+    exact_lyapunov,
+    gains_stabilize,
+    nonnegative_radius_below,
+    spectral_radius,
 )
 from theory.consensus.strategies import dkf_problems, self_weight_examples
 from theory.core.exact import RationalizationError
@@ -32,7 +35,7 @@ from theory.core.observability import unobservable_eigenvalues
 SMALL = dkf_problems(max_states=2, max_agents=3, integer_data=True, a_bound=2.0)
 
 
-@pytest.mark.parametrize("order", ["consensus-then-filter", "filter-then-consensus"])
+@pytest.mark.parametrize("order", list(Order))
 @given(problem=dkf_problems(max_states=2, max_agents=3, gain_bound=1.5))
 def test_exact_radius_agrees_with_floats_away_from_one(problem, order: str) -> None:
     T = covariance_operator_matrix(problem.W, closed_loop(problem.A, problem.C, problem.L), order)
@@ -78,8 +81,8 @@ def test_never_both_certificates(problem) -> None:
     except RationalizationError:
         return
     assert check_certificate(cert).valid
-    found, _, reasons = primal_certificate(
-        A, C, W, order="consensus-then-filter", candidates=[("drawn", problem.L)]
+    found, reasons = primal_certificate(
+        A, C, W, order=Order.CONSENSUS_THEN_FILTER, candidates=[("drawn", problem.L)]
     )
     assert found is None and reasons
 
@@ -94,7 +97,7 @@ def test_issue_17_certificate_is_the_projection_gains() -> None:
         [[Fraction(0)], [Fraction(2)]],
         [[Fraction(2), Fraction(0)], [Fraction(0), Fraction(2)]],
     ]
-    cert = exact_gain_certificate(A, C, W, gains, order="consensus-then-filter")
+    cert = exact_gain_certificate(A, C, W, gains, order=Order.CONSENSUS_THEN_FILTER)
     assert check_certificate(cert).valid
     P1 = np.array([[float(Fraction(x)) for x in row] for row in cert["witness"]["P"][0]])
     assert P1[0, 0] == pytest.approx(1.0) and 1e8 < P1[1, 1] < 1e10
@@ -109,3 +112,15 @@ def test_exact_lyapunov_is_none_for_a_singular_operator() -> None:
 def test_blind_set_witness_needs_a_rational_eigenvector() -> None:
     A = [[Fraction(6, 5), Fraction(6, 5)], [Fraction(6, 5), Fraction(0)]]
     assert blind_set_witness(A, [[]], [[Fraction(1)]]) is None
+
+
+def test_a_misspelt_order_is_refused_not_read_as_the_other() -> None:
+    """``order`` names one of two operators: a typo used to select J silently (and answer True
+    here, r_σ(J) = 4w = 0.96 with Example 1's projection gains); it must raise."""
+    A, C, W = self_weight_examples("example 1", 0.24)
+    gains = [np.array([[2.0], [0.0]]), np.array([[0.0], [2.0]]), 2 * np.eye(2)]
+    assert gains_stabilize(A, C, W, gains, order="consensus-then-filter") is True
+    with pytest.raises(ValueError, match="consensus-then-filtr"):
+        gains_stabilize(A, C, W, gains, order="consensus-then-filtr")
+    with pytest.raises(ValueError, match="consensus-then-filtr"):
+        exact_gain_certificate(A, C, W, projection_gains(A, C), order="consensus-then-filtr")

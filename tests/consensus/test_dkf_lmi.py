@@ -21,7 +21,7 @@ from theory.consensus.s_detectability import (
     decide_s_detectability,
     s_detectability_witness,
 )
-from theory.core.case_file import load_case
+from theory.kinds import load_case
 from theory.strategies import dkf_problems, weight_matrices
 
 
@@ -63,14 +63,14 @@ def test_certificate_recomputed_from_multipliers(name):
     s = spec(name)
     result = decide_s_detectability(s.A, s.C, s.W)
     assert result.verdict is False
-    Lam, Psi = result.multipliers["Lambda"], result.multipliers["Psi"]
+    Lam, Psi = result.lmi.multipliers["Lambda"], result.lmi.multipliers["Psi"]
     for M in (*Lam, *Psi):
         assert np.linalg.eigvalsh(M).min() >= -1e-12 * max(1.0, np.abs(M).max())
     residual = alternative_residual(s.A, s.C, s.W, Lam, Psi)
     norm = np.sqrt(sum(np.sum(r**2) for r in residual.values()))
     total = sum(np.trace(M) for M in (*Lam, *Psi))
-    assert norm / total == pytest.approx(result.cert_epsilon, rel=1e-9)
-    assert result.cert_epsilon <= result.tolerances["cert_tol"]
+    assert norm / total == pytest.approx(result.lmi.cert_epsilon, rel=1e-9)
+    assert result.lmi.cert_epsilon <= result.tolerances["cert_tol"]
     assert s_detectability_witness(s.A, s.C, s.W) is None
 
 
@@ -136,7 +136,7 @@ def test_missing_solver_is_not_a_crash_and_exact_routes_still_decide():
     for name in ("ch5-example-1-wg", "ch5-example-1-wb"):
         s = spec(name)
         result = decide_s_detectability(s.A, s.C, s.W, solver="NO_SUCH_SOLVER")
-        assert result.solver_status == "solver_error"
+        assert result.lmi.solver_status == "solver_error"
         verdicts[name] = result.verdict
     assert verdicts == {"ch5-example-1-wg": True, "ch5-example-1-wb": False}
     golden = decide_s_detectability(GOLDEN, [np.zeros((0, 2))], np.eye(1), solver="NO_SUCH_SOLVER")
@@ -164,4 +164,4 @@ def test_radius_target_rho_is_monotone(problem):
     high = decide_s_detectability(A, C, W, rho=4.0)
     assert not (low.verdict is True and high.verdict is False)
     if low.verdict is True:
-        assert low.radius_L <= 0.5
+        assert low.lmi.radius_L <= 0.5

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from hypothesis import assume, given
 
-from theory.consensus.case import ORDERS
+from theory.consensus.case import Order
 from theory.consensus.operators import (
     E_map,
     J_matrix,
@@ -22,7 +22,7 @@ from theory.consensus.riccati import (
     riccati_gains,
 )
 from theory.consensus.s_detectability import decide_s_detectability
-from theory.core.case_file import load_case
+from theory.kinds import load_case
 from theory.strategies import dkf_problems
 
 
@@ -31,11 +31,11 @@ def run(name, order, **kw):
     return s, coupled_riccati(s.A, s.C, s.W, s.Q, s.R, 10 * np.eye(s.n), order=order, **kw)
 
 
-@pytest.mark.parametrize("order", ORDERS)
+@pytest.mark.parametrize("order", list(Order))
 def test_example_1_good_weights_converge_to_a_stabilizing_solution(order):
     s, result = run("ch5-example-1-wg", order)
     assert result.status == "converged" and result.stabilizing
-    if order == "consensus-then-filter":
+    if order is Order.CONSENSUS_THEN_FILTER:
         Pi = E_map(s.W, result.P)
         gains = riccati_gains(s.A, s.C, s.R, Pi)
         for i in range(s.n_agents):  # footnote 5's fixed-point equation
@@ -44,13 +44,13 @@ def test_example_1_good_weights_converge_to_a_stabilizing_solution(order):
             assert np.allclose(result.P[i], rhs, rtol=1e-8, atol=1e-8 * np.abs(rhs).max())
 
 
-@pytest.mark.parametrize("order", ORDERS)
+@pytest.mark.parametrize("order", list(Order))
 @pytest.mark.parametrize("name", ["ch5-example-1-wb", "ch5-example-2-wb"])
 def test_bad_weights_diverge(name, order):
     assert run(name, order)[1].status == "diverged"
 
 
-@pytest.mark.parametrize("order", ORDERS)
+@pytest.mark.parametrize("order", list(Order))
 def test_example_2_good_weights_converge(order):
     assert run("ch5-example-2-wg", order)[1].stabilizing
 

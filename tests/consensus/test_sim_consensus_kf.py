@@ -10,9 +10,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from theory.consensus.kalman_filter import ORDERS, ch5_examples, simulate_consensus_kf
-from theory.core.claims import get_claim
+from theory.consensus.case import Order, ch5_examples
+from theory.consensus.kalman_filter import simulate_consensus_kf, true_error_covariance
 from theory.core.observability import unobservable_eigenvalues
+from theory.registry import get_claim
 
 EXAMPLES = ch5_examples()
 EXAMPLE_1, EXAMPLE_2 = EXAMPLES["example 1"], EXAMPLES["example 2"]
@@ -51,7 +52,7 @@ def _self_weight_condition(example: dict, W: np.ndarray) -> list[bool | None]:
 CASES = [(example, name) for example in (EXAMPLE_1, EXAMPLE_2) for name in ("W_g", "W_b")]
 
 
-@pytest.mark.parametrize("order", ORDERS)
+@pytest.mark.parametrize("order", list(Order))
 @pytest.mark.parametrize(("example", "name"), CASES, ids=lambda v: v if isinstance(v, str) else "")
 def test_covariances_bounded_iff_self_weight_condition(example: dict, name: str, order: str):
     """Figs 5.2–5.3: P bounded for W_g, unbounded for W_b, in both orders (App. C.3)."""
@@ -66,7 +67,7 @@ def test_covariances_bounded_iff_self_weight_condition(example: dict, name: str,
     assert (name == "W_g") == all(c is not False for c in _self_weight_condition(example, W))
 
 
-@pytest.mark.parametrize("order", ORDERS)
+@pytest.mark.parametrize("order", list(Order))
 def test_boundary_weight_grows_linearly(order: str) -> None:
     """Example 1 with W_c (w_ii = 1/r_σ² exactly): ‖P_1‖ grows without bound, linearly."""
     norms = _run(EXAMPLE_1, EXAMPLE_1["W_c"], order).cov_norms[:, 0]
@@ -85,13 +86,11 @@ def test_registered_claim_verifies_both_examples() -> None:
     assert result.status == "verified", result.evidence
 
 
-@pytest.mark.parametrize("order", ORDERS)
+@pytest.mark.parametrize("order", list(Order))
 @pytest.mark.parametrize("example", [EXAMPLE_1, EXAMPLE_2], ids=["example 1", "example 2"])
 def test_diverging_p_does_not_mean_diverging_error(example: dict, order: str) -> None:
     """Finding (docs/errata.md): with W_b the P_i of (5.9) diverge, yet the exact error
     covariance under the filter's own gains stays bounded and within 2 % of W_g's."""
-    from theory.consensus.kalman_filter import true_error_covariance
-
     results = {}
     for name in ("W_g", "W_b"):
         traces, p_norms = true_error_covariance(
@@ -109,8 +108,6 @@ def test_diverging_p_does_not_mean_diverging_error(example: dict, order: str) ->
 def test_error_covariance_matches_monte_carlo() -> None:
     """The exact recursion against the sample covariance of 400 simulated runs (Example 1,
     W_g): agreement within 4 standard errors of the Monte Carlo mean."""
-    from theory.consensus.kalman_filter import true_error_covariance
-
     W = np.array(EXAMPLE_1["W_g"], float)
     traces, _ = true_error_covariance(
         EXAMPLE_1["A"], EXAMPLE_1["C"], W, EXAMPLE_1["Q"], EXAMPLE_1["R"], EXAMPLE_1["P0"], 30

@@ -1,7 +1,7 @@
 """Theory ↔ simulation for ch. 5: the exact S-detectability verdict against the coupled Riccati
 recursion (5.7)–(5.9), both orders (App. C.3), over random systems and networks.
 
-The statement is :mod:`theory.consensus.riccati_properties` (registered for ``trackcert
+The statement is in :mod:`theory.consensus.properties` (registered for ``trackcert
 falsify`` as ``seed000.fn5/corrected``): S-detectable ⇒ the Riccati iterates stay below the
 fixed-gain bound of Lemma 5.2.3 (bounded from every P0 ⪰ 0); not S-detectable ⇒ from P0 = 0 they
 are non-decreasing and none of their gains is stabilizing (unbounded).
@@ -13,22 +13,19 @@ import numpy as np
 import pytest
 from hypothesis import given
 
-from theory.consensus.case import ORDERS
-from theory.consensus.riccati import coupled_riccati
-from theory.consensus.riccati_properties import (
-    EXAMPLES,
-    bound_iteration,
-    riccati_agreement,
-)
+from theory.consensus.case import Order
+from theory.consensus.properties import RICCATI_EXAMPLES, riccati_agreement
+from theory.consensus.riccati import bound_iteration, coupled_riccati
 from theory.consensus.strategies import DkfProblem
-from theory.core.case_file import load_case
 from theory.core.tolerances import RICCATI_HORIZON
-from theory.falsify import falsify, properties_for
+from theory.falsify import falsify
+from theory.kinds import load_case
+from theory.registry import properties_for
 
 
-@given(problem=EXAMPLES)
+@given(problem=RICCATI_EXAMPLES)
 def test_riccati_agrees_with_the_exact_verdict(problem) -> None:
-    for order in ORDERS:
+    for order in Order:
         result = riccati_agreement(problem, order=order)
         assert result.holds, (order, result)
 
@@ -39,7 +36,7 @@ def test_registered_for_falsify_and_survives() -> None:
     assert not falsify(prop, examples=10, seed=1).found
 
 
-@pytest.mark.parametrize("order", ORDERS)
+@pytest.mark.parametrize("order", list(Order))
 @pytest.mark.parametrize(
     ("name", "verdict"),
     [("ch5-example-1-wg", True), ("ch5-example-1-wc", False), ("ch5-example-2-wb", False)],
@@ -59,11 +56,12 @@ def test_the_bound_comes_from_the_certified_gains() -> None:
     spec = load_case("ch5-example-1-wg").spec
     zero = [np.zeros((2, c.shape[0])) for c in spec.C]
     P0 = np.zeros((3, 2, 2))
+    order = Order.CONSENSUS_THEN_FILTER
     bound = bound_iteration(
-        spec.A, spec.C, spec.W, spec.Q, spec.R, zero, P0, order=ORDERS[0], steps=RICCATI_HORIZON
+        spec.A, spec.C, spec.W, spec.Q, spec.R, zero, P0, order=order, steps=RICCATI_HORIZON
     )
     run = coupled_riccati(
-        spec.A, spec.C, spec.W, spec.Q, spec.R, P0, order=ORDERS[0], max_iter=RICCATI_HORIZON,
+        spec.A, spec.C, spec.W, spec.Q, spec.R, P0, order=order, max_iter=RICCATI_HORIZON,
         fixed_steps=True,
     )  # fmt: skip
     assert run.norms[-1] < 1e3 < np.linalg.norm(bound[-1], 2, axis=(1, 2)).max()

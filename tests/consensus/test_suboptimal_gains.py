@@ -11,8 +11,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from theory.consensus import suboptimal_gains as sg
-from theory.consensus import suboptimal_gains_claims as sgc
-from theory.core.claims import get_claim
+from theory.registry import get_claim
 
 
 def mat(rows) -> flint.fmpq_mat:
@@ -146,7 +145,7 @@ def test_conclusion_and_c3(d) -> None:
 def test_printed_identity_fails_on_generic_instances() -> None:
     rng = np.random.default_rng(7)
     for n, p, agents in [(2, 1, 2), (3, 2, 3), (4, 4, 2)]:  # n = p: the untransposed reading
-        d = sgc._random_instance(rng, n, p, agents)
+        d = sg.random_instance(rng, n, p, agents)
         assert gap(d) == sg.corrected_gap(*args(d))
         assert sg.printed_gap(*args(d)) != -gap(d)
         untransposed_M = d["L"] - sg.optimal_gain(d["A"], d["C"], d["R"], d["Pi_star"])
@@ -174,7 +173,7 @@ def test_a_wrong_gain_makes_the_claim_refuted(monkeypatch) -> None:
     def wrong(A, C, R, Pi_star):
         return A * Pi_star * C.transpose() * R.inv()
 
-    monkeypatch.setattr(sgc, "optimal_gain", wrong)
-    (result,) = sgc.check_suboptimal_gains()
+    monkeypatch.setattr(sg, "optimal_gain", wrong)
+    (result,) = get_claim("seed000.appC.2").run(None)
     assert result.status == "refuted"
     assert not result.evidence["random_instances"]["all_exact_checks_hold"]

@@ -48,12 +48,11 @@ def test_modules_include_those_checked_before() -> None:
         "theory.cli.simulate",
         "theory.consensus.operators",
         "theory.consensus.case",
-        "theory.consensus.claims",
+        "theory.consensus.analysis",
         "theory.consensus.conditions",
         "theory.core.exact",
         "theory.consensus.riccati",
         "theory.consensus.s_detectability",
-        "theory.consensus.self_weight",
         "theory.tdoa.observability.certificates",
     }
     earlier |= {f"theory.sim.{info.name}" for info in pkgutil.iter_modules(theory.sim.__path__)}

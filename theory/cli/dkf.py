@@ -1,6 +1,6 @@
 """``trackcert dkf CASE``: S-detectability and necessary conditions of a consensus Kalman filter.
 
-A shell over :func:`theory.consensus.dkf_report.dkf_report`. Exit codes
+A shell over :func:`theory.consensus.analysis.dkf_report`. Exit codes
 (:mod:`theory.core.verdicts`): 0 S-detectable (witness verified), 1 not (certificate verified),
 2 bad input, 3 inconclusive (the LMI decision is near its boundary or the solver failed: the
 output says which).
@@ -14,6 +14,7 @@ from rich.table import Table
 from theory.cli.common import case_argument, console, finish, json_option, reports_errors
 from theory.core.verdicts import exit_code
 from theory.kinds import load_case
+from theory.registry import claims_for
 
 __all__ = ["register"]
 
@@ -38,9 +39,12 @@ def register(app: typer.Typer) -> None:
         ),
     ) -> None:
         """S-detectability (LMI), Thm 5.2.10's conditions and the blind-set condition."""
-        from theory.consensus.dkf_report import dkf_report  # cvxpy: imported on use
+        from theory.consensus.analysis import dkf_report  # cvxpy: imported on use
 
-        report = dkf_report(load_case(case), search_self_weight=self_weight, solver=solver)
+        loaded = load_case(case)
+        report = dkf_report(
+            loaded, claims_for(loaded), search_self_weight=self_weight, solver=solver
+        )
         data = report.to_json()
         code = exit_code(report.verdict)
         finish(data, code, as_json=as_json, show=lambda: _print_table(data))

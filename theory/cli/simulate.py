@@ -2,7 +2,7 @@
 
 A shell over :func:`theory.sim.simulate.simulate_case` with the case kind's simulator
 (:func:`theory.kinds.simulator_for`: ``kind: tdoa-sim`` in
-:mod:`theory.tdoa.estimation.simulation`, ``kind: dkf`` in :mod:`theory.consensus.dkf_report`,
+:mod:`theory.tdoa.estimation.simulation`, ``kind: dkf`` in :mod:`theory.consensus.kalman_filter`,
 ``kind: pursuit`` in :mod:`theory.pursuit.simulation`); ``kind: pf`` cases are handed to
 :func:`theory.cli.pf.run_pf_case`, as ``trackcert pf`` runs them. Exit code
 (:mod:`theory.core.verdicts`): the expectations' verdict, 0 all met (or none stated), 1 one

@@ -19,7 +19,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from enum import StrEnum
+from typing import Any, NoReturn
 
 import numpy as np
 
@@ -36,12 +37,26 @@ from theory.core.validation import (
     row_stochastic,
 )
 
-__all__ = ["DKF", "ORDERS", "DkfSpec", "parse_dkf"]
+__all__ = ["DKF", "DkfSpec", "Order", "ch5_examples", "parse_dkf"]
+
+
+class Order(StrEnum):
+    """The order of the consensus and filter steps; ``Order(name)`` refuses any other name."""
+
+    CONSENSUS_THEN_FILTER = "consensus-then-filter"  # eqs. (5.3)–(5.4), operator L (5.13)
+    FILTER_THEN_CONSENSUS = "filter-then-consensus"  # App. C.3 eq. (C.4), operator J
+
+    @classmethod
+    def _missing_(cls, value: object) -> NoReturn:
+        raise ValueError(f"order {value!r} is not one of {[order.value for order in cls]}")
+
+    @property
+    def operator(self) -> str:
+        """The covariance operator of the order: ``L`` (eq. (5.13)) or ``J`` (App. C.3)."""
+        return "L" if self is Order.CONSENSUS_THEN_FILTER else "J"
+
 
 FIELDS = ("A", "C", "W", "Q", "R", "L", "order")
-ORDERS = ("consensus-then-filter", "filter-then-consensus")
-"""``consensus-then-filter``: eqs. (5.3)–(5.4), operator L (5.13); ``filter-then-consensus``:
-App. C.3 eq. (C.4), operator J."""
 EXPECT_KEYS = (
     "s_detectable",
     "spectral_radius_B",
@@ -56,25 +71,8 @@ TOLERANCE_KEYS = ("rank_tol", "lmi_margin", "cert_tol", "value_tol")
 
 @dataclass(frozen=True, eq=False)
 class DkfSpec:
-    """A validated consensus Kalman filter problem.
-
-    Attributes
-    ----------
-    A : ndarray, shape (n, n)
-        System matrix, seed 000 eq. (5.1).
-    C : tuple of ndarray, shapes (p_i, n)
-        Measurement matrices, eq. (5.2); ``p_i = 0`` allowed.
-    W : ndarray, shape (N, N)
-        Row-stochastic consensus weights, eq. (5.3).
-    Q : ndarray, shape (n, n)
-        Process noise covariance.
-    R : tuple of ndarray, shapes (p_i, p_i)
-        Measurement noise covariances.
-    L : tuple of ndarray, shapes (n, p_i), or None
-        Filter gains of eq. (5.4), when the case fixes them.
-    order : str
-        One of :data:`ORDERS`.
-    """
+    """A validated problem: ``A`` (5.1), ``C_i`` (5.2; ``p_i = 0`` allowed), ``W`` (5.3),
+    ``Q``, ``R_i``, the gains ``L_i`` of (5.4) when the case fixes them, and the order."""
 
     A: np.ndarray
     C: tuple[np.ndarray, ...]
@@ -82,7 +80,7 @@ class DkfSpec:
     Q: np.ndarray
     R: tuple[np.ndarray, ...]
     L: tuple[np.ndarray, ...] | None
-    order: str
+    order: Order
 
     @property
     def n(self) -> int:
@@ -96,24 +94,8 @@ class DkfSpec:
 
 
 def parse_dkf(block: Mapping[str, Any], *, weight_sum_tol: float = WEIGHT_SUM_TOL) -> DkfSpec:
-    """Validate a ``dkf:`` block (see the module docstring for the fields).
-
-    Parameters
-    ----------
-    block : mapping
-        The parsed YAML block.
-    weight_sum_tol : float
-        Absolute tolerance on each row sum of ``W``.
-
-    Returns
-    -------
-    DkfSpec
-
-    Raises
-    ------
-    CaseError
-        For any missing, unknown or invalid field, naming it.
-    """
+    """Validate a ``dkf:`` block (fields in the module docstring); :class:`CaseError` names
+    any missing, unknown or invalid field."""
     check_keys(block, FIELDS, "dkf")
     raw_A, raw_W = require(block, "A", "dkf"), require(block, "W", "dkf")
     check_length(raw_A, "dkf_dimension", "dkf.A")
@@ -136,7 +118,8 @@ def parse_dkf(block: Mapping[str, Any], *, weight_sum_tol: float = WEIGHT_SUM_TO
     L = None
     if "L" in block:
         L = _per_agent(block["L"], "dkf.L", N, lambda g, f: _gain(g, f, n, C[_index(f)]))
-    order = one_of(block.get("order", ORDERS[0]), ORDERS, "dkf.order")
+    names = [order.value for order in Order]
+    order = Order(one_of(block.get("order", names[0]), names, "dkf.order"))
     return DkfSpec(A, C, W, Q, R, L, order)
 
 
@@ -171,6 +154,36 @@ def _gain(raw: object, field: str, n: int, C_i: np.ndarray) -> np.ndarray:
             raise CaseError(field, "[] (the agent has no measurement rows)", raw)
         return np.zeros((n, 0))
     return finite_matrix(raw, field, rows=n, cols=p)
+
+
+def ch5_examples() -> dict[str, dict[str, Any]]:
+    """Seed 000 §5.3 Examples 1–2: matrices, initial data, every W of the text, and the agents
+    whose pair ``(A, C_i)`` is not detectable (``unstable_agents``, 0-based)."""
+    return {
+        "example 1": {
+            "A": 2.0 * np.eye(2),
+            "C": [np.array([[1.0, 0.0]]), np.array([[0.0, 1.0]]), np.eye(2)],
+            "R": [0.1 * np.eye(1), 0.1 * np.eye(1), 0.1 * np.eye(2)],
+            "Q": 0.1 * np.eye(2),
+            "x0": np.array([-15.0, 15.0]),
+            "P0": 10.0 * np.eye(2),
+            "W_g": [[0.24, 0.76, 0], [0.76, 0.24, 0], [0, 0, 1]],
+            "W_c": [[0.25, 0.75, 0], [0.75, 0.25, 0], [0, 0, 1]],
+            "W_b": [[0.26, 0.74, 0], [0.74, 0.26, 0], [0, 0, 1]],
+            "unstable_agents": [0, 1],
+        },
+        "example 2": {
+            "A": np.array([[0.8147, 0.8147, 0.2785], [0.9058, 0.9058, 0.5469], [0, 0, 0.9575]]),
+            "C": [np.eye(3)[[i]] for i in range(3)],
+            "R": [np.eye(1)] * 3,
+            "Q": np.eye(3),
+            "x0": np.array([-2.2691, -2.0143, 1.6173]),
+            "P0": 100.0 * np.eye(3),
+            "W_g": [[1, 0, 0], [0, 1, 0], [0.34, 0.34, 0.32]],
+            "W_b": [[1, 0, 0], [0, 1, 0], [0.33, 0.33, 0.34]],
+            "unstable_agents": [2],
+        },
+    }
 
 
 DKF = KindSpec("dkf", parse_dkf, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)

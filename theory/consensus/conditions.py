@@ -12,31 +12,50 @@
 
 Every verdict is True / False / None (inconclusive: the deciding quantity lies within
 ``value_tol`` of its threshold, or a rank decision is not ``inconclusive_factor``-safe).
+
+**Exact self-weight bound and detectability** (python-flint), so that boundary cases such as
+Example 1's ``W_c`` (``w_ii = 0.25``, ``r_σ = 2``: exactly on the bound) get a verdict:
+
+1. the data are read as the decimals written (:func:`theory.core.exact.exact_decimal`: 0.24 is
+   6/25);
+2. the unobservable subspace ``N = null O`` (observability matrix, eq. (4.18)) gets a rational
+   basis ``V`` from the reduced row echelon form; ``A_u = (V'V)⁻¹ V' A V`` (exact: ``N`` is
+   A-invariant, so ``A V = V A_u``);
+3. with ``p(x) = det(x I − A_u)`` of degree k, ``s(z) = (−1)^k p(√z) p(−√z)`` has the roots
+   ``λ²``, and ``t(z) = w^k s(z / w)`` the roots ``w λ²``;
+4. ``w r_σ(A_u)² < 1`` iff ``t`` is Schur stable, decided by the Schur–Cohn reduction: with
+   ``|t_0| < |t_k|``, ``t`` is Schur stable iff ``(t_k t(z) − t_0 t*(z)) / z`` is, where ``t*`` is
+   ``t`` with reversed coefficients; ``|t_0| ≥ |t_k|`` means the product of the roots has modulus
+   ≥ 1, so some root is outside the open disk. Detectability is ``A_u`` Schur stable.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Any
 
 import control
 import networkx as nx
 import numpy as np
+from flint import fmpq_mat
+from scipy.linalg import null_space
 
-from theory.consensus.exact_radius import nonnegative_radius_below
-from theory.consensus.exact_self_weight import detectable_exact, self_weight_ok_exact
 from theory.consensus.infeasibility import blind_flats
-from theory.consensus.operators import spectral_radius
+from theory.consensus.operators import nonnegative_radius_below, spectral_radius
 from theory.core.exact import (
+    exact_decimal,
     fractions_of,
     identity,
+    null_basis,
     rational_eigenvalues,
     rational_matrix,
     to_fmpq,
 )
-from theory.core.observability import RANK_TOL, numeric_rank, observability_matrix
+from theory.core.observability import RANK_TOL, distinct_values, numeric_rank, observability_matrix
 from theory.core.tolerances import EIGEN_TOL, VALUE_TOL
+from theory.core.verdicts import all_hold
 
 __all__ = [
     "VALUE_TOL",
@@ -46,9 +65,12 @@ __all__ = [
     "SelfWeightBound",
     "SourceComponent",
     "blind_sets",
+    "detectable_exact",
+    "exact_unobservable_part",
     "necessary_conditions",
-    "o_matrix",
+    "schur_stable",
     "self_weight_bounds",
+    "self_weight_ok_exact",
     "source_components",
     "unobservable_partition",
     "w_detectability",
@@ -57,23 +79,9 @@ __all__ = [
 
 @dataclass(frozen=True)
 class KalmanSplit:
-    """Orthogonal Kalman decomposition of ``(A, C)`` into observable and unobservable parts.
-
-    Attributes
-    ----------
-    A_u : ndarray, shape (n_u, n_u)
-        ``V_u' A V_u``, the unobservable partition (``A V_u = V_u A_u``).
-    V_u, V_o : ndarray
-        Orthonormal bases of the unobservable subspace and its complement.
-    rank : int
-        Rank of the observability matrix.
-    rank_margin : float
-        How many times the rank decision clears ``rank_tol``.
-    control_rank : int
-        The same rank from ``control.obsv`` (python-control), as a cross-check.
-    invariance_residual : float
-        ``‖A V_u − V_u A_u‖ / ‖A‖`` (small iff the subspace is A-invariant, as it must be).
-    """
+    """Orthogonal Kalman decomposition of ``(A, C)``: ``A_u = V_u' A V_u`` on the unobservable
+    subspace, the observability rank (its margin over ``rank_tol``, and python-control's rank as a
+    cross-check) and ``‖A V_u − V_u A_u‖ / ‖A‖`` (small iff the subspace is A-invariant)."""
 
     A_u: np.ndarray
     V_u: np.ndarray
@@ -87,25 +95,8 @@ class KalmanSplit:
 def unobservable_partition(
     A: np.ndarray, C: np.ndarray, *, rank_tol: float = RANK_TOL
 ) -> KalmanSplit:
-    """Kalman decomposition of ``(A, C)``; ``A_u`` is the paper's ``A_iᵘ`` (Thm 5.2.10 proof).
-
-    Parameters
-    ----------
-    A : ndarray, shape (n, n)
-        System matrix.
-    C : ndarray, shape (p, n)
-        Measurement matrix (``p = 0`` allowed: everything is unobservable).
-    rank_tol : float
-        Relative rank tolerance on the observability matrix's singular values.
-
-    Returns
-    -------
-    KalmanSplit
-
-    References
-    ----------
-    seed 000, proof of Thm 5.2.10 (the similarity ``T_i``).
-    """
+    """Kalman decomposition of ``(A, C)``; ``A_u`` is the paper's ``A_iᵘ`` (the similarity
+    ``T_i`` of seed 000's proof of Thm 5.2.10; ``p = 0`` leaves everything unobservable)."""
     n = A.shape[0]
     C = np.asarray(C, dtype=float).reshape(-1, n)
     O = observability_matrix(A, C)
@@ -126,28 +117,8 @@ def unobservable_partition(
 
 @dataclass(frozen=True)
 class SelfWeightBound:
-    """Thm 5.2.10 item 2 for one agent: ``w_ii < 1 / r_σ(A_iᵘ)²``.
-
-    Attributes
-    ----------
-    agent : int
-        1-based agent id.
-    unobservable_dim : int
-        Size of ``A_iᵘ``.
-    radius : float
-        ``r_σ(A_iᵘ)`` (0 if every mode is observable).
-    bound : float
-        ``1 / r_σ(A_iᵘ)²`` (``inf`` when the radius is 0).
-    weight : float
-        ``w_ii``.
-    margin : float
-        ``1 − w_ii r_σ(A_iᵘ)²``.
-    numeric_ok : bool or None
-        ``margin > value_tol`` → True; ``< −value_tol`` → False; else None.
-    exact_ok : bool or None
-        The same inequality decided in exact rational arithmetic on the data as written
-        (:mod:`theory.consensus.exact_self_weight`); None when not computed.
-    """
+    """Thm 5.2.10 item 2 for one agent (1-based): ``w_ii < 1 / r_σ(A_iᵘ)²``, its margin
+    ``1 − w_ii r_σ(A_iᵘ)²``, the float verdict (None within ``value_tol``) and the exact one."""
 
     agent: int
     unobservable_dim: int
@@ -173,27 +144,8 @@ def self_weight_bounds(
     value_tol: float = VALUE_TOL,
     exact: bool = True,
 ) -> list[SelfWeightBound]:
-    """The self-weight bound of Thm 5.2.10 item 2 for every agent.
-
-    Parameters
-    ----------
-    A, C, W : ndarray
-        System, measurement matrices, weights.
-    rank_tol : float
-        Rank tolerance of the Kalman decomposition.
-    value_tol : float
-        Tolerance on ``1 − w_ii r²`` below which the numeric verdict is inconclusive.
-    exact : bool
-        Also decide each bound in exact rational arithmetic (the data read as written decimals).
-
-    Returns
-    -------
-    list of SelfWeightBound
-
-    References
-    ----------
-    seed 000 Thm 5.2.10 (2); Examples 5.3.1 (bound 0.25) and 5.3.2 (r = 1.7205, bound 0.3378).
-    """
+    """The self-weight bound of Thm 5.2.10 (2) for every agent (Examples 5.3.1: bound 0.25;
+    5.3.2: r = 1.7205, bound 0.3378), also decided exactly unless ``exact`` is False."""
     out = []
     for i, Ci in enumerate(C):
         split = unobservable_partition(A, Ci, rank_tol=rank_tol)
@@ -203,33 +155,17 @@ def self_weight_bounds(
         exact_ok = self_weight_ok_exact(A, Ci, float(W[i, i])) if exact else None
         out.append(
             SelfWeightBound(
-                i + 1,
-                split.A_u.shape[0],
-                radius,
-                bound,
-                float(W[i, i]),
-                margin,
-                _sign(margin, value_tol),
-                exact_ok,
+                i + 1, split.A_u.shape[0], radius, bound, float(W[i, i]), margin,
+                _sign(margin, value_tol), exact_ok,
             )
-        )
+        )  # fmt: skip
     return out
 
 
 @dataclass(frozen=True)
 class SourceComponent:
-    """A source component (Def. 5.2.8) and its detectability (Def. 5.2.9).
-
-    Attributes
-    ----------
-    agents : tuple of int
-        1-based agent ids.
-    detectable : bool or None
-        Whether ``(A, C_S)`` is detectable, decided exactly (Schur–Cohn on the unobservable part,
-        :func:`~theory.consensus.exact_self_weight.detectable_exact`).
-    unstable_unobservable : tuple of complex
-        Unobservable eigenvalues of ``(A, C_S)`` with ``|λ| ≥ 1 − value_tol``.
-    """
+    """A source component (Def. 5.2.8, 1-based agents), whether ``(A, C_S)`` is detectable
+    (decided exactly, Def. 5.2.9) and its float unobservable eigenvalues with ``|λ| ≥ 1 − tol``."""
 
     agents: tuple[int, ...]
     detectable: bool | None
@@ -244,27 +180,11 @@ def source_components(
     rank_tol: float = RANK_TOL,
     value_tol: float = VALUE_TOL,
 ) -> list[SourceComponent]:
-    """Source components of the network and their detectability (Thm 5.2.10 item 1).
+    """Source components and their detectability, sorted by first agent (Thm 5.2.10 (1)).
 
     A source component is a strongly connected set of agents (paths along ``w_ij > 0``, agent i
     receiving from j) that receives nothing from outside; with ``w_ii > 0`` the common exponent
     ``l`` of Def. 5.2.8 exists.
-
-    Parameters
-    ----------
-    A, C, W : ndarray
-        System, measurement matrices, weights.
-    rank_tol, value_tol : float
-        PBH rank tolerance; tolerance of ``|λ|`` around 1.
-
-    Returns
-    -------
-    list of SourceComponent
-        Sorted by first agent.
-
-    References
-    ----------
-    seed 000 Def. 5.2.8, Def. 5.2.9, Thm 5.2.10 (1).
     """
     graph = nx.DiGraph()
     graph.add_nodes_from(range(W.shape[0]))
@@ -282,45 +202,6 @@ def source_components(
     return sorted(out, key=lambda s: s.agents[0])
 
 
-def o_matrix(A: np.ndarray, C: Sequence[np.ndarray], W: np.ndarray, agent: int) -> np.ndarray:
-    """Rows spanning the row space of ``O_i`` (eqs. (5.19)–(5.20)) for 0-based ``agent``.
-
-    ``O_i(k) = Σ_j w_ij^{(k)} A'^k C_j' C_j A^k`` (proof of Thm 5.2.10), so the null space of
-    ``O_i`` is that of the rows ``C_j A^k`` with ``w_ij^{(k)} > 0``. Each block is normalised
-    (row scaling does not change the null space; it avoids overflow for unstable A). With
-    ``w_ii > 0`` the reachable sets grow with k and settle by ``k = N − 1``, so by Cayley–Hamilton
-    ``k < min(n² N, N + n − 1)`` spans the same space as the paper's ``k < n² N``.
-
-    Parameters
-    ----------
-    A, C, W : ndarray
-        System, measurement matrices, weights (``w_ii > 0``).
-    agent : int
-        0-based agent ``i``.
-
-    Returns
-    -------
-    ndarray, shape (rows, n)
-    """
-    n, N = A.shape[0], W.shape[0]
-    steps = min(n * n * N, N + n - 1)
-    reach = np.zeros(N, dtype=bool)
-    reach[agent] = True
-    power = np.eye(n)
-    support = W > 0
-    rows = []
-    for _ in range(steps):
-        for j in np.flatnonzero(reach):
-            block = np.asarray(C[j], dtype=float).reshape(-1, n) @ power
-            norm = np.linalg.norm(block)
-            if norm > 0:
-                rows.append(block / norm)
-        reach = (reach.astype(int) @ support.astype(int)) > 0
-        power = power @ A
-        power = power / max(np.linalg.norm(power), 1e-300)
-    return np.vstack(rows) if rows else np.zeros((0, n))
-
-
 def w_detectability(
     A: np.ndarray,
     C: Sequence[np.ndarray],
@@ -329,22 +210,8 @@ def w_detectability(
     rank_tol: float = RANK_TOL,
     value_tol: float = VALUE_TOL,
 ) -> list[bool | None]:
-    """Detectability of ``(A, O_i)`` for each agent (Lemma 5.2.7; necessary by Lemma 5.2.6).
-
-    Parameters
-    ----------
-    A, C, W, rank_tol, value_tol : ndarray, float
-        As in :func:`source_components`.
-
-    Returns
-    -------
-    list of bool or None
-        One verdict per agent, decided exactly on the rows ``C_j A^k`` (data as written).
-
-    References
-    ----------
-    seed 000 eqs. (5.19)–(5.20), Lemmas 5.2.6–5.2.7.
-    """
+    """Whether ``(A, O_i)`` is detectable, per agent, decided exactly (seed 000 eqs.
+    (5.19)–(5.20), Lemma 5.2.7; necessary by Lemma 5.2.6)."""
     return [
         _detectable(A, _o_rows_exact(A, C, W, i), rank_tol=rank_tol, value_tol=value_tol)[0]
         for i in range(W.shape[0])
@@ -353,21 +220,8 @@ def w_detectability(
 
 @dataclass(frozen=True)
 class BlindSet:
-    """Agents all blind to one eigenvector of A, and the blind-set condition for them.
-
-    Attributes
-    ----------
-    eigenvalue : complex
-        λ.
-    agents : tuple of int
-        1-based ids of S (every ``C_i`` annihilates a common eigenvector for λ).
-    radius : float
-        ``r_σ(W_SS)``.
-    value : float
-        ``|λ|² r_σ(W_SS)`` (must be < 1).
-    ok : bool or None
-        ``1 − value > value_tol`` → True; ``< −value_tol`` → False; else None.
-    """
+    """Agents S (1-based) all blind to one eigenvector of A for λ, and the blind-set condition
+    ``value = |λ|² r_σ(W_SS) < 1`` (``ok`` None within ``value_tol``)."""
 
     eigenvalue: complex
     agents: tuple[int, ...]
@@ -385,40 +239,21 @@ def blind_sets(
     value_tol: float = VALUE_TOL,
     max_flats: int = 10_000,
 ) -> list[BlindSet]:
-    """Every maximal blind set ``S(λ, v)`` and the condition ``|λ|² r_σ(W_SS) < 1``.
+    """Every maximal blind set ``S(λ, v)`` and ``|λ|² r_σ(W_SS) < 1``, by decreasing value
+    (``docs/theory/s-detectability.md``, Theorem 2).
 
-    For each distinct eigenvalue λ, the eigenspace ``V = ker(A − λI)`` is intersected with the
-    kernels ``ker C_i`` in every way (a breadth-first search over the lattice of flats); each flat
-    F of dimension ≥ 1 gives ``S(F) = {i : C_i F = 0}``.
-
-    Parameters
-    ----------
-    A, C, W : ndarray
-        System, measurement matrices, weights.
-    rank_tol : float
-        Relative tolerance for null spaces.
-    value_tol : float
-        Tolerance of ``|λ|² r_σ(W_SS)`` around 1.
-    max_flats : int
-        Cap on the number of flats explored (raises ``ArithmeticError`` beyond).
-
-    Returns
-    -------
-    list of BlindSet
-        One per distinct (λ, S) with S non-empty, sorted by decreasing value.
-
-    References
-    ----------
-    docs/theory/s-detectability.md, Theorem 2 (blind-set condition).
+    For each distinct eigenvalue λ, the eigenspace ``ker(A − λI)`` is intersected with the
+    kernels ``ker C_i`` in every way (a breadth-first search over the lattice of flats, at most
+    ``max_flats``); each flat F of dimension ≥ 1 gives ``S(F) = {i : C_i F = 0}``.
     """
     n = A.shape[0]
     Cs = [np.asarray(Ci, dtype=complex).reshape(-1, n) for Ci in C]
     scale = max(float(np.linalg.norm(A, 2)), 1.0)
     found: dict[tuple[complex, tuple[int, ...]], BlindSet] = {}
-    for lam in _distinct_eigenvalues(A, scale):
+    for lam in distinct_values(np.linalg.eigvals(A), scale=scale):
         if abs(lam) <= EIGEN_TOL * scale:
             continue
-        V = _null_space(A - lam * np.eye(n), EIGEN_TOL * scale)
+        V = _kernel(A - lam * np.eye(n), EIGEN_TOL * scale)
         queue, seen = [V], set()
         while queue:
             F = queue.pop()
@@ -429,19 +264,15 @@ def blind_sets(
             if len(seen) > max_flats:
                 raise ArithmeticError(f"more than {max_flats} blind sets: raise max_flats")
             if S:
-                key = (complex(np.round(lam, 12)), S)
                 radius = spectral_radius(W[np.ix_(S, S)])
                 value = abs(lam) ** 2 * radius
-                found[key] = BlindSet(
-                    complex(lam),
-                    tuple(i + 1 for i in S),
-                    radius,
-                    value,
+                found[(complex(np.round(lam, 12)), S)] = BlindSet(
+                    complex(lam), tuple(i + 1 for i in S), radius, value,
                     _sign(1 - value, value_tol),
-                )
+                )  # fmt: skip
             for i, Ci in enumerate(Cs):
                 if i not in S:
-                    sub = _null_space(Ci @ F, rank_tol * max(np.linalg.norm(Ci), 1e-300))
+                    sub = _kernel(Ci @ F, rank_tol * max(np.linalg.norm(Ci), 1e-300))
                     if sub.shape[1] >= 1:
                         queue.append(F @ sub)
     return sorted(_exact_blind_sets(A, C, W, found, scale), key=lambda b: -b.value)
@@ -450,13 +281,9 @@ def blind_sets(
 def _exact_blind_sets(
     A: np.ndarray, C: Sequence[np.ndarray], W: np.ndarray, found: dict, scale: float
 ) -> list[BlindSet]:
-    """The float blind sets, with those of rational eigenvalues replaced by exact ones.
-
-    For a rational eigenvalue λ the flats are computed over the rationals
-    (:func:`~theory.consensus.infeasibility.blind_flats`) and ``λ² r_σ(W_SS) < 1`` is decided
-    exactly (:func:`~theory.consensus.exact_radius.nonnegative_radius_below`); the verdict then
-    has no tolerance. Irrational eigenvalues keep the float decision with ``value_tol``.
-    """
+    """The float blind sets, those of rational eigenvalues replaced by exact ones: their flats
+    over the rationals (:func:`~theory.consensus.infeasibility.blind_flats`) and ``λ² r_σ(W_SS)
+    < 1`` decided exactly (no tolerance); irrational eigenvalues keep the float decision."""
     n = A.shape[0]
     A_q, W_q = rational_matrix(A), rational_matrix(W)
     C_q = [rational_matrix(np.asarray(c, float).reshape(-1, n)) if np.size(c) else [] for c in C]
@@ -477,21 +304,8 @@ def _exact_blind_sets(
 
 @dataclass(frozen=True)
 class NecessaryConditions:
-    """All necessary conditions for one ``(A, C, W)``.
-
-    Attributes
-    ----------
-    source_components : list of SourceComponent
-    w_detectable : list of bool or None
-        ``(A, O_i)`` detectable, per agent.
-    self_weights : list of SelfWeightBound
-    blind_sets : list of BlindSet
-    paper_conditions : bool or None
-        Thm 5.2.10 items 1 and 2 together.
-    blind_set_condition : bool or None
-        Our condition (implies the paper's).
-    tolerances : dict
-    """
+    """All necessary conditions for one ``(A, C, W)``: ``paper_conditions`` is Thm 5.2.10 items 1
+    and 2 together, ``blind_set_condition`` ours (which implies the paper's)."""
 
     source_components: list[SourceComponent]
     w_detectable: list[bool | None]
@@ -550,40 +364,17 @@ def necessary_conditions(
     rank_tol: float = RANK_TOL,
     value_tol: float = VALUE_TOL,
 ) -> NecessaryConditions:
-    """Thm 5.2.10's conditions, W-detectability and the blind-set condition.
-
-    Parameters
-    ----------
-    A, C, W : ndarray
-        System, measurement matrices (zero rows allowed), row-stochastic weights.
-    rank_tol : float
-        Relative rank tolerance (Kalman decomposition, PBH, null spaces).
-    value_tol : float
-        Tolerance around each threshold.
-
-    Returns
-    -------
-    NecessaryConditions
-
-    References
-    ----------
-    seed 000 Thm 5.2.10; docs/theory/s-detectability.md.
-    """
+    """Thm 5.2.10's conditions, W-detectability and the blind-set condition (seed 000 Thm 5.2.10;
+    ``docs/theory/s-detectability.md``)."""
     kw = {"rank_tol": rank_tol, "value_tol": value_tol}
     sources = source_components(A, C, W, **kw)
     bounds = self_weight_bounds(A, C, W, **kw)
     blind = blind_sets(A, C, W, **kw)
-    paper = _all([s.detectable for s in sources] + [b.ok for b in bounds])
-    ours = _all([b.ok for b in blind])
+    paper = all_hold([s.detectable for s in sources] + [b.ok for b in bounds])
+    ours = all_hold([b.ok for b in blind])
     return NecessaryConditions(
         sources, w_detectability(A, C, W, **kw), bounds, blind, paper, ours, dict(kw)
     )
-
-
-def _all(verdicts: list[bool | None]) -> bool | None:
-    if any(v is False for v in verdicts):
-        return False
-    return None if any(v is None for v in verdicts) else True
 
 
 def _sign(margin: float, tol: float) -> bool | None:
@@ -595,8 +386,8 @@ def _sign(margin: float, tol: float) -> bool | None:
 def _detectable(
     A: np.ndarray, C: np.ndarray | list, *, rank_tol: float, value_tol: float
 ) -> tuple[bool, list[complex]]:
-    """Detectability decided exactly (:func:`detectable_exact`); the float unobservable
-    eigenvalues with ``|λ| ≥ 1 − value_tol`` are reported beside it (informative)."""
+    """Detectability decided exactly, with the float unobservable eigenvalues ``|λ| ≥ 1 −
+    value_tol`` beside it (informative)."""
     rows = C if isinstance(C, list) else np.asarray(C, dtype=float)
     floats = np.array([[float(x) for x in r] for r in rows]) if isinstance(C, list) else rows
     split = unobservable_partition(A, floats.reshape(-1, A.shape[0]), rank_tol=rank_tol)
@@ -606,8 +397,13 @@ def _detectable(
 
 
 def _o_rows_exact(A: np.ndarray, C: Sequence[np.ndarray], W: np.ndarray, agent: int) -> list:
-    """Exact rows ``C_j A^k`` with ``w_ij^{(k)} > 0`` spanning ``O_i``'s row space (see
-    :func:`o_matrix`; the data read as written decimals)."""
+    """Exact rows ``C_j A^k`` with ``w_ij^{(k)} > 0`` spanning the row space of ``O_i``.
+
+    ``O_i(k) = Σ_j w_ij^{(k)} A'^k C_j' C_j A^k`` (proof of Thm 5.2.10), so the null space of
+    ``O_i`` is that of these rows. With ``w_ii > 0`` the reachable sets grow with k and settle by
+    ``k = N − 1``, so by Cayley–Hamilton ``k < min(n² N, N + n − 1)`` spans the same space as the
+    paper's ``k < n² N``.
+    """
     n, N = A.shape[0], W.shape[0]
     A_q = to_fmpq(rational_matrix(A))
     reach = np.zeros(N, dtype=bool)
@@ -624,23 +420,78 @@ def _o_rows_exact(A: np.ndarray, C: Sequence[np.ndarray], W: np.ndarray, agent: 
     return rows
 
 
-def _distinct_eigenvalues(A: np.ndarray, scale: float, rel: float = EIGEN_TOL) -> list[complex]:
-    out: list[complex] = []
-    for value in np.linalg.eigvals(A):
-        if all(abs(value - seen) > rel * scale for seen in out):
-            out.append(complex(value))
-    return out
-
-
-def _null_space(M: np.ndarray, tol: float) -> np.ndarray:
-    if M.shape[0] == 0:
-        return np.eye(M.shape[1], dtype=complex)
-    _, s, Vh = np.linalg.svd(M)
-    rank = int(np.sum(s > tol))
-    return Vh[rank:].conj().T
+def _kernel(M: np.ndarray, tol: float) -> np.ndarray:
+    """An orthonormal basis of the right null space of ``M``: singular values ``≤ tol`` vanish."""
+    return null_space(M, rcond=tol / max(float(np.linalg.norm(M, 2)), 1e-300))
 
 
 def _annihilates(Ci: np.ndarray, F: np.ndarray, rank_tol: float) -> bool:
     if Ci.shape[0] == 0:
         return True
     return float(np.linalg.norm(Ci @ F, 2)) <= rank_tol * max(float(np.linalg.norm(Ci, 2)), 1e-300)
+
+
+def exact_unobservable_part(A: np.ndarray, C: np.ndarray | list) -> fmpq_mat:
+    """``A_u`` of the Kalman decomposition of ``(A, C)``, exact over the rationals (``0 × 0`` if
+    observable; exact rows of ``C`` are used as they are)."""
+    n = len(A) if isinstance(A, list) else A.shape[0]
+    Aq = to_fmpq(rational_matrix(A))
+    rows: list[list[Fraction]] = []
+    if isinstance(C, list):
+        block = C
+    else:
+        block = rational_matrix(np.asarray(C, dtype=float).reshape(-1, n)) if np.size(C) else []
+    power = [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
+    for _ in range(n):
+        if block:
+            rows.extend(fractions_of(to_fmpq(block) * to_fmpq(power)))
+        power = fractions_of(to_fmpq(power) * Aq)
+    V = null_basis(rows, n)
+    if not V:
+        return fmpq_mat(0, 0)
+    Vq = to_fmpq([[V[c][r] for c in range(len(V))] for r in range(n)])
+    Vt = Vq.transpose()
+    return (Vt * Vq).solve(Vt * Aq * Vq)
+
+
+def schur_stable(coefficients: list[Fraction]) -> bool:
+    """Whether every root of ``Σ c_j z^j`` (``c_k ≠ 0``) lies in the open unit disk (Schur–Cohn)."""
+    c = list(coefficients)
+    while len(c) > 1:
+        if abs(c[0]) >= abs(c[-1]):
+            return False
+        lead, const = c[-1], c[0]
+        reduced = [lead * a - const * b for a, b in zip(c, reversed(c), strict=True)]
+        c = reduced[1:]
+    return True
+
+
+def _charpoly(M: fmpq_mat) -> list[Fraction]:
+    return [Fraction(int(x.p), int(x.q)) for x in M.charpoly().coeffs()]  # c_0 … c_k
+
+
+def self_weight_ok_exact(A: np.ndarray, C: np.ndarray, w: float) -> bool:
+    """``w r_σ(A_u)² < 1`` decided exactly, ``w`` read as the written decimal (seed 000
+    Thm 5.2.10 (2); steps 1–4 of the module docstring)."""
+    A_u = exact_unobservable_part(A, C)
+    k = A_u.nrows()
+    if k == 0:
+        return True
+    p = _charpoly(A_u)
+    p_neg = [c * (-1) ** j for j, c in enumerate(p)]
+    product = [Fraction(0)] * (2 * k + 1)
+    for i, a in enumerate(p):
+        for j, b in enumerate(p_neg):
+            product[i + j] += a * b
+    s = [(-1) ** k * product[2 * j] for j in range(k + 1)]
+    wq = exact_decimal(w)
+    if wq == 0:
+        return True
+    return schur_stable([s[j] * wq ** (k - j) for j in range(k + 1)])
+
+
+def detectable_exact(A: np.ndarray, C: np.ndarray | list) -> bool:
+    """Whether ``(A, C)`` is detectable, decided exactly: ``A_u`` is Schur stable, since every
+    unobservable eigenvalue is one of ``A_u`` (seed 000 Def. 5.2.9, Thm 5.2.10 (1))."""
+    A_u = exact_unobservable_part(A, C)
+    return A_u.nrows() == 0 or schur_stable(_charpoly(A_u))

@@ -59,23 +59,9 @@ SOURCE = "seed 000, Definition 5.2.4; docs/theory/s-detectability.md, Theorems 3
 def blind_flats(
     A: Matrix, C: Sequence[Matrix], lam: Fraction
 ) -> Iterator[tuple[list, tuple[int, ...]]]:
-    """``(v, S)``: a rational vector of a flat of ``ker(A − λI)`` and the agents blind to it.
-
-    Parameters
-    ----------
-    A : exact (n, n) matrix
-        System matrix.
-    C : sequence of exact matrices
-        Measurement matrices (``[]`` for an agent without sensor).
-    lam : Fraction
-        A rational eigenvalue of ``A``.
-
-    Yields
-    ------
-    (list of Fraction, tuple of int)
-        A vector of the flat and the 0-based agents ``S`` blind to the whole flat (S non-empty),
-        once per distinct S (at most :data:`~theory.core.tolerances.MAX_FLATS` flats are explored).
-    """
+    """``(v, S)``: a rational vector of a flat of ``ker(A − λI)`` (λ a rational eigenvalue)
+    and the 0-based agents S blind to the whole flat, once per distinct non-empty S (``[]`` is an
+    agent without sensor; at most ``MAX_FLATS`` flats are explored)."""
     n = len(A)
     shifted = [[A[r][c] - (lam if r == c else 0) for c in range(n)] for r in range(n)]
     queue, seen = [null_basis(shifted, n)], set()
@@ -148,29 +134,9 @@ def _supersolution(M: Matrix, c: list[Fraction], rho: Fraction) -> bool:
 def blind_set_witness(
     A: Matrix, C: Sequence[Matrix], W: Matrix, rho: Fraction = Fraction(1)
 ) -> dict[str, Any] | None:
-    """Exact multipliers ``(Λ, Ψ)`` from a blind set (see the module docstring), or None.
-
-    Parameters
-    ----------
-    A : exact (n, n) matrix
-        System matrix.
-    C : sequence of exact (p_i, n) matrices
-        Measurement matrices (``[]`` for an agent without sensor).
-    W : exact (N, N) matrix
-        Consensus weights (``w_ij ≥ 0``).
-    rho : Fraction
-        The radius ``ρ`` the certificate excludes (``r_σ(L) < ρ`` impossible).
-
-    Returns
-    -------
-    dict or None
-        ``{"Lambda", "Psi", "eigenvalue", "agents", "c"}`` (agents 0-based), or None when no
-        rational blind set with ``λ² r_σ(W_SS) ≥ ρ`` was found.
-
-    References
-    ----------
-    docs/theory/s-detectability.md, Theorem 4 and section "Exact negative verdicts".
-    """
+    """Exact multipliers ``{"Lambda", "Psi", "eigenvalue", "agents" (0-based), "c"}`` from a
+    rational blind set with ``λ² r_σ(W_SS) ≥ ρ`` (module docstring), or None when there is none
+    (``docs/theory/s-detectability.md``, Theorem 4, "Exact negative verdicts")."""
     for lam in rational_eigenvalues(A):
         if lam == 0:
             continue
@@ -220,34 +186,10 @@ def infeasibility_certificate(
     rho: float | Fraction = 1,
     case: str | None = None,
 ) -> dict:
-    """The ``s-detectability-infeasible`` certificate of ``(A, C, W)``, checked by proofs_check.
-
-    Parameters
-    ----------
-    A : (n, n) array
-        System matrix (floats read as the decimals they print as), seed 000 eq. (5.1).
-    C : sequence of (p_i, n) arrays
-        Measurement matrices (zero rows allowed), eq. (5.2).
-    W : (N, N) array
-        Consensus weights (rows projected to sum exactly 1, as in every certificate).
-    rho : float or Fraction
-        ``ρ ∈ (0, 1]``: the claim is that no gains give ``r_σ(L) < ρ``.
-    case : str, optional
-        Case name recorded in the certificate.
-
-    Returns
-    -------
-    dict
-
-    Raises
-    ------
-    RationalizationError
-        If no exact Farkas witness is found (the verdict must then stay inconclusive).
-
-    References
-    ----------
-    seed 000 Def. 5.2.4; docs/theory/s-detectability.md, Theorems 3 and 4.
-    """
+    """The ``s-detectability-infeasible`` certificate (no gains give ``r_σ(L) < ρ``), checked
+    by proofs_check; data read as written decimals, rows of ``W`` summing to exactly 1 (seed 000
+    Def. 5.2.4; ``docs/theory/s-detectability.md``, Theorems 3 and 4).
+    :class:`RationalizationError` when no exact Farkas witness is found (then inconclusive)."""
     n = np.asarray(A).shape[0]
     bound = rational_bound(rho)
     A_q, W_q = rational_matrix(A), stochastic_matrix(W)

@@ -1,51 +1,105 @@
-"""Falsifiable wordings of seed 000 ch. 5's detectability claims (for ``trackcert falsify``).
+"""Falsifiable wordings of seed 000 ch. 5's claims (for ``trackcert falsify``).
 
-Examples are small consensus-filter problems drawn structurally (integer entries, so hypothesis
-shrinks them to the smallest counterexample): ``n ≤ 2`` states, ``N ≤ 3`` agents, ``A`` with
-entries in {−3, …, 3}, each ``C_i`` with 0 or 1 row of entries in {−1, 0, 1}, ``W`` from integer
-weights 1–4 on a random support with a positive diagonal, normalised by rows. Verdicts come from
-the exact LMI decision of :mod:`theory.consensus.s_detectability`; an inconclusive decision is
-never a
-counterexample.
+**Detectability.** Small consensus-filter problems drawn structurally (integer entries, so
+hypothesis shrinks them to the smallest counterexample): ``n ≤ 2`` states, ``N ≤ 3`` agents,
+``A`` with entries in {−3, …, 3}, each ``C_i`` with 0 or 1 row of entries in {−1, 0, 1}, ``W``
+from integer weights 1–4 on a random support with a positive diagonal, normalised by rows.
+Verdicts come from the exact decision of :mod:`theory.consensus.s_detectability`; an
+inconclusive decision is never a counterexample.
+
+**Never wrong near a threshold** (issue 17). Parameters drawn ever closer to a known threshold,
+on both sides and on it (:func:`theory.strategy_helpers.boundary_values`), and the decision must
+be **correct or inconclusive**. "Correct" is computed here, independently of the decision
+procedure, from the closed-form truths of ``docs/theory/s-detectability.md`` (§8) on the data as
+the decimals it prints as, each row of ``W`` projected onto ``Σ_j w_ij = 1`` within its support:
+
+* Example 1 (``A = 2I``, agents 1, 2 with self-weight ``w``): S-detectable iff ``4w < 1``
+  (blind-set necessity; the projection gains give ``r_σ(L) = 4w``);
+* Example 2 (agent 3 with self-weight ``w``): S-detectable iff ``w (a₁₁ + a₂₁)² < 1`` with
+  ``a₁₁ + a₂₁ = 0.8147 + 0.9058 = 1.7205`` the eigenvalue agent 3 is blind to;
+* the gains ``[2; 0], [0; 2], 2I`` of Example 1: ``r_σ(L) = r_σ(J) = 4w`` through 1;
+* a mode on the unit circle: ``A = diag(λ, 2)``, two agents seeing only the second state,
+  ``W = ½·11ᵀ``: S-detectable iff ``|λ| < 1`` (``r_σ(L) = λ²`` with the projection gains).
+
+S-detectability depends on ``(A, C, W)`` only up to a change of state coordinates (``A → TAT⁻¹``,
+``C_i → C_iT⁻¹``, ``Q → TQTᵀ``; unimodular integer ``T``, so the transformed data are exact), and
+not at all on the noise scale (``Q, R → cQ, cR``), which only changes the Riccati gains offered as
+candidates: decided verdicts must agree.
+
+**Riccati agreement** (proofs in ``docs/theory/s-detectability.md``, "Riccati agreement"), for
+``Q ≻ 0``, ``R_i ≻ 0`` and either order (operator ``T`` = L or J):
+
+* *S-detectable ⇒ bounded from every P0 ⪰ 0.* For the gains ``L`` of the exact certificate
+  (``r_σ(T) < 1``), the Riccati iterates stay below the fixed-gain bound of Lemma 5.2.3,
+  ``P(k) ⪯ P^L(k)`` (:func:`~theory.consensus.riccati.bound_iteration`, ``P^L(0) = P(0)``): the
+  Riccati map is the minimum over gains of the affine maps and is monotone. ``P^L(k)`` converges
+  because ``r_σ(T) < 1``, so ``P(k)`` is bounded; from ``P0 = 0`` it is non-decreasing, hence
+  convergent.
+* *Not S-detectable ⇒ unbounded from every P0 ⪰ 0.* From ``P0 = 0`` the iterates are
+  non-decreasing; were they bounded they would converge to ``P* = Ric(E(P*)) ⪰ Q`` whose gains
+  ``L*`` satisfy ``P* − T*(P*) ⪰ Q ≻ 0``, i.e. ``r_σ(T*) < 1`` — a contradiction. So they are
+  unbounded, and by monotonicity in ``P0`` so is every other start. Every gain the iteration
+  produces has ``r_σ ≥ 1``.
+
+Footnote 5's "S-detectable iff the coupled Riccati iteration converges" is thus right about
+boundedness in both directions. The property checks the finite, falsifiable parts on random
+problems: domination ``P(k) ⪯ P^L(k)`` over a horizon from a random ``P0 ⪰ 0`` (positive
+verdicts), monotonicity from 0 and ``r_σ(T_k) ≥ 1``, decided exactly, for the iteration's own
+gains (negative verdicts). Inconclusive verdicts are vacuous.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import networkx as nx
 import numpy as np
 from hypothesis import strategies as st
 
+from theory.consensus.case import Order, ch5_examples
 from theory.consensus.conditions import necessary_conditions
+from theory.consensus.operators import gains_stabilize
+from theory.consensus.riccati import bound_iteration, coupled_riccati, coupled_riccati_step
 from theory.consensus.s_detectability import decide_s_detectability
+from theory.consensus.strategies import (
+    SELF_WEIGHT_THRESHOLDS,
+    DkfProblem,
+    dkf_problems,
+    self_weight_examples,
+)
+from theory.core.claims import Property
+from theory.core.exact import exact_decimal
 from theory.core.observability import unobservable_eigenvalues
-from theory.core.tolerances import UNIT_CIRCLE_TOL
-from theory.falsify import Property, register_property
+from theory.core.tolerances import BLOWUP, EXACT_DIM, PSD_TOL, RICCATI_HORIZON, UNIT_CIRCLE_TOL
+from theory.strategy_helpers import boundary_values
 
 __all__ = [
+    "PROPERTIES",
+    "RICCATI_EXAMPLES",
+    "RiccatiAgreement",
+    "ScaledProblem",
+    "SelfWeightPoint",
     "SmallDkf",
     "dkf_case",
     "jointly_detectable",
+    "projected_self_weight",
+    "riccati_agreement",
+    "scaled_problems",
+    "scaling_consistent",
+    "self_weight_truth",
     "small_dkf_problems",
     "strongly_connected",
+    "unit_circle_problem",
 ]
 
 
 @dataclass(frozen=True, eq=False)
 class SmallDkf:
-    """``A``, the per-agent ``C_i`` and the row-stochastic ``W`` of one example.
-
-    Attributes
-    ----------
-    A : ndarray, shape (n, n)
-        State matrix (integer entries).
-    C : tuple of ndarray
-        Measurement matrix ``C_i`` of each agent, shape (p_i, n) with ``p_i`` 0 or 1.
-    W : ndarray, shape (N, N)
-        Row-stochastic consensus weights with a positive diagonal.
-    """
+    """``A`` (integer entries), each agent's ``C_i`` (0 or 1 row) and a row-stochastic ``W`` with
+    a positive diagonal."""
 
     A: np.ndarray
     C: tuple[np.ndarray, ...]
@@ -54,7 +108,7 @@ class SmallDkf:
 
 @st.composite
 def small_dkf_problems(draw: st.DrawFn) -> SmallDkf:
-    """Small integer consensus-filter problems (see the module docstring)."""
+    """Small integer consensus-filter problems (module docstring)."""
     n = draw(st.integers(1, 2))
     N = draw(st.integers(1, 3))
     entries = st.integers(-3, 3)
@@ -75,15 +129,20 @@ def small_dkf_problems(draw: st.DrawFn) -> SmallDkf:
 
 
 def jointly_detectable(problem: SmallDkf) -> bool:
-    """Whether ``problem``'s pair ``(A, col(C_1, …, C_N))`` is detectable (PBH, seed 000 §5.2)."""
+    """Whether ``(A, col(C_1, …, C_N))`` is detectable (PBH, seed 000 §5.2)."""
     stacked = np.vstack(problem.C) if problem.C else np.zeros((0, problem.A.shape[0]))
     lost = unobservable_eigenvalues(problem.A, stacked)
     return all(abs(lam) < 1 - UNIT_CIRCLE_TOL for lam in lost)
 
 
-def dkf_case(problem: SmallDkf) -> dict[str, Any]:
-    """A ready-to-run ``kind: dkf`` case (Q = I, R_i = I) reproducing ``problem`` (a
-    :class:`SmallDkf` or a :class:`~theory.consensus.strategies.DkfProblem`)."""
+def strongly_connected(problem: SmallDkf) -> bool:
+    """Whether the support of ``W`` is a strongly connected digraph."""
+    graph = nx.from_numpy_array((problem.W > 0).astype(int), create_using=nx.DiGraph)
+    return nx.is_strongly_connected(graph)
+
+
+def dkf_case(problem: SmallDkf | DkfProblem) -> dict[str, Any]:
+    """A ready-to-run ``kind: dkf`` case (``Q = I``, ``R_i = I``) reproducing ``problem``."""
     n = problem.A.shape[0]
     return {
         "name": f"falsify-dkf-n{n}-N{len(problem.C)}",
@@ -103,63 +162,317 @@ def _verdict(problem: SmallDkf) -> bool | None:
     return decide_s_detectability(problem.A, list(problem.C), problem.W).verdict
 
 
-def strongly_connected(problem: SmallDkf) -> bool:
-    """Whether the support of ``problem``'s ``W`` is a strongly connected digraph."""
-    graph = nx.from_numpy_array((problem.W > 0).astype(int), create_using=nx.DiGraph)
-    return nx.is_strongly_connected(graph)
-
-
 def _detectable_implies_s_detectable(problem: SmallDkf) -> bool:
     if not strongly_connected(problem) or not jointly_detectable(problem):
         return True
     return _verdict(problem) is not False
 
 
-def _necessary(attribute: str):
+def _necessary(attribute: str) -> Callable[[SmallDkf], bool]:
     def holds(problem: SmallDkf) -> bool:
         if _verdict(problem) is not True:
             return True
-        return (
-            getattr(necessary_conditions(problem.A, list(problem.C), problem.W), attribute)
-            is not False
-        )
+        conditions = necessary_conditions(problem.A, list(problem.C), problem.W)
+        return getattr(conditions, attribute) is not False
 
     return holds
 
 
+EXAMPLE_1_GAINS = (np.array([[2.0], [0.0]]), np.array([[0.0], [2.0]]), 2 * np.eye(2))
+"""The projection gains ``L_i = A C_i⁺`` of Example 1 (``Γ_1 = diag(0, 2)``, ``Γ_2 = diag(2, 0)``,
+``Γ_3 = 0``)."""
+
+
+@dataclass(frozen=True)
+class SelfWeightPoint:
+    """One swept self-weight ``w`` of seed 000 §5.3 (``example 1`` or ``example 2``,
+    :func:`~theory.consensus.strategies.self_weight_examples`)."""
+
+    example: str
+    w: float
+
+
+def projected_self_weight(point: SelfWeightPoint) -> Fraction:
+    """The exact self-weight the certificates are about: the row of ``W`` read as decimals and
+    projected onto ``Σ_j w_ij = 1`` within its support (each entry moves by the same amount)."""
+    w = float(point.w)
+    if point.example == "example 1":  # row [w, 1 − w, 0]
+        row = [exact_decimal(w), exact_decimal(1 - w)]
+    else:  # row [(1 − w)/2, (1 − w)/2, w]
+        row = [exact_decimal((1 - w) / 2), exact_decimal((1 - w) / 2), exact_decimal(w)]
+    return exact_decimal(w) + (1 - sum(row)) / len(row)
+
+
+def self_weight_truth(point: SelfWeightPoint) -> bool:
+    """Whether ``point`` is S-detectable: ``λ² w < 1`` for the eigenvalue λ the agent is blind to
+    (2 in Example 1; ``0.8147 + 0.9058`` in Example 2, read from the printed ``A``)."""
+    if point.example == "example 1":
+        lam = Fraction(2)
+    else:
+        A = ch5_examples()["example 2"]["A"]
+        lam = exact_decimal(float(A[0][0])) + exact_decimal(float(A[1][0]))
+    return lam * lam * projected_self_weight(point) < 1
+
+
+def _self_weight_points(max_exponent: int = 17) -> st.SearchStrategy[SelfWeightPoint]:
+    return st.sampled_from(sorted(SELF_WEIGHT_THRESHOLDS)).flatmap(
+        lambda ex: boundary_values(SELF_WEIGHT_THRESHOLDS[ex], max_exponent=max_exponent).map(
+            lambda w: SelfWeightPoint(ex, w)
+        )
+    )
+
+
+def _self_weight_case(point: SelfWeightPoint) -> dict[str, Any]:
+    A, C, W = self_weight_examples(point.example, point.w)
+    return dkf_case(SmallDkf(A, tuple(C), W))
+
+
+def _decision_sound(point: SelfWeightPoint) -> bool:
+    A, C, W = self_weight_examples(point.example, point.w)
+    return decide_s_detectability(A, C, W).verdict in (self_weight_truth(point), None)
+
+
+def _radius_sound(point: SelfWeightPoint) -> bool:
+    A, C, W = self_weight_examples("example 1", point.w)
+    truth = 4 * projected_self_weight(SelfWeightPoint("example 1", point.w)) < 1
+    return all(
+        gains_stabilize(A, C, W, EXAMPLE_1_GAINS, order=order) in (truth, None) for order in Order
+    )
+
+
+def unit_circle_problem(lam: float) -> SmallDkf:
+    """``A = diag(λ, 2)``, ``C_1 = C_2 = [0 1]``, ``W = ½·11ᵀ``: S-detectable iff ``|λ| < 1``."""
+    C = np.array([[0.0, 1.0]])
+    return SmallDkf(np.diag([lam, 2.0]), (C, C.copy()), np.full((2, 2), 0.5))
+
+
+def _unit_circle_sound(lam: float) -> bool:
+    problem = unit_circle_problem(lam)
+    verdict = decide_s_detectability(problem.A, list(problem.C), problem.W).verdict
+    return verdict in (abs(exact_decimal(lam)) < 1, None)
+
+
+@dataclass(frozen=True, eq=False)
+class ScaledProblem:
+    """An integer problem, a factor ``c > 0`` applied to ``Q`` and every ``R_i``, and a unimodular
+    integer ``T`` (so ``TAT⁻¹`` and ``C_iT⁻¹`` are integer)."""
+
+    problem: DkfProblem
+    c: float
+    T: np.ndarray
+
+
+@st.composite
+def _unimodular(draw: st.DrawFn, n: int) -> np.ndarray:
+    T = np.eye(n, dtype=int)
+    for _ in range(draw(st.integers(0, 3))):
+        i, j = draw(st.integers(0, n - 1)), draw(st.integers(0, n - 1))
+        if i != j:
+            T[i] += draw(st.integers(-2, 2)) * T[j]  # a shear keeps det T = 1
+    signs = np.array([draw(st.sampled_from([-1, 1])) for _ in range(n)])
+    return signs[:, None] * T[draw(st.permutations(list(range(n))))]
+
+
+def scaled_problems() -> st.SearchStrategy[ScaledProblem]:
+    """Small integer problems with a noise scale in {10⁻³, ½, 3, 10³} and a unimodular ``T``."""
+    problems = dkf_problems(max_states=2, max_agents=3, integer_data=True, a_bound=2.0)
+    return problems.flatmap(
+        lambda p: st.builds(
+            ScaledProblem,
+            st.just(p),
+            st.sampled_from([1e-3, 0.5, 3.0, 1e3]),
+            _unimodular(p.A.shape[0]),
+        )
+    )
+
+
+def _riccati_verdict(A: np.ndarray, C: list, W: np.ndarray, Q: np.ndarray, R: list) -> bool | None:
+    """The decision with the Riccati gains of ``(Q, R)`` offered as candidates (as a case's)."""
+    n = A.shape[0]
+    run = coupled_riccati(A, C, W, Q, R, 10 * np.eye(n), max_iter=30, fixed_steps=True)
+    candidates = [("the Riccati iteration's gains", run.gains)] if run.gains else []
+    return decide_s_detectability(A, C, W, candidate_gains=candidates).verdict
+
+
+def scaling_consistent(example: ScaledProblem) -> bool:
+    """Whether the base, noise-scaled and coordinate-changed problems never get contradicting
+    decided verdicts."""
+    p, c, T = example.problem, example.c, example.T
+    n = p.A.shape[0]
+    Ti = np.rint(np.linalg.inv(T)).astype(int)
+    if not (T @ Ti == np.eye(n, dtype=int)).all():
+        raise ValueError(f"T = {T.tolist()} is not unimodular")
+    C = list(p.C)
+    R = [np.eye(ci.shape[0]) for ci in C]
+    verdicts = [
+        _riccati_verdict(p.A, C, p.W, np.eye(n), R),
+        _riccati_verdict(p.A, C, p.W, c * np.eye(n), [c * r for r in R]),
+        _riccati_verdict(T @ p.A @ Ti, [ci @ Ti for ci in C], p.W, (T @ T.T).astype(float), R),
+    ]
+    return len({v for v in verdicts if v is not None}) <= 1
+
+
+@dataclass(frozen=True)
+class RiccatiAgreement:
+    """The exact verdict and whether every checked inequality holds (vacuously when undecided):
+    ``worst`` is ``max_k max_i λ_max(P_i(k) − P_i^L(k)) / max(1, ‖P^L(k)‖)`` for a positive
+    verdict, ``λ_max(P_i(k) − P_i(k+1)) / max(1, ‖P(k+1)‖)`` for a negative one (both ≤ PSD_TOL),
+    and ``stabilizing_steps`` the checked steps (first, middle, last) of a negative verdict whose
+    gains nevertheless have ``r_σ < 1`` (must be empty)."""
+
+    verdict: bool | None
+    holds: bool
+    worst: float
+    stabilizing_steps: tuple[int, ...] = ()
+
+
+def _riccati(
+    problem: DkfProblem, Q: np.ndarray, R: list[np.ndarray], P0: np.ndarray, order: Order
+) -> tuple[np.ndarray, list]:
+    P, gains = [np.asarray(P0, float)], []
+    while len(gains) < RICCATI_HORIZON and np.linalg.norm(P[-1], 2, axis=(1, 2)).max() <= BLOWUP:
+        g, nxt = coupled_riccati_step(problem.A, problem.C, problem.W, Q, R, P[-1], order=order)
+        P.append(nxt)
+        gains.append(g)
+    return np.array(P), gains
+
+
+def _excess(upper: np.ndarray, lower: np.ndarray) -> float:
+    """``max_k max_i λ_max(lower_i(k) − upper_i(k)) / max(1, ‖upper(k)‖)``."""
+    worst = -np.inf
+    for U_k, L_k in zip(upper, lower, strict=True):
+        scale = max(1.0, float(np.linalg.norm(U_k, 2, axis=(1, 2)).max()))
+        gap = L_k - U_k
+        top = float(np.linalg.eigvalsh((gap + gap.transpose(0, 2, 1)) / 2).max())
+        worst = max(worst, top / scale)
+    return worst
+
+
+def riccati_agreement(
+    problem: DkfProblem, *, order: Order | str = Order.CONSENSUS_THEN_FILTER
+) -> RiccatiAgreement:
+    """Check the Riccati agreement of the module docstring on ``problem`` (``Q = I``, ``R_i = I``;
+    its seed draws ``P0``; seed 000 Def. 5.2.4, Lemma 5.2.3, eqs. (5.7)–(5.9), footnote 5)."""
+    order = Order(order)
+    n, N = problem.A.shape[0], problem.W.shape[0]
+    Q, R = np.eye(n), [np.eye(c.shape[0]) for c in problem.C]
+    decision = decide_s_detectability(problem.A, problem.C, problem.W, order=order)
+    if decision.verdict is None:
+        return RiccatiAgreement(None, True, float("nan"))
+    if decision.verdict:
+        rng = np.random.default_rng(problem.seed)
+        F = rng.standard_normal((N, n, n))
+        P0 = F @ F.transpose(0, 2, 1)
+        P, _ = _riccati(problem, Q, R, P0, order)
+        bound = bound_iteration(
+            problem.A, problem.C, problem.W, Q, R, decision.gains, P0, order=order,
+            steps=len(P) - 1,
+        )  # fmt: skip
+        worst = _excess(bound, P)
+        return RiccatiAgreement(True, worst <= PSD_TOL, worst)
+    P, gains = _riccati(problem, Q, R, np.zeros((N, n, n)), order)
+    worst = _excess(P[1:], P[:-1])
+    stabilizing = ()
+    if N * n * n <= EXACT_DIM:
+        checked = sorted({1, (len(gains) + 1) // 2, len(gains)})
+        stabilizing = tuple(
+            k
+            for k in checked
+            if gains_stabilize(problem.A, problem.C, problem.W, gains[k - 1], order=order)
+        )
+    return RiccatiAgreement(False, worst <= PSD_TOL and not stabilizing, worst, stabilizing)
+
+
+RICCATI_EXAMPLES = dkf_problems(max_states=2, max_agents=3, a_bound=2.0, integer_data=True)
+"""Small integer problems, so that exact verdicts (both ways) are common."""
+
+
+def _property(
+    id_: str, statement: str, examples: st.SearchStrategy, holds: Callable, to_case: Callable,
+    *, claim: str | None = None, expected_to_hold: bool = True,
+) -> Property:  # fmt: skip
+    """The property ``<claim>[.<sweep>]/<wording>`` (``claim``: by default before the ``/``)."""
+    prefix, wording = id_.split("/")
+    return Property(
+        id_, claim or prefix, wording, statement, examples, holds, to_case, expected_to_hold
+    )
+
+
 PROPERTIES = (
-    (
+    _property(
         "seed000.sec5.2.detectability/paper",
         "On a strongly connected network, if (A, col(C_i)) is detectable, the consensus filter "
         "is S-detectable.",
+        small_dkf_problems(),
         _detectable_implies_s_detectable,
-        False,
+        dkf_case,
+        expected_to_hold=False,
     ),
-    (
+    _property(
         "seed000.thm5.2.10/paper",
         "Every S-detectable consensus filter satisfies Thm 5.2.10's conditions (necessity).",
+        small_dkf_problems(),
         _necessary("paper_conditions"),
-        True,
+        dkf_case,
     ),
-    (
+    _property(
         "seed000.thm5.2.10/corrected",
         "Every S-detectable consensus filter satisfies the blind-set condition "
         "|λ|²·r(W_SS) < 1 (docs/theory/s-detectability.md, Theorem 4), which implies Thm 5.2.10's.",
+        small_dkf_problems(),
         _necessary("blind_set_condition"),
-        True,
+        dkf_case,
+    ),
+    _property(
+        "seed000.def5.2.4.boundary/corrected",
+        "Swept toward the self-weight thresholds of seed 000 Examples 1 and 2 (1/4 and "
+        "1/1.7205²) from both sides and onto them, the S-detectability decision is correct or "
+        "inconclusive, never wrong.",
+        _self_weight_points(),
+        _decision_sound,
+        _self_weight_case,
+        claim="seed000.def5.2.4",
+    ),
+    _property(
+        "seed000.lem5.2.2.boundary/corrected",
+        "With Example 1's projection gains r_σ(L) = r_σ(J) = 4w; swept through r_σ = 1, the "
+        "decision 'r_σ < 1' is correct or inconclusive for both orders.",
+        boundary_values(Fraction(1, 4), max_exponent=16).map(
+            lambda w: SelfWeightPoint("example 1", w)
+        ),
+        _radius_sound,
+        _self_weight_case,
+        claim="seed000.lem5.2.2",
+    ),
+    _property(
+        "seed000.def5.2.4.unit-circle/corrected",
+        "A mode both agents are blind to, swept through the unit circle (λ → ±1): "
+        "S-detectable iff |λ| < 1, decided correctly or inconclusive.",
+        st.tuples(st.sampled_from([-1, 1]), boundary_values(Fraction(1))).map(
+            lambda t: t[0] * t[1]
+        ),
+        _unit_circle_sound,
+        lambda lam: dkf_case(unit_circle_problem(lam)),
+        claim="seed000.def5.2.4",
+    ),
+    _property(
+        "seed000.def5.2.4.scaling/corrected",
+        "Scaling Q and R by c > 0, or changing state coordinates (A → TAT⁻¹, C_i → C_iT⁻¹, "
+        "Q → TQTᵀ), never changes a decided S-detectability verdict.",
+        scaled_problems(),
+        scaling_consistent,
+        lambda example: dkf_case(example.problem),
+        claim="seed000.def5.2.4",
+    ),
+    _property(
+        "seed000.fn5/corrected",
+        "S-detectable ⇒ the coupled Riccati iterates (both orders) stay below the "
+        "fixed-gain bound of Lemma 5.2.3 with the certified gains, hence bounded from every "
+        "P0 ⪰ 0; not S-detectable ⇒ from P0 = 0 they are non-decreasing and every gain they "
+        "produce has r_σ ≥ 1, hence they are unbounded.",
+        RICCATI_EXAMPLES,
+        lambda problem: all(riccati_agreement(problem, order=o).holds for o in Order),
+        dkf_case,
     ),
 )
-
-for _id, _statement, _holds, _expected in PROPERTIES:
-    register_property(
-        Property(
-            id=_id,
-            claim=_id.split("/")[0],
-            wording=_id.split("/")[1],
-            statement=_statement,
-            examples=small_dkf_problems(),
-            holds=_holds,
-            to_case=dkf_case,
-            expected_to_hold=_expected,
-        )
-    )
+"""Every falsifiable wording of the domain (ids ``<claim>/<wording>``)."""

@@ -2,31 +2,10 @@
 
 from __future__ import annotations
 
-from theory.consensus import (
-    boundary_properties,
-    case_certificates,
-    certificate_claims,
-    claims,
-    properties,
-    riccati_properties,
-    simulation_claims,
-    suboptimal_gains_claims,
-)
-from theory.consensus.dkf_report import observe_dkf
-from theory.core.expectations import expectation_claim
+from theory.consensus import analysis, kalman_filter, properties, suboptimal_gains
 
 __all__ = ["CERTIFIERS", "CLAIMS", "PROPERTIES"]
 
-CLAIMS = (
-    *claims.claims,
-    *certificate_claims.claims,
-    *simulation_claims.claims,
-    *suboptimal_gains_claims.claims,
-    expectation_claim("dkf", command="dkf", observe=observe_dkf),
-)
-PROPERTIES = (
-    *properties.PROPERTIES,
-    *boundary_properties.PROPERTIES,
-    *riccati_properties.PROPERTIES,
-)
-CERTIFIERS = {"dkf": (case_certificates.dkf_certificates,)}
+CLAIMS = (*analysis.claims, *kalman_filter.claims, *suboptimal_gains.claims)
+PROPERTIES = properties.PROPERTIES
+CERTIFIERS = {"dkf": (analysis.dkf_certificates,)}

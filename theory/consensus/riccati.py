@@ -24,15 +24,16 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from theory.consensus.case import ORDERS
-from theory.consensus.exact_radius import gains_stabilize
+from theory.consensus.case import Order
 from theory.consensus.operators import (
     B_matrix,
     E_map,
     J_map,
     L_map,
+    apply_operator,
     closed_loop,
     covariance_operator_matrix,
+    gains_stabilize,
     spectral_radius,
 )
 from theory.core.tolerances import BLOWUP, CONV_TOL, MAX_ITER, PSD_TOL
@@ -41,6 +42,7 @@ __all__ = [
     "AveragedBoundCheck",
     "CovarianceBoundCheck",
     "RiccatiRun",
+    "bound_iteration",
     "check_averaged_bound",
     "check_covariance_bound",
     "coupled_riccati",
@@ -58,15 +60,7 @@ def _gain(A: np.ndarray, Ci: np.ndarray, Ri: np.ndarray, Pi: np.ndarray) -> np.n
 def riccati_gains(
     A: np.ndarray, C: Sequence[np.ndarray], R: Sequence[np.ndarray], Pi: np.ndarray
 ) -> tuple[np.ndarray, ...]:
-    """``L_i = A Π_i C_i' (R_i + C_i Π_i C_i')⁻¹`` (seed 000 eq. (5.8)); ``n × 0`` if no sensor.
-
-    Parameters
-    ----------
-    A, C, R : ndarray
-        System, measurement matrices, measurement noise covariances.
-    Pi : ndarray, shape (N, n, n)
-        Intermediate covariances ``Π_i``.
-    """
+    """``L_i = A Π_i C_i' (R_i + C_i Π_i C_i')⁻¹`` (seed 000 eq. (5.8)); ``n × 0`` if no sensor."""
     return tuple(_gain(A, Ci, R[i], Pi[i]) for i, Ci in enumerate(C))
 
 
@@ -78,67 +72,25 @@ def coupled_riccati_step(
     R: Sequence[np.ndarray],
     P: np.ndarray,
     *,
-    order: str,
+    order: Order | str,
 ) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
-    """One step of the coupled Riccati recursion: the gains ``L_i(k)`` and ``P(k+1)``.
-
-    ``consensus-then-filter``: ``Π = E(P)``, ``L_i`` of (5.8) at ``Π_i``, ``P_i⁺ = Ric_i(Π_i)``;
-    ``filter-then-consensus``: ``L_i`` at ``P_i`` and ``P⁺ = E(Ric(P))``.
-
-    Parameters
-    ----------
-    A, C, W, Q, R : ndarray
-        Problem data (seed 000 eqs. (5.1)–(5.2)).
-    P : ndarray, shape (N, n, n)
-        ``P(k)``.
-    order : str
-        One of :data:`theory.consensus.case.ORDERS`.
-
-    Returns
-    -------
-    gains : tuple of ndarray
-        ``L_i(k)``, shapes (n, p_i).
-    P_next : ndarray, shape (N, n, n)
-        ``P(k+1)``, symmetrized.
-
-    Raises
-    ------
-    ValueError
-        For an unknown ``order``.
-
-    References
-    ----------
-    seed 000 eqs. (5.7)–(5.9), App. C.3.
-    """
-    if order not in ORDERS:
-        raise ValueError(f"order {order!r} is not one of {ORDERS}")
-    base = E_map(W, P) if order == "consensus-then-filter" else P
+    """One step of the coupled Riccati recursion: the gains ``L_i(k)`` and the symmetrized
+    ``P(k+1)`` (seed 000 eqs. (5.7)–(5.9), App. C.3; module docstring)."""
+    consensus_first = Order(order) is Order.CONSENSUS_THEN_FILTER
+    base = E_map(W, P) if consensus_first else P
     gains = riccati_gains(A, C, R, base)
     nxt = np.stack(
         [A @ Pi @ A.T + Q - Li @ Ci @ Pi @ A.T for Pi, Li, Ci in zip(base, gains, C, strict=True)]
     )
     nxt = (nxt + nxt.transpose(0, 2, 1)) / 2
-    return gains, (E_map(W, nxt) if order == "filter-then-consensus" else nxt)
+    return gains, (nxt if consensus_first else E_map(W, nxt))
 
 
 def error_noise_covariance(
     Q: np.ndarray, R: Sequence[np.ndarray], gains: Sequence[np.ndarray]
 ) -> np.ndarray:
-    """``(11' ⊗ Q) + blkdiag(L_i R_i L_i')``: the noise covariance of ``[ε_1; …; ε_N]`` in (5.5).
-
-    Parameters
-    ----------
-    Q : ndarray, shape (n, n)
-        Process noise covariance (ω is common to all agents).
-    R : sequence of ndarray
-        Measurement noise covariances ``R_i``.
-    gains : sequence of ndarray
-        Gains ``L_i``.
-
-    Returns
-    -------
-    ndarray, shape (N n, N n)
-    """
+    """``(11' ⊗ Q) + blkdiag(L_i R_i L_i')``: the noise covariance of ``[ε_1; …; ε_N]`` in (5.5)
+    (ω is common to all agents)."""
     N = len(gains)
     LRL = [Li @ Ri @ Li.T for Li, Ri in zip(gains, R, strict=True)]
     return np.kron(np.ones((N, N)), Q) + sla.block_diag(*LRL)
@@ -146,27 +98,10 @@ def error_noise_covariance(
 
 @dataclass(frozen=True, eq=False)
 class RiccatiRun:
-    """Outcome of :func:`coupled_riccati`.
-
-    Attributes
-    ----------
-    status : str
-        ``converged``, ``diverged``, ``max_iter`` or (with ``fixed_steps``) ``steps``.
-    iterations : int
-    P : ndarray, shape (N, n, n)
-        Last iterate.
-    gains : tuple of ndarray
-        Gains of the last iterate (eq. (5.8), or the reversed order's).
-    stabilizing : bool or None
-        Whether ``r_σ`` of the order's operator with those gains is < 1, decided exactly
-        (:func:`theory.consensus.exact_radius.gains_stabilize`; None unless converged, or inside
-        the float band above ``EXACT_DIM``).
-    radius : float or None
-        That spectral radius.
-    agent_norms : ndarray, shape (iterations + 1, N)
-        ``‖P_i(k)‖₂`` for each k and agent.
-    tolerances : dict
-    """
+    """Outcome of :func:`coupled_riccati`: ``status`` (``converged``, ``diverged``, ``max_iter``,
+    or ``steps`` with ``fixed_steps``), the last iterate and its gains, whether they stabilize the
+    order's operator (exact, :func:`~theory.consensus.operators.gains_stabilize`; None unless
+    converged) with its float radius, and ``‖P_i(k)‖₂`` for each k and agent."""
 
     status: str
     iterations: int
@@ -191,40 +126,18 @@ def coupled_riccati(
     R: Sequence[np.ndarray],
     P0: np.ndarray,
     *,
-    order: str = "consensus-then-filter",
+    order: Order | str = Order.CONSENSUS_THEN_FILTER,
     max_iter: int = int(MAX_ITER),
     conv_tol: float = CONV_TOL,
     blowup: float = BLOWUP,
     fixed_steps: bool = False,
 ) -> RiccatiRun:
-    """Iterate the coupled Riccati equations until convergence, divergence or ``max_iter``.
+    """Iterate the coupled Riccati equations from ``P0`` (one matrix: every agent's) until
+    convergence, divergence or ``max_iter`` (seed 000 eqs. (5.7)–(5.9), (C.3), footnote 5).
 
-    Parameters
-    ----------
-    A, C, W, Q, R : ndarray
-        Problem data (seed 000 eqs. (5.1)–(5.2)).
-    P0 : ndarray, shape (N, n, n) or (n, n)
-        Initial covariances (one matrix is used for every agent).
-    order : str
-        ``consensus-then-filter`` (5.7)–(5.9) or ``filter-then-consensus`` (App. C.3).
-    max_iter : int
-        Iteration cap.
-    conv_tol : float
-        Relative step size declaring convergence.
-    blowup : float
-        Norm growth factor declaring divergence.
-    fixed_steps : bool
-        Run exactly ``max_iter`` steps (status ``steps``; it stops early, ``diverged``, only when
-        the iterates stop being finite or ``C_i P C_iᵀ + R_i`` becomes numerically singular past
-        ``blowup``): the recursion as the consensus Kalman filter runs it.
-
-    Returns
-    -------
-    RiccatiRun
-
-    References
-    ----------
-    seed 000 eqs. (5.7)–(5.9), (C.3), footnote 5.
+    ``fixed_steps`` runs exactly ``max_iter`` steps, as the consensus Kalman filter does (status
+    ``steps``; ``diverged`` early only when the iterates stop being finite or ``C_i P C_iᵀ + R_i``
+    becomes numerically singular past ``blowup``).
     """
     N, n = W.shape[0], A.shape[0]
     P = np.broadcast_to(np.asarray(P0, dtype=float), (N, n, n)).copy()
@@ -262,21 +175,9 @@ def coupled_riccati(
 
 @dataclass(frozen=True, eq=False)
 class CovarianceBoundCheck:
-    """Lemma 5.2.3 on one problem with fixed gains.
-
-    Attributes
-    ----------
-    exact_gap : float
-        ``min_k min_i λ_min(P_i(k) − Σ_i(k)) / max(1, ‖P_i(k)‖)`` with the exact Σ (≥ −tol ⇒ holds).
-    holds : bool
-        ``exact_gap ≥ −psd_tol``.
-    mc_error : float
-        ``max_k max_i ‖Σ̂_i(k) − Σ_i(k)‖ / ‖Σ_i(k)‖`` (Monte Carlo vs exact, relative).
-    mc_violation : float
-        ``max_k max_i λ_max(Σ̂_i(k) − P_i(k)) / ‖P_i(k)‖`` (≤ a few ``1/√samples`` expected).
-    samples, steps, seed : int
-    psd_tol : float
-    """
+    """Lemma 5.2.3 with fixed gains: ``exact_gap = min_k min_i λ_min(P_i(k) − Σ_i(k)) / max(1,
+    ‖P_i(k)‖)`` (holds iff ``≥ −psd_tol``), the Monte Carlo relative error ``‖Σ̂_i − Σ_i‖/‖Σ_i‖``
+    and violation ``λ_max(Σ̂_i − P_i)/‖P_i‖`` (a few ``1/√samples`` expected)."""
 
     exact_gap: float
     holds: bool
@@ -302,31 +203,11 @@ def check_covariance_bound(
     seed: int = 0,
     psd_tol: float = PSD_TOL,
 ) -> CovarianceBoundCheck:
-    """Check ``Σ(k) ≤ P(k)`` (Lemma 5.2.3) exactly and by Monte Carlo on eq. (5.5).
+    """Check ``Σ(k) ≤ P(k)`` (seed 000 Lemma 5.2.3, eqs. (5.5), (5.15); App. C.1) exactly and by
+    Monte Carlo (``samples`` draws from ``default_rng(seed)``) over ``steps`` steps.
 
     The initial estimates are equal and deterministic, so ``ε_i(0) = x(0) − x̂(0)`` is the same for
     every agent: the joint covariance starts at ``11' ⊗ P0`` and ``P(0) = Σ(0) = (P0, …, P0)``.
-
-    Parameters
-    ----------
-    A, C, W, Q, R : ndarray
-        Problem data.
-    gains : sequence of ndarray
-        Fixed ``L_i``.
-    P0 : ndarray, shape (n, n)
-        Initial error covariance.
-    steps, samples, seed : int
-        Horizon, Monte Carlo sample count, and the seed of ``numpy.random.default_rng``.
-    psd_tol : float
-        Relative tolerance of the exact comparison.
-
-    Returns
-    -------
-    CovarianceBoundCheck
-
-    References
-    ----------
-    seed 000 Lemma 5.2.3, eqs. (5.5), (5.15); App. C.1.
     """
     N, n = W.shape[0], A.shape[0]
     Gamma = closed_loop(A, C, gains)
@@ -359,7 +240,14 @@ def check_covariance_bound(
     )
 
 
-def _noise_samples(rng, samples, Q, C, R, gains):
+def _noise_samples(
+    rng: np.random.Generator,
+    samples: int,
+    Q: np.ndarray,
+    C: Sequence[np.ndarray],
+    R: Sequence[np.ndarray],
+    gains: Sequence[np.ndarray],
+) -> np.ndarray:
     n = Q.shape[0]
     omega = rng.multivariate_normal(np.zeros(n), Q, size=samples)
     parts = []
@@ -374,23 +262,10 @@ def _noise_samples(rng, samples, Q, C, R, gains):
 
 @dataclass(frozen=True)
 class AveragedBoundCheck:
-    """Seed 000 Lemma A.2.1 on one instance.
-
-    Attributes
-    ----------
-    r : float
-        ``max_i λ_max(X_i^{-1/2} f_1^i(M, X) X_i^{-1/2})`` (the hypothesis is ``r < 1``).
-    alpha, mu : float
-        Least constants with ``P_0 ≤ α X`` and ``U ≤ μ X``.
-    decay_ok : bool
-        ``f_k(M, P_0) ≤ α r^k X`` for every k checked (part 1, hence ``f_k → 0``).
-    bound_ok : bool
-        ``P_k ≤ (α + μ/(1 − r)) X`` for every k checked (part 2).
-    worst_ratio : float
-        ``max_k max_i λ_max(X_i^{-1/2} P_k^i X_i^{-1/2}) / (α + μ/(1 − r))`` (≤ 1 expected).
-    steps : int
-    psd_tol : float
-    """
+    """Seed 000 Lemma A.2.1 on one instance: ``r = max_i λ_max(X_i^{-1/2} f_1^i(M, X)
+    X_i^{-1/2})`` (hypothesis ``r < 1``), the least ``α``, ``μ`` with ``P_0 ≤ α X``, ``U ≤ μ X``;
+    part 1 ``f_k(M, P_0) ≤ α r^k X`` and part 2 ``P_k ≤ (α + μ/(1 − r)) X`` at every step checked,
+    and the worst ratio of ``P_k`` to that bound (≤ 1 expected)."""
 
     r: float
     alpha: float
@@ -422,32 +297,11 @@ def check_averaged_bound(
     steps: int = 200,
     psd_tol: float = PSD_TOL,
 ) -> AveragedBoundCheck:
-    """Check both statements of seed 000 Lemma A.2.1 along ``steps`` iterations.
+    """Check both statements of seed 000 Lemma A.2.1 (eqs. (A.53)–(A.54), Cor. A.2.2) along
+    ``steps`` iterations, with ``psd_tol`` relative slack in each inequality.
 
-    ``f_1^i(M, P) = Σ_j w_ij M^j P^j M^j'`` is the operator J of App. C.3 with ``Γ_j = M^j``.
-
-    Parameters
-    ----------
-    W : ndarray, shape (N, N)
-        Consensus weights.
-    M : ndarray, shape (N, n, n)
-        The matrices ``M^j``.
-    X : ndarray, shape (N, n, n)
-        Positive definite tuple with ``X^i > f_1^i(M, X)`` (the lemma's hypothesis).
-    P0, U : ndarray, shape (N, n, n)
-        Positive semi-definite initial tuple and forcing term.
-    steps : int
-        Iterations checked.
-    psd_tol : float
-        Relative slack allowed in each matrix inequality.
-
-    Returns
-    -------
-    AveragedBoundCheck
-
-    References
-    ----------
-    seed 000 Lemma A.2.1, eqs. (A.53)–(A.54); Corollary A.2.2.
+    ``f_1^i(M, P) = Σ_j w_ij M^j P^j M^j'`` is the operator J of App. C.3 with ``Γ_j = M^j``;
+    ``X ≻ 0`` satisfies the hypothesis ``X^i > f_1^i(M, X)``, ``P0, U ⪰ 0``.
     """
     r = _ratio(J_map(W, M, X), X)
     alpha, mu = _ratio(P0, X), _ratio(U, X)
@@ -462,3 +316,28 @@ def check_averaged_bound(
     return AveragedBoundCheck(
         r, alpha, mu, bool(decay_ok), bool(worst <= 1 + psd_tol), worst, steps, psd_tol
     )
+
+
+def bound_iteration(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    Q: np.ndarray,
+    R: Sequence[np.ndarray],
+    gains: Sequence[np.ndarray],
+    P0: np.ndarray,
+    *,
+    order: Order | str,
+    steps: int,
+) -> np.ndarray:
+    """``P^L(k+1) = T(P^L(k)) + U`` with fixed gains, shape ``(steps + 1, N, n, n)`` (seed 000
+    Lemma 5.2.3, eq. (5.15)): ``T = L``, ``U_i = Q + L_iR_iL_iᵀ`` consensus first; ``T = J`` and
+    forcing ``E(U)`` filter first."""
+    order = Order(order)
+    Gamma = closed_loop(A, C, gains)
+    U = np.stack([Q + g @ r @ g.T for g, r in zip(gains, R, strict=True)])
+    U = U if order is Order.CONSENSUS_THEN_FILTER else E_map(W, U)
+    out = [np.asarray(P0, float)]
+    for _ in range(steps):
+        out.append(apply_operator(order.operator, W, Gamma, out[-1]) + U)
+    return np.array(out)

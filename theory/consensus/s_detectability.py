@@ -30,23 +30,36 @@ proves nothing (seed 000 Example 1 at ``w = 0.249999999`` has ``ε_cert ≈ 9e-9
 S-detectable).
 
 **Verdicts rest on exact certificates only.** True when an ``s-detectability`` certificate
-passes :mod:`proofs_check` (:mod:`theory.consensus.primal_certificates`: the witness rounded when
-``m ≥ lmi_margin``, or exact Lyapunov tuples for candidate gains); False when an
+passes :mod:`proofs_check` (:func:`theory.consensus.certificates.primal_certificate`: the witness
+rounded when ``m ≥ lmi_margin``, or exact Lyapunov tuples for candidate gains); False when an
 ``s-detectability-infeasible`` certificate does (:mod:`theory.consensus.infeasibility`: exact
 Farkas multipliers); None otherwise, with each route's reason. ``docs/theory/s-detectability.md``
 §6 lists every audited decision.
+
+**The largest self-weight** keeping S-detectability (seed 000 Examples 5.3.1–5.3.2): for a set of
+agents ``a``, ``W(w)`` sets ``w_aa = w`` and rescales agent a's other weights by
+``(1 − w)/(1 − w_aa)``; the supremum over ``[0, 1]`` is bisected to width ``weight_tol`` after
+checking that ``W(0)`` is S-detectable. Bisection presumes a single threshold; every probe is
+returned, and an inconclusive probe stops the search.
 """
 
 from __future__ import annotations
 
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import cvxpy as cp
 import numpy as np
 
+from theory.consensus.case import Order
+from theory.consensus.certificates import (
+    Route,
+    certificate_gains,
+    primal_certificate,
+    primal_lyapunov,
+)
 from theory.consensus.infeasibility import infeasibility_certificate
 from theory.consensus.operators import (
     B_matrix,
@@ -55,25 +68,22 @@ from theory.consensus.operators import (
     covariance_operator_matrix,
     spectral_radius,
 )
-from theory.consensus.primal_certificates import (
-    certificate_gains,
-    primal_certificate,
-    primal_lyapunov,
-)
 from theory.core.exact import RationalizationError
-from theory.core.tolerances import CERT_TOL, LMI_MARGIN
+from theory.core.tolerances import CERT_TOL, LMI_MARGIN, WEIGHT_TOL
 
 __all__ = [
     "CERT_TOL",
     "LMI_MARGIN",
     "SOLVER_STATUSES",
     "SOLVER_STATUS_TABLE",
-    "WITNESS_CONVENTION",
+    "LmiSolution",
     "SDetectability",
+    "SelfWeightSearch",
     "alternative_residual",
     "decide_s_detectability",
+    "max_self_weight",
     "s_detectability_witness",
-    "witness_from_decision",
+    "self_weight_family",
     "witness_margin",
 ]
 
@@ -105,89 +115,72 @@ SOLVER_STATUS_TABLE: dict[str, str] = {
 
 
 @dataclass(frozen=True, eq=False)
-class SDetectability:
-    """The decision and its evidence.
+class LmiSolution:
+    """What the float LMI gave (informative only): the solver's status and margin ``μ``, the
+    candidate gains ``Y_i⁻¹ G_i`` with their dual tuple ``Y``, witness margin ``m`` and radii of
+    L, J, B, and the multipliers projected onto the PSD cone with ``ε_cert``."""
 
-    Attributes
-    ----------
-    verdict : bool or None
-        True: S-detectable (an exact ``s-detectability`` certificate checked); False: not (an
-        exact ``s-detectability-infeasible`` certificate checked); None: inconclusive.
-    reason : str
-        One sentence saying what decided it (or why nothing did).
-    solver : str
-        cvxpy solver name.
-    solver_status : str
-        One of :data:`SOLVER_STATUSES`.
-    rho : float
-        The radius asked about (``r_σ(L) < rho``; 1 for S-detectability).
-    mu : float or None
-        The solver's optimal margin of the normalised LMI.
-    witness_margin : float or None
-        ``m`` recomputed from ``(L_i, Y_i)`` (see the module docstring); > 0 is a valid witness.
-    radius_bound : float or None
-        ``ρ (1 − m)``, a proven upper bound on ``r_σ(L)`` when ``m > 0``.
-    cert_epsilon : float or None
-        ``ε_cert`` recomputed from the projected multipliers.
-    gains : tuple of ndarray or None
-        ``L_i`` (n × p_i) of the certificate (None unless ``verdict`` is True).
-    Y : ndarray or None
-        Dual Lyapunov tuple, shape (N, n, n), when the certificate came from the LMI witness.
-    X : ndarray or None
-        Primal Lyapunov tuple for the filter's operator with the certificate's gains:
-        ``X − T(X) = I`` (floats; None unless ``verdict`` is True).
-    radius_L, radius_J, radius_B : float or None
-        ``r_σ`` of L, J and B (floats) with the candidate gains ``Y_i⁻¹ G_i`` of the solver's
-        solution (informative only).
-    multipliers : dict or None
-        ``{"Lambda": (N, n, n), "Psi": (N, 2n, 2n)}`` projected onto the PSD cone.
-    tolerances : dict
-        ``lmi_margin`` and ``cert_tol`` used.
-    order : str
-        Filter order the primal Lyapunov tuple ``X`` refers to.
-    certificate : dict or None
-        The exact certificate the verdict rests on (``s-detectability`` when True,
-        ``s-detectability-infeasible`` when False), already accepted by :mod:`proofs_check`.
-    route : str
-        How the certificate was obtained.
-    """
-
-    verdict: bool | None
-    reason: str
     solver: str
     solver_status: str
     rho: float
     mu: float | None = None
     witness_margin: float | None = None
-    radius_bound: float | None = None
     cert_epsilon: float | None = None
+    multipliers: dict[str, np.ndarray] | None = None
     gains: tuple[np.ndarray, ...] | None = None
     Y: np.ndarray | None = None
-    X: np.ndarray | None = None
     radius_L: float | None = None
     radius_J: float | None = None
     radius_B: float | None = None
-    multipliers: dict[str, np.ndarray] | None = None
-    tolerances: dict[str, float] = field(default_factory=dict)
-    order: str = "consensus-then-filter"
+
+    @property
+    def radius_bound(self) -> float | None:
+        """``ρ (1 − m)``, a proven upper bound on ``r_σ(L)`` when ``m > 0``."""
+        m = self.witness_margin
+        return self.rho * (1 - m) if m is not None and m > 0 else None
+
+
+@dataclass(frozen=True, eq=False)
+class SDetectability:
+    """The decision and its evidence.
+
+    ``verdict`` is True when an exact ``s-detectability`` certificate checked, False when an
+    ``s-detectability-infeasible`` one did, None otherwise; ``certificate`` is that document and
+    ``route`` how it was found. On a positive verdict, ``gains`` are the certificate's, ``X`` the
+    float primal tuple of the order's operator with them, and on the LMI route ``Y`` and the
+    margin ``m`` of the rounded gains with ``radius_bound = ρ (1 − m)``; otherwise the margin is
+    the float LMI's.
+    """
+
+    verdict: bool | None
+    reason: str
+    lmi: LmiSolution
+    tolerances: dict[str, float]
+    order: Order
     certificate: dict[str, Any] | None = None
     route: str = ""
+    gains: tuple[np.ndarray, ...] | None = None
+    X: np.ndarray | None = None
+    Y: np.ndarray | None = None
+    witness_margin: float | None = None
+    radius_bound: float | None = None
 
     def evidence(self) -> dict[str, Any]:
         """JSON-ready summary (no matrices)."""
+        lmi = self.lmi
         return {
             "verdict": self.verdict,
             "reason": self.reason,
-            "solver": self.solver,
-            "solver_status": self.solver_status,
-            "rho": self.rho,
-            "mu": self.mu,
+            "solver": lmi.solver,
+            "solver_status": lmi.solver_status,
+            "rho": lmi.rho,
+            "mu": lmi.mu,
             "witness_margin": self.witness_margin,
             "radius_bound": self.radius_bound,
-            "cert_epsilon": self.cert_epsilon,
-            "candidate_radius_L": self.radius_L,
-            "candidate_radius_J": self.radius_J,
-            "candidate_radius_B": self.radius_B,
+            "cert_epsilon": lmi.cert_epsilon,
+            "candidate_radius_L": lmi.radius_L,
+            "candidate_radius_J": lmi.radius_J,
+            "candidate_radius_B": lmi.radius_B,
             "certificate_kind": None if self.certificate is None else self.certificate["kind"],
             "certificate_route": self.route,
             "tolerances": dict(self.tolerances),
@@ -200,70 +193,49 @@ def decide_s_detectability(
     W: np.ndarray,
     *,
     rho: float = 1.0,
-    order: str = "consensus-then-filter",
+    order: Order | str = Order.CONSENSUS_THEN_FILTER,
     solver: str = "CLARABEL",
     lmi_margin: float = LMI_MARGIN,
     cert_tol: float = CERT_TOL,
     candidate_gains: Sequence[tuple[str, Sequence[np.ndarray]]] = (),
     case: str | None = None,
 ) -> SDetectability:
-    """Decide whether gains ``L_i`` exist with ``r_σ(L) < rho`` (S-detectability for rho = 1).
+    """Decide whether gains ``L_i`` exist with ``r_σ(L) < rho`` (seed 000 Def. 5.2.4, Lemma
+    5.2.2, App. C.3; ``r_σ(J) = r_σ(L)``, so the answer holds for both orders).
 
-    Only exact certificates decide (module docstring): True when an ``s-detectability``
-    certificate passes :mod:`proofs_check`, False when an ``s-detectability-infeasible`` one
-    does, None (inconclusive) otherwise — whatever the float margins say.
-
-    Parameters
-    ----------
-    A : ndarray, shape (n, n)
-        System matrix, seed 000 eq. (5.1).
-    C : sequence of ndarray, shapes (p_i, n)
-        Measurement matrices (zero rows allowed), eq. (5.2).
-    W : ndarray, shape (N, N)
-        Row-stochastic consensus weights (directed allowed).
-    rho : float
-        Radius asked about; ``r_σ(J) = r_σ(L)`` so the answer holds for both orders.
-    order : str
-        Filter order for the primal Lyapunov tuple ``X`` of the witness.
-    solver : str
-        A cvxpy SDP solver name (``CLARABEL`` or ``SCS``).
-    lmi_margin : float
-        Least relative witness margin ``m`` worth rounding (see module docstring).
-    cert_tol : float
-        ``ε_cert`` at or below which the float dual is reported as suggesting infeasibility
-        (informative: it decides nothing).
-    candidate_gains : sequence of (label, gains)
-        Further gains (the case's, the Riccati iteration's) to try with exact Lyapunov tuples.
-    case : str, optional
-        Case name recorded in the certificate.
-
-    Returns
-    -------
-    SDetectability
-        Never raises on solver failure: the exact routes are still tried.
-
-    References
-    ----------
-    seed 000 Def. 5.2.4, Lemma 5.2.2, App. C.3; docs/theory/s-detectability.md.
+    Only exact certificates decide (module docstring), whatever the float margins say; a solver
+    failure (``solver``: ``CLARABEL`` or ``SCS``) leaves the exact routes. ``order`` is the
+    operator of the witness's primal tuple; ``lmi_margin`` the least witness margin worth
+    rounding; ``cert_tol`` the ``ε_cert`` at which the float dual is reported as suggesting
+    infeasibility; ``candidate_gains`` further labelled gains (the case's, the Riccati
+    iteration's) tried with exact Lyapunov tuples; ``case`` is recorded in the certificate.
     """
+    order = Order(order)
     A = np.asarray(A, dtype=float)
     W = np.asarray(W, dtype=float)
     C = [np.asarray(Ci, dtype=float).reshape(-1, A.shape[0]) for Ci in C]
     tolerances = {"lmi_margin": lmi_margin, "cert_tol": cert_tol}
-    base = _float_evidence(A, C, W, rho, solver) | {"order": order, "tolerances": tolerances}
-    lmi_gains, lmi_Y = base.pop("gains", None), base.pop("Y", None)
-    witness = None
-    if base.get("witness_margin", float("-inf")) >= lmi_margin:
-        witness = (lmi_gains, lmi_Y)
-    floats = [("LMI candidate gains", lmi_gains)] if lmi_gains else []
-    cert, route, reasons = primal_certificate(
+    lmi = _solve_lmi(A, C, W, rho, solver)
+    margin = float("-inf") if lmi.witness_margin is None else lmi.witness_margin
+    witness = (lmi.gains, lmi.Y) if margin >= lmi_margin else None
+    floats = [("LMI candidate gains", lmi.gains)] if lmi.gains else []
+    found, reasons = primal_certificate(
         A, C, W, order=order, rho=rho, witness=witness, candidates=[*floats, *candidate_gains],
         case=case,
     )  # fmt: skip
-    if cert is not None:
-        found = _certified_gains(A, C, W, cert, route, lmi_Y, rho=rho, order=order)
-        reason = f"certificate verified exactly (proofs_check): {route}"
-        return SDetectability(True, reason, **(base | found), certificate=cert, route=route)
+    if found is not None:
+        gains = certificate_gains(found.document, C)
+        X = primal_lyapunov(A, C, W, gains, order)
+        Y = m = bound = None
+        if found.route is Route.LMI_WITNESS:  # the margin of the rounded gains
+            Y, m = lmi.Y, witness_margin(A, C, W, gains, lmi.Y, rho=rho)
+            bound = rho * (1 - m)
+        reason = f"certificate verified exactly (proofs_check): {found.description}"
+        return SDetectability(
+            True, reason, lmi, tolerances, order, found.document, found.description,
+            gains, X, Y, m, bound,
+        )  # fmt: skip
+    margins = {"witness_margin": lmi.witness_margin, "radius_bound": lmi.radius_bound}
     try:
         cert = infeasibility_certificate(A, C, W, rho=rho, case=case)
     except RationalizationError as error:
@@ -271,35 +243,13 @@ def decide_s_detectability(
     else:
         route = "Farkas multipliers from the blind set " + str(cert["produced_by"]["agents"])
         reason = f"infeasibility certificate verified exactly (proofs_check): {route}"
-        return SDetectability(False, reason, **base, certificate=cert, route=route)
-    return SDetectability(None, _inconclusive_reason(base, reasons, cert_tol), **base)
+        return SDetectability(False, reason, lmi, tolerances, order, cert, route, **margins)
+    reason = _inconclusive_reason(lmi.cert_epsilon, reasons, cert_tol)
+    return SDetectability(None, reason, lmi, tolerances, order, **margins)
 
 
-def _certified_gains(
-    A: np.ndarray,
-    C: list[np.ndarray],
-    W: np.ndarray,
-    cert: dict[str, Any],
-    route: str,
-    lmi_Y: np.ndarray | None,
-    *,
-    rho: float,
-    order: str,
-) -> dict[str, Any]:
-    """The gains of a checked ``s-detectability`` certificate, their primal tuple ``X`` and, on
-    the LMI route, the margin of the rounded gains (not of the float ones)."""
-    gains = certificate_gains(cert, C)
-    found = {"gains": gains, "X": primal_lyapunov(A, C, W, gains, order), "Y": None}
-    found |= {"witness_margin": None, "radius_bound": None}
-    if route.startswith("LMI witness"):
-        m = witness_margin(A, C, W, gains, lmi_Y, rho=rho)
-        found |= {"Y": lmi_Y, "witness_margin": m, "radius_bound": rho * (1 - m)}
-    return found
-
-
-def _inconclusive_reason(base: dict[str, Any], reasons: list[str], cert_tol: float) -> str:
+def _inconclusive_reason(hint: float | None, reasons: list[str], cert_tol: float) -> str:
     """Why no exact certificate decided, with the float dual's hint (which proves nothing)."""
-    hint = base.get("cert_epsilon")
     suggests = (
         f"; the float dual suggests infeasibility (ε_cert = {hint:.3g} ≤ cert_tol) but proves "
         "nothing"
@@ -309,21 +259,20 @@ def _inconclusive_reason(base: dict[str, Any], reasons: list[str], cert_tol: flo
     return "no exact certificate either way" + suggests + ": " + "; ".join(reasons)
 
 
-def _float_evidence(
+def _solve_lmi(
     A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float, solver: str
-) -> dict[str, Any]:
-    """Solve the normalised LMI; its candidate gains, margins and multipliers (floats only)."""
+) -> LmiSolution:
+    """Solve the normalised LMI: its candidate gains, margins and multipliers (floats only)."""
     problem, parts = _build_lmi(A, C, W, rho)
-    common: dict[str, Any] = {"solver": solver, "rho": rho}
     try:
         with warnings.catch_warnings():  # inaccuracy is reported through the status table
             warnings.simplefilter("ignore", UserWarning)
             problem.solve(solver=solver)
         status = SOLVER_STATUS_TABLE.get(problem.status, "solver_error")
     except (cp.error.SolverError, ArithmeticError, ValueError):
-        return common | {"solver_status": "solver_error"}
+        return LmiSolution(solver, "solver_error", rho)
     if status not in ("optimal", "optimal_inaccurate"):
-        return common | {"solver_status": status}
+        return LmiSolution(solver, status, rho)
     Y = np.stack([np.asarray(v.value, dtype=float) for v in parts["Y"]])
     try:
         gains = tuple(
@@ -336,18 +285,14 @@ def _float_evidence(
     except np.linalg.LinAlgError:  # a singular Y_i: no witness (the solution is near x = 0)
         gains = tuple(np.zeros((A.shape[0], Ci.shape[0])) for Ci in C)
         m = float("-inf")
-    eps = _certificate_epsilon(A, C, W, rho, parts)
-    return common | {
-        "solver_status": status,
-        "mu": float(parts["mu"].value),
-        "witness_margin": m,
-        "radius_bound": rho * (1 - m) if m > 0 else None,
-        "cert_epsilon": eps["epsilon"],
-        "multipliers": eps["multipliers"],
-        "gains": gains,
-        "Y": Y,
-        **_radii(A, C, W, gains),
-    }
+    epsilon, multipliers = _certificate_epsilon(A, C, W, rho, parts)
+    Gamma = closed_loop(A, C, gains)
+    return LmiSolution(
+        solver, status, rho, float(parts["mu"].value), m, epsilon, multipliers, gains, Y,
+        spectral_radius(covariance_operator_matrix(W, Gamma, Order.CONSENSUS_THEN_FILTER)),
+        spectral_radius(covariance_operator_matrix(W, Gamma, Order.FILTER_THEN_CONSENSUS)),
+        spectral_radius(B_matrix(W, Gamma)),
+    )  # fmt: skip
 
 
 def s_detectability_witness(
@@ -355,61 +300,21 @@ def s_detectability_witness(
     C: Sequence[np.ndarray],
     W: np.ndarray,
     *,
-    order: str = "consensus-then-filter",
+    order: Order | str = Order.CONSENSUS_THEN_FILTER,
     solver: str = "CLARABEL",
     lmi_margin: float = LMI_MARGIN,
 ) -> dict[str, Any] | None:
-    """Plain-numpy witness of S-detectability for the certificate builder, or None.
+    """Plain-numpy witness of S-detectability, or None unless one was found and verified
+    (``docs/theory/s-detectability.md``, "Witness format").
 
-    Parameters
-    ----------
-    A, C, W : ndarray
-        As in :func:`decide_s_detectability`.
-    order : str
-        ``consensus-then-filter`` (operator L) or ``filter-then-consensus`` (operator J).
-    solver : str
-        cvxpy solver.
-    lmi_margin : float
-        Least relative witness margin accepted.
-
-    Returns
-    -------
-    dict or None
-        None unless a witness was found and verified. Otherwise the keys ``gains`` (list of
-        n × p_i arrays ``L_i``), ``Y`` (N × n × n, the dual Lyapunov tuple), ``X`` (N × n × n, the
-        primal Lyapunov tuple of the order's operator), ``order``, ``convention`` (a string
-        stating the inequalities, below), ``margin`` and ``radius_bound``. The inequalities, with
-        ``Γ_i = A − L_i C_i``:
-
-        * dual (both orders): ``Y_j ≻ 0`` and ``Y_j − Σ_i w_ij Γ_i' Y_i Γ_i ≻ 0`` for all j
-          (proves ``r_σ(L) = r_σ(J) < 1``);
-        * primal, ``consensus-then-filter``: ``X_i ≻ 0`` and
-          ``X_i − Γ_i (Σ_j w_ij X_j) Γ_i' ≻ 0``;
-        * primal, ``filter-then-consensus``: ``X_i ≻ 0`` and ``X_i − Σ_j w_ij Γ_j X_j Γ_j' ≻ 0``.
-
-    References
-    ----------
-    docs/theory/s-detectability.md, section "Witness format".
+    Keys ``gains`` (``L_i``), ``Y`` (dual tuple), ``X`` (primal tuple of the order's operator),
+    ``order``, ``convention`` (the inequalities, in words), ``margin`` and ``radius_bound``.
+    With ``Γ_i = A − L_i C_i``: dual (both orders) ``Y_j ≻ 0`` and ``Y_j − Σ_i w_ij Γ_i' Y_i Γ_i
+    ≻ 0``; primal ``X_i ≻ 0`` and ``X_i − Γ_i (Σ_j w_ij X_j) Γ_i' ≻ 0`` (consensus first) or
+    ``X_i − Σ_j w_ij Γ_j X_j Γ_j' ≻ 0`` (filter first).
     """
+    order = Order(order)
     result = decide_s_detectability(A, C, W, order=order, solver=solver, lmi_margin=lmi_margin)
-    return witness_from_decision(result, order)
-
-
-def witness_from_decision(result: SDetectability, order: str) -> dict[str, Any] | None:
-    """The witness of :func:`s_detectability_witness` from a decision already made.
-
-    Parameters
-    ----------
-    result : SDetectability
-        From :func:`decide_s_detectability` with the same ``order``.
-    order : str
-        ``consensus-then-filter`` or ``filter-then-consensus``.
-
-    Returns
-    -------
-    dict or None
-        As :func:`s_detectability_witness`: None unless ``result.verdict`` is True.
-    """
     if result.verdict is not True:
         return None
     return {
@@ -417,18 +322,18 @@ def witness_from_decision(result: SDetectability, order: str) -> dict[str, Any] 
         "Y": np.array(result.Y),
         "X": np.array(result.X),
         "order": order,
-        "convention": WITNESS_CONVENTION[order],
+        "convention": _CONVENTION[order],
         "margin": result.witness_margin,
         "radius_bound": result.radius_bound,
     }
 
 
-WITNESS_CONVENTION = {
-    "consensus-then-filter": (
+_CONVENTION = {
+    Order.CONSENSUS_THEN_FILTER: (
         "Gamma_i = A - L_i C_i; Y_j > 0 and Y_j - sum_i w_ij Gamma_i' Y_i Gamma_i > 0 for all j; "
         "X_i > 0 and X_i - Gamma_i (sum_j w_ij X_j) Gamma_i' > 0 for all i (operator L, eq. 5.13)"
     ),
-    "filter-then-consensus": (
+    Order.FILTER_THEN_CONSENSUS: (
         "Gamma_i = A - L_i C_i; Y_j > 0 and Y_j - sum_i w_ij Gamma_i' Y_i Gamma_i > 0 for all j; "
         "X_i > 0 and X_i - sum_j w_ij Gamma_j X_j Gamma_j' > 0 for all i (operator J, App. C.3)"
     ),
@@ -446,21 +351,7 @@ def witness_margin(
 ) -> float:
     """``m = min_j λ_min(ρ Y_j − L*_j(Y)) / (ρ max_i λ_max(Y_i))``, or ``-inf`` if some ``Y_i ⊁ 0``.
 
-    Parameters
-    ----------
-    A, C, W : ndarray
-        The system and network.
-    gains : sequence of ndarray
-        ``L_i``.
-    Y : ndarray, shape (N, n, n)
-        Candidate dual Lyapunov tuple.
-    rho : float
-        Radius.
-
-    Returns
-    -------
-    float
-        ``m > 0`` proves ``r_σ(L) ≤ ρ (1 − m)``: ``L*(Y) ⪯ ρ Y − m ρ λ_max I ⪯ ρ (1 − m) Y``.
+    ``m > 0`` proves ``r_σ(L) ≤ ρ (1 − m)``: ``L*(Y) ⪯ ρ Y − m ρ λ_max I ⪯ ρ (1 − m) Y``.
     """
     Ysym = (Y + Y.transpose(0, 2, 1)) / 2
     low = min(float(np.linalg.eigvalsh(Yi)[0]) for Yi in Ysym)
@@ -503,15 +394,13 @@ def _psd_part(M: np.ndarray) -> np.ndarray:
 
 def _certificate_epsilon(
     A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float, parts: dict[str, Any]
-) -> dict[str, Any]:
-    N, n = W.shape[0], A.shape[0]
+) -> tuple[float, dict[str, np.ndarray]]:
     Lam = np.stack([_psd_part(np.asarray(c.dual_value, dtype=float)) for c in parts["f1"]])
     Psi = np.stack([_psd_part(np.asarray(c.dual_value, dtype=float)) for c in parts["f2"]])
     residual = alternative_residual(A, C, W, Lam, Psi, rho=rho)
     total = float(sum(np.trace(x) for x in Lam) + sum(np.trace(x) for x in Psi))
     norm = float(np.sqrt(sum(np.sum(r**2) for r in residual.values())))
-    epsilon = norm / total if total > 0 else float("inf")
-    return {"epsilon": epsilon, "multipliers": {"Lambda": Lam, "Psi": Psi}, "N": N, "n": n}
+    return (norm / total if total > 0 else float("inf")), {"Lambda": Lam, "Psi": Psi}
 
 
 def alternative_residual(
@@ -523,24 +412,8 @@ def alternative_residual(
     *,
     rho: float = 1.0,
 ) -> dict[str, np.ndarray]:
-    """``F*(Λ, Ψ)``: the adjoint of the LMI map at the multipliers (zero for a certificate).
-
-    Parameters
-    ----------
-    A, C, W : ndarray
-        The system and network.
-    Lam : ndarray, shape (N, n, n)
-        Multipliers ``Λ_j`` of the blocks ``F1_j``.
-    Psi : ndarray, shape (N, 2n, 2n)
-        Multipliers ``Ψ_i`` of the blocks ``F2_i``.
-    rho : float
-        Radius.
-
-    Returns
-    -------
-    dict
-        ``{"Y": (N, n, n), "Z": (N, n, n), "G": flat concatenation of the n × p_i blocks}``.
-    """
+    """``F*(Λ, Ψ)`` as ``{"Y", "Z", "G" (the n × p_i blocks flattened)}``: the adjoint of the LMI
+    map at the multipliers of ``F1_j`` and ``F2_i`` (zero for a certificate)."""
     n = A.shape[0]
     P11, P21, P22 = Psi[:, :n, :n], Psi[:, n:, :n], Psi[:, n:, n:]
     RZ = P11 - np.einsum("ij,jab->iab", W / rho, Lam)
@@ -549,12 +422,77 @@ def alternative_residual(
     return {"Y": RY, "Z": RZ, "G": np.concatenate(RG) if RG else np.zeros(0)}
 
 
-def _radii(
-    A: np.ndarray, C: list[np.ndarray], W: np.ndarray, gains: Sequence[np.ndarray]
-) -> dict[str, float]:
-    Gamma = closed_loop(A, C, gains)
-    return {
-        "radius_L": spectral_radius(covariance_operator_matrix(W, Gamma, "consensus-then-filter")),
-        "radius_J": spectral_radius(covariance_operator_matrix(W, Gamma, "filter-then-consensus")),
-        "radius_B": spectral_radius(B_matrix(W, Gamma)),
-    }
+def self_weight_family(W: np.ndarray, agents: Sequence[int], w: float) -> np.ndarray:
+    """``W(w)``: self-weight ``w ∈ [0, 1]`` for each 0-based agent, its other weights rescaled
+    (``ValueError`` when an agent has ``w_aa = 1``: nothing to rescale)."""
+    if not 0.0 <= w <= 1.0:
+        raise ValueError(f"self-weight {w!r} outside [0, 1]")
+    out = np.array(W, dtype=float)
+    for a in agents:
+        rest = 1.0 - W[a, a]
+        if rest <= 0:
+            raise ValueError(f"agent {a + 1} has w_aa = 1: no other weight to rescale")
+        out[a] = W[a] * (1.0 - w) / rest
+        out[a, a] = w
+    return out
+
+
+@dataclass(frozen=True)
+class SelfWeightSearch:
+    """The bracket ``[low, high]`` of the largest self-weight of ``agents`` (1-based): ``W(low)``
+    certified S-detectable, ``W(high)`` certified not (or ``high = 1``); ``status`` ``found``
+    (width ≤ ``weight_tol``), ``always`` (``W(1)`` is), ``never`` (``W(0)`` is not) or
+    ``inconclusive`` (a probe was); every ``(w, verdict)`` probed."""
+
+    agents: tuple[int, ...]
+    low: float
+    high: float
+    status: str
+    probes: tuple[tuple[float, bool | None], ...]
+    weight_tol: float
+
+    @property
+    def estimate(self) -> float:
+        """Midpoint of the bracket."""
+        return (self.low + self.high) / 2
+
+
+def max_self_weight(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    agents: Sequence[int],
+    *,
+    weight_tol: float = WEIGHT_TOL,
+    solver: str = "CLARABEL",
+) -> SelfWeightSearch:
+    """Supremum of ``w ∈ [0, 1]`` with ``(A, C, W(w))`` S-detectable, the 0-based ``agents``
+    varying together (seed 000 Thm 5.2.10 (2); §5.3.1: 0.25, §5.3.2: 0.3378)."""
+    probes: list[tuple[float, bool | None]] = []
+    ids = tuple(a + 1 for a in agents)
+
+    def decide(w: float) -> bool | None:
+        family = self_weight_family(W, agents, w)
+        verdict = decide_s_detectability(A, C, family, solver=solver).verdict
+        probes.append((w, verdict))
+        return verdict
+
+    def done(low: float, high: float, status: str) -> SelfWeightSearch:
+        return SelfWeightSearch(ids, low, high, status, tuple(probes), weight_tol)
+
+    first = decide(0.0)
+    if first is not True:
+        return done(0.0, 0.0, "never" if first is False else "inconclusive")
+    last = decide(1.0)
+    if last is True:
+        return done(1.0, 1.0, "always")
+    if last is None:
+        return done(0.0, 1.0, "inconclusive")
+    low, high = 0.0, 1.0
+    while high - low > weight_tol:
+        mid = (low + high) / 2
+        verdict = decide(mid)
+        if verdict is None:
+            return done(low, high, "inconclusive")
+        low, high = (mid, high) if verdict else (low, mid)
+    return done(low, high, "found")

@@ -16,7 +16,7 @@ import numpy as np
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-from theory.consensus.kalman_filter import ch5_examples
+from theory.consensus.case import ch5_examples
 from theory.strategy_helpers import check_range
 
 __all__ = [
@@ -29,23 +29,9 @@ __all__ = [
 
 @dataclass(frozen=True, eq=False)
 class DkfProblem:
-    """A consensus-filter problem (seed 000 ch. 5): system, per-agent measurements, weights,
-    gains, and the seed that built them.
-
-    Attributes
-    ----------
-    seed : int
-        Seed of the ``numpy.random.Generator`` that drew everything else (a failing example is
-        reproduced from it).
-    A : ndarray, shape (n, n)
-        State matrix.
-    C : tuple of ndarray
-        Measurement matrix ``C_i`` of each agent, shape (p_i, n) with ``p_i`` possibly 0.
-    W : ndarray, shape (N, N)
-        Row-stochastic consensus weights.
-    L : tuple of ndarray
-        Filter gain ``L_i`` of each agent, shape (n, p_i).
-    """
+    """A consensus-filter problem (seed 000 ch. 5): ``A``, each agent's ``C_i`` (``p_i`` rows,
+    possibly 0), row-stochastic ``W``, gains ``L_i``, and the seed of the generator that drew
+    them (a failing example is reproduced from it)."""
 
     seed: int
     A: np.ndarray
@@ -74,33 +60,11 @@ def dkf_problems(
 ) -> st.SearchStrategy[DkfProblem]:
     """Consensus-filter problems built from one drawn seed (a failing example is its seed).
 
-    ``W`` is row-stochastic with a random directed support and weights ≥ 0.1 before
-    normalisation.
-
-    Parameters
-    ----------
-    min_states, max_states : int
-        Bounds on the state dimension ``n`` (``1 ≤ min_states ≤ max_states``).
-    min_agents, max_agents : int
-        Bounds on the number of agents ``N`` (``1 ≤ min_agents ≤ max_agents``).
-    max_rows : int
-        Each ``C_i`` has 0 to ``max_rows`` rows (``≥ 0``).
-    a_bound : float
-        Bound on the magnitude of the entries of ``A`` (``> 0``).
-    gain_bound : float
-        Bound on the magnitude of the entries of the gains ``L_i`` (``≥ 0``).
-    integer_data : bool
-        Make the entries of ``A`` multiples of ``a_bound/2`` and those of ``C_i`` lie in
-        {−1, 0, 1} (exact arithmetic stays small).
-
-    Returns
-    -------
-    SearchStrategy of DkfProblem
-
-    Raises
-    ------
-    InvalidArgument
-        At call time, for impossible bounds.
+    ``n`` states and ``N`` agents in the given ranges, each ``C_i`` with 0 to ``max_rows`` rows,
+    entries of ``A`` within ``a_bound`` (multiples of ``a_bound/2`` with ``integer_data``, which
+    also puts ``C_i`` in {−1, 0, 1} so exact arithmetic stays small), gains within
+    ``gain_bound``; ``W`` row-stochastic on a random directed support, weights ≥ 0.1 before
+    normalisation. Impossible bounds raise :class:`InvalidArgument` at call time.
     """
     check_range("min_states", min_states, "max_states", max_states, 1)
     check_range("min_agents", min_agents, "max_agents", max_agents, 1)
@@ -138,25 +102,9 @@ SELF_WEIGHT_THRESHOLDS = {
 
 
 def self_weight_examples(example: str, w: float) -> tuple[np.ndarray, list[np.ndarray], np.ndarray]:
-    """``(A, C, W(w))`` of seed 000 Example 1 (agents 1 and 2 get self-weight ``w``, their other
-    weight ``1 − w``) or Example 2 (agent 3 gets ``w``, ``(1 − w)/2`` to agents 1 and 2).
-
-    Parameters
-    ----------
-    example : {"example 1", "example 2"}
-        Which example of :func:`theory.consensus.kalman_filter.ch5_examples`.
-    w : float
-        The self-weight, in ``[0, 1]``.
-
-    Returns
-    -------
-    (A, C, W)
-
-    Raises
-    ------
-    InvalidArgument
-        For an unknown example or ``w`` outside ``[0, 1]``.
-    """
+    """``(A, C, W(w))`` of seed 000 Example 1 (agents 1 and 2 get self-weight ``w ∈ [0, 1]``,
+    their other weight ``1 − w``) or Example 2 (agent 3 gets ``w``, ``(1 − w)/2`` to agents 1 and
+    2); :class:`InvalidArgument` for another example or ``w``."""
     if example not in SELF_WEIGHT_THRESHOLDS or not 0 <= w <= 1:
         raise InvalidArgument(
             f"example={example!r}, w={w!r}: expected {list(SELF_WEIGHT_THRESHOLDS)}, w in [0, 1]"

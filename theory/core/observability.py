@@ -17,6 +17,7 @@ from theory.core.tolerances import EIGEN_TOL, INCONCLUSIVE_FACTOR, RANK_TOL
 __all__ = [
     "RANK_TOL",
     "RankResult",
+    "distinct_values",
     "numeric_rank",
     "observability_matrix",
     "unobservable_eigenvalues",
@@ -123,7 +124,8 @@ def unobservable_eigenvalues(
         length is ``n − rank O`` when ``A`` is diagonalisable.
     """
     n = A.shape[0]
-    distinct = _distinct(np.linalg.eigvals(A), scale=max(1.0, float(np.abs(A).max(initial=0.0))))
+    scale = max(1.0, float(np.abs(A).max(initial=0.0)))
+    distinct = distinct_values(np.linalg.eigvals(A), scale=scale)
     lost: list[complex] = []
     for lam in distinct:
         pencil = np.vstack([A - lam * np.eye(n), np.asarray(C, dtype=complex).reshape(-1, n)])
@@ -132,7 +134,8 @@ def unobservable_eigenvalues(
     return lost
 
 
-def _distinct(values: np.ndarray, *, scale: float, rel: float = EIGEN_TOL) -> list[complex]:
+def distinct_values(values: np.ndarray, *, scale: float, rel: float = EIGEN_TOL) -> list[complex]:
+    """``values`` without repeats: a value within ``rel · scale`` of an earlier one is dropped."""
     out: list[complex] = []
     for value in values:
         if all(abs(value - seen) > rel * scale for seen in out):

@@ -11,7 +11,7 @@ function (nothing is re-derived here):
   lists do not enter its verdict and are not run per point). Margin: the smallest relative margin
   of a condition; tolerance ``margin_tol``.
 * ``dkf`` — ``trackcert dkf``: S-detectability (seed 000 Def. 5.2.4) by
-  :func:`theory.consensus.claims.analyze_dkf` without the self-weight bisection (no verdict
+  :func:`theory.consensus.analysis.analyze_dkf` without the self-weight bisection (no verdict
   depends on it). Margin: the LMI witness's relative margin (``None`` when not S-detectable);
   tolerances ``lmi_margin``, ``cert_tol``, ``rank_tol``, ``value_tol``.
 * ``tdoa`` — ``trackcert topology``: every agent localizes the target at every step
@@ -122,7 +122,7 @@ def dkf_judgement(case: Case) -> Judgement:
     -------
     Judgement
     """
-    from theory.consensus.claims import analyze_dkf
+    from theory.consensus.analysis import analyze_dkf
 
     analysis = analyze_dkf(case, search_self_weight=False)
     decision = analysis.decision
@@ -193,7 +193,7 @@ ANALYSES: dict[str, Callable[[Case], Judgement]] = {
 
 ANALYSIS_MODULES: dict[str, str] = {
     "pursuit": "theory.pursuit.iss_report",
-    "dkf": "theory.consensus.claims",
+    "dkf": "theory.consensus.analysis",
     "tdoa": "theory.tdoa.observability.trajectory",
     "pf": "theory.particle.report",
 }

@@ -17,11 +17,11 @@ import numpy as np
 
 from theory.certify import case_certificates
 from theory.consensus.certificates import (
+    exact_gain_certificate,
     mjls_stability_certificate,
     s_detectability_certificate,
 )
 from theory.consensus.infeasibility import infeasibility_certificate
-from theory.consensus.primal_certificates import exact_gain_certificate
 from theory.consensus.s_detectability import decide_s_detectability, s_detectability_witness
 from theory.core.certificate_format import bundle
 from theory.core.exact import dyadic_matrix, fraction_strings, rational_matrix
