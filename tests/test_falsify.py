@@ -12,8 +12,8 @@ from typer.testing import CliRunner
 
 from theory.cli import app
 from theory.consensus.properties import jointly_detectable, strongly_connected
-from theory.core.case_file import parse_case
 from theory.falsify import DEFAULT_EXAMPLES, all_properties, falsify
+from theory.kinds import parse_case
 from theory.pursuit.properties import (
     PursuitExample,
     coordination_terms,

@@ -12,8 +12,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from theory.core.case_file import load_case
 from theory.core.network import components
+from theory.kinds import load_case
 from theory.pursuit.iss import coordination_iss
 
 
