@@ -14,14 +14,10 @@ is integrated as an ODE with error control, not with inputs held over a fixed st
 (sampled-data) step of 0.02 s is unstable for Table II with k_γ = 5 and stalls Table I's tracker
 at 0.1 s (docs/simulation.md, docs/theory/pursuit-iss.md §8). The state of tracker i is
 (p, R, γ, e_γ) with ``e_γ = γ̇ − ω_d`` obeying ``ė_γ = −k_γ e_γ + ê_pᵀRᵀr′(γ)`` ((47), (50b), (52),
-i.e. (62)); e_γ ≡ 0 for Type I. One step of length h (:func:`heun_step`) is a predictor–corrector
-pair of orders 1 and 2: positions by Euler/Heun, the attitude by R(I + hS(ω₀)) and then exactly on
-SO(3) by R·exp(½hS(ω₀ + ω₁)) (Runge–Kutta–Munthe-Kaas), and (γ, e_γ) by exponential time
-differencing (ETD1/ETD2RK: exact for the decay −k_γ e_γ whatever k_γh). Their difference estimates
-the local error, and the step adapts (:class:`StepControl`) so that it stays below ``rtol``
-(positions relative to the paths' size, attitude entries and γ absolute). Between sampling
-instants the controller uses ``q̂(t) = q̂_{k|k} + (t − t_k)v̂``. Outputs are recorded every
-``dt``; steps never cross a record or a sampling instant.
+i.e. (62)); e_γ ≡ 0 for Type I. Each step (:func:`heun_step`) is a predictor–corrector pair whose
+difference estimates the local error, and the step adapts (:class:`StepControl`). Between
+sampling instants the controller uses ``q̂(t) = q̂_{k|k} + (t − t_k)v̂``. Outputs are recorded
+every ``dt``; steps never cross a record or a sampling instant.
 
 A run stops early in two ways (records after the stop are NaN, :class:`StopCause`):
 ``"runaway"`` when, at a sampling instant, a tracker's localization error exceeds

@@ -55,7 +55,7 @@ __all__ = [
 
 
 # ---------------------------------------------------------------------------------------------
-# the formulas, on scalar components (shared with theory.pursuit.model_symbolic)
+# the formulas, on scalar components (shared with theory.pursuit.derivations)
 
 
 def skew_rows(omega: Sequence[Any]) -> tuple[tuple[Any, ...], ...]:

@@ -18,16 +18,10 @@ Theorem 2 against the simulator: on random certified cases
 the certified estimate β(‖μ(0)‖, t) + γ(sup‖x̃‖) with the run's own x̃
 (:func:`theory.pursuit.simulation.simulation_agreement`).
 
-Never wrong near a threshold (issue 17): Δ̄ exists iff ``ε₁ ≠ 0``; the printed region (72)
-follows from the proof's argument iff ``λ_min(K) ≥ 1``; ``K`` must be positive definite; the
-certificate's constants must pass exact checks however small ``λ_min(K)`` is. The examples vary
-seed 003 Table I with three trackers on the directed ring (``cases/pursuit-table1-n3.yaml``), and
-"correct" is computed from the decimals as written (``Fraction(repr(x))``), independently of
-:mod:`theory.pursuit.iss`: ``λ_min(K) ≥ 1`` (``k_γ = 5``) for ``K_p = [[a, c], [c, d]]`` iff
-``a ≥ 1``, ``d ≥ 1`` and ``(a − 1)(d − 1) ≥ c²``; the sufficient test of (72), ``c♯ ≤ λ_min(K)·c``
-with ``√μ = 30`` and ``c♯² = ‖K_p‖² + 1 + 900``, by squaring where ``‖K_p‖`` is rational; and
-the ``iss`` certificate exists (accepted by :mod:`proofs_check`, or reported inconclusive) iff
-``ε₁ ≠ 0``, refused (``PropertyFails``) only when ``ε₁ = 0``.
+Never wrong near a threshold (issue 17): the exact verdicts on ``λ_min(K) ≥ 1`` (whether the
+printed region (72) follows), ``K ≻ 0`` and the certificate (it exists iff ``ε₁ ≠ 0``) on Table I
+with three trackers (``cases/pursuit-table1-n3.yaml``), swept toward each threshold; "correct" is
+computed from the decimals as written, independently of :mod:`theory.pursuit.iss`.
 """
 
 from __future__ import annotations
@@ -566,8 +560,13 @@ def region_case(point: RegionPoint) -> dict[str, Any]:
 
 
 def _region_truth(point: RegionPoint) -> tuple[bool, bool | None]:
-    """(λ_min(K) ≥ 1, c♯ ≤ λ_min(K)·c) in exact rationals (module docstring); the second is
-    None for the rotated form, whose eigenvalues are irrational."""
+    """(λ_min(K) ≥ 1, c♯ ≤ λ_min(K)·c) in exact rationals; the second is None for the rotated
+    form, whose eigenvalues are irrational.
+
+    For ``K_p = [[a, c], [c, d]]``, λ_min(K) ≥ 1 iff ``a ≥ 1``, ``d ≥ 1``, ``k_γ ≥ 1`` and
+    ``(a − 1)(d − 1) ≥ c²`` (K_p − I ⪰ 0); the sufficient test of (72) with ``√μ = 30`` and
+    ``c♯² = ‖K_p‖² + 1 + 900`` is decided by squaring.
+    """
     (a, c), (_, d) = ((_decimal(x) for x in row) for row in _gains(point))
     k_gamma = _decimal(_k_gamma(point))
     sound = k_gamma >= 1 and a >= 1 and d >= 1 and (a - 1) * (d - 1) >= c * c
