@@ -60,7 +60,7 @@ sys.path.insert(0, str(ROOT / "tests" / "pursuit"))
 
 from dec_oracle import per_tracker_field  # noqa: E402
 
-from theory.core.case_file import load_case  # noqa: E402
+from theory.kinds import load_case  # noqa: E402
 from theory.pursuit.closed_loop import build_loop, simulate_dec  # noqa: E402
 from theory.pursuit.simulation import DEFAULT_DURATION, RECORD_INTERVAL, dec_arguments  # noqa: E402
 

@@ -27,6 +27,7 @@ from theory.consensus.strategies import DkfProblem, dkf_problems
 from theory.pursuit.strategies import (
     PursuitParameters,
     TrackerState,
+    digraph_laplacians,
     pursuit_cases,
     pursuit_parameters,
     simulated_pursuit_blocks,
@@ -107,48 +108,3 @@ def state_space_pairs(
     A = V @ np.diag(magnitudes) @ np.linalg.inv(V)
     C = rng.standard_normal((m, n))
     return A, C
-
-
-@st.composite
-def digraph_laplacians(
-    draw: st.DrawFn,
-    *,
-    min_agents: int = 2,
-    max_agents: int = 7,
-    max_extra_edges: int | None = None,
-) -> np.ndarray:
-    """Integer Laplacians ``L = D_in − A`` of strongly connected digraphs (seed 003 §II-B).
-
-    The digraph is a random Hamiltonian cycle (so it is strongly connected) plus random edges;
-    ``a_ij = 1`` means i receives from j.
-
-    Parameters
-    ----------
-    min_agents, max_agents : int
-        Bounds on the number of nodes ``n`` (``2 ≤ min_agents ≤ max_agents``).
-    max_extra_edges : int, optional
-        At most this many random edges beyond the cycle (default ``2n``; ``≥ 0``).
-
-    Returns
-    -------
-    SearchStrategy of ndarray of int, shape (n, n)
-
-    Raises
-    ------
-    InvalidArgument
-        For impossible bounds.
-    """
-    check_range("min_agents", min_agents, "max_agents", max_agents, 2)
-    if max_extra_edges is not None and max_extra_edges < 0:
-        raise InvalidArgument(f"max_extra_edges={max_extra_edges} must be ≥ 0")
-    n = draw(st.integers(min_agents, max_agents))
-    order = draw(st.permutations(range(n)))
-    adjacency = np.zeros((n, n), dtype=int)
-    for k in range(n):
-        adjacency[order[k], order[(k + 1) % n]] = 1
-    pairs = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1))
-    extra = draw(st.lists(pairs, max_size=2 * n if max_extra_edges is None else max_extra_edges))
-    for i, j in extra:
-        if i != j:
-            adjacency[i, j] = 1
-    return np.diag(adjacency.sum(axis=1)) - adjacency

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from dec_oracle import dop853_interval, per_tracker_field
 
-from theory.core.case_file import load_case, parse_case
+from theory.kinds import load_case, parse_case
 from theory.pursuit.closed_loop import (
     LoopState,
     StepControl,

@@ -1,7 +1,7 @@
 """Seed 003's ISS conditions near their thresholds (issue 17 item 1): exact decisions, never wrong.
 
-The properties of :mod:`theory.pursuit.boundary_properties` run here in CI's bounded profile (and
-in ``trackcert falsify``); the exact predicates of :mod:`theory.pursuit.iss_exact` are checked
+The boundary properties of :mod:`theory.pursuit.properties` run here in CI's bounded profile (and
+in ``trackcert falsify``); the exact predicates of :mod:`theory.pursuit.iss` are checked
 against independent computations (sympy eigenvalues, scipy's a(L) away from 0).
 """
 
@@ -14,25 +14,23 @@ import pytest
 import sympy as sp
 from hypothesis import given
 
-from theory.core.case_file import load_case, parse_case
 from theory.falsify import properties_for
-from theory.pursuit.boundary_properties import (
+from theory.kinds import load_case, parse_case
+from theory.pursuit.certificates import safe_constant
+from theory.pursuit.iss import (
+    gain_matrix_definite,
+    generalized_algebraic_connectivity,
+    iss_conditions,
+    pursuit_iss,
+    r_perp_connectivity_positive,
+    region_argument_sound,
+)
+from theory.pursuit.model import left_eigenvector
+from theory.pursuit.properties import (
     RegionPoint,
     certificate_sound,
     region_case,
     region_sound,
-)
-from theory.pursuit.iss import (
-    generalized_algebraic_connectivity,
-    iss_conditions,
-    left_eigenvector,
-    pursuit_iss,
-)
-from theory.pursuit.iss_exact import (
-    gain_matrix_definite,
-    r_perp_connectivity_positive,
-    region_argument_sound,
-    safe_constant,
 )
 from theory.strategies import digraph_laplacians
 

@@ -12,8 +12,9 @@ import yaml
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import bundled_cases, load_case, parse_case
+from theory.core.case_file import bundled_cases
 from theory.core.errors import CaseError
+from theory.kinds import load_case, parse_case
 
 runner = CliRunner()
 
@@ -164,7 +165,7 @@ def test_table_text_output() -> None:
 
 def test_spanning_tree_graph_is_corrected_not_refuted() -> None:
     """Lemma 3 needs less than strong connectivity: a rooted tree 1 → 2 → 3 still coordinates."""
-    from theory.core.claims import get_claim
+    from theory.registry import get_claim
 
     data = copy.deepcopy(_data("pursuit-table1-n3"))
     data["pursuit"]["edges"] = [[1, 2], [2, 3]]

@@ -21,9 +21,10 @@ from typer.testing import CliRunner
 import proofs_check
 from proofs_check.linalg import positive_definite
 from theory.cli import app
-from theory.core.case_file import load_case, parse_case
-from theory.core.claims import NotApplicable, get_claim
+from theory.core.claims import NotApplicable
+from theory.kinds import load_case, parse_case
 from theory.pursuit.certificates import iss_certificate
+from theory.registry import get_claim
 from theory.strategies import pursuit_parameters
 
 runner = CliRunner()

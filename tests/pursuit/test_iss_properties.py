@@ -18,26 +18,25 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.case_file import load_case, parse_case
+from proofs_check.linalg import positive_definite
 from theory.core.errors import PropertyFails
-from theory.pursuit.iss import (
-    coordination_iss,
-    generalized_algebraic_connectivity,
-    is_psd_exact,
-    iss_bound,
-    iss_certificate_data,
-    left_eigenvector,
-    pursuit_iss,
-    verify_certificate,
-)
-from theory.pursuit.iss_counterexamples import (
+from theory.kinds import load_case, parse_case
+from theory.pursuit.certificates import iss_certificate_data, verify_certificate
+from theory.pursuit.derivations import (
     eq71_strict_inequality,
     eq72_printed_region,
     eq74_missing_connectivity,
     eq75_missing_norm,
     xi_not_orthogonal_to_ones,
 )
-from theory.pursuit.model import closed_loop_rates, exp_skew, path_derivative
+from theory.pursuit.iss import (
+    coordination_iss,
+    eq72_case_search,
+    generalized_algebraic_connectivity,
+    iss_bound,
+    pursuit_iss,
+)
+from theory.pursuit.model import closed_loop_rates, exp_skew, left_eigenvector, path_derivative
 from theory.pursuit.model import path as path_numeric
 from theory.strategies import digraph_laplacians, pursuit_cases, tracker_states
 
@@ -112,7 +111,7 @@ def test_lemma1_exact_on_random_digraphs(L) -> None:
     n = len(r)
     assert all(sum(r[i] * int(L[i, j]) for i in range(n)) == 0 for j in range(n))
     M = [[r[i] * int(L[i, j]) + int(L[j, i]) * r[j] for j in range(n)] for i in range(n)]
-    assert is_psd_exact(M)
+    assert positive_definite(M, semi=True).positive
 
 
 @given(L=digraph_laplacians())
@@ -314,8 +313,6 @@ def test_iss_bound_along_closed_loop(amplitude: float) -> None:
 
 def test_eq72_case_search_finds_the_counterexample_family() -> None:
     """The per-case search agrees with the explicit counterexample and with the Table cases."""
-    from theory.pursuit.iss_counterexamples import eq72_case_search
-
     small = parse_case(
         {
             "name": "small-gains",

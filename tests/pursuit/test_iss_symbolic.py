@@ -5,15 +5,29 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from theory.core.claims import all_claims, get_claim
-from theory.pursuit.iss_claims import CASE_CLAIMS, MODEL_CLAIMS
-from theory.pursuit.iss_symbolic import (
+from theory.pursuit.derivations import (
+    cayley_rotation,
     delta_check,
+    delta_matrix,
     error_dynamics_check,
     lyapunov_derivative_check,
     rotation_rate_check,
+    skew,
 )
-from theory.pursuit.model_symbolic import cayley_rotation, delta_matrix, skew
+from theory.registry import all_claims, get_claim
+
+CASE_CLAIMS = ("seed003.thm1", "seed003.lem4", "seed003.lem3", "seed003.thm2")
+MODEL_CLAIMS = (
+    "seed003.eq4",
+    "seed003.eq21",
+    "seed003.eq22.delta-bar",
+    "seed003.lem2",
+    "seed003.eq70",
+    "seed003.eq71",
+    "seed003.eq72",
+    "seed003.eq74",
+    "seed003.eq75",
+)
 
 
 @pytest.mark.parametrize("dim", [2, 3])
@@ -95,6 +109,8 @@ def test_every_seed003_claim_is_registered() -> None:
     assert set(MODEL_CLAIMS) | set(CASE_CLAIMS) <= ids
     for claim_id in CASE_CLAIMS:
         assert get_claim(claim_id).kinds == ("pursuit",)
+    for claim_id in MODEL_CLAIMS:
+        assert get_claim(claim_id).kinds == ()
 
 
 @pytest.mark.parametrize(

@@ -1,8 +1,8 @@
 """seed003.eq15.helix and seed003.result2: range-only observability of seed 003's tracker paths.
 
-The module is imported directly (registration happens at import); the claims are run once per
-module. Hypothesis draws stay away from the degenerate sets by stated distances and skip the
-(rare) draws whose rank decision falls inside the tolerance band, so no test can be flaky.
+The claims are run once per module. Hypothesis draws stay away from the degenerate sets by stated
+distances and skip the (rare) draws whose rank decision falls inside the tolerance band, so no
+test can be flaky.
 """
 
 from __future__ import annotations
@@ -17,10 +17,9 @@ import sympy as sp
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from theory.core.claims import get_claim
 from theory.core.observability import numeric_rank
 from theory.pursuit import observability as po
-from theory.pursuit import observability_claims as poc
+from theory.registry import get_claim
 
 RADII = st.floats(10.0, 200.0)
 PHASES = st.floats(0.0, 2 * math.pi)
@@ -34,21 +33,21 @@ def away_from_degenerate(c: float) -> bool:
 
 @pytest.fixture(scope="module")
 def helix_result():
-    (result,) = poc.check_helix()
+    (result,) = get_claim("seed003.eq15.helix").run(None)
     return result
 
 
 @pytest.fixture(scope="module")
 def result2():
-    (result,) = poc.check_result2()
+    (result,) = get_claim("seed003.result2").run(None)
     return result
 
 
 def test_claims_are_registered_at_import() -> None:
     helix = get_claim("seed003.eq15.helix")
     pair = get_claim("seed003.result2")
-    assert helix.run is poc.check_helix and helix.kinds == ()
-    assert pair.run is poc.check_result2 and pair.kinds == ()
+    assert helix.check is po.check_helix and helix.kinds == ()
+    assert pair.check is po.check_result2 and pair.kinds == ()
     assert "seed 003 eq. (15)" in helix.source and "eq. (13)" in pair.source
 
 
@@ -149,14 +148,14 @@ def test_helix_verdict_follows_the_mathematics(monkeypatch) -> None:
     samples, planarity = po.helix_samples, po.helix_planarity
 
     def swap(mapping):
-        monkeypatch.setattr(poc, "helix_samples", lambda c, **kw: samples(mapping.get(c, c), **kw))
-        monkeypatch.setattr(poc, "helix_planarity", lambda c: planarity(mapping.get(float(c), c)))
+        monkeypatch.setattr(po, "helix_samples", lambda c, **kw: samples(mapping.get(c, c), **kw))
+        monkeypatch.setattr(po, "helix_planarity", lambda c: planarity(mapping.get(float(c), c)))
 
     swap({-1.0: 2.0})
-    (result,) = poc.check_helix()
+    (result,) = get_claim("seed003.eq15.helix").run(None)
     assert result.status == "verified"
     swap({2.0: 1.0})
-    (result,) = poc.check_helix()
+    (result,) = get_claim("seed003.eq15.helix").run(None)
     assert result.status == "refuted" and "c = 2" in result.message
 
 

@@ -23,8 +23,8 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.case_file import load_case
 from theory.core.tolerances import RUNAWAY_FACTOR
+from theory.kinds import load_case
 from theory.pursuit.closed_loop import build_loop, runaway_reason, simulate_dec
 from theory.pursuit.simulation import dec_arguments
 

@@ -105,7 +105,7 @@ def test_cli_refuses_singular_delta_naming_the_field(tmp_path) -> None:
 def test_three_trackers_in_3d_table_ii() -> None:
     """§VI-B (Table II, 3-D, three trackers, Type II): pursuit and localization errors settle to
     a few metres and the path parameters agree, moving at ω̄ = 0.1 rad/s (200 s)."""
-    from theory.core.case_file import load_case
+    from theory.kinds import load_case
     from theory.pursuit.simulation import run_pursuit_case
 
     run = run_pursuit_case(load_case("pursuit-table2-n3").spec, np.random.default_rng(0), 2000)
@@ -119,13 +119,12 @@ def test_three_trackers_in_3d_table_ii() -> None:
 def test_iss_estimate_holds_along_simulated_trajectories() -> None:
     """Theorem 2 (corrected constants of theory.pursuit.iss) along the DEC trajectories of Table
     I."""
-    from theory.core.case_file import load_case
-    from theory.pursuit.iss_check import iss_margin_along
-    from theory.pursuit.simulation import run_pursuit_case
+    from theory.kinds import load_case
+    from theory.pursuit.simulation import iss_margin_along, run_pursuit_case
 
     for name in ("pursuit-table1-n1", "pursuit-table1-n3"):
         spec = load_case(name).spec
         run = run_pursuit_case(spec, np.random.default_rng(0), steps=800)
         out = iss_margin_along(spec, run)
-        assert out["holds"], (name, out["margin"], out["worst_time"])
-        assert out["mu"][-1] < out["mu"][0]  # the pursuit errors contract from the start
+        assert out.holds, (name, out.margin, out.worst_time)
+        assert out.mu[-1] < out.mu[0]  # the pursuit errors contract from the start

@@ -1,6 +1,6 @@
 """``trackcert iss CASE``: ISS Lyapunov analysis of the pursuit/coordination loop (seed 003).
 
-A shell over :func:`theory.pursuit.iss_report.iss_report`. Exit codes
+A shell over :func:`theory.pursuit.iss.iss_report`. Exit codes
 (:mod:`theory.core.verdicts`): 0 every condition holds, 1 a condition fails (e.g. ε₁ = 0 so ΔΔᵀ
 is singular, or a graph without the strong connectivity Lemma 3 needs), 2 bad input, 3 a margin
 lies inside ``margin_tol`` (inconclusive; the output says which condition).
@@ -72,7 +72,7 @@ def register(app: typer.Typer) -> None:
         ),
     ) -> None:
         """ISS Lyapunov analysis of the pursuit/coordination loop (seed 003)."""
-        from theory.pursuit.iss_report import iss_report  # sympy/scipy: imported on use
+        from theory.pursuit.iss import iss_report  # sympy/scipy: imported on use
 
         report = iss_report(load_case(case), margin_tol=margin_tol)
         code = exit_code(report.verdict)

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from enum import StrEnum
 from typing import Any
 
 import numpy as np
@@ -60,7 +61,15 @@ from theory.core.validation import (
     row_stochastic,
 )
 
-__all__ = ["PURSUIT", "DekfSettings", "PursuitSpec", "TargetMotion", "TrackerPath", "parse_pursuit"]
+__all__ = [
+    "PURSUIT",
+    "Controller",
+    "DekfSettings",
+    "PursuitSpec",
+    "TargetMotion",
+    "TrackerPath",
+    "parse_pursuit",
+]
 
 FIELDS = (
     "dim",
@@ -84,23 +93,19 @@ EXPECT_KEYS = ("iss", "delta_full_rank", "strongly_connected", "simulation_bound
 TOLERANCE_KEYS = ("margin_tol", "weight_sum_tol", "runaway_factor")
 
 
+class Controller(StrEnum):
+    """The path-following law: Type I (eq. 49, γ̇ = ω_d) or Type II (eq. 50, γ̈ feedback)."""
+
+    I = "I"
+    II = "II"
+
+
 @dataclass(frozen=True)
 class TrackerPath:
-    """The spatial path r(γ) of one tracker, seed 003 eqs. (15)–(16), and its initial state.
+    """The path r(γ) of one tracker, seed 003 eqs. (15)–(16) (``r_z``, ``c``: 3D only).
 
-    Attributes
-    ----------
-    r_x, r_y : float
-        Semi-axes (> 0).
-    r_z : float or None
-        Vertical amplitude (3D only, > 0).
-    c : float or None
-        Vertical frequency divisor (3D only, c ∉ {0, 1}).
-    gamma0 : float
-        Phase γ₀.
-    initial : dict
-        Optional initial state for the simulation: ``position`` (dim), ``euler`` (1 yaw angle in 2D,
-        roll-pitch-yaw in 3D), ``gamma`` and ``gamma_dot`` (numbers); missing keys are absent.
+    ``initial`` optionally holds the simulation's initial ``position``, ``euler`` (yaw in 2D,
+    roll-pitch-yaw in 3D), ``gamma`` and ``gamma_dot``.
     """
 
     r_x: float
@@ -115,21 +120,7 @@ class TrackerPath:
 class TargetMotion:
     """q_k(t) = offset_k + velocity_k·t + amplitude_k·sin(frequency_k·t + phase_k) (Tables I–II).
 
-    Each attribute is an ndarray of shape (dim,), one entry per coordinate ``k``; a key missing
-    from the case file is zero.
-
-    Attributes
-    ----------
-    offset : ndarray
-        Position at ``t = 0`` apart from the sinusoid (m).
-    velocity : ndarray
-        Constant drift velocity (m/s).
-    amplitude : ndarray
-        Amplitude of the sinusoidal term (m).
-    frequency : ndarray
-        Angular frequency of the sinusoidal term (rad/s).
-    phase : ndarray
-        Phase of the sinusoidal term (rad).
+    Each field has one entry per coordinate k (m, m/s, m, rad/s, rad); a missing key is zero.
     """
 
     offset: np.ndarray
@@ -155,26 +146,12 @@ class TargetMotion:
 
 @dataclass(frozen=True, eq=False)
 class DekfSettings:
-    """Settings of the distributed EKF (seed 003 Algorithm 2), validated for the simulation.
+    """Settings of the distributed EKF (seed 003 Algorithm 2) for the simulation.
 
-    Attributes
-    ----------
-    Ts : float
-        Sampling period (s), > 0.
-    sigma : float
-        Standard deviation of the range noise (m), eq. (10), > 0.
-    V : float
-        Inverse measurement-noise weight ``V^[i]``, > 0.
-    Q : ndarray, shape (2·dim, 2·dim)
-        Positive-definite process-noise weight.
-    weights : ndarray, shape (N, N)
-        Row-stochastic fusion weights ``π^[i,j]`` supported on the in-edges (uniform by default).
-    x0 : ndarray, shape (N, 2·dim), or None
-        Initial estimates, one row per tracker; ``None``: the simulation's default
-        (:mod:`theory.pursuit.simulation`).
-    P0 : ndarray, shape (N, 2·dim, 2·dim), or None
-        Positive-definite initial covariance of each tracker (one matrix given in the case file
-        is repeated); ``None``: the simulation's default.
+    ``Ts`` sampling period (s), ``sigma`` range-noise deviation (m, eq. (10)), ``V`` inverse
+    measurement-noise weight, ``Q`` process-noise weight (2·dim square), ``weights`` fusion
+    weights π^[i,j] on the in-edges; ``x0`` (N × 2·dim) and ``P0`` (N stacked covariances) are
+    ``None`` for the simulation's defaults.
     """
 
     Ts: float
@@ -190,32 +167,12 @@ class DekfSettings:
 class PursuitSpec:
     """A validated cooperative-pursuit case (seed 003).
 
-    Attributes
-    ----------
-    dim : int
-        2 or 3.
-    controller : str
-        ``"I"`` or ``"II"``.
-    omega_bar : float
-        Nominal path-parameter speed ω̄.
-    epsilon : ndarray, shape (dim,)
-        Offset ε of eq. (19).
-    K_p : ndarray, shape (dim, dim)
-        Symmetric positive-definite position gain.
-    k_gamma : float or None
-        k_γ (controller II).
-    k_c : float or None
-        Coordination gain (N > 1).
-    trackers : tuple of TrackerPath
-        One per tracker.
-    adjacency : ndarray of bool, shape (N, N)
-        ``adjacency[i, j]``: tracker i receives from tracker j (a_ij = 1).
-    target : TargetMotion or None
-    dekf : DekfSettings or None
+    ``K_p`` is the symmetric positive-definite position gain (dim × dim), ``k_gamma`` is set for
+    controller II, ``k_c`` for N > 1; ``adjacency[i, j]``: tracker i receives from tracker j.
     """
 
     dim: int
-    controller: str
+    controller: Controller
     omega_bar: float
     epsilon: np.ndarray
     K_p: np.ndarray
@@ -239,21 +196,14 @@ class PursuitSpec:
 
 
 def parse_pursuit(block: Mapping[str, Any]) -> PursuitSpec:
-    """Validate a ``pursuit:`` block (see the module docstring for the fields).
-
-    Raises
-    ------
-    CaseError
-        For any missing, unknown or invalid field, naming it.
-    """
+    """Validate a ``pursuit:`` block (fields in the module docstring); CaseError names a bad one."""
     check_keys(block, FIELDS, "pursuit")
     dim = require(block, "dim", "pursuit")
     if dim not in (2, 3) or isinstance(dim, bool):
         raise CaseError("pursuit.dim", "2 or 3", dim)
-    controller = one_of(
-        str(require(block, "controller", "pursuit")), ("I", "II"), "pursuit.controller"
-    )
-    omega_bar = _real(require(block, "omega_bar", "pursuit"), "pursuit.omega_bar")
+    named = str(require(block, "controller", "pursuit"))
+    controller = Controller(one_of(named, [c.value for c in Controller], "pursuit.controller"))
+    omega_bar = finite_number(require(block, "omega_bar", "pursuit"), "pursuit.omega_bar")
     epsilon = finite_vector(require(block, "epsilon", "pursuit"), "pursuit.epsilon", length=dim)
     K_p = _gain_matrix(require(block, "K_p", "pursuit"), dim)
     trackers = _trackers(require(block, "trackers", "pursuit"), dim)
@@ -266,10 +216,6 @@ def parse_pursuit(block: Mapping[str, Any]) -> PursuitSpec:
     return PursuitSpec(
         dim, controller, omega_bar, epsilon, K_p, k_gamma, k_c, trackers, adjacency, target, dekf
     )
-
-
-def _real(value: object, field: str) -> float:
-    return finite_number(value, field)
 
 
 def _gain_matrix(raw: object, dim: int) -> np.ndarray:
@@ -305,10 +251,10 @@ def _trackers(raw: object, dim: int) -> tuple[TrackerPath, ...]:
         r_z = c = None
         if dim == 3:
             r_z = positive_number(require(entry, "r_z", prefix), f"{prefix}.r_z")
-            c = _real(require(entry, "c", prefix), f"{prefix}.c")
+            c = finite_number(require(entry, "c", prefix), f"{prefix}.c")
             if c in (0.0, 1.0):
                 raise CaseError(f"{prefix}.c", "a real number other than 0 and 1 (eq. 15)", c)
-        gamma0 = _real(entry.get("gamma0", 0.0), f"{prefix}.gamma0")
+        gamma0 = finite_number(entry.get("gamma0", 0.0), f"{prefix}.gamma0")
         initial = _initial(entry.get("initial", {}), dim, f"{prefix}.initial")
         paths.append(TrackerPath(r_x, r_y, r_z, c, gamma0, initial))
     return tuple(paths)
@@ -324,7 +270,7 @@ def _initial(raw: object, dim: int, prefix: str) -> dict[str, Any]:
         initial["euler"] = finite_vector(raw["euler"], f"{prefix}.euler", length=length)
     for key in ("gamma", "gamma_dot"):
         if key in raw:
-            initial[key] = _real(raw[key], f"{prefix}.{key}")
+            initial[key] = finite_number(raw[key], f"{prefix}.{key}")
     return initial
 
 

@@ -1,28 +1,56 @@
-"""Exact ``iss`` certificates of pursuit cases (seed 003), in the format of docs/certificates.md.
+"""Exact ``iss`` certificates of pursuit cases (seed 003 Theorem 2, corrected).
 
-:func:`iss_certificate` turns :func:`theory.pursuit.iss.iss_certificate_data` (exact rationals,
-already verified by theory's own :func:`theory.pursuit.iss.verify_certificate`) into the JSON
-certificate and re-checks it with the independent checker :mod:`proofs_check` before returning
-it. :func:`pursuit_certificates` is the ``pursuit`` kind's certifier
-(:func:`theory.certify.register_certifier`): a case whose conditions fail (a graph that is not
-strongly connected, ``ε₁ = 0``) gets no certificate, and the reason says which condition.
-The claim ``seed003.thm2.certified`` (:mod:`theory.pursuit.certificate_claims`) reports it.
+:func:`iss_certificate_data` states the case's matrices and constants as exact rationals (a case
+number denotes its shortest decimal, :func:`theory.core.exact.exact_decimal`) and the witness's
+constants, rounded in the safe direction at ``iss_digits`` significant digits (λ below λ_min(K),
+k̄ above ‖K_p‖, s above √μ, a below a(L), b above ‖R^{1/2}W‖, ρ below √r_min, κ above
+√(r_max/r_min)) and moved further that way until their exact checks pass. Every inequality of
+:data:`CERTIFICATE_INEQUALITIES` is re-verified exactly by :func:`verify_certificate` before the
+data is returned; :func:`iss_certificate` writes the JSON certificate and has the independent
+checker :mod:`proofs_check` (which re-implements the same list) accept it. A case whose
+conditions fail (ε₁ = 0, a graph not strongly connected) gets no certificate.
 """
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
 
-import proofs_check
-from theory.certify import register_certifier
-from theory.core.case_file import Case
-from theory.core.errors import InconclusiveError
-from theory.core.tolerances import ISS_DIGITS
-from theory.pursuit.case import PursuitSpec
-from theory.pursuit.iss import iss_certificate_data
+import numpy as np
 
-__all__ = ["STATEMENT", "iss_certificate", "pursuit_certificates"]
+import proofs_check
+from proofs_check.linalg import positive_definite
+from theory.core.case_file import Case
+from theory.core.certificate_format import certificate_results
+from theory.core.claims import ClaimResult, ClaimSet, Context
+from theory.core.errors import InconclusiveError, PropertyFails
+from theory.core.exact import Matrix, exact_decimal, fractions_of, to_fmpq
+from theory.core.tolerances import ISS_DIGITS, ISS_SAFE_STEPS
+from theory.pursuit.case import Controller, PursuitSpec
+from theory.pursuit.iss import (
+    ConditionStatus,
+    CoordinationIss,
+    PursuitIss,
+    coordination_iss,
+    exact_gain_matrix,
+    iss_conditions,
+    orthogonal_basis,
+    pursuit_iss,
+    r_perp_gram,
+)
+
+__all__ = [
+    "CERTIFICATE_INEQUALITIES",
+    "STATEMENT",
+    "claims",
+    "iss_certificate",
+    "iss_certificate_data",
+    "pursuit_certificates",
+    "safe_constant",
+    "verify_certificate",
+]
 
 STATEMENT = (
     "seed 003 Theorem 2 (corrected): ‖ξ(t)‖ + ‖e(t)‖ ≤ β(‖μ(0)‖, t) + gain·sup‖x̃‖ with "
@@ -30,6 +58,286 @@ STATEMENT = (
     "for the witness's λ, g_e, κ, α, b, ρ and gain"
 )
 """The claim of every ``iss`` certificate (docs/theory/pursuit-iss.md §5, §7)."""
+
+CERTIFICATE_INEQUALITIES = (
+    "E1  epsilon_1 != 0 (then det(Delta Delta^T) = eps1^2*|eps|^2 > 0 in 3D, eps1^2 in 2D)",
+    "E2  K = diag(K_p, k_gamma) (K_p for Type I) symmetric; K - lambda*I PSD; lambda > 0",
+    "E3  kp_bar*I - K_p is positive semidefinite (kp_bar >= ||K_p||)",
+    "E4  mu_r = max_i [max(r_x,r_y)^2 (+ (r_z/c)^2 in 3D)]; s >= 0 and "
+    "s^2 >= kp_bar^2 + 1 + mu_r (Type II) or kp_bar^2 + 1 (Type I)",
+    "E5  g_e = s / lambda  (then ||e(t)|| <= exp(-lambda t)||e(0)|| + g_e sup||x~||)",
+    "C1  L = D_in - A from the edges; r^T L = 0, sum(r) = 1, r_i > 0",
+    "C2  M = R L + L^T R symmetric, M_ij <= 0 (i != j), row sums 0  (hence M >= 0)",
+    "C3  B^T (M - 2 a R) B positive semidefinite for B = [e_i - (r_i/r_N) e_N]_{i<N}, a > 0",
+    "C4  b^2 I - W^T R W positive semidefinite, W = I - 1 r^T",
+    "C5  rho > 0, rho^2 <= min_i r_i;  kappa^2 * min_i r_i >= max_i r_i",
+    "C6  k_c > 0; alpha = k_c a; g_xi = b / (rho alpha) (Type II; 0 for Type I); "
+    "gain = g_e (1 + g_xi)",
+)
+"""The exact list a checker verifies (E: pursuit subsystem, C: coordination, N > 1 only)."""
+
+claims = ClaimSet()
+
+# ---------------------------------------------------------------------------------------------
+# rational constants, rounded in the safe direction
+
+
+def _grid(x: float, digits: int) -> int:
+    """Decimal exponent k so that 10^-k is about 10^-digits relative to |x|."""
+    return digits - math.floor(math.log10(abs(x))) if x != 0 else digits
+
+
+def _rational_above(x: float, *, digits: int = ISS_DIGITS) -> Fraction:
+    """A short decimal rational ≥ x (rounded up at ``digits`` significant digits)."""
+    k = _grid(x, digits)
+    return Fraction(math.ceil(x * 10**k), 10**k) + Fraction(1, 10**k)
+
+
+def _rational_below(x: float, *, digits: int = ISS_DIGITS) -> Fraction:
+    """A short decimal rational ≤ x (rounded down at ``digits`` significant digits)."""
+    k = _grid(x, digits)
+    return Fraction(math.floor(x * 10**k), 10**k) - Fraction(1, 10**k)
+
+
+def _sqrt_above(value: Fraction) -> Fraction:
+    """A short decimal rational s ≥ √value (checked exactly)."""
+    s = _rational_above(math.sqrt(float(value)))
+    while s * s < value:
+        s += Fraction(1, 10 ** _grid(float(s), ISS_DIGITS))
+    return s
+
+
+def safe_constant(
+    estimate: Fraction, holds: Callable[[Fraction], bool], *, towards_zero: bool
+) -> Fraction | None:
+    """The first of ``estimate``, then halved (``towards_zero``) or doubled, that ``holds``.
+
+    ``holds`` is the constant's exact check, monotone in the safe direction (halve a lower bound
+    such as λ, double an upper bound such as b); ``None`` after ``iss_safe_steps`` moves.
+    """
+    value = estimate
+    for _ in range(ISS_SAFE_STEPS):
+        if holds(value):
+            return value
+        value = value / 2 if towards_zero else value * 2
+    return None
+
+
+# ---------------------------------------------------------------------------------------------
+# the exact checks E1–E5, C1–C6
+
+
+def _psd(matrix: Matrix) -> bool:
+    """Exact positive semidefiniteness of a rational matrix (``False`` if it is not symmetric)."""
+    n = len(matrix)
+    symmetric = all(matrix[i][j] == matrix[j][i] for i in range(n) for j in range(i))
+    return symmetric and positive_definite(matrix, semi=True).positive
+
+
+def _shifted(matrix: Matrix, shift: Fraction) -> Matrix:
+    """matrix − shift·I."""
+    n = len(matrix)
+    return [[matrix[i][j] - (shift if i == j else 0) for j in range(n)] for i in range(n)]
+
+
+def _e2_holds(K: Matrix, lam: Fraction) -> bool:
+    """E2: λ > 0 and K − λI ⪰ 0 (K symmetric)."""
+    return lam > 0 and _psd(_shifted(K, lam))
+
+
+def _e3_holds(K_p: Matrix, kp_bar: Fraction) -> bool:
+    """E3: k̄_p I − K_p ⪰ 0."""
+    return _psd([[-x for x in row] for row in _shifted(K_p, kp_bar)])
+
+
+def _c3_holds(L: Matrix, r: list[Fraction], a: Fraction) -> bool:
+    """C3: a > 0 and Bᵀ(M − 2aR)B ⪰ 0, M = RL + LᵀR, B the rational basis of r⊥."""
+    return a > 0 and _psd(r_perp_gram(L, r, a))
+
+
+def _c4_holds(r: list[Fraction], b: Fraction) -> bool:
+    """C4: b ≥ 0 and b²I − WᵀRW ⪰ 0, W = I − 1rᵀ."""
+    n = len(r)
+    W = to_fmpq([[Fraction(int(i == j)) - r[j] for j in range(n)] for i in range(n)])
+    R = to_fmpq([[r[i] if i == j else Fraction(0) for j in range(n)] for i in range(n)])
+    gap = _shifted(fractions_of(W.transpose() * R * W), b * b)  # WᵀRW − b²I, must be ⪯ 0
+    return b >= 0 and _psd([[-x for x in row] for row in gap])
+
+
+def _rho_holds(r: list[Fraction], rho: Fraction) -> bool:
+    """C5, first half: ρ > 0 and ρ² ≤ min r_i."""
+    return rho > 0 and rho * rho <= min(r)
+
+
+def _kappa_holds(r: list[Fraction], kappa: Fraction) -> bool:
+    """C5, second half: κ² min r_i ≥ max r_i."""
+    return kappa * kappa * min(r) >= max(r)
+
+
+def verify_certificate(data: dict[str, Any], witness: dict[str, Any]) -> list[tuple[str, bool]]:
+    """Each inequality of :data:`CERTIFICATE_INEQUALITIES` and whether it holds, exactly.
+
+    Trackcert's own check before a certificate is emitted; ``proofs_check`` re-implements the
+    same list without importing this module.
+    """
+    K, K_p, eps = data["K"], data["K_p"], data["epsilon"]
+    lam, kp_bar, s = witness["lambda"], witness["kp_bar"], witness["s"]
+    mu_paths = [
+        max(p["r_x"], p["r_y"]) ** 2 + ((p["r_z"] / p["c"]) ** 2 if "r_z" in p else 0)
+        for p in data["paths"]
+    ]
+    mu_r = max(mu_paths)
+    needed = kp_bar * kp_bar + 1 + (mu_r if data["controller"] == Controller.II else 0)
+    results = [
+        ("E1", eps[0] != 0),
+        ("E2", _e2_holds(K, lam)),
+        ("E3", _e3_holds(K_p, kp_bar)),
+        ("E4", witness["mu_r"] == mu_r and s >= 0 and s * s >= needed),
+        ("E5", witness["g_e"] == s / lam),
+    ]
+    if data["n_trackers"] == 1:
+        return [*results, ("C6", witness["gain"] == witness["g_e"])]
+    return results + _verify_coordination(data, witness)
+
+
+def _verify_coordination(data: dict[str, Any], witness: dict[str, Any]) -> list[tuple[str, bool]]:
+    L = [[Fraction(x) for x in row] for row in data["laplacian"]]
+    r, a, b, rho, kappa = (witness[k] for k in ("r", "a", "b", "rho", "kappa"))
+    n = len(r)
+    left = all(sum((r[i] * L[i][j] for i in range(n)), Fraction(0)) == 0 for j in range(n))
+    c1 = left and sum(r) == 1 and all(x > 0 for x in r)
+    M = [[r[i] * L[i][j] + L[j][i] * r[j] for j in range(n)] for i in range(n)]
+    c2 = all(M[i][j] == M[j][i] and (i == j or M[i][j] <= 0) for i in range(n) for j in range(n))
+    c2 = c2 and all(sum(row) == 0 for row in M)
+    c5 = _rho_holds(r, rho) and _kappa_holds(r, kappa)
+    alpha = data["k_c"] * a
+    g_xi = b / (rho * alpha) if data["controller"] == Controller.II else Fraction(0)
+    c6 = data["k_c"] > 0 and witness["alpha"] == alpha and witness["g_xi"] == g_xi
+    c6 = c6 and witness["gain"] == witness["g_e"] * (1 + g_xi)
+    checks = [("C1", c1), ("C2", c2), ("C3", _c3_holds(L, r, a)), ("C4", _c4_holds(r, b))]
+    return [*checks, ("C5", c5), ("C6", c6)]
+
+
+# ---------------------------------------------------------------------------------------------
+# the certificate
+
+
+def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
+    """``{"data", "witness", "inequalities", "numeric"}`` of an exact ISS certificate (seed 003).
+
+    ``data`` and ``witness`` hold Fractions (module docstring), ``numeric`` repeats the matrices
+    as numpy arrays. PropertyFails if a condition of the analysis fails (the corrected Theorem 2
+    does not apply), InconclusiveError if one lies inside its tolerance.
+    """
+    conditions = iss_conditions(spec)
+    failing = [c.name for c in conditions if c.status == ConditionStatus.FAILS]
+    if failing:
+        raise PropertyFails(
+            f"no ISS certificate: conditions {failing} do not hold (see trackcert iss)"
+        )
+    undecided = [c.name for c in conditions if c.status == ConditionStatus.INCONCLUSIVE]
+    if undecided:
+        raise InconclusiveError(f"no ISS certificate: conditions {undecided} are inconclusive")
+    pursuit = pursuit_iss(spec)
+    data = _pursuit_data(spec, pursuit)
+    witness = _pursuit_witness(spec, pursuit)
+    numeric: dict[str, Any] = {"K": pursuit.K, "lambda_min": pursuit.lambda_min}
+    if spec.n_trackers > 1:
+        _coordination_certificate(spec, data, witness, numeric)
+    failed = [name for name, ok in verify_certificate(data, witness) if not ok]
+    if failed:
+        raise ValueError(f"certificate generation failed its own exact checks: {failed}")
+    return {
+        "data": data,
+        "witness": witness,
+        "inequalities": list(CERTIFICATE_INEQUALITIES),
+        "numeric": numeric,
+    }
+
+
+def _pursuit_data(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
+    """The pursuit part of a certificate's ``data``: the case's numbers as exact rationals."""
+    size = len(pursuit.K)
+    return {
+        "dim": spec.dim,
+        "controller": spec.controller,
+        "n_trackers": spec.n_trackers,
+        "epsilon": [exact_decimal(x) for x in spec.epsilon],
+        "K": [[exact_decimal(x) for x in row] for row in pursuit.K],
+        "K_p": [[exact_decimal(x) for x in row] for row in spec.K_p],
+        "P_e": [[Fraction(int(i == j), 2) for j in range(size)] for i in range(size)],
+        "paths": [
+            {"r_x": exact_decimal(p.r_x), "r_y": exact_decimal(p.r_y)}
+            | ({} if p.r_z is None else {"r_z": exact_decimal(p.r_z), "c": exact_decimal(p.c)})
+            for p in spec.trackers
+        ],
+    }
+
+
+def _pursuit_witness(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
+    """λ below λ_min(K), k̄ above ‖K_p‖, μ_r, s ≥ √(k̄² + 1 (+ μ_r)) and g_e = s/λ (E1–E5)."""
+    K = exact_gain_matrix(pursuit.K)
+    K_p = exact_gain_matrix(spec.K_p)
+    lam = safe_constant(
+        _rational_below(pursuit.lambda_min), lambda x: _e2_holds(K, x), towards_zero=True
+    )
+    kp_bar = safe_constant(
+        _rational_above(pursuit.norm_K_p), lambda x: _e3_holds(K_p, x), towards_zero=False
+    )
+    if lam is None or kp_bar is None:
+        raise InconclusiveError("no rational λ or k̄_p passes its exact check (E2, E3)")
+    needed = kp_bar * kp_bar + 1 + (pursuit.mu_r if spec.controller == Controller.II else 0)
+    witness: dict[str, Any] = {"lambda": lam, "kp_bar": kp_bar, "mu_r": pursuit.mu_r}
+    witness["s"] = _sqrt_above(needed)
+    witness["g_e"] = witness["s"] / witness["lambda"]
+    witness["gain"] = witness["g_e"]
+    return witness
+
+
+def _coordination_certificate(
+    spec: PursuitSpec, data: dict[str, Any], witness: dict[str, Any], numeric: dict[str, Any]
+) -> None:
+    coordination = coordination_iss(spec)
+    r = list(coordination.r)
+    n = len(r)
+    k_c = exact_decimal(spec.k_c)
+    data.update({"laplacian": spec.laplacian.astype(int).tolist(), "k_c": k_c})
+    witness.update({"r": r, **_coordination_constants(data["laplacian"], r, coordination)})
+    witness["alpha"] = k_c * witness["a"]
+    two_stage = spec.controller == Controller.II
+    witness["g_xi"] = (
+        witness["b"] / (witness["rho"] * witness["alpha"]) if two_stage else Fraction(0)
+    )
+    witness["gain"] = witness["g_e"] * (1 + witness["g_xi"])
+    r_float = np.array([float(x) for x in r])
+    numeric.update(
+        {
+            "R": np.diag(r_float),
+            "W": np.eye(n) - np.outer(np.ones(n), r_float),
+            "a_L": coordination.a_L,
+            "basis_r_perp": orthogonal_basis(r_float),
+        }
+    )
+
+
+def _coordination_constants(
+    laplacian: list[list[int]], r: list[Fraction], coordination: CoordinationIss
+) -> dict[str, Fraction]:
+    """a, b, ρ, κ rounded in the safe direction and moved until C3, C4, C5 pass exactly."""
+    L = [[Fraction(x) for x in row] for row in laplacian]
+    estimates = {
+        "a": (_rational_below(coordination.a_L), lambda x: _c3_holds(L, r, x), True),
+        "b": (_rational_above(coordination.b), lambda x: _c4_holds(r, x), False),
+        "rho": (_rational_below(math.sqrt(coordination.r_min)), lambda x: _rho_holds(r, x), True),
+        "kappa": (_rational_above(coordination.kappa), lambda x: _kappa_holds(r, x), False),
+    }
+    out = {}
+    for name, (estimate, holds, towards_zero) in estimates.items():
+        value = safe_constant(estimate, holds, towards_zero=towards_zero)
+        if value is None:
+            raise InconclusiveError(f"no rational {name} passes its exact check (C3–C5)")
+        out[name] = value
+    return out
 
 
 def _text(value: Any) -> Any:
@@ -44,30 +352,8 @@ def _text(value: Any) -> Any:
 def iss_certificate(spec: PursuitSpec, *, case: str | None = None) -> dict[str, Any]:
     """The exact ``iss`` certificate of a pursuit case, accepted by ``proofs_check``.
 
-    Parameters
-    ----------
-    spec : PursuitSpec
-        The case.
-    case : str, optional
-        Case name recorded in the certificate.
-
-    Returns
-    -------
-    dict
-        A ``trackcert-certificate/1`` object of kind ``iss``.
-
-    Raises
-    ------
-    PropertyFails
-        If a condition of the analysis fails (the message names it).
-    InconclusiveError
-        If a condition lies inside its tolerance.
-    RuntimeError
-        If ``proofs_check`` rejects the certificate (a bug: theory's own check accepted it).
-
-    References
-    ----------
-    seed 003, Lemmas 1–4, Theorems 1–2; docs/theory/pursuit-iss.md §7.
+    PropertyFails / InconclusiveError as :func:`iss_certificate_data`; RuntimeError if
+    ``proofs_check`` rejects it (a bug: trackcert's own check accepted it).
     """
     exact = iss_certificate_data(spec)
     source = exact["data"]
@@ -78,7 +364,7 @@ def iss_certificate(spec: PursuitSpec, *, case: str | None = None) -> dict[str, 
         "K_p": _text(source["K_p"]),
         "paths": _text(source["paths"]),
     }
-    if spec.controller == "II":
+    if spec.controller == Controller.II:
         data["k_gamma"] = _text(source["K"][spec.dim][spec.dim])
     if spec.n_trackers > 1:
         data |= {"laplacian": _text(source["laplacian"]), "k_c": _text(source["k_c"])}
@@ -103,29 +389,35 @@ def iss_certificate(spec: PursuitSpec, *, case: str | None = None) -> dict[str, 
     return cert
 
 
-@register_certifier("pursuit")
 def pursuit_certificates(case: Case, seed: int) -> tuple[list[dict[str, Any]], list[str]]:
-    """The ``iss`` certificate of a ``pursuit`` case, or the reason there is none.
+    """The ``pursuit`` kind's certifier: the ``iss`` certificate, or why there is none.
 
-    Parameters
-    ----------
-    case : Case
-        A loaded ``pursuit`` case.
-    seed : int
-        Unused (the certificate involves no random choice); kept for the common signature.
-
-    Returns
-    -------
-    (list of dict, list of str)
-        The certificates and the reasons for missing ones.
-
-    Raises
-    ------
-    PropertyFails
-        If a condition of the analysis fails: there is no ISS estimate to certify.
+    ``seed`` is unused (no random choice). PropertyFails if a condition of the analysis fails.
     """
     del seed
     try:
         return [iss_certificate(case.spec, case=case.name)], []
     except InconclusiveError as error:
         return [], [str(error)]
+
+
+def _certified_constants(cert: dict[str, Any]) -> dict[str, Any]:
+    """The witness's rates and gains, exact and approximate."""
+    witness = cert["witness"]
+    keys = [k for k in ("lambda", "alpha", "kappa", "g_e", "g_xi", "gain") if k in witness]
+    approx = {f"{k}_approx": float(Fraction(witness[k])) for k in keys}
+    return {k: witness[k] for k in keys} | approx
+
+
+@claims.register(
+    "seed003.thm2.certified",
+    source="seed 003, Theorem 2 and Lemmas 1–4 (corrected, docs/theory/pursuit-iss.md §5, §7)",
+    statement="the corrected ISS estimate of the pursuit and coordination errors is certified by "
+    "exact inequalities E1–E5, C1–C6 re-derived by proofs_check (kind iss)",
+    kinds=("pursuit",),
+)
+def check_certified(case: Case, ctx: Context) -> list[ClaimResult]:
+    """The case's ``iss`` certificate, or inconclusive; not applicable when a condition fails."""
+    return certificate_results(
+        case, lambda: ([iss_certificate(case.spec, case=case.name)], []), _certified_constants
+    )

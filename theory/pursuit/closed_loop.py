@@ -14,16 +14,12 @@ is integrated as an ODE with error control, not with inputs held over a fixed st
 (sampled-data) step of 0.02 s is unstable for Table II with k_γ = 5 and stalls Table I's tracker
 at 0.1 s (docs/simulation.md, docs/theory/pursuit-iss.md §8). The state of tracker i is
 (p, R, γ, e_γ) with ``e_γ = γ̇ − ω_d`` obeying ``ė_γ = −k_γ e_γ + ê_pᵀRᵀr′(γ)`` ((47), (50b), (52),
-i.e. (62)); e_γ ≡ 0 for Type I. One step of length h (:func:`heun_step`) is a predictor–corrector
-pair of orders 1 and 2: positions by Euler/Heun, the attitude by R(I + hS(ω₀)) and then exactly on
-SO(3) by R·exp(½hS(ω₀ + ω₁)) (Runge–Kutta–Munthe-Kaas), and (γ, e_γ) by exponential time
-differencing (ETD1/ETD2RK: exact for the decay −k_γ e_γ whatever k_γh). Their difference estimates
-the local error, and the step adapts (:class:`StepControl`) so that it stays below ``rtol``
-(positions relative to the paths' size, attitude entries and γ absolute). Between sampling
-instants the controller uses ``q̂(t) = q̂_{k|k} + (t − t_k)v̂``. Outputs are recorded every
-``dt``; steps never cross a record or a sampling instant.
+i.e. (62)); e_γ ≡ 0 for Type I. Each step (:func:`heun_step`) is a predictor–corrector pair whose
+difference estimates the local error, and the step adapts (:class:`StepControl`). Between
+sampling instants the controller uses ``q̂(t) = q̂_{k|k} + (t − t_k)v̂``. Outputs are recorded
+every ``dt``; steps never cross a record or a sampling instant.
 
-A run stops early in two ways (records after the stop are NaN, :attr:`DecRun.stop_cause`):
+A run stops early in two ways (records after the stop are NaN, :class:`StopCause`):
 ``"runaway"`` when, at a sampling instant, a tracker's localization error exceeds
 ``runaway_factor`` (:data:`theory.core.tolerances.RUNAWAY_FACTOR`) times the S-T curves' size —
 the DEKF has lost the target and the loop escapes exponentially with it, the turn rates growing
@@ -37,6 +33,7 @@ import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from enum import StrEnum
 
 import numpy as np
 
@@ -50,6 +47,7 @@ __all__ = [
     "DecSettings",
     "LoopState",
     "StepControl",
+    "StopCause",
     "build_loop",
     "heun_step",
     "integrate_until",
@@ -58,46 +56,25 @@ __all__ = [
 ]
 
 
+class StopCause(StrEnum):
+    """Why a run stopped before its last record."""
+
+    RUNAWAY = "runaway"  # the DEKF lost the target (:func:`runaway_reason`)
+    STEP_FLOOR = "step_floor"  # a step fell below ``min_step``
+
+
 @dataclass(frozen=True)
 class DecSettings:
     """Parameters of the DEC loop (defaults: seed 003 Table I, 2-D).
 
-    Attributes
-    ----------
-    omega_bar : float
-        Nominal path speed ``ω̄`` (rad/s).
-    radii : tuple of float
-        ``(r_x, r_y)`` of (16), used when no ``paths`` are given.
-    epsilon : tuple of float
-        ``ε`` of (19); ``ε₁ ≠ 0`` makes ``Δ`` of (22) of full row rank.
-    Kp : tuple of float or ndarray
-        Diagonal of ``K_p``, or the symmetric positive-definite matrix.
-    k_gamma : float
-        ``k_γ`` of (50b).
-    k_c : float
-        Coupling gain of (45), (52).
-    controller : str
-        ``"I"`` or ``"II"``.
-    V : float
-        DEKF inverse range variance.
-    Q : tuple of float or ndarray
-        Diagonal of the DEKF's process covariance, or the matrix (W = Q⁻¹).
-    fusion_weight : float
-        ``π^[i,j]`` for the self and the in-neighbour.
-    Ts : float
-        Range sampling period (s).
-    dt : float
-        Recording interval (s); ``Ts/dt`` must be an integer.
-    sigma : float
-        Standard deviation of the simulated range noise (m).
-    rtol : float
-        Local error allowed per integration step: positions relative to the largest path semi-axis,
-        attitude entries and γ absolute (rad).
-    min_step : float
-        Steps shorter than this (s) stop the run (the loop is too stiff or diverges).
-    runaway_factor : float
-        A tracker's localization error above this many S-T curve sizes (:attr:`DecLoop.scale`)
-        at a sampling instant stops the run as a runaway (``math.inf``: never).
+    ``radii`` (r_x, r_y) of (16) serve when no paths are given; ``epsilon`` ε of (19) (ε₁ ≠ 0);
+    ``Kp`` and ``Q`` are matrices or their diagonals (W = Q⁻¹); ``V`` the DEKF's inverse range
+    variance, ``fusion_weight`` π^[i,j] for the self and the in-neighbour, ``Ts`` the range
+    sampling period and ``dt`` the recording interval (s; Ts/dt an integer), ``sigma`` the range
+    noise (m). ``rtol`` is the local error per step (positions relative to the largest path
+    semi-axis, attitude and γ absolute); a step below ``min_step`` (s) stops the run, and so
+    does a localization error above ``runaway_factor`` S-T curve sizes at a sampling instant
+    (``math.inf``: never).
     """
 
     omega_bar: float = 0.05
@@ -126,8 +103,7 @@ class DecRun:
     ``‖q̂ − q‖`` and ``estimation_errors`` ``‖x̂ − x‖`` (state used by the controller at that
     instant) (M+1, N), ``target`` (M+1, 2d); ``steps`` and ``rejected`` count the integration
     steps taken and refused; ``stopped_at`` is the time the integration stopped early (records
-    after it are NaN) or NaN, with the reason in ``stop_reason`` and ``stop_cause``
-    ``"runaway"`` (:func:`runaway_reason`) or ``"step_floor"`` (a step below ``min_step``)."""
+    after it are NaN) or NaN, with the reason in ``stop_reason`` and its :class:`StopCause`."""
 
     times: np.ndarray
     positions: np.ndarray
@@ -154,14 +130,7 @@ class DecRun:
 class LoopState:
     """(p, R, γ, e_γ) of every tracker; p, γ and e_γ are views of one flat vector ``z``.
 
-    Parameters
-    ----------
-    z : ndarray, shape (N·d + 2N,)
-        [p (N × d, row-major), γ (N), e_γ (N)].
-    R : ndarray, shape (N, d, d)
-        Attitudes.
-    n, d : int
-        Number of trackers and dimension.
+    ``z`` = [p (N × d, row-major), γ (N), e_γ (N)]; ``R`` (N, d, d) the attitudes.
     """
 
     __slots__ = ("R", "e_gamma", "gamma", "p", "z")
@@ -187,21 +156,9 @@ Rates = tuple[np.ndarray, np.ndarray]
 class DecLoop:
     """The closed loop's constants, precomputed once (seed 003 eqs. (45)–(52)).
 
-    Attributes
-    ----------
-    dim, n : int
-        Dimension and number of trackers.
-    epsilon, K_p, delta_bar, laplacian : ndarray
-        ε, K_p, Δ̄ = Δᵀ(ΔΔᵀ)⁻¹ and L = D_in − A.
-    input_gain, input_offset : ndarray
-        G and g of :func:`theory.pursuit.model.input_gains`: u = [Rᵀc, Rᵀb] G + g (eq. (51)).
-    omega_bar, k_c, k_gamma : float
-        ω̄, k_c and k_γ (0 for Type I, where e_γ ≡ 0).
-    paths : PathHarmonics
-        The trackers' paths (15)/(16), one row each.
-    scale : float
-        Largest path semi-axis (m): positions are controlled relative to the larger of it and
-        the largest coordinate of any tracker, γ and the attitude entries absolutely.
+    ``input_gain``, ``input_offset``: G and g of :func:`theory.pursuit.model.input_gains`
+    (u = [Rᵀc, Rᵀb] G + g, eq. (51)); ``k_gamma`` is 0 for Type I (e_γ ≡ 0); ``scale`` is the
+    largest path semi-axis (m), against which positions are error-controlled.
     """
 
     dim: int
@@ -219,26 +176,10 @@ class DecLoop:
     scale: float
 
     def rates(self, t: float, state: LoopState, x_hat: np.ndarray, t_hat: float) -> Rates:
-        """Kinematic rates of every tracker under controller (49)/(50), estimate ``x_hat``.
+        """(ż, ω) of every tracker under controller (49)/(50), seed 003 eqs. (2)–(5), (45)–(51).
 
-        Parameters
-        ----------
-        t : float
-            Time (s).
-        state : LoopState
-        x_hat : ndarray, shape (N, 2d)
-            Filtered estimates x̂_{k|k} of the last sampling instant ``t_hat``.
-        t_hat : float
-            That instant: q̂(t) = q̂_{k|k} + (t − t_hat) v̂.
-
-        Returns
-        -------
-        (ż, ω) : tuple of ndarray
-            ż = [ṗ, γ̇, ê_pᵀRᵀr′] (flat, as ``state.z``) and ω (N, k).
-
-        References
-        ----------
-        seed 003, eqs. (2)–(5), (45)–(51), (50b).
+        ``x_hat`` are the filtered estimates of the last sampling instant ``t_hat``
+        (q̂(t) = q̂_{k|k} + (t − t_hat) v̂); ż = [ṗ, γ̇, ê_pᵀRᵀr′] is flat, as ``state.z``.
         """
         n, d = self.n, self.dim
         a, b = n * d, n * (d + 1)  # z = [p (:a), γ (a:b), e_γ (b:)]
@@ -385,37 +326,17 @@ def heun_step(
     rates: Rates,
     estimate: tuple[np.ndarray, float],
 ) -> tuple[LoopState, float]:
-    """One predictor–corrector step of length ``h`` and its scaled local error estimate.
+    """One predictor–corrector step of length ``h``: the corrected state and its local error.
 
     (γ, e_γ) obey γ̇ = ω_d + e_γ, ė_γ = −k_γe_γ + f (f = ê_pᵀRᵀr′) and are advanced exactly for
     ω_d, f constant (predictor, order 1: ETD1) or linear in time (corrector, order 2: ETD2RK),
     with the weights of :func:`_etd_weights`, so the stiff decay −k_γ costs nothing whatever k_γh.
     Positions: p + hṗ₀, then p + ½h(ṗ₀ + ṗ₁); attitude: R(I + hS(ω₀)) (only feeds the rates at
     the predicted state, need not be a rotation), then R exp(½hS(ω₀ + ω₁)) (exact on SO(3)).
-
-    Parameters
-    ----------
-    loop : DecLoop
-    field : callable
-        The vector field (:data:`Field`).
-    t, h : float
-        Time and step (s).
-    state : LoopState
-    rates : tuple
-        ``field`` at (t, state).
-    estimate : (ndarray, float)
-        (x̂_{k|k}, t_k) used by the controller.
-
-    Returns
-    -------
-    (LoopState, float)
-        The corrected state and the error estimate (≤ rtol: accept): the largest difference
-        between corrector and predictor in p (relative to :attr:`DecLoop.scale` or the largest
-        coordinate), γ and R.
-
-    References
-    ----------
-    Cox & Matthews, J. Comput. Phys. 176 (2002) (ETD2RK); Munthe-Kaas, BIT 38 (1998) (RKMK).
+    The error is the largest corrector − predictor difference in p (relative to
+    :attr:`DecLoop.scale` or the largest coordinate), γ and R. ``rates`` is ``field`` at (t,
+    state), ``estimate`` (x̂_{k|k}, t_k). Cox & Matthews, J. Comput. Phys. 176 (2002) (ETD2RK);
+    Munthe-Kaas, BIT 38 (1998) (RKMK).
     """
     start = _start(loop, state.z, rates[0], _etd_weights(loop.k_gamma, h))
     z1, R1 = _predict(loop, h, state, rates, start)
@@ -524,13 +445,7 @@ class StepControl:
     After a step of scaled error ``err`` (≤ 1: accepted) the step is multiplied by
     0.9·err^{−1/2} (at most 1 after a rejection), within [0.2, 2], and kept at most ``cap``. (A
     proportional–integral controller halved the rejections but took 20–90 % more steps here.)
-
-    Parameters
-    ----------
-    h : float
-        First proposed step (s).
-    cap : float
-        Largest step (s), the recording interval.
+    ``cap`` is the largest step (s), the recording interval.
     """
 
     h: float
@@ -561,34 +476,10 @@ def integrate_until(
     settings: DecSettings,
     rates: Rates | None = None,
 ) -> tuple[LoopState, Rates, int, int]:
-    """Adaptive steps from ``t`` to ``t_end`` (the last one lands on ``t_end``).
+    """Adaptive steps from ``t`` to ``t_end``: the state and rates there, accepted and rejected.
 
-    Parameters
-    ----------
-    loop : DecLoop
-    field : callable
-        :data:`Field`.
-    t, t_end : float
-        Interval (s).
-    state : LoopState
-    estimate : (ndarray, float)
-        (x̂_{k|k}, t_k).
-    control : StepControl
-        The step size, updated in place.
-    settings : DecSettings
-        ``rtol`` and ``min_step``.
-    rates : tuple, optional
-        ``field`` at (t, state), if known.
-
-    Returns
-    -------
-    (LoopState, tuple, int, int)
-        State at ``t_end``, the rates there, accepted and rejected steps.
-
-    Raises
-    ------
-    FloatingPointError
-        If the step falls below ``settings.min_step`` (the message gives the time).
+    ``control`` (the step size) is updated in place; ``rates`` is ``field`` at (t, state) if
+    known. FloatingPointError if a step falls below ``settings.min_step``.
     """
     accepted = rejected = 0
     rates = field(t, state, *estimate) if rates is None else rates
@@ -634,27 +525,9 @@ def _path_harmonics(paths: np.ndarray) -> model.PathHarmonics:
 def build_loop(
     settings: DecSettings, paths: np.ndarray, in_neighbours: list[list[int]], dim: int
 ) -> DecLoop:
-    """The :class:`DecLoop` of ``settings`` for trackers on ``paths``.
+    """The :class:`DecLoop` of ``settings`` for trackers on ``paths`` (rows: :func:`simulate_dec`).
 
-    Parameters
-    ----------
-    settings : DecSettings
-        Gains (``epsilon``, ``Kp``, ``k_gamma``, ``k_c``, ``omega_bar``, ``controller``).
-    paths : ndarray, shape (N, 3) or (N, 5)
-        Rows as in :func:`simulate_dec`.
-    in_neighbours : list of list of int
-        0-based in-neighbours of each tracker (L = D_in − A).
-    dim : int
-        2 or 3.
-
-    Returns
-    -------
-    DecLoop
-
-    Raises
-    ------
-    ValueError
-        If ``Δ`` of (22) is not of full row rank (ε₁ = 0, Remark 6) or the controller is unknown.
+    ValueError if Δ of (22) is not of full row rank (ε₁ = 0, Remark 6) or the controller unknown.
     """
     if settings.controller not in ("I", "II"):
         raise ValueError(f"controller must be 'I' or 'II', got {settings.controller!r}")
@@ -744,30 +617,8 @@ def runaway_reason(
     near the target, and the one-range DEKF, whose bearing error has passed 90°, pushes its
     estimate further out along the wrong ray at every correction (docs/theory/pursuit-iss.md §11).
     The reason states the evidence that nothing is singular: the estimated range ‖q̂ − p‖ (the
-    divisor of the range Jacobian C_k of (41)) and λ_min of the information Ω_{k+1|k} (44).
-
-    Parameters
-    ----------
-    loop : DecLoop
-    positions : ndarray, shape (N, d)
-        Tracker positions at the instant.
-    x_hat : ndarray, shape (N, 2d)
-        Filtered estimates x̂_{k|k}.
-    truth : ndarray, shape (2d,)
-        The target's true state.
-    information : ndarray, shape (N, 2d, 2d)
-        The DEKF's next priors Ω_{k+1|k}.
-    factor : float
-        ``runaway_factor`` (:data:`theory.core.tolerances.RUNAWAY_FACTOR`).
-
-    Returns
-    -------
-    str
-        Tracker (1-based), error, threshold, bearing error, estimated range and λ_min(Ω).
-
-    References
-    ----------
-    seed 003, eqs. (9)–(10), (41), (44), Theorem 2 (x̃ is its input).
+    divisor of the range Jacobian C_k of (41)) and λ_min of the information Ω_{k+1|k} (44),
+    ``information`` (seed 003 eqs. (9)–(10), (41), (44); x̃ is Theorem 2's input).
     """
     d = loop.dim
     errors = np.linalg.norm(x_hat[:, :d] - truth[:d], axis=1)
@@ -818,14 +669,14 @@ def _run(
         if m == steps:
             break
         if reason:
-            stop = _stop(m * dt, reason, "runaway")
+            stop = _stop(m * dt, reason, StopCause.RUNAWAY)
             break
         try:
             state, rates, accepted, refused = integrate_until(
                 loop, field, m * dt, (m + 1) * dt, state, (x_hat, t_hat), control, settings, rates
             )
         except FloatingPointError as error:
-            stop = _stop(m * dt, str(error), "step_floor")
+            stop = _stop(m * dt, str(error), StopCause.STEP_FLOOR)
             break
         counts[0] += accepted
         counts[1] += refused
@@ -836,7 +687,7 @@ def _run(
     )  # fmt: skip
 
 
-def _stop(time: float, reason: str, cause: str) -> dict[str, object]:
+def _stop(time: float, reason: str, cause: StopCause) -> dict[str, object]:
     """The :class:`DecRun` fields of a run stopped early at ``time``."""
     return {"stopped_at": time, "stop_reason": reason, "stop_cause": cause}
 
@@ -879,51 +730,15 @@ def simulate_dec(
 ) -> DecRun:
     """Simulate the DEC system of seed 003 §V (2-D or 3-D), recording every ``settings.dt``.
 
-    Parameters
-    ----------
-    target : ndarray, shape (steps+1, 2d)
-        True target states ``[q; v]`` at ``t = k·dt`` (e.g. :func:`table_target`).
-    initial_positions : ndarray, shape (N, d)
-    initial_headings : ndarray, shape (N,) or (N, 3)
-        Yaw ``ψ`` (2-D) or roll–pitch–yaw (3-D).
-    initial_gammas : ndarray, shape (N,)
-    in_neighbours : list of list of int
-        0-based in-neighbours ``N_in^[i]`` (fusion and coordination).
-    x0 : ndarray, shape (2d,) or (N, 2d)
-        Initial estimates ``x̂_{1|0}`` (one for all trackers, or one each).
-    P0 : ndarray, shape (2d, 2d) or (N, 2d, 2d)
-        Initial covariances ``P_{1|0}``.
-    steps : int
-        Number of records after the first (the run lasts ``steps·dt``).
-    rng : numpy.random.Generator
-        Source of the range noise.
-    settings : DecSettings
-        Gains, DEKF and integration settings (``epsilon``, ``Kp``, ``Q`` of matching dimension).
-    paths : ndarray, shape (N, 3) or (N, 5), optional
-        Rows ``(r_x, r_y, γ0)`` (16) or ``(r_x, r_y, r_z, c, γ0)`` (15); default (2-D)
-        ``settings.radii`` and ``γ0^[i] = 2π(i−1)/N``.
-    fusion : ndarray, shape (N, N), optional
-        Fusion weights ``π^[i,j]``; default ``settings.fusion_weight`` on each in-edge and the
-        rest on the tracker itself.
-    initial_gamma_errors : ndarray, shape (N,), optional
-        ``e_γ(0) = γ̇(0) − ω_d(0)`` (Type II; default 0).
-    field : callable, optional
-        Replaces :meth:`DecLoop.rates` (a reference implementation, for tests and benchmarks).
-
-    Returns
-    -------
-    DecRun
-        ``completed`` is false when a step fell below ``settings.min_step``.
-
-    Raises
-    ------
-    ValueError
-        If ``Δ`` of (22) is not of full row rank (e.g. ``ε₁ = 0`` in 2-D, Remark 6),
-        ``T_s/dt`` is not an integer, or the controller type is unknown.
-
-    References
-    ----------
-    seed 003, eqs. (2)–(5), (15)–(16), (22), (41)–(52).
+    ``target`` holds the true states ``[q; v]`` at ``t = k·dt`` for ``steps + 1`` records;
+    ``initial_headings`` are yaws (2-D) or roll–pitch–yaw (3-D); ``in_neighbours`` the 0-based
+    N_in^[i]; ``x0``, ``P0`` the priors x̂_{1|0}, P_{1|0} (one for all trackers or one each);
+    ``rng`` draws the range noise. ``paths`` rows are ``(r_x, r_y, γ0)`` (16) or
+    ``(r_x, r_y, r_z, c, γ0)`` (15) (default: ``settings.radii``, γ0^[i] = 2π(i−1)/N); ``fusion``
+    the weights π^[i,j] (default ``settings.fusion_weight`` on each in-edge);
+    ``initial_gamma_errors`` e_γ(0) (Type II, default 0); ``field`` replaces
+    :meth:`DecLoop.rates` (a reference implementation, for tests and benchmarks). ValueError if
+    Δ of (22) is singular (ε₁ = 0), T_s/dt is not an integer or the controller is unknown.
     """
     n, d = initial_positions.shape
     every = round(settings.Ts / settings.dt)

@@ -35,24 +35,9 @@ __all__ = [
 
 
 def table_target(table: str, times: np.ndarray) -> np.ndarray:
-    """Target states ``[q; v]`` of seed 003 Table I (2-D) or Table II (3-D) at ``times``.
+    """Target states ``[q; v]`` of seed 003 Table I (2-D) or Table II (3-D) at ``times`` (s).
 
     Table I: ``q = [20 sin(0.01t + π), 0.3t]``; Table II: ``q = [30 sin(0.01t + π), 0.1t, −0.5t]``.
-
-    Parameters
-    ----------
-    table : {"I", "II"}
-    times : ndarray
-        Times (s).
-
-    Returns
-    -------
-    ndarray, shape (len(times), 2d)
-
-    Raises
-    ------
-    ValueError
-        For a table other than ``"I"`` or ``"II"``.
     """
     t = np.asarray(times, dtype=float)
     s, c = np.sin(0.01 * t + np.pi), np.cos(0.01 * t + np.pi)
@@ -67,23 +52,10 @@ def table_target(table: str, times: np.ndarray) -> np.ndarray:
     return np.hstack([q, v])
 
 
-def st_curve(gamma: np.ndarray, radii: tuple[float, ...], gamma0: float, c: float = 1.0):
-    """Spatial path ``r(γ)`` of (15) (3-D, ``radii = (r_x, r_y, r_z)``) or (16) (2-D).
-
-    Parameters
-    ----------
-    gamma : ndarray
-        Path parameters ``γ``.
-    radii : tuple of float
-    gamma0 : float
-        Phase ``γ0``.
-    c : float
-        Vertical frequency divisor of (15).
-
-    Returns
-    -------
-    ndarray, shape (..., d)
-    """
+def st_curve(
+    gamma: np.ndarray, radii: tuple[float, ...], gamma0: float, c: float = 1.0
+) -> np.ndarray:
+    """Spatial path ``r(γ)`` of seed 003 (15) (3-D, ``radii = (r_x, r_y, r_z)``) or (16) (2-D)."""
     r_z = radii[2] if len(radii) == 3 else None
     return path(gamma, radii[0], radii[1], gamma0, r_z, c if r_z is not None else None)
 
@@ -91,24 +63,8 @@ def st_curve(gamma: np.ndarray, radii: tuple[float, ...], gamma0: float, c: floa
 def encircling_paths(
     target: np.ndarray, times: np.ndarray, n: int, radii: tuple[float, ...], omega: float
 ) -> np.ndarray:
-    """Trackers on their S-T curves ``q(t) + r(ω̄t + γ0^[i])``, ``γ0^[i] = 2π(i−1)/N``.
-
-    Parameters
-    ----------
-    target : ndarray, shape (K+1, 2d)
-        True target states.
-    times : ndarray, shape (K+1,)
-    n : int
-        Number of trackers.
-    radii : tuple of float
-        ``(r_x, r_y)`` or ``(r_x, r_y, r_z)``.
-    omega : float
-        ``ω̄``.
-
-    Returns
-    -------
-    ndarray, shape (K+1, n, d)
-    """
+    """Positions (K+1, n, d) of ``n`` trackers on their S-T curves ``q(t) + r(ω̄t + γ0^[i])``,
+    ``γ0^[i] = 2π(i−1)/N``, around the true ``target`` states."""
     d = len(radii)
     return np.stack(
         [
@@ -121,15 +77,8 @@ def encircling_paths(
 
 @dataclass(frozen=True, eq=False)
 class RangeDekfRun:
-    """Estimates and information matrices of every tracker at every step (seed 003 Algorithm 2).
-
-    Attributes
-    ----------
-    estimates : ndarray, shape (K+1, N, 2d)
-        Filtered estimates ``x̂_{k|k}^[i]`` (position then velocity).
-    information : ndarray, shape (K+1, N, 2d, 2d)
-        Information matrices ``Ω_{k|k}^[i]``.
-    """
+    """Filtered estimates x̂_{k|k}^[i] (K+1, N, 2d) and information matrices Ω_{k|k}^[i] of every
+    tracker at every step (seed 003 Algorithm 2)."""
 
     estimates: np.ndarray
     information: np.ndarray
@@ -154,38 +103,10 @@ def range_dekf(
     P0: np.ndarray,
     rng: np.random.Generator,
 ) -> RangeDekfRun:
-    """Run Algorithm 2 of seed 003 on given tracker and target trajectories.
+    """Algorithm 2 of seed 003 on given tracker and target trajectories (eqs. (7)–(10), (41)–(44)).
 
-    Parameters
-    ----------
-    trackers : ndarray, shape (K+1, N, d)
-        Tracker positions at the sampling instants.
-    target : ndarray, shape (K+1, 2d)
-        True target states.
-    Ts : float
-        Sampling period (range every ``Ts``).
-    noise_var : float
-        Variance of the simulated range noise ``η``.
-    V : float
-        The filter's inverse range variance ``V^[i]``.
-    Q : ndarray, shape (2d, 2d)
-        The filter's process covariance (``W = Q⁻¹``).
-    fusion : ndarray, shape (N, N)
-        Row-stochastic fusion weights ``π^[i,j]`` (row ``i``: tracker ``i``'s in-neighbours).
-    x0 : ndarray, shape (2d,)
-        Every tracker's ``x̂_{1|0}``.
-    P0 : ndarray, shape (2d, 2d)
-        Every tracker's ``P_{1|0}``.
-    rng : numpy.random.Generator
-        Source of the range noise.
-
-    Returns
-    -------
-    RangeDekfRun
-
-    References
-    ----------
-    seed 003, eqs. (7)–(10), (33)–(35), (41)–(44), Algorithms 1–2.
+    Ranges every ``Ts`` with noise of variance ``noise_var``; the filter's ``V``, process
+    covariance ``Q`` (W = Q⁻¹), fusion weights π^[i,j], and every tracker's x̂_{1|0}, P_{1|0}.
     """
     steps, n, d = trackers.shape
     F = transition_matrix(d, Ts)
@@ -204,19 +125,7 @@ def range_dekf(
 
 
 def transition_matrix(dim: int, Ts: float) -> np.ndarray:
-    """F = [I, T_s I; 0, I] of eq. (8) (Remark 3 in 2-D).
-
-    Parameters
-    ----------
-    dim : int
-        2 or 3.
-    Ts : float
-        Sampling period (s).
-
-    References
-    ----------
-    seed 003, eqs. (7)–(8), Remark 3.
-    """
+    """F = [I, T_s I; 0, I] of seed 003 eq. (8) (Remark 3 in 2-D)."""
     eye = np.eye(dim)
     return np.block([[eye, Ts * eye], [np.zeros((dim, dim)), eye]])
 
@@ -237,37 +146,8 @@ def dekf_step(
     Correction (41) with C_k = ∂d/∂x at x̂_{k|k−1} = [(q̂ − p)ᵀ/‖q̂ − p‖, 0] and the linearized
     range ỹ = y − d(x̂) + Cx̂; one fusion round (43) z_{k|k} = Σ_j π^[i,j] z̃^[j],
     Ω_{k|k} = Σ_j π^[i,j] Ω̃^[j]; prediction (44) Ω_{k+1|k} = W − WF(Ω_{k|k} + FᵀWF)⁻¹FᵀW,
-    x̂_{k+1|k} = F x̂_{k|k}.
-
-    Parameters
-    ----------
-    x_pred : ndarray, shape (N, 2d)
-        Prior estimates x̂_{k|k−1}.
-    Omega : ndarray, shape (N, 2d, 2d)
-        Prior information matrices Ω_{k|k−1}.
-    positions : ndarray, shape (N, d)
-        Tracker positions at the instant.
-    ranges : ndarray, shape (N,)
-        Measured ranges y_k (eq. (10)).
-    fusion : ndarray, shape (N, N)
-        Row-stochastic weights π^[i,j].
-    F : ndarray, shape (2d, 2d)
-        :func:`transition_matrix`.
-    W : ndarray, shape (2d, 2d)
-        The filter's inverse process covariance.
-    V : float
-        Inverse range variance V^[i].
-
-    Returns
-    -------
-    x_hat, Omega_post : ndarray
-        Posterior estimates x̂_{k|k} (N, 2d) and information Ω_{k|k} (N, 2d, 2d).
-    Omega_next, x_next : ndarray
-        Priors of the next instant, Ω_{k+1|k} and x̂_{k+1|k}.
-
-    References
-    ----------
-    seed 003, eqs. (41)–(44), Algorithm 2.
+    x̂_{k+1|k} = F x̂_{k|k} (seed 003 Algorithm 2). Returns x̂_{k|k}, Ω_{k|k}, Ω_{k+1|k}, x̂_{k+1|k}
+    from the priors x̂_{k|k−1}, Ω_{k|k−1}, the positions and the measured ranges y_k (10).
     """
     d = positions.shape[1]
     diff = x_pred[:, :d] - positions

@@ -19,88 +19,93 @@ Two subsystems, connected in cascade (seed 003 Fig. V.3):
   κ = √(r_max/r_min), b = ‖R^{1/2}W‖.
 
 The cascade (Theorem 2) gives ‖μ(t)‖ ≤ β(‖μ(0)‖, t) + γ(sup‖x̃‖) with the explicit β and γ of
-:func:`iss_bound`. The quantities a checker must re-verify exactly are listed in
-``docs/theory/pursuit-iss.md`` and returned by :func:`iss_certificate_data`.
+:func:`iss_bound`.
 
-References
-----------
-seed 003, Lemma 1, Definition 1, Lemmas 2–4, Theorems 1–2, eqs. (55)–(78).
+Every number of a case denotes its shortest decimal (:func:`theory.core.exact.exact_decimal`), so
+the conditions that decide the analysis are decided in rational arithmetic, never by comparing a
+float with a threshold: ``K ≻ 0`` (eq. (66)) by Sylvester's test (exact Bareiss elimination);
+``λ_min(K) ≥ 1`` (the printed region (72) follows from the argument iff it holds) as K − I ⪰ 0;
+``a(L) > 0`` (Definition 1) as BᵀMB ≻ 0 for the rational basis B of r⊥ (M = RL + LᵀR), since
+a(L) = λ_min(BᵀMB, 2BᵀRB) and BᵀRB ≻ 0. The float values (λ_min(K), a(L)) are margins only.
+
+The case claims ``seed003.thm1``, ``.lem4``, ``.lem3``, ``.thm2`` state the corrected constants
+for a case; :func:`iss_report` is what ``trackcert iss`` reports and :func:`observe_iss` the
+``pursuit`` kind's observer.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
+from enum import StrEnum
 from fractions import Fraction
 from typing import Any
 
 import numpy as np
 import scipy.linalg
+from flint import fmpq
 from scipy.sparse.csgraph import connected_components
 
-from theory.core.errors import InconclusiveError, PropertyFails
-from theory.core.exact import exact_decimal
-from theory.core.tolerances import INEQUALITY_RTOL, ISS_DIGITS, MARGIN_TOL
-from theory.pursuit.case import PursuitSpec, TrackerPath
-from theory.pursuit.iss_exact import (
-    exact_gain_matrix,
-    gain_matrix_definite,
-    r_perp_connectivity_positive,
-    region_argument_sound,
-    safe_constant,
-)
+from proofs_check.linalg import positive_definite
+from theory.core.case_file import Case
+from theory.core.claims import ClaimResult, ClaimSet, Context
+from theory.core.errors import CaseError
+from theory.core.exact import Matrix, exact_decimal, fractions_of, to_fmpq
+from theory.core.expectations import Expectation, Observed, judge
+from theory.core.tolerances import INEQUALITY_RTOL, MARGIN_TOL
+from theory.core.verdicts import Verdict, all_hold
+from theory.pursuit.case import Controller, PursuitSpec, TrackerPath
+from theory.pursuit.model import left_eigenvector
 
 __all__ = [
+    "SCOPE",
     "Condition",
+    "ConditionStatus",
     "CoordinationIss",
     "IssBound",
+    "IssReport",
     "PursuitIss",
+    "claims",
     "coordination_iss",
+    "eq72_case_search",
+    "exact_gain_matrix",
     "gain_matrix",
+    "gain_matrix_definite",
     "generalized_algebraic_connectivity",
-    "is_psd_exact",
     "iss_bound",
-    "iss_certificate_data",
     "iss_conditions",
-    "left_eigenvector",
+    "iss_observed",
+    "iss_record",
+    "iss_report",
+    "observe_iss",
+    "orthogonal_basis",
     "path_mu",
     "pursuit_iss",
-    "verify_certificate",
+    "r_perp_connectivity_positive",
+    "r_perp_gram",
+    "region_argument_sound",
 ]
+
+claims = ClaimSet()
 
 # ---------------------------------------------------------------------------------------------
 # pursuit subsystem (Theorem 1, Lemma 4)
 
 
 def gain_matrix(spec: PursuitSpec) -> np.ndarray:
-    """K = diag(K_p, k_γ) for Type II (eq. (66), ``k_z`` read as k_γ), K = K_p for Type I.
-
-    Parameters
-    ----------
-    spec : PursuitSpec
-        The case.
-    """
-    if spec.controller == "I":
+    """K = diag(K_p, k_γ) (Type II; ``k_z`` of seed 003 eq. (66) read as k_γ), K = K_p (Type I)."""
+    if spec.controller == Controller.I:
         return spec.K_p.copy()
     return scipy.linalg.block_diag(spec.K_p, [[spec.k_gamma]])
 
 
 def path_mu(path: TrackerPath) -> tuple[Fraction, bool]:
-    """An exact rational μ_r ≥ sup_γ ‖r′(γ)‖² for path (15)/(16), and whether it is the sup.
+    """An exact μ_r ≥ sup_γ ‖r′(γ)‖² for path (15)/(16), and whether it is the sup (eq. (71)).
 
     ‖r′‖² = r_x² sin²(γ+γ₀) + r_y² cos²(γ+γ₀) [+ (r_z/c)² cos²(γ/c + γ₀)]. The bound
     max(r_x², r_y²) [+ (r_z/c)²] is the supremum in 2D, and in 3D when r_x = r_y (then the
     vertical term reaches its maximum at some γ); otherwise it is an upper bound.
-
-    Parameters
-    ----------
-    path : TrackerPath
-        One tracker's path constants.
-
-    References
-    ----------
-    seed 003, eqs. (15), (16), (71).
     """
     rx, ry = exact_decimal(path.r_x), exact_decimal(path.r_y)
     bound = max(rx, ry) ** 2
@@ -114,41 +119,17 @@ def path_mu(path: TrackerPath) -> tuple[Fraction, bool]:
 class PursuitIss:
     """Constants of the pursuit-error ISS estimate (Theorem 1 / Lemma 4, corrected).
 
-    Attributes
-    ----------
-    controller : str
-    K : ndarray
-        Decay matrix of eq. (66).
-    lambda_min, norm_K, norm_K_p : float
-        λ_min(K), ‖K‖ = λ_max(K) and ‖K_p‖.
-    mu_r : Fraction
-        max over trackers of the exact bound μ_r ≥ sup_γ ‖r′(γ)‖² (:func:`path_mu`).
-    mu : float
-        μ = max(1, μ_r) of eq. (71).
-    mu_is_supremum : bool
-        Whether μ_r is the supremum (otherwise a valid upper bound).
-    cross_gain : float
-        The paper's c = √μ + ‖K‖ of eqs. (72)/(78).
-    paper_gain : float
-        c/λ_min(K): the (θ → 1) gain of eq. (78) — valid.
-    sharp_cross_gain : float
-        c♯ = √(‖K_p‖² + 1 + μ_r) (Type II) or √(‖K_p‖² + 1) (Type I): the cross terms of (70)
-        are e_pᵀ[K_p, I](Rᵀq̃, Rᵀṽ) − e_γq̃ᵀr′ ≤ c♯‖e‖‖x̃‖ (k_γ does not enter them).
-    decay_rate : float
-        λ = λ_min(K): ‖e(t)‖ ≤ e^{−λt}‖e(0)‖ + gain · sup‖x̃‖ (V_e decays at 2λ).
-    gain : float
-        c♯/λ, the linear ISS gain from ‖x̃‖ to ‖e‖ used by :func:`iss_bound`.
-    printed_region_sound : bool
-        Whether the printed argument for the region of eq. (72), ‖e‖ ≥ c‖x̃‖/θ, works (iff
-        λ_min(K) ≥ 1, decided exactly: K − I ⪰ 0; eq. (78) has the correct c/(θλ_min)).
-    printed_region_holds : bool
-        Whether the statement (72) is shown to hold for this case by the sufficient test
-        c♯ ≤ λ_min·c·(1 − inequality_rtol) (floats, so the test keeps that band from equality;
-        ``False`` means not shown this way; see
-        :func:`theory.pursuit.iss_counterexamples.eq72_case_search` for the exact criterion).
+    ``K`` is the decay matrix of eq. (66), ``mu_r`` the exact path bound (:func:`path_mu`),
+    ``mu`` = max(1, μ_r) of eq. (71); ``cross_gain`` is the paper's c = √μ + ‖K‖ and
+    ``paper_gain`` = c/λ_min(K) (the θ → 1 gain of (78), valid); ``sharp_cross_gain`` is
+    c♯ = √(‖K_p‖² + 1 + μ_r) (Type II) or √(‖K_p‖² + 1) (Type I) — the cross terms of (70) are
+    e_pᵀ[K_p, I](Rᵀq̃, Rᵀṽ) − e_γq̃ᵀr′ ≤ c♯‖e‖‖x̃‖ — and ``gain`` = c♯/λ the linear gain with
+    ``decay_rate`` λ = λ_min(K). ``printed_region_sound``: the printed argument for (72) works
+    (iff λ_min(K) ≥ 1, exactly); ``printed_region_holds``: (72) is shown for the case by the
+    sufficient test c♯ ≤ λ_min·c·(1 − inequality_rtol) (``False``: not shown this way).
     """
 
-    controller: str
+    controller: Controller
     K: np.ndarray
     lambda_min: float
     norm_K: float
@@ -177,17 +158,7 @@ class PursuitIss:
 
 
 def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
-    """The corrected constants of (72)/(78) for ``spec``.
-
-    Parameters
-    ----------
-    spec : PursuitSpec
-        The case.
-
-    References
-    ----------
-    seed 003, eqs. (65)–(72), (76)–(78).
-    """
+    """The corrected constants of seed 003 (72)/(78) for ``spec`` (eqs. (65)–(72), (76)–(78))."""
     K = gain_matrix(spec)
     eigenvalues = np.linalg.eigvalsh(K)
     lam, norm_k = float(eigenvalues[0]), float(eigenvalues[-1])
@@ -197,7 +168,7 @@ def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
     mu = float(max(Fraction(1), mu_r))
     is_sup = any(exact and b == mu_r for b, exact in bounds)
     c = math.sqrt(mu) + norm_k
-    sharp_sq = norm_kp**2 + 1.0 + (float(mu_r) if spec.controller == "II" else 0.0)
+    sharp_sq = norm_kp**2 + 1.0 + (float(mu_r) if spec.controller == Controller.II else 0.0)
     sharp = math.sqrt(sharp_sq)
     return PursuitIss(
         spec.controller, K, lam, norm_k, norm_kp, mu_r, mu, is_sup, c, c / lam, sharp, lam,
@@ -205,36 +176,81 @@ def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
     )  # fmt: skip
 
 
+def exact_gain_matrix(K: np.ndarray) -> list[list[Fraction]]:
+    """``K`` (seed 003 eq. (66)) with every entry read as its shortest decimal."""
+    return [[exact_decimal(float(x)) for x in row] for row in np.asarray(K, dtype=float)]
+
+
+def _symmetric_part(matrix: list[list[Fraction]]) -> list[list[Fraction]]:
+    n = len(matrix)
+    return [[(matrix[i][j] + matrix[j][i]) / 2 for j in range(n)] for i in range(n)]
+
+
+def gain_matrix_definite(K: np.ndarray) -> tuple[bool, bool]:
+    """(K exactly symmetric, sym(K) ≻ 0 exactly), seed 003 Lemma 2.
+
+    eᵀKe = eᵀ sym(K) e, so V̇ = −eᵀKe ≤ −λ_min(sym K)‖e‖² needs only the symmetric part; the
+    ``iss`` certificate (E2) states K itself and needs it symmetric.
+    """
+    exact = exact_gain_matrix(K)
+    symmetric = all(exact[i][j] == exact[j][i] for i in range(len(exact)) for j in range(i))
+    return symmetric, positive_definite(_symmetric_part(exact)).positive
+
+
+def region_argument_sound(K: np.ndarray) -> bool:
+    """Whether λ_min(sym K) ≥ 1 exactly, the condition for the printed region (72) to follow."""
+    S = _symmetric_part(exact_gain_matrix(K))
+    shifted = [[x - (1 if i == j else 0) for j, x in enumerate(row)] for i, row in enumerate(S)]
+    return positive_definite(shifted, semi=True).positive
+
+
+def eq72_case_search(spec: PursuitSpec, *, starts: int = 64, seed: int = 0) -> dict[str, Any]:
+    """Search the case's parameters for a violation of the region printed in seed 003 (72).
+
+    The printed statement holds for every θ ∈ (0, 1) iff c·eᵀKe ≥ σ(e) for every unit e, where
+    σ(e) = sup over R, γ of the cross-term gain, σ(e)² = (‖K_p e_p‖ + |e_γ|√μ_r)² + ‖e_p‖² (the
+    sup is attained with Rᵀr′ anti-parallel to K_p e_p). A multi-start Nelder–Mead search
+    (``starts`` starts drawn with ``seed``) minimises c·eᵀKe − σ(e); a minimum below
+    −inequality_rtol·c·‖K‖ is a counterexample (θ close to 1), anything else only "none found".
+    """
+    from scipy.optimize import minimize
+
+    pursuit = pursuit_iss(spec)
+    K = gain_matrix(spec)
+    dim = spec.dim
+    type_two = spec.controller == Controller.II
+    root_mu = math.sqrt(float(pursuit.mu_r)) if type_two else 0.0
+
+    def objective(x: np.ndarray) -> float:
+        e = x / np.linalg.norm(x)
+        e_p, e_gamma = e[:dim], (e[dim] if type_two else 0.0)
+        sigma = math.hypot(
+            float(np.linalg.norm(spec.K_p @ e_p)) + abs(e_gamma) * root_mu,
+            float(np.linalg.norm(e_p)),
+        )
+        return pursuit.cross_gain * float(e @ K @ e) - sigma
+
+    rng = np.random.default_rng(seed)
+    best = None
+    for _ in range(starts):
+        result = minimize(objective, rng.standard_normal(K.shape[0]), method="Nelder-Mead")
+        if best is None or result.fun < best.fun:
+            best = result
+    minimizer = best.x / np.linalg.norm(best.x)
+    return {
+        "minimum": float(best.fun),
+        "minimizer": minimizer.tolist(),
+        "violation_found": bool(best.fun < -INEQUALITY_RTOL * pursuit.cross_gain * pursuit.norm_K),
+        "starts": starts,
+        "seed": seed,
+    }
+
+
 # ---------------------------------------------------------------------------------------------
 # coordination subsystem (Lemma 1, Definition 1, Lemma 3)
 
 
-def left_eigenvector(laplacian: np.ndarray) -> tuple[Fraction, ...] | None:
-    """The exact r with rᵀL = 0, rᵀ1 = 1, or ``None`` if the zero eigenvalue is not simple.
-
-    Parameters
-    ----------
-    laplacian : ndarray of int
-        L = D_in − A.
-
-    References
-    ----------
-    seed 003, Lemma 1.
-    """
-    import flint
-
-    n = laplacian.shape[0]
-    basis, nullity = flint.fmpz_mat(laplacian.T.astype(int).tolist()).nullspace()
-    if nullity != 1:
-        return None
-    vector = [int(basis[i, 0]) for i in range(n)]
-    total = sum(vector)
-    if total == 0:
-        return None
-    return tuple(Fraction(x, total) for x in vector)
-
-
-def _orthogonal_basis(r: np.ndarray) -> np.ndarray:
+def orthogonal_basis(r: np.ndarray) -> np.ndarray:
     """Columns e_i − (r_i / r_N) e_N, i < N: a basis of r⊥ (rational when r is)."""
     n = r.size
     basis = np.zeros((n, n - 1))
@@ -244,61 +260,49 @@ def _orthogonal_basis(r: np.ndarray) -> np.ndarray:
 
 
 def generalized_algebraic_connectivity(laplacian: np.ndarray, r: np.ndarray) -> float:
-    """a(L) of Definition 1 as a generalized symmetric eigenvalue problem on r⊥.
+    """a(L) of seed 003 Definition 1 as a generalized symmetric eigenvalue problem on r⊥.
 
     a(L) = min over x ⊥ r, x ≠ 0 of xᵀ(RL + LᵀR)x / (2xᵀRx) = λ_min(BᵀMB, 2BᵀRB) for any basis
-    B of r⊥ (here the rational basis of :func:`_orthogonal_basis`), M = RL + LᵀR.
-
-    Parameters
-    ----------
-    laplacian : ndarray
-        L = D_in − A of a digraph whose left eigenvector is positive.
-    r : ndarray
-        That left eigenvector (rᵀL = 0, rᵀ1 = 1, r > 0).
-
-    References
-    ----------
-    seed 003, Definition 1, eq. (1).
+    B of r⊥ (here :func:`orthogonal_basis`), M = RL + LᵀR, r > 0 the left eigenvector.
     """
     R = np.diag(r)
     M = R @ laplacian + laplacian.T @ R
-    B = _orthogonal_basis(r)
+    B = orthogonal_basis(r)
     values = scipy.linalg.eigh(B.T @ M @ B, 2.0 * B.T @ R @ B, eigvals_only=True)
     return float(values[0])
 
 
+def r_perp_gram(laplacian: Any, r: Sequence[Fraction], a: Fraction = Fraction(0)) -> Matrix:
+    """Bᵀ(M − 2aR)B for M = RL + LᵀR, R = diag(r) and the rational basis B of r⊥ (exact).
+
+    With a = 0 it decides a(L) > 0 (BᵀMB ≻ 0); with a > 0, a ≤ a(L) (Bᵀ(M − 2aR)B ⪰ 0).
+    """
+    n = len(r)
+    L = to_fmpq([[Fraction(int(x)) for x in row] for row in laplacian])
+    R = to_fmpq([[r[i] if i == j else Fraction(0) for j in range(n)] for i in range(n)])
+    B = to_fmpq([[Fraction(int(i == j)) if i < n - 1 else -r[j] / r[n - 1] for j in range(n - 1)]
+                 for i in range(n)])  # fmt: skip
+    shifted = R * L + L.transpose() * R - fmpq(2 * a.numerator, a.denominator) * R
+    return fractions_of(B.transpose() * shifted * B)
+
+
+def r_perp_connectivity_positive(laplacian: np.ndarray, r: tuple[Fraction, ...]) -> bool:
+    """a(L) > 0 decided exactly as BᵀMB ≻ 0 (Sylvester), seed 003 Definition 1 (r > 0, N ≥ 2)."""
+    return positive_definite(r_perp_gram(laplacian, r)).positive
+
+
 @dataclass(frozen=True)
 class CoordinationIss:
-    """Constants of the coordination-error ISS estimate (Lemma 3, corrected).
+    """Constants of the coordination-error ISS estimate (seed 003 Lemma 3, corrected).
 
-    Attributes
-    ----------
-    n : int
-        Number of trackers.
-    laplacian : ndarray
-        L = D_in − A.
-    strongly_connected, zero_eigenvalue_simple : bool
-        Graph facts (strong connectivity is Lemma 3's hypothesis; a simple zero eigenvalue, i.e.
-        a spanning tree, is what consensus needs).
-    r : tuple of Fraction or None
-        Exact left eigenvector (rᵀL = 0, rᵀ1 = 1).
-    r_positive : bool
-        r > 0 (Lemma 1).
-    rl_psd : bool
-        RL + LᵀR ⪰ 0, shown exactly: it is symmetric with non-positive off-diagonal entries and
-        zero row sums (a weighted undirected Laplacian).
-    a_L : float or None
-        Generalized algebraic connectivity (None when N = 1 or r is not positive).
-    spectral_rate : float or None
-        k_c · min Re λ over the non-zero eigenvalues of L (the true decay rate of ξ̇ = −k_cLξ).
-    decay_rate : float or None
-        α = k_c a(L), the rate of ‖ξ‖_R the corrected proof supports.
-    printed_decay_coefficient : float or None
-        k_c r_min, the coefficient printed in eq. (74)–(75).
-    r_min, r_max, b, kappa, gain : float or None
-        min/max r_i, b = ‖R^{1/2}W‖, κ = √(r_max/r_min), gain = b/(√r_min α) from ‖e_γ‖ to ‖ξ‖.
-    printed_input_gain : float or None
-        ‖RW‖/(k_c r_min), the (θ → 1) gain of eq. (75) as printed.
+    Graph facts: strong connectivity (Lemma 3's hypothesis), a simple zero eigenvalue of L (a
+    spanning tree, what consensus needs), the exact left eigenvector ``r`` (rᵀL = 0, rᵀ1 = 1),
+    ``r_positive`` (Lemma 1) and ``rl_psd``: RL + LᵀR ⪰ 0 shown exactly (symmetric, off-diagonal
+    ≤ 0, zero row sums). Rates: ``a_L`` (None when N = 1 or r ≯ 0), ``spectral_rate`` k_c·min Re λ
+    over the non-zero eigenvalues of L (ξ̇ = −k_cLξ's true rate), ``decay_rate`` α = k_c a(L)
+    (what the corrected proof supports) and ``printed_decay_coefficient`` k_c r_min of (74)–(75).
+    Gains: b = ‖R^{1/2}W‖, κ = √(r_max/r_min), ``gain`` = b/(√r_min α) from ‖e_γ‖ to ‖ξ‖ and
+    ``printed_input_gain`` = ‖RW‖/(k_c r_min) of (75).
     """
 
     n: int
@@ -322,40 +326,26 @@ class CoordinationIss:
 
 
 def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
-    """The corrected constants of Lemma 3 for ``spec``'s digraph and k_c.
-
-    Parameters
-    ----------
-    spec : PursuitSpec
-        The case.
-
-    References
-    ----------
-    seed 003, Lemma 1, Definition 1, eqs. (55)–(58), (73)–(75).
-    """
+    """The corrected constants of seed 003 Lemma 3 for ``spec``'s digraph and k_c."""
     L = spec.laplacian
     n = L.shape[0]
     strongly = n == 1 or connected_components(spec.adjacency, connection="strong")[0] == 1
     r_exact = left_eigenvector(L)
     if r_exact is None:
         return CoordinationIss(n, L, spec.k_c, strongly, zero_eigenvalue_simple=False)
-    graph_facts = {
-        "r": r_exact,
-        "r_positive": all(x > 0 for x in r_exact),
-        "rl_psd": _rl_is_laplacian(L, r_exact),
-    }
+    r_positive = all(x > 0 for x in r_exact)
+    facts = CoordinationIss(
+        n, L, spec.k_c, strongly, True, r_exact, r_positive, _rl_is_laplacian(L, r_exact)
+    )
     if n == 1:
-        return CoordinationIss(
-            n, L, spec.k_c, True, True, **graph_facts, r_min=1.0, r_max=1.0, b=0.0, kappa=1.0,
-            gain=0.0, printed_input_gain=0.0,
-        )  # fmt: skip
+        return replace(
+            facts, r_min=1.0, r_max=1.0, b=0.0, kappa=1.0, gain=0.0, printed_input_gain=0.0
+        )
     eigenvalues = np.linalg.eigvals(L.astype(float))
     nonzero = np.delete(eigenvalues, np.argmin(np.abs(eigenvalues)))
     spectral = spec.k_c * float(np.min(nonzero.real))
-    if not graph_facts["r_positive"]:
-        return CoordinationIss(
-            n, L, spec.k_c, strongly, True, **graph_facts, spectral_rate=spectral
-        )
+    if not r_positive:
+        return replace(facts, spectral_rate=spectral)
     r = np.array([float(x) for x in r_exact])
     a = generalized_algebraic_connectivity(L.astype(float), r)
     R = np.diag(r)
@@ -363,8 +353,8 @@ def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
     b = math.sqrt(max(float(np.linalg.eigvalsh(W.T @ R @ W)[-1]), 0.0))
     r_min, r_max = float(r.min()), float(r.max())
     alpha = spec.k_c * a
-    return CoordinationIss(
-        n, L, spec.k_c, strongly, True, **graph_facts,
+    return replace(
+        facts,
         a_L=a,
         spectral_rate=spectral,
         decay_rate=alpha,
@@ -375,7 +365,7 @@ def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
         kappa=math.sqrt(r_max / r_min),
         gain=b / (math.sqrt(r_min) * alpha) if alpha > 0 else math.inf,
         printed_input_gain=float(np.linalg.norm(R @ W, 2)) / (spec.k_c * r_min),
-    )  # fmt: skip
+    )
 
 
 def _rl_is_laplacian(L: np.ndarray, r: tuple[Fraction, ...]) -> bool:
@@ -394,18 +384,10 @@ def _rl_is_laplacian(L: np.ndarray, r: tuple[Fraction, ...]) -> bool:
 class IssBound:
     """‖μ(t)‖ ≤ beta(‖μ(0)‖, t) + gamma(sup_{s∈[0,t]} ‖x̃(s)‖) for μ = col(ξ, e).
 
-    Attributes
-    ----------
-    beta : callable (r, t) -> float
-        Class-KL: r·[κe^{−αt} + (b/√r_min)ψ(t) + e^{−λt}], ψ(t) = sup_{s≥t} φ(s),
-        φ(s) = (e^{−λs} − e^{−αs})/(α − λ) (s·e^{−αs} when α = λ); the ψ-term is absent for
-        Type I (e_γ ≡ 0) and the ξ-terms for N = 1 (ξ ≡ 0).
-    gamma : callable (s) -> float
-        Linear gain s·gain.
-    gain : float
-        g_e(1 + g_ξ) for Type II (N > 1), g_e otherwise.
-    constants : dict
-        λ, α, κ, b, r_min, g_e, g_ξ used.
+    ``beta`` is class-KL: r·[κe^{−αt} + (b/√r_min)ψ(t) + e^{−λt}], ψ(t) = sup_{s≥t} φ(s),
+    φ(s) = (e^{−λs} − e^{−αs})/(α − λ) (s·e^{−αs} when α = λ); the ψ-term is absent for Type I
+    (e_γ ≡ 0) and the ξ-terms for N = 1 (ξ ≡ 0). ``gamma`` is s·gain with gain = g_e(1 + g_ξ)
+    for Type II (N > 1), g_e otherwise; ``constants`` lists λ, α, κ, b, r_min, g_e, g_ξ.
     """
 
     beta: Callable[[float, float], float]
@@ -431,29 +413,12 @@ def _peak_response(lam: float, alpha: float) -> Callable[[float], float]:
 
 
 def iss_bound(spec: PursuitSpec) -> IssBound:
-    """The explicit ISS estimate of the cascade (Theorem 2, with Lemma 3 and 4 corrected).
+    """The explicit ISS estimate of the cascade (seed 003 Theorem 2, Lemmas 3–4 corrected).
 
-    Parameters
-    ----------
-    spec : PursuitSpec
-        The case (use ``load_case(...).spec``).
-
-    Returns
-    -------
-    IssBound
-        Plain callables ``beta(r, t)`` and ``gamma(s)``; ``t`` in seconds, norms Euclidean on the
-        stacked vectors μ = col(ξ, e) and x̃ = col(x̃^[1], …, x̃^[N]).
-
-    Raises
-    ------
-    ValueError
-        If the conditions of the analysis fail (see :func:`iss_conditions`).
-
-    References
-    ----------
-    seed 003, Theorem 2, Lemmas 3–4; Khalil (2002) Lemma 3.4 (comparison lemma).
+    ``t`` in seconds, norms Euclidean on the stacked μ = col(ξ, e) and x̃ (comparison lemma,
+    Khalil (2002) Lemma 3.4); ValueError if a condition of :func:`iss_conditions` fails.
     """
-    failing = [c.name for c in iss_conditions(spec) if c.status == "fails"]
+    failing = [c.name for c in iss_conditions(spec) if c.status == ConditionStatus.FAILS]
     if failing:
         raise ValueError(f"no ISS estimate: conditions {failing} fail (see iss_conditions)")
     pursuit = pursuit_iss(spec)
@@ -470,7 +435,7 @@ def iss_bound(spec: PursuitSpec) -> IssBound:
     coupling = b / math.sqrt(coordination.r_min)
     constants = {"lambda": lam, "alpha": alpha, "kappa": kappa, "b": b}
     constants.update({"r_min": coordination.r_min, "g_e": g_e})
-    if spec.controller == "I":
+    if spec.controller == Controller.I:
         constants["g_xi"] = 0.0
         return IssBound(
             lambda r, t: r * (kappa * math.exp(-alpha * t) + math.exp(-lam * t)),
@@ -494,30 +459,26 @@ def iss_bound(spec: PursuitSpec) -> IssBound:
 # conditions checked by `trackcert iss`
 
 
+class ConditionStatus(StrEnum):
+    """The status of one condition of the analysis (its value is what the JSON records)."""
+
+    HOLDS = "holds"
+    FAILS = "fails"
+    INCONCLUSIVE = "inconclusive"
+    NOT_APPLICABLE = "not-applicable"
+
+
 @dataclass(frozen=True)
 class Condition:
-    """One condition of the analysis; ``status``: holds, fails, inconclusive or not-applicable.
+    """One condition of the analysis, with where it comes from in seed 003 and its status.
 
-    Attributes
-    ----------
-    name : str
-        Stable identifier, e.g. ``delta_full_rank``.
-    source : str
-        Where the condition comes from in the paper (seed 003).
-    status : str
-        ``holds``, ``fails``, ``inconclusive`` or ``not-applicable``.
-    value : object
-        The quantity decided (exact values as strings), ``None`` when there is none.
-    margin : float or None
-        How far ``value`` is from deciding the other way, relative to its scale; compared with
-        the margin tolerance.
-    detail : str
-        One line on how the condition was decided.
+    ``value`` is the quantity decided (exact values as strings), ``margin`` how far it is from
+    deciding the other way, relative to its scale (compared with the margin tolerance).
     """
 
     name: str
     source: str
-    status: str
+    status: ConditionStatus
     value: Any = None
     margin: float | None = None
     detail: str = ""
@@ -544,73 +505,58 @@ def _delta_condition(spec: PursuitSpec, tol: float) -> Condition:
     formula = "ε₁²·‖ε‖²" if spec.dim == 3 else "ε₁²"
     if det == 0:
         detail = f"det(ΔΔᵀ) = {formula} = 0: Δ̄ = Δᵀ(ΔΔᵀ)⁻¹ does not exist (ε₁ = 0)"
-        return Condition("delta_full_rank", source, "fails", str(det), margin, detail)
-    status = "inconclusive" if margin < tol else "holds"
+        return Condition("delta_full_rank", source, ConditionStatus.FAILS, str(det), margin, detail)
+    status = ConditionStatus.INCONCLUSIVE if margin < tol else ConditionStatus.HOLDS
     detail = f"det(ΔΔᵀ) = {formula} = {det} (exact); margin |ε₁|/‖ε‖"
     return Condition("delta_full_rank", source, status, str(det), margin, detail)
 
 
 def iss_conditions(spec: PursuitSpec, *, margin_tol: float = MARGIN_TOL) -> list[Condition]:
-    """Every condition the corrected analysis needs, with its status.
+    """Every condition the corrected analysis needs (seed 003 Remark 6, Lemmas 1–4, Def. 1).
 
-    Parameters
-    ----------
-    spec : PursuitSpec
-    margin_tol : float
-        Relative margin under which a numeric condition is inconclusive.
-
-    Returns
-    -------
-    list of Condition
-
-    References
-    ----------
-    seed 003, Remark 6, Lemma 1, Definition 1, Lemmas 2–4.
+    A numeric condition whose relative margin is below ``margin_tol`` is inconclusive.
     """
     conditions = [_delta_condition(spec, margin_tol), _gain_condition(pursuit_iss(spec))]
+    not_applicable = ConditionStatus.NOT_APPLICABLE
     if spec.n_trackers == 1:
-        conditions.append(
-            Condition(
-                "graph_strongly_connected",
-                "seed 003 Lemma 3",
-                "not-applicable",
-                detail="one tracker: ξ ≡ 0",
-            )
-        )
-        return conditions
+        source, detail = "seed 003 Lemma 3", "one tracker: ξ ≡ 0"
+        one = Condition("graph_strongly_connected", source, not_applicable, detail=detail)
+        return [*conditions, one]
     coordination = coordination_iss(spec)
-    conditions.append(
+    strongly, rl_psd = coordination.strongly_connected, coordination.rl_psd
+    rl_status = _holds_or_fails(rl_psd) if rl_psd or coordination.r else not_applicable
+    return [
+        *conditions,
         Condition(
-            "graph_strongly_connected",
-            "seed 003 Lemma 3 (hypothesis)",
-            "holds" if coordination.strongly_connected else "fails",
-            coordination.strongly_connected,
-            detail="networkx strong connectivity of the communication digraph",
-        )
-    )
-    conditions.append(_left_vector_condition(coordination))
-    conditions.append(
+            "graph_strongly_connected", "seed 003 Lemma 3 (hypothesis)", _holds_or_fails(strongly),
+            strongly, detail="networkx strong connectivity of the communication digraph",
+        ),
+        _left_vector_condition(coordination),
         Condition(
-            "rl_plus_ltr_psd",
-            "seed 003 Lemma 1",
-            "holds" if coordination.rl_psd else ("fails" if coordination.r else "not-applicable"),
-            coordination.rl_psd,
+            "rl_plus_ltr_psd", "seed 003 Lemma 1", rl_status, rl_psd,
             detail="exact: RL + LᵀR symmetric, off-diagonal ≤ 0, zero row sums",
-        )
-    )
-    conditions.append(_connectivity_condition(coordination))
-    return conditions
+        ),
+        _connectivity_condition(coordination),
+    ]  # fmt: skip
+
+
+def _holds_or_fails(holds: bool) -> ConditionStatus:
+    return ConditionStatus.HOLDS if holds else ConditionStatus.FAILS
 
 
 def _gain_condition(pursuit: PursuitIss) -> Condition:
     symmetric, definite = gain_matrix_definite(pursuit.K)
     ratio = pursuit.lambda_min / pursuit.norm_K if pursuit.norm_K > 0 else 0.0
-    status = "holds" if definite and symmetric else "fails" if not definite else "inconclusive"
+    if not definite:
+        status = ConditionStatus.FAILS
+    else:
+        status = ConditionStatus.HOLDS if symmetric else ConditionStatus.INCONCLUSIVE
     detail = {
-        "holds": "exact Sylvester test of K (Bareiss on the decimals as written)",
-        "fails": "exact Sylvester test: the symmetric part of K is not positive definite",
-        "inconclusive": "sym(K) ≻ 0 exactly, but K is not exactly symmetric (the analysis and "
-        "the iss certificate state a symmetric K)",
+        ConditionStatus.HOLDS: "exact Sylvester test of K (Bareiss on the decimals as written)",
+        ConditionStatus.FAILS: "exact Sylvester test: the symmetric part of K is not positive "
+        "definite",
+        ConditionStatus.INCONCLUSIVE: "sym(K) ≻ 0 exactly, but K is not exactly symmetric (the "
+        "analysis and the iss certificate state a symmetric K)",
     }[status]
     return Condition(
         "K_positive_definite", "seed 003 eq. (66)", status, pursuit.lambda_min, ratio,
@@ -622,26 +568,25 @@ def _left_vector_condition(coordination: CoordinationIss) -> Condition:
     source = "seed 003 Lemma 1"
     if coordination.r is None:
         return Condition(
-            "left_eigenvector_positive", source, "fails", None,
+            "left_eigenvector_positive", source, ConditionStatus.FAILS, None,
             detail="the zero eigenvalue of L is not simple: no unique r (no spanning tree)",
         )  # fmt: skip
     value = [str(x) for x in coordination.r]
-    status = "holds" if coordination.r_positive else "fails"
     return Condition(
-        "left_eigenvector_positive", source, status, value, float(min(coordination.r)),
-        detail="exact rᵀL = 0, rᵀ1 = 1, r > 0",
+        "left_eigenvector_positive", source, _holds_or_fails(coordination.r_positive), value,
+        float(min(coordination.r)), detail="exact rᵀL = 0, rᵀ1 = 1, r > 0",
     )  # fmt: skip
 
 
 def _connectivity_condition(coordination: CoordinationIss) -> Condition:
     source = "seed 003 Definition 1"
     if coordination.a_L is None:
-        return Condition("algebraic_connectivity_positive", source, "not-applicable",
+        return Condition("algebraic_connectivity_positive", source, ConditionStatus.NOT_APPLICABLE,
                          detail="a(L) needs a positive left eigenvector")  # fmt: skip
     scale = max(1.0, float(np.max(np.abs(coordination.laplacian))))
     positive = r_perp_connectivity_positive(coordination.laplacian, coordination.r)
     return Condition(
-        "algebraic_connectivity_positive", source, "holds" if positive else "fails",
+        "algebraic_connectivity_positive", source, _holds_or_fails(positive),
         coordination.a_L, coordination.a_L / scale,
         detail="exact: BᵀMB ≻ 0 on r⊥ (Sylvester), equivalent to a(L) > 0; a(L) = "
         "λ_min(BᵀMB, 2BᵀRB) by scipy eigh, margin a(L)/max|L_ij| (informative)",
@@ -649,338 +594,315 @@ def _connectivity_condition(coordination: CoordinationIss) -> Condition:
 
 
 # ---------------------------------------------------------------------------------------------
-# certificate data (for the `iss` certificate kind of proofs_check)
+# case claims: Theorem 1, Lemmas 3–4, Theorem 2 with the case's constants
 
 
-def _grid(x: float, digits: int) -> int:
-    """Decimal exponent k so that 10^-k is about 10^-digits relative to |x|."""
-    return digits - math.floor(math.log10(abs(x))) if x != 0 else digits
+def _tol(case: Case) -> float:
+    return float(case.tolerances.get("margin_tol", MARGIN_TOL))
 
 
-def _rational_above(x: float, *, digits: int = ISS_DIGITS) -> Fraction:
-    """A short decimal rational ≥ x (rounded up at ``digits`` significant digits)."""
-    k = _grid(x, digits)
-    return Fraction(math.ceil(x * 10**k), 10**k) + Fraction(1, 10**k)
+def _with_status(case: Case, status: ConditionStatus) -> list[str]:
+    conditions = iss_conditions(case.spec, margin_tol=_tol(case))
+    return [c.name for c in conditions if c.status == status]
 
 
-def _rational_below(x: float, *, digits: int = ISS_DIGITS) -> Fraction:
-    """A short decimal rational ≤ x (rounded down at ``digits`` significant digits)."""
-    k = _grid(x, digits)
-    return Fraction(math.floor(x * 10**k), 10**k) - Fraction(1, 10**k)
+def _refuted_delta(case: Case) -> ClaimResult:
+    evidence = {"epsilon": case.spec.epsilon.tolist(), "reason": "ε₁ = 0: Δ̄ does not exist"}
+    return ClaimResult("refuted", "exact", evidence, message="controller (26) undefined")
 
 
-def _sqrt_above(value: Fraction) -> Fraction:
-    """A short decimal rational s ≥ √value (checked exactly)."""
-    s = _rational_above(math.sqrt(float(value)))
-    while s * s < value:
-        s += Fraction(1, 10 ** _grid(float(s), ISS_DIGITS))
-    return s
-
-
-def is_psd_exact(matrix: list[list[Fraction]]) -> bool:
-    """Exact positive-semidefiniteness of a symmetric rational matrix (LDLᵀ with zero pivots).
-
-    A symmetric matrix is PSD iff symmetric Gaussian elimination meets only pivots ≥ 0 and every
-    zero pivot has a zero row below it.
-
-    Parameters
-    ----------
-    matrix : list of lists of Fraction
-        A square matrix (non-symmetric input returns ``False``).
-    """
-    a = [list(row) for row in matrix]
-    n = len(a)
-    if any(a[i][j] != a[j][i] for i in range(n) for j in range(i)):
-        return False
-    for k in range(n):
-        pivot = a[k][k]
-        if pivot < 0:
-            return False
-        if pivot == 0:
-            if any(a[k][j] != 0 for j in range(k + 1, n)):
-                return False
-            continue
-        for i in range(k + 1, n):
-            factor = a[i][k] / pivot
-            if factor:
-                for j in range(k + 1, n):
-                    a[i][j] -= factor * a[k][j]
-    return True
-
-
-def _shifted(matrix: list[list[Fraction]], shift: Fraction, weight=None) -> list[list[Fraction]]:
-    """matrix − shift·diag(weight) (weight defaults to the identity)."""
-    n = len(matrix)
-    w = weight or [Fraction(1)] * n
-    return [[matrix[i][j] - (shift * w[i] if i == j else 0) for j in range(n)] for i in range(n)]
-
-
-def iss_certificate_data(spec: PursuitSpec) -> dict[str, Any]:
-    """Plain data for an exact ISS certificate of ``spec`` (see docs/theory/pursuit-iss.md).
-
-    ``data`` holds the case's matrices and constants as exact rationals (``fractions.Fraction``;
-    a case number denotes its shortest decimal, :func:`theory.core.exact.exact_decimal`),
-    ``witness`` the certificate's constants, rounded in the safe direction at ``iss_digits``
-    significant digits (λ below λ_min(K), k̄ above ‖K‖, s above √μ, a below a(L), b above
-    ‖R^{1/2}W‖, ρ below √r_min, κ above √(r_max/r_min)) and moved further that way until their
-    exact checks pass. Every inequality of
-    :data:`CERTIFICATE_INEQUALITIES` is re-verified exactly by :func:`verify_certificate` before
-    the data is returned; ``numeric`` repeats the matrices as numpy arrays for convenience.
-
-    Parameters
-    ----------
-    spec : PursuitSpec
-        The case.
-
-    Returns
-    -------
-    dict
-        ``{"data": {...}, "witness": {...}, "inequalities": [...], "numeric": {...}}``.
-
-    Raises
-    ------
-    PropertyFails
-        If a condition of the analysis fails (the corrected Theorem 2 does not apply).
-    InconclusiveError
-        If a condition lies inside its tolerance.
-
-    References
-    ----------
-    seed 003, Lemma 1, Definition 1, eqs. (66), (71)–(78); DESIGN.md *Certificates*.
-    """
-    conditions = iss_conditions(spec)
-    failing = [c.name for c in conditions if c.status == "fails"]
-    if failing:
-        raise PropertyFails(
-            f"no ISS certificate: conditions {failing} do not hold (see trackcert iss)"
-        )
-    undecided = [c.name for c in conditions if c.status == "inconclusive"]
-    if undecided:
-        raise InconclusiveError(f"no ISS certificate: conditions {undecided} are inconclusive")
+@claims.register(
+    "seed003.thm1",
+    source="seed 003 Theorem 1, eqs. (67)–(72)",
+    statement="controllers (28)/(29) make the tracking error ISS w.r.t. the estimation error",
+    kinds=("pursuit",),
+)
+def check_theorem1(case: Case, ctx: Context) -> list[ClaimResult]:
+    """Theorem 1 with the case's constants; the printed region (72) is sound iff λ_min(K) ≥ 1."""
+    spec = case.spec
     pursuit = pursuit_iss(spec)
-    data = _pursuit_data(spec, pursuit)
-    witness = _pursuit_witness(spec, pursuit)
-    numeric: dict[str, Any] = {"K": pursuit.K, "lambda_min": pursuit.lambda_min}
-    if spec.n_trackers > 1:
-        _coordination_certificate(spec, data, witness, numeric)
-    failed = [name for name, ok in verify_certificate(data, witness) if not ok]
-    if failed:
-        raise ValueError(f"certificate generation failed its own exact checks: {failed}")
-    return {
-        "data": data,
-        "witness": witness,
-        "inequalities": list(CERTIFICATE_INEQUALITIES),
-        "numeric": numeric,
+    if "delta_full_rank" in _with_status(case, ConditionStatus.FAILS):
+        return [_refuted_delta(case)]
+    evidence = pursuit.constants() | {
+        "decay_rate": pursuit.decay_rate,
+        "iss_gain": pursuit.gain,
+        "iss_gain_paper_constants": pursuit.paper_gain,
+        "beta": "‖e(0)‖·exp(−λ_min(K)·t)",
+        "printed_region_argument_sound": pursuit.printed_region_sound,
+        "printed_region_statement_holds_by_sharp_bound": pursuit.printed_region_holds,
+        "printed_region_counterexample_search": eq72_case_search(spec),
+        "corrected_region": "‖e‖ ≥ (√μ + ‖K‖)‖x̃‖/(θ λ_min(K))",
     }
+    status = "verified" if pursuit.printed_region_sound else "corrected"
+    message = f"ISS with gain {pursuit.gain:.6g} and rate {pursuit.decay_rate:.6g}"
+    return [
+        ClaimResult(
+            status, "numeric", evidence, margin=pursuit.lambda_min,
+            tolerance={"margin_tol": _tol(case)}, message=message,
+        )
+    ]  # fmt: skip
 
 
-def _pursuit_data(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
-    """The pursuit part of a certificate's ``data``: the case's numbers as exact rationals."""
-    size = len(pursuit.K)
-    return {
-        "dim": spec.dim,
-        "controller": spec.controller,
-        "n_trackers": spec.n_trackers,
-        "epsilon": [exact_decimal(x) for x in spec.epsilon],
-        "K": [[exact_decimal(x) for x in row] for row in pursuit.K],
-        "K_p": [[exact_decimal(x) for x in row] for row in spec.K_p],
-        "P_e": [[Fraction(int(i == j), 2) for j in range(size)] for i in range(size)],
-        "paths": [
-            {"r_x": exact_decimal(p.r_x), "r_y": exact_decimal(p.r_y)}
-            | ({} if p.r_z is None else {"r_z": exact_decimal(p.r_z), "c": exact_decimal(p.c)})
-            for p in spec.trackers
-        ],
+@claims.register(
+    "seed003.lem4",
+    source="seed 003 Lemma 4, eqs. (76)–(78)",
+    statement="the stacked pursuit error of N trackers is ISS w.r.t. the stacked estimation error",
+    kinds=("pursuit",),
+)
+def check_lemma4(case: Case, ctx: Context) -> list[ClaimResult]:
+    """Lemma 4: (78) with the case's constants (its region is the correct one)."""
+    if "delta_full_rank" in _with_status(case, ConditionStatus.FAILS):
+        return [_refuted_delta(case)]
+    pursuit = pursuit_iss(case.spec)
+    evidence = {
+        "n_trackers": case.spec.n_trackers,
+        "lyapunov": "V_e = ½ Σ‖e^[i]‖² ((76) with ½ on both terms)",
+        "decay_rate": pursuit.decay_rate,
+        "iss_gain": pursuit.gain,
+        "iss_gain_paper_constants": pursuit.paper_gain,
+        "region": "‖e‖ ≥ (√μ + ‖K‖)‖x̃‖/(θ λ_min(K)) (as printed in (78))",
     }
+    return [
+        ClaimResult(
+            "verified", "numeric", evidence, margin=pursuit.lambda_min,
+            tolerance={"margin_tol": _tol(case)}, message=f"ISS with gain {pursuit.gain:.6g}",
+        )
+    ]  # fmt: skip
 
 
-def _pursuit_witness(spec: PursuitSpec, pursuit: PursuitIss) -> dict[str, Any]:
-    """λ below λ_min(K), k̄ above ‖K_p‖, μ_r, s ≥ √(k̄² + 1 (+ μ_r)) and g_e = s/λ (E1–E5).
-
-    λ and k̄ are the float values rounded in the safe direction, then halved (λ) or doubled (k̄)
-    until their exact checks E2, E3 pass (:func:`~theory.pursuit.iss_exact.safe_constant`).
-    """
-    K = exact_gain_matrix(pursuit.K)
-    K_p = exact_gain_matrix(spec.K_p)
-    lam = safe_constant(
-        _rational_below(pursuit.lambda_min), lambda x: _e2_holds(K, x), towards_zero=True
-    )
-    kp_bar = safe_constant(
-        _rational_above(pursuit.norm_K_p), lambda x: _e3_holds(K_p, x), towards_zero=False
-    )
-    if lam is None or kp_bar is None:
-        raise InconclusiveError("no rational λ or k̄_p passes its exact check (E2, E3)")
-    needed = kp_bar * kp_bar + 1 + (pursuit.mu_r if spec.controller == "II" else 0)
-    witness: dict[str, Any] = {"lambda": lam, "kp_bar": kp_bar, "mu_r": pursuit.mu_r}
-    witness["s"] = _sqrt_above(needed)
-    witness["g_e"] = witness["s"] / witness["lambda"]
-    witness["gain"] = witness["g_e"]
-    return witness
-
-
-def _coordination_certificate(
-    spec: PursuitSpec, data: dict[str, Any], witness: dict[str, Any], numeric: dict[str, Any]
-) -> None:
+@claims.register(
+    "seed003.lem3",
+    source="seed 003 Lemma 3, Lemma 1, Definition 1, eqs. (55)–(58), (73)–(75)",
+    statement="for a strongly connected digraph the coordination error ξ is ISS w.r.t. e",
+    kinds=("pursuit",),
+)
+def check_lemma3(case: Case, ctx: Context) -> list[ClaimResult]:
+    """Lemma 3 with the case's graph: corrected rate k_c·a(L), or the failure of its hypothesis."""
+    spec = case.spec
     coordination = coordination_iss(spec)
-    r = list(coordination.r)
-    n = len(r)
-    k_c = exact_decimal(spec.k_c)
-    data.update({"laplacian": spec.laplacian.astype(int).tolist(), "k_c": k_c})
-    witness.update({"r": r, **_coordination_constants(data["laplacian"], r, coordination)})
-    witness["alpha"] = k_c * witness["a"]
-    two_stage = spec.controller == "II"
-    witness["g_xi"] = (
-        witness["b"] / (witness["rho"] * witness["alpha"]) if two_stage else Fraction(0)
-    )
-    witness["gain"] = witness["g_e"] * (1 + witness["g_xi"])
-    r_float = np.array([float(x) for x in r])
-    numeric.update(
+    if spec.n_trackers == 1:
+        evidence = {"reason": "one tracker: ξ = (1 − 1·1)γ ≡ 0"}
+        message = "trivial for one tracker (ξ ≡ 0)"
+        return [ClaimResult("verified", "exact", evidence, message=message)]
+    evidence: dict[str, Any] = {
+        "strongly_connected": coordination.strongly_connected,
+        "zero_eigenvalue_simple": coordination.zero_eigenvalue_simple,
+        "r": [str(x) for x in coordination.r] if coordination.r else None,
+        "spectral_rate": coordination.spectral_rate,
+    }
+    if not coordination.zero_eigenvalue_simple:
+        evidence["reason"] = "L has a repeated zero eigenvalue: ξ̇ = −k_cLξ does not decay"
+        message = "no spanning tree: the coordination error does not converge"
+        return [ClaimResult("refuted", "exact", evidence, message=message)]
+    if coordination.a_L is None:
+        evidence["reason"] = (
+            "not strongly connected but the zero eigenvalue is simple: ξ still decays at the "
+            "spectral rate, though r has zero entries and V_c = ½ξᵀRξ is not a Lyapunov function"
+        )
+        message = "hypothesis stronger than needed: a spanning tree suffices"
+        return [ClaimResult("corrected", "numeric", evidence, message=message)]
+    evidence.update(
         {
-            "R": np.diag(r_float),
-            "W": np.eye(n) - np.outer(np.ones(n), r_float),
             "a_L": coordination.a_L,
-            "basis_r_perp": _orthogonal_basis(r_float),
+            "r_min": coordination.r_min,
+            "decay_rate_R_norm": coordination.decay_rate,
+            "printed_decay_coefficient": coordination.printed_decay_coefficient,
+            "corrected_decay_coefficient": coordination.decay_rate * coordination.r_min,
+            "input_gain": coordination.gain,
+            "printed_input_gain": coordination.printed_input_gain,
+            "kappa": coordination.kappa,
         }
     )
+    return [
+        ClaimResult(
+            "corrected", "numeric", evidence, margin=coordination.a_L,
+            tolerance={"margin_tol": _tol(case)},
+            message=f"decay k_c a(L) = {coordination.decay_rate:.6g} (paper: k_c r_min)",
+        )
+    ]  # fmt: skip
 
 
-def _coordination_constants(
-    laplacian: list[list[int]], r: list[Fraction], coordination: CoordinationIss
-) -> dict[str, Fraction]:
-    """a, b, ρ, κ rounded in the safe direction and moved until C3, C4, C5 pass exactly."""
-    L = [[Fraction(x) for x in row] for row in laplacian]
-    estimates = {
-        "a": (_rational_below(coordination.a_L), lambda x: _c3_holds(L, r, x), True),
-        "b": (_rational_above(coordination.b), lambda x: _c4_holds(r, x), False),
-        "rho": (_rational_below(math.sqrt(coordination.r_min)), lambda x: _rho_holds(r, x), True),
-        "kappa": (_rational_above(coordination.kappa), lambda x: _kappa_holds(r, x), False),
-    }
-    out = {}
-    for name, (estimate, holds, towards_zero) in estimates.items():
-        value = safe_constant(estimate, holds, towards_zero=towards_zero)
-        if value is None:
-            raise InconclusiveError(f"no rational {name} passes its exact check (C3–C5)")
-        out[name] = value
-    return out
-
-
-def _matmul(a: list[list[Fraction]], b: list[list[Fraction]]) -> list[list[Fraction]]:
-    return [[sum((a[i][k] * b[k][j] for k in range(len(b))), Fraction(0)) for j in range(len(b[0]))]
-            for i in range(len(a))]  # fmt: skip
-
-
-def _transpose(a: list[list[Fraction]]) -> list[list[Fraction]]:
-    return [list(col) for col in zip(*a, strict=True)]
-
-
-def _e2_holds(K: list[list[Fraction]], lam: Fraction) -> bool:
-    """E2: λ > 0 and K − λI ⪰ 0 (K symmetric)."""
-    return lam > 0 and is_psd_exact(_shifted(K, lam))
-
-
-def _e3_holds(K_p: list[list[Fraction]], kp_bar: Fraction) -> bool:
-    """E3: k̄_p I − K_p ⪰ 0."""
-    n = len(K_p)
-    return is_psd_exact([[(kp_bar if i == j else 0) - K_p[i][j] for j in range(n)]
-                         for i in range(n)])  # fmt: skip
-
-
-def _c3_holds(L: list[list[Fraction]], r: list[Fraction], a: Fraction) -> bool:
-    """C3: a > 0 and Bᵀ(M − 2aR)B ⪰ 0, M = RL + LᵀR, B the rational basis of r⊥."""
-    n = len(r)
-    M = [[r[i] * L[i][j] + L[j][i] * r[j] for j in range(n)] for i in range(n)]
-    B = [[Fraction(int(i == j)) if i < n - 1 else -r[j] / r[n - 1] for j in range(n - 1)]
-         for i in range(n)]  # fmt: skip
-    return a > 0 and is_psd_exact(_matmul(_matmul(_transpose(B), _shifted(M, 2 * a, r)), B))
-
-
-def _c4_holds(r: list[Fraction], b: Fraction) -> bool:
-    """C4: b ≥ 0 and b²I − WᵀRW ⪰ 0, W = I − 1rᵀ."""
-    n = len(r)
-    W = [[Fraction(int(i == j)) - r[j] for j in range(n)] for i in range(n)]
-    RW = [[r[i] * W[i][j] for j in range(n)] for i in range(n)]
-    gap = _shifted(_matmul(_transpose(W), RW), b * b)  # WᵀRW − b²I, must be ⪯ 0
-    return b >= 0 and is_psd_exact([[-x for x in row] for row in gap])
-
-
-def _rho_holds(r: list[Fraction], rho: Fraction) -> bool:
-    """C5, first half: ρ > 0 and ρ² ≤ min r_i."""
-    return rho > 0 and rho * rho <= min(r)
-
-
-def _kappa_holds(r: list[Fraction], kappa: Fraction) -> bool:
-    """C5, second half: κ² min r_i ≥ max r_i."""
-    return kappa * kappa * min(r) >= max(r)
-
-
-def verify_certificate(data: dict[str, Any], witness: dict[str, Any]) -> list[tuple[str, bool]]:
-    """Re-verify :data:`CERTIFICATE_INEQUALITIES` in exact rational arithmetic.
-
-    This is trackcert's own check, used before a certificate is emitted; the independent checker
-    (``proofs_check``) re-implements the same list without importing this module.
-
-    Parameters
-    ----------
-    data : dict
-        The ``data`` part of :func:`iss_certificate_data` (exact rationals).
-    witness : dict
-        The ``witness`` part.
-
-    Returns
-    -------
-    list of (str, bool)
-        Each inequality's label and whether it holds.
-    """
-    K, K_p, eps = data["K"], data["K_p"], data["epsilon"]
-    lam, kp_bar, s = witness["lambda"], witness["kp_bar"], witness["s"]
-    mu_paths = [
-        max(p["r_x"], p["r_y"]) ** 2 + ((p["r_z"] / p["c"]) ** 2 if "r_z" in p else 0)
-        for p in data["paths"]
-    ]
-    mu_r = max(mu_paths)
-    needed = kp_bar * kp_bar + 1 + (mu_r if data["controller"] == "II" else 0)
-    results = [
-        ("E1", eps[0] != 0),
-        ("E2", _e2_holds(K, lam)),
-        ("E3", _e3_holds(K_p, kp_bar)),
-        ("E4", witness["mu_r"] == mu_r and s >= 0 and s * s >= needed),
-        ("E5", witness["g_e"] == s / lam),
-    ]
-    if data["n_trackers"] == 1:
-        return [*results, ("C6", witness["gain"] == witness["g_e"])]
-    return results + _verify_coordination(data, witness)
-
-
-def _verify_coordination(data: dict[str, Any], witness: dict[str, Any]) -> list[tuple[str, bool]]:
-    L = [[Fraction(x) for x in row] for row in data["laplacian"]]
-    r, a, b, rho, kappa = (witness[k] for k in ("r", "a", "b", "rho", "kappa"))
-    n = len(r)
-    left = all(sum((r[i] * L[i][j] for i in range(n)), Fraction(0)) == 0 for j in range(n))
-    c1 = left and sum(r) == 1 and all(x > 0 for x in r)
-    M = [[r[i] * L[i][j] + L[j][i] * r[j] for j in range(n)] for i in range(n)]
-    c2 = all(M[i][j] == M[j][i] and (i == j or M[i][j] <= 0) for i in range(n) for j in range(n))
-    c2 = c2 and all(sum(row) == 0 for row in M)
-    c5 = _rho_holds(r, rho) and _kappa_holds(r, kappa)
-    alpha = data["k_c"] * a
-    g_xi = b / (rho * alpha) if data["controller"] == "II" else Fraction(0)
-    c6 = data["k_c"] > 0 and witness["alpha"] == alpha and witness["g_xi"] == g_xi
-    c6 = c6 and witness["gain"] == witness["g_e"] * (1 + g_xi)
-    checks = [("C1", c1), ("C2", c2), ("C3", _c3_holds(L, r, a)), ("C4", _c4_holds(r, b))]
-    return [*checks, ("C5", c5), ("C6", c6)]
-
-
-CERTIFICATE_INEQUALITIES = (
-    "E1  epsilon_1 != 0 (then det(Delta Delta^T) = eps1^2*|eps|^2 > 0 in 3D, eps1^2 in 2D)",
-    "E2  K = diag(K_p, k_gamma) (K_p for Type I) symmetric; K - lambda*I PSD; lambda > 0",
-    "E3  kp_bar*I - K_p is positive semidefinite (kp_bar >= ||K_p||)",
-    "E4  mu_r = max_i [max(r_x,r_y)^2 (+ (r_z/c)^2 in 3D)]; s >= 0 and "
-    "s^2 >= kp_bar^2 + 1 + mu_r (Type II) or kp_bar^2 + 1 (Type I)",
-    "E5  g_e = s / lambda  (then ||e(t)|| <= exp(-lambda t)||e(0)|| + g_e sup||x~||)",
-    "C1  L = D_in - A from the edges; r^T L = 0, sum(r) = 1, r_i > 0",
-    "C2  M = R L + L^T R symmetric, M_ij <= 0 (i != j), row sums 0  (hence M >= 0)",
-    "C3  B^T (M - 2 a R) B positive semidefinite for B = [e_i - (r_i/r_N) e_N]_{i<N}, a > 0",
-    "C4  b^2 I - W^T R W positive semidefinite, W = I - 1 r^T",
-    "C5  rho > 0, rho^2 <= min_i r_i;  kappa^2 * min_i r_i >= max_i r_i",
-    "C6  k_c > 0; alpha = k_c a; g_xi = b / (rho alpha) (Type II; 0 for Type I); "
-    "gain = g_e (1 + g_xi)",
+@claims.register(
+    "seed003.thm2",
+    source="seed 003 Theorem 2 (cascade of Lemmas 3 and 4)",
+    statement="the complete DEC error μ = (ξ, e) is ISS w.r.t. the stacked estimation error",
+    kinds=("pursuit",),
 )
-"""The exact list a checker verifies (E: pursuit subsystem, C: coordination, N > 1 only)."""
+def check_theorem2(case: Case, ctx: Context) -> list[ClaimResult]:
+    """The cascade gain from the corrected lemmas, or the failing condition."""
+    failing = _with_status(case, ConditionStatus.FAILS)
+    if failing:
+        evidence = {"failing_conditions": failing}
+        message = f"conditions {failing} fail: no ISS estimate for the cascade"
+        return [ClaimResult("refuted", "numeric", evidence, message=message)]
+    undecided = _with_status(case, ConditionStatus.INCONCLUSIVE)
+    if undecided:
+        evidence = {"inconclusive_conditions": undecided}
+        message = f"conditions {undecided} are inconclusive (margin below margin_tol)"
+        return [
+            ClaimResult(
+                "inconclusive", "numeric", evidence, tolerance={"margin_tol": _tol(case)},
+                message=message,
+            )
+        ]  # fmt: skip
+    bound = iss_bound(case.spec)
+    conditions = iss_conditions(case.spec, margin_tol=_tol(case))
+    margins = [c.margin for c in conditions if c.margin is not None]
+    evidence = {
+        "gain": bound.gain,
+        "constants": bound.constants,
+        "beta": "r·[κe^{−αt} + (b/√r_min)ψ(t) + e^{−λt}]",
+        "beta_at_0": bound.beta(1.0, 0.0),
+    }
+    return [
+        ClaimResult(
+            "verified", "numeric", evidence, margin=min(margins, default=None),
+            tolerance={"margin_tol": _tol(case)}, message=f"ISS gain {bound.gain:.6g}",
+        )
+    ]  # fmt: skip
+
+
+# ---------------------------------------------------------------------------------------------
+# what `trackcert iss` reports, and the kind's observer
+
+SOURCE = "trackcert iss"
+"""The observations' source in the command's verdict records."""
+
+SCOPE = (
+    "the pursuit and coordination errors μ = (ξ, e) are ISS with respect to the DEKF's "
+    "estimation error x̃ (Theorem 2, corrected); x̃ is the input: whether the DEKF keeps it "
+    "bounded in closed loop is not part of the certificate"
+)
+"""What a ``holds`` verdict of ``trackcert iss`` covers (and what it does not)."""
+
+
+@dataclass(frozen=True)
+class IssReport:
+    """The record ``trackcert iss`` prints and the case's ``expect`` block judged against it."""
+
+    record: dict[str, Any]
+    expectations: tuple[Expectation, ...]
+
+    @property
+    def verdict(self) -> Verdict:
+        """False if a condition fails, None if one is inconclusive, else True."""
+        return all_hold(_verdict(c["status"]) for c in self.record["conditions"])
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``--json`` record with its ``expectations``."""
+        return {**self.record, "expectations": [e.to_json() for e in self.expectations]}
+
+
+def iss_report(case: Case, *, margin_tol: float | None = None) -> IssReport:
+    """``trackcert iss``: analyze ``case``, run its seed 003 case claims, judge its expectations.
+
+    ``margin_tol`` overrides the case's ``tolerances.margin_tol``; CaseError if the case is not
+    of kind ``pursuit`` or ``margin_tol`` is not positive.
+    """
+    record = iss_record(case, margin_tol=margin_tol)
+    record["claims"] = [r.to_json(c.source) for c in claims for r in c.results(case)]
+    expectations = judge(case, iss_observed(record), source=SOURCE)
+    return IssReport(record, tuple(expectations))
+
+
+def iss_record(case: Case, *, margin_tol: float | None = None) -> dict[str, Any]:
+    """The analysis part of :func:`iss_report` (no claims, no expectations)."""
+    from theory.pursuit.derivations import lyapunov_derivative_check  # sympy: imported on use
+
+    if case.kind != "pursuit":
+        raise CaseError(
+            "kind", "pursuit (trackcert iss analyses seed 003 cases)", case.kind, file=case.file
+        )
+    tol = _margin_tol(case, margin_tol)
+    spec = case.spec
+    conditions = iss_conditions(spec, margin_tol=tol)
+    pursuit, coordination = pursuit_iss(spec), coordination_iss(spec)
+    statuses = {c.status for c in conditions}
+    gains: dict[str, Any] = {"pursuit": pursuit.gain, "pursuit_paper": pursuit.paper_gain}
+    gains["coordination"] = coordination.gain
+    gains["cascade"] = iss_bound(spec).gain if ConditionStatus.FAILS not in statuses else None
+    r = [float(x) for x in coordination.r] if coordination.r else None
+    identity = lyapunov_derivative_check(spec.dim, spec.controller, True)
+    return {
+        "case": case.name,
+        "source": case.source,
+        "controller": spec.controller,
+        "dim": spec.dim,
+        "n_trackers": spec.n_trackers,
+        "holds": not statuses & {ConditionStatus.FAILS, ConditionStatus.INCONCLUSIVE},
+        "scope": SCOPE,
+        "lyapunov": _lyapunov(spec, len(pursuit.K), r, identity.holds),
+        "decay_rate": {
+            "pursuit": pursuit.decay_rate,
+            "pursuit_lyapunov": 2 * pursuit.decay_rate,
+            "coordination": coordination.decay_rate,
+            "coordination_spectral": coordination.spectral_rate,
+            "coordination_printed_eq75": coordination.printed_decay_coefficient,
+        },
+        "iss_gain": gains,
+        "constants": pursuit.constants()
+        | {
+            "printed_region_eq72_argument_sound": pursuit.printed_region_sound,
+            "printed_region_eq72_holds_by_sharp_bound": pursuit.printed_region_holds,
+            "a_L": coordination.a_L,
+            "r": r,
+            "kappa": coordination.kappa,
+            "b": coordination.b,
+        },
+        "conditions": [c.to_json(tol) for c in conditions],
+        "tolerances": {"margin_tol": tol, "inequality_rtol": INEQUALITY_RTOL},
+    }
+
+
+def iss_observed(record: dict[str, Any]) -> Observed:
+    """The ``iss``, ``delta_full_rank`` and ``strongly_connected`` keys of an ISS record.
+
+    An inconclusive condition leaves its key (and ``iss``) undecided.
+    """
+    status = {c["name"]: c["status"] for c in record["conditions"]}
+    values = {
+        "iss": record["holds"],
+        "delta_full_rank": _holds(status.get("delta_full_rank")),
+        "strongly_connected": _holds(status.get("graph_strongly_connected", "holds")),
+    }
+    if ConditionStatus.INCONCLUSIVE in status.values():
+        values["iss"] = None
+    return Observed(values, frozenset(k for k, v in values.items() if v is None))
+
+
+def observe_iss(case: Case, ctx: Context) -> Observed:
+    """The observer of ``kind: pursuit``: :func:`iss_observed` of the case's :func:`iss_record`."""
+    return iss_observed(iss_record(case))
+
+
+def _verdict(status: str) -> Verdict:
+    """A condition's status as a verdict: fails False, inconclusive None, otherwise True."""
+    return {ConditionStatus.FAILS: False, ConditionStatus.INCONCLUSIVE: None}.get(status, True)
+
+
+def _holds(status: str | None) -> bool | None:
+    """An observed key: whether the condition holds (``None`` when undecided or absent)."""
+    if status in (None, ConditionStatus.INCONCLUSIVE):
+        return None
+    return status == ConditionStatus.HOLDS
+
+
+def _margin_tol(case: Case, margin_tol: float | None) -> float:
+    if margin_tol is not None and not margin_tol > 0:
+        raise CaseError("--margin-tol", "a number > 0", margin_tol, file=case.file)
+    tol = margin_tol if margin_tol is not None else case.tolerances.get("margin_tol")
+    return float(MARGIN_TOL) if tol is None else float(tol)
+
+
+def _lyapunov(spec: PursuitSpec, size: int, r: list[float] | None, identity: bool) -> dict:
+    return {
+        "pursuit": {
+            "function": "V_e = ½‖e‖² = eᵀ P_e e, e = col(e_p^[i], e_γ^[i])",
+            "P_e": 0.5 * np.eye(size * spec.n_trackers),
+            "derivative_identity_eq70": identity,
+        },
+        "coordination": {
+            "function": "V_c = ½ ξᵀ R ξ, ξ = (I − 1rᵀ)γ, R = diag(r)",
+            "R": np.diag(r) if r else None,
+        },
+    }

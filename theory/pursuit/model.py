@@ -1,29 +1,17 @@
 """The seed 003 pursuit model, once: S(ω), Δ, the paths, the errors, the controllers, kinematics.
 
-Every formula of the model is written here once and evaluated on stacked numpy arrays (leading
-axes are trackers, or states, and broadcast):
+Every formula is written here once and evaluated on stacked numpy arrays (leading axes are
+trackers, or states, and broadcast): the kinematics (2)–(5), S(ω) = [ω]ₓ and exp(S(ω)), Euler
+rotations, the paths (15)/(16) as harmonics a cos(fγ + φ), the errors (19)/(27)/(48)/(59), Δ and
+Δ̄ of (22)/(26), the tracking input (51), the path-parameter feedback (50b) and the coordination
+law (45)–(52) with its weights r of Lemma 1.
 
-* kinematics (2)–(5): ṗ = R[v₁, 0(, 0)]ᵀ, Ṙ = R S(ω), u = (v₁, ω) (:func:`tracker_rates`);
-* S(ω) = [ω]ₓ (:func:`skew`, the form consistent with Δ, see :func:`skew_rows`) and the
-  rotation exp(S(ω)) (:func:`exp_skew`); Z-Y-X Euler rotations (:func:`euler_rotation`);
-* the path (15)/(16) as harmonics a cos(fγ + φ) and its derivatives (:func:`path_harmonics`,
-  :class:`PathHarmonics`, :func:`path`, :func:`path_derivative`, :func:`path_second_derivative`);
-* the errors (19)/(27)/(48)/(59) (:func:`body_error`) and Δ, Δ̄ of (22), (26)
-  (:func:`delta_matrix`, :func:`delta_bar`);
-* the tracking input (26)/(30)/(51) (:func:`tracking_input`), the path-parameter feedback of
-  (25)/(29)/(50b) (:func:`path_feedback`, :func:`gamma_acceleration`) and the coordination
-  law (45), (46), (52) (:func:`correction_speed`, :func:`desired_speed`).
+The entries of S, Δ, the Euler rotation (``*_rows``) and the path's harmonics take scalar
+components of any number type, so :mod:`theory.pursuit.derivations` builds the sympy matrices of
+the exact checks from the very same formulas. :func:`closed_loop_rates` evaluates one tracker's
+closed loop *from the kinematics* (not from the error equations derived in the paper), so
+properties and counterexamples measure V̇ independently of the algebra they check.
 
-The entries of S, Δ and the Euler rotation (``*_rows``) and the path's harmonics take scalar
-components of any number type, so
-:mod:`theory.pursuit.model_symbolic` builds the sympy matrices of the exact checks from the very
-same formulas. :func:`closed_loop_rates`
-evaluates one tracker's closed loop *from the kinematics* (not from the error equations derived in
-the paper), so properties and counterexamples measure V̇ independently of the algebra they check;
-the simulator (:mod:`theory.pursuit.closed_loop`) uses the same functions on all trackers at once.
-
-References
-----------
 seed 003: N. T. Hung, F. Rego, A. M. Pascoal, "Cooperative distributed estimation and control of
 multiple autonomous vehicles for range-based underwater target localization and pursuit".
 """
@@ -33,6 +21,7 @@ from __future__ import annotations
 import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import numpy as np
@@ -41,7 +30,6 @@ __all__ = [
     "ClosedLoopRates",
     "PathHarmonics",
     "body_error",
-    "body_frame_feedback",
     "closed_loop_rates",
     "correction_speed",
     "delta_bar",
@@ -53,11 +41,11 @@ __all__ = [
     "exp_skew",
     "gamma_acceleration",
     "input_gains",
+    "left_eigenvector",
     "path",
     "path_derivative",
     "path_feedback",
     "path_harmonics",
-    "path_second_derivative",
     "rotate_back",
     "skew",
     "skew_rows",
@@ -67,24 +55,14 @@ __all__ = [
 
 
 # ---------------------------------------------------------------------------------------------
-# the formulas, on scalar components (shared with theory.pursuit.model_symbolic)
+# the formulas, on scalar components (shared with theory.pursuit.derivations)
 
 
 def skew_rows(omega: Sequence[Any]) -> tuple[tuple[Any, ...], ...]:
-    """Rows of S(ω) = [ω]ₓ for ω = (p, q, r) (3D), or [[0, −r], [r, 0]] for ω = (r,) (2D).
+    """Rows of S(ω) = [ω]ₓ for ω = (p, q, r), or [[0, −r], [r, 0]] for ω = (r,) (seed 003 eq. (3)).
 
-    This is the matrix for which Ṙ = R S(ω) holds with body rates ω (checked exactly by
-    :func:`theory.pursuit.iss_symbolic.rotation_rate_check`); eq. (4) prints another matrix
-    (:func:`theory.pursuit.model_symbolic.skew_printed`).
-
-    Parameters
-    ----------
-    omega : sequence
-        One component (2D) or three (3D): numbers, arrays or sympy expressions.
-
-    References
-    ----------
-    seed 003, eq. (3), Remark 2; docs/errata.md (eq. (4)).
+    The matrix for which Ṙ = R S(ω) holds (:func:`theory.pursuit.derivations.rotation_rate_check`);
+    eq. (4) prints another (:func:`theory.pursuit.derivations.skew_printed`).
     """
     if len(omega) == 1:
         (r,) = omega
@@ -94,19 +72,7 @@ def skew_rows(omega: Sequence[Any]) -> tuple[tuple[Any, ...], ...]:
 
 
 def delta_rows(epsilon: Sequence[Any]) -> tuple[tuple[Any, ...], ...]:
-    """Rows of Δ exactly as printed in seed 003 eq. (22) (2 × 2 in 2D, 3 × 4 in 3D).
-
-    Δu = −S(ω)ε + [v₁, 0(, 0)]ᵀ for u = (v₁, ω) with S of :func:`skew_rows`.
-
-    Parameters
-    ----------
-    epsilon : sequence
-        ε of eq. (19), 2 or 3 components.
-
-    References
-    ----------
-    seed 003, eqs. (21), (22).
-    """
+    """Rows of Δ as printed in seed 003 eq. (22): Δu = −S(ω)ε + [v₁, 0(, 0)]ᵀ for u = (v₁, ω)."""
     if len(epsilon) == 2:
         e1, e2 = epsilon
         return ((1, e2), (0, -e1))
@@ -117,23 +83,11 @@ def delta_rows(epsilon: Sequence[Any]) -> tuple[tuple[Any, ...], ...]:
 def path_harmonics(
     r_x: Any, r_y: Any, gamma0: Any, r_z: Any = None, c: Any = None, *, pi: Any = np.pi
 ) -> tuple[tuple[Any, Any, Any], ...]:
-    """r(γ) of eq. (15) (3D, ``r_z`` given) or eq. (16) (2D) as harmonics (a_k, f_k, φ_k):
-    r_k(γ) = a_k cos(f_k γ + φ_k).
+    """r(γ) of seed 003 eq. (15) (3D) or (16) (2D) as harmonics r_k(γ) = a_k cos(f_k γ + φ_k).
 
     r(γ) = [r_x cos(γ + γ₀), r_y sin(γ + γ₀)(, r_z sin(γ/c + γ₀))], i.e. (r_x, 1, γ₀),
     (r_y, 1, γ₀ − π/2) and (r_z, 1/c, γ₀ − π/2); every derivative follows from
-    d/dγ a cos(fγ + φ) = a f cos(fγ + φ + π/2).
-
-    Parameters
-    ----------
-    r_x, r_y, gamma0, r_z, c : numbers, arrays or sympy expressions
-        Path constants (``r_z``, ``c`` only in 3D; ``None`` in 2D).
-    pi : number
-        π of the number type (``sympy.pi`` for exact expressions).
-
-    References
-    ----------
-    seed 003, eqs. (15), (16).
+    d/dγ a cos(fγ + φ) = a f cos(fγ + φ + π/2). ``pi`` is π of the number type.
     """
     planar = ((r_x, 1, gamma0), (r_y, 1, gamma0 - pi / 2))
     if r_z is None:
@@ -144,19 +98,7 @@ def path_harmonics(
 def euler_rotation_rows(
     angles: Sequence[Any], *, cos: Callable, sin: Callable
 ) -> tuple[tuple[Any, ...], ...]:
-    """Rows of R(η): yaw rotation (2D, η = (ψ,)) or Z-Y-X R_z(ψ)R_y(θ)R_x(φ) (3D, η = (φ, θ, ψ)).
-
-    Parameters
-    ----------
-    angles : sequence
-        (ψ,) or (φ, θ, ψ): numbers, arrays or sympy expressions.
-    cos, sin : callable
-        The trigonometric functions of the number type.
-
-    References
-    ----------
-    seed 003, eq. (2).
-    """
+    """Rows of R(η): yaw (2D, η = (ψ,)) or Z-Y-X R_z(ψ)R_y(θ)R_x(φ) (3D), seed 003 eq. (2)."""
     if len(angles) == 1:
         (psi,) = angles
         return ((cos(psi), -sin(psi)), (sin(psi), cos(psi)))
@@ -214,13 +156,7 @@ _SINE_SHIFT = np.array([0.0, np.pi / 2])
 
 
 def skew(omega: np.ndarray) -> np.ndarray:
-    """S(ω) of :func:`skew_rows`, stacked: shape (…, k) → (…, d, d), k = 1 (d = 2) or 3.
-
-    Parameters
-    ----------
-    omega : array_like
-        Body rates, last axis (r,) or (p, q, r).
-    """
+    """S(ω) of :func:`skew_rows`, stacked: shape (…, k) → (…, d, d), k = 1 (d = 2) or 3."""
     omega = np.asarray(omega, dtype=float)
     d = 2 if omega.shape[-1] == 1 else 3
     return (omega @ _GENERATORS[omega.shape[-1]]).reshape(*omega.shape[:-1], d, d)
@@ -233,16 +169,7 @@ def exp_skew(omega: np.ndarray) -> np.ndarray:
     sin(θ/2) ω/θ), exp(S(ω)) = (w² − vᵀv) I + 2vvᵀ + 2w S(v) — Rodrigues' I + (sin θ/θ) S(ω) +
     ((1 − cos θ)/θ²) S(ω)² written in half angles (no cancellation for small θ), evaluated as
     one product (q ⊗ q) B (:func:`_quaternion_basis`). 2D: the rotation by the angle ω,
-    cos ω I + sin ω S(1).
-
-    Parameters
-    ----------
-    omega : array_like
-        Last axis (angle,) in 2D or a rotation vector axis·angle in 3D.
-
-    References
-    ----------
-    seed 003, eq. (3): R(t + h) = R(t) exp(h S(ω)) for ω constant over h.
+    cos ω I + sin ω S(1). Seed 003 eq. (3): R(t + h) = R(t) exp(h S(ω)) for ω constant over h.
     """
     omega = np.asarray(omega, dtype=float)
     stack = omega.shape[:-1]
@@ -262,26 +189,14 @@ def exp_skew(omega: np.ndarray) -> np.ndarray:
 
 
 def euler_rotation(angles: np.ndarray) -> np.ndarray:
-    """R(η) of :func:`euler_rotation_rows`, stacked: (…, 1) or (…, 3) → (…, d, d).
-
-    Parameters
-    ----------
-    angles : array_like
-        Last axis (ψ,) or (φ, θ, ψ).
-    """
+    """R(η) of :func:`euler_rotation_rows`, stacked: (…, 1) or (…, 3) → (…, d, d)."""
     angles = np.asarray(angles, dtype=float)
     rows = euler_rotation_rows(np.moveaxis(angles, -1, 0), cos=np.cos, sin=np.sin)
     return _stack_rows(rows, angles.shape[:-1])
 
 
 def rotate_back(rotation: np.ndarray, vector: np.ndarray) -> np.ndarray:
-    """Rᵀx for stacked R (…, d, d) and x (…, d): a vector of {I} expressed in the body frame {B}.
-
-    Parameters
-    ----------
-    rotation, vector : ndarray
-        Broadcasting stacks.
-    """
+    """Rᵀx for stacked R (…, d, d) and x (…, d): a vector of {I} expressed in the body frame {B}."""
     return np.matmul(vector[..., None, :], rotation)[..., 0, :]
 
 
@@ -290,33 +205,12 @@ def rotate_back(rotation: np.ndarray, vector: np.ndarray) -> np.ndarray:
 
 
 def delta_matrix(epsilon: np.ndarray) -> np.ndarray:
-    """Δ of eq. (22) (:func:`delta_rows`) as a float array, 2 × 2 or 3 × 4.
-
-    Parameters
-    ----------
-    epsilon : array_like
-        ε, 2 or 3 entries.
-    """
+    """Δ of seed 003 eq. (22) (:func:`delta_rows`) as a float array, 2 × 2 or 3 × 4."""
     return np.array(delta_rows(np.asarray(epsilon, dtype=float)), dtype=float)
 
 
 def delta_bar(epsilon: np.ndarray) -> np.ndarray:
-    """Δ̄ = Δᵀ(ΔΔᵀ)⁻¹ of eq. (26), the right inverse of Δ (ΔΔ̄ = I).
-
-    Parameters
-    ----------
-    epsilon : array_like
-        ε with ε₁ ≠ 0 (det ΔΔᵀ = ε₁² in 2D, ε₁²‖ε‖² in 3D).
-
-    Raises
-    ------
-    ValueError
-        If ε₁ = 0: Δ is not of full row rank and Δ̄ does not exist (Remark 6, corrected).
-
-    References
-    ----------
-    seed 003, eqs. (22), (26), Remark 6; docs/errata.md.
-    """
+    """Δ̄ = Δᵀ(ΔΔᵀ)⁻¹ of seed 003 eq. (26); ValueError when ε₁ = 0 (det ΔΔᵀ = 0, Remark 6)."""
     epsilon = np.asarray(epsilon, dtype=float)
     if epsilon[0] == 0:
         raise ValueError(
@@ -329,13 +223,7 @@ def delta_bar(epsilon: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class PathHarmonics:
-    """Stacked harmonics of :func:`path_harmonics`: r_k(γ) = a_k cos(f_k γ + φ_k), arrays (…, d).
-
-    Attributes
-    ----------
-    amplitude, frequency, phase : ndarray
-        a_k, f_k and φ_k, one row per tracker (or broadcasting).
-    """
+    """Stacked harmonics of :func:`path_harmonics`: r_k(γ) = a_k cos(f_k γ + φ_k), arrays (…, d)."""
 
     amplitude: np.ndarray
     frequency: np.ndarray
@@ -361,41 +249,15 @@ class PathHarmonics:
 
 
 def path(gamma: Any, r_x: Any, r_y: Any, gamma0: Any, r_z: Any = None, c: Any = None) -> np.ndarray:
-    """r(γ) of eqs. (15)/(16) (:func:`path_harmonics`), coordinates on the last axis.
-
-    Parameters
-    ----------
-    gamma, r_x, r_y, gamma0, r_z, c : float or ndarray
-        Broadcasting path parameter and constants (``r_z``, ``c`` only in 3D).
-    """
+    """r(γ) of seed 003 eqs. (15)/(16) (:func:`path_harmonics`), coordinates on the last axis."""
     return PathHarmonics.of(r_x, r_y, gamma0, r_z, c).derivative(gamma)
 
 
 def path_derivative(
     gamma: Any, r_x: Any, r_y: Any, gamma0: Any, r_z: Any = None, c: Any = None
 ) -> np.ndarray:
-    """r′(γ) = ∂r/∂γ of eqs. (15)/(16):
-    (−r_x sin(γ + γ₀), r_y cos(γ + γ₀)(, (r_z/c) cos(γ/c + γ₀))).
-
-    Parameters
-    ----------
-    gamma, r_x, r_y, gamma0, r_z, c : float or ndarray
-        As in :func:`path`.
-    """
+    """r′(γ) = (−r_x sin(γ + γ₀), r_y cos(γ + γ₀)(, (r_z/c) cos(γ/c + γ₀))), eqs. (15)/(16)."""
     return PathHarmonics.of(r_x, r_y, gamma0, r_z, c).derivative(gamma, 1)
-
-
-def path_second_derivative(
-    gamma: Any, r_x: Any, r_y: Any, gamma0: Any, r_z: Any = None, c: Any = None
-) -> np.ndarray:
-    """r″(γ) of eqs. (15)/(16): −(r_x cos, r_y sin(, r_z sin(γ/c)/c²)).
-
-    Parameters
-    ----------
-    gamma, r_x, r_y, gamma0, r_z, c : float or ndarray
-        As in :func:`path`.
-    """
-    return PathHarmonics.of(r_x, r_y, gamma0, r_z, c).derivative(gamma, 2)
 
 
 def body_error(
@@ -405,23 +267,7 @@ def body_error(
     target: np.ndarray,
     epsilon: np.ndarray,
 ) -> np.ndarray:
-    """e_p = Rᵀ(p − r(γ) − q) − ε, stacked.
-
-    With the true target this is e_p of eqs. (19)/(59); with an estimate q̂ it is ê_p of
-    eqs. (27)/(48).
-
-    Parameters
-    ----------
-    rotation : ndarray (…, d, d)
-    position, path_point, target : ndarray (…, d)
-        p, r(γ) and q (or q̂).
-    epsilon : ndarray (d,)
-        ε of eq. (19).
-
-    References
-    ----------
-    seed 003, eqs. (19), (27), (48), (59).
-    """
+    """e_p = Rᵀ(p − r(γ) − q) − ε: e_p of seed 003 eqs. (19)/(59), ê_p of (27)/(48) with q̂."""
     return rotate_back(rotation, position - path_point - target) - epsilon
 
 
@@ -434,32 +280,7 @@ def tracking_input(
     delta_bar_matrix: np.ndarray,
     K_p: np.ndarray,
 ) -> np.ndarray:
-    """u = k(x̂) = Δ̄(Rᵀ(r′(γ)ω_d + v̂) − K_p ê_p), eq. (51) ((26)/(30) with one tracker).
-
-    Parameters
-    ----------
-    rotation : ndarray (…, d, d)
-    r_prime : ndarray (…, d)
-        r′(γ).
-    omega_d : ndarray (…,)
-        ω_d of eq. (18)/(46).
-    velocity : ndarray (…, d)
-        v̂ (or the true v in Lemma 2).
-    e_hat : ndarray (…, d)
-        ê_p (or e_p).
-    delta_bar_matrix : ndarray (m, d)
-        Δ̄ of :func:`delta_bar`.
-    K_p : ndarray (d, d)
-
-    Returns
-    -------
-    ndarray (…, m)
-        u = (v₁, ω): surge speed and body rates.
-
-    References
-    ----------
-    seed 003, eqs. (26), (30), (51).
-    """
+    """u = (v₁, ω) = Δ̄(Rᵀ(r′(γ)ω_d + v̂) − K_p ê_p), seed 003 eq. (51) ((26)/(30): one tracker)."""
     command = rotate_back(rotation, r_prime * np.asarray(omega_d)[..., None] + velocity)
     return (command - e_hat @ K_p.T) @ delta_bar_matrix.T
 
@@ -472,138 +293,57 @@ def input_gains(
     With the body-frame command c = Rᵀ(r′(γ)ω_d + v̂) and b = Rᵀ(p − r(γ) − q̂) (so ê_p = b − ε),
     u = Δ̄(c − K_p ê_p) = Δ̄c − Δ̄K_p b + Δ̄K_p ε: G = [Δ̄ᵀ; −(Δ̄K_p)ᵀ] (2d × m) and g = Δ̄K_p ε,
     the form the simulator evaluates (one product for every tracker; :func:`tracking_input`
-    is the same law on inertial-frame vectors).
-
-    Parameters
-    ----------
-    delta_bar_matrix : ndarray (m, d)
-        Δ̄ of :func:`delta_bar`.
-    K_p : ndarray (d, d)
-    epsilon : ndarray (d,)
-
-    Returns
-    -------
-    (ndarray (2d, m), ndarray (m,))
-
-    References
-    ----------
-    seed 003, eqs. (48), (51).
+    is the same law on inertial-frame vectors). Seed 003 eqs. (48), (51).
     """
     gain = delta_bar_matrix @ K_p
     return np.vstack([delta_bar_matrix.T, -gain.T]), gain @ epsilon
 
 
 def tracker_rates(rotation: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """ṗ = R[v₁, 0(, 0)]ᵀ and the body rates ω of u = (v₁, ω) (the under-actuated model).
-
-    Parameters
-    ----------
-    rotation : ndarray (…, d, d)
-    u : ndarray (…, m)
-        Input of eq. (5) (m = 4 in 3D, 2 in 2D).
-
-    Returns
-    -------
-    position_dot : ndarray (…, d)
-    omega : ndarray (…, m − 1)
-        Ṙ = R S(ω).
-
-    References
-    ----------
-    seed 003, eqs. (2)–(5), Remark 2.
-    """
+    """(ṗ = R[v₁, 0(, 0)]ᵀ, body rates ω) of u = (v₁, ω), seed 003 eqs. (2)–(5), Remark 2."""
     return rotation[..., :, 0] * u[..., :1], u[..., 1:]
 
 
 def path_feedback(e_hat: np.ndarray, rotation: np.ndarray, r_prime: np.ndarray) -> np.ndarray:
-    """ê_pᵀRᵀr′(γ): the feedback term of the path-parameter law (25)/(29)/(50b).
-
-    Parameters
-    ----------
-    e_hat : ndarray (…, d)
-    rotation : ndarray (…, d, d)
-    r_prime : ndarray (…, d)
-
-    References
-    ----------
-    seed 003, eqs. (25), (29), (50b), (62).
-    """
-    return body_frame_feedback(e_hat, rotate_back(rotation, r_prime))
-
-
-def body_frame_feedback(e_hat: np.ndarray, r_prime_body: np.ndarray) -> np.ndarray:
-    """ê_pᵀ(Rᵀr′(γ)) of (50b) for r′ already in the body frame (:func:`path_feedback`).
-
-    Parameters
-    ----------
-    e_hat, r_prime_body : ndarray (…, d)
-        ê_p and Rᵀr′(γ).
-
-    References
-    ----------
-    seed 003, eqs. (50b), (62).
-    """
-    return (e_hat * r_prime_body).sum(axis=-1)
+    """ê_pᵀRᵀr′(γ): the feedback term of the path-parameter law, seed 003 eqs. (25)/(29)/(50b)."""
+    return (e_hat * rotate_back(rotation, r_prime)).sum(axis=-1)
 
 
 def gamma_acceleration(
     k_gamma: float, e_gamma: np.ndarray, feedback: np.ndarray, v_c_dot: np.ndarray
 ) -> np.ndarray:
-    """γ̈ = −k_γ e_γ + ê_pᵀRᵀr′(γ) + v̇_c, eq. (50b) (v̇_c = 0 for one tracker, eq. (29)).
-
-    With v̇_c of (52), ė_γ = γ̈ − v̇_c = −k_γ e_γ + ê_pᵀRᵀr′ (eq. (62)).
-
-    Parameters
-    ----------
-    k_gamma : float
-    e_gamma : ndarray
-        e_γ = γ̇ − ω_d, eq. (47).
-    feedback : ndarray
-        :func:`path_feedback`.
-    v_c_dot : ndarray
-        v̇_c of eq. (52).
-
-    References
-    ----------
-    seed 003, eqs. (29), (50b), (52), (62).
-    """
+    """γ̈ = −k_γ e_γ + ê_pᵀRᵀr′(γ) + v̇_c, seed 003 eq. (50b) (so ė_γ = −k_γ e_γ + ê_pᵀRᵀr′, (62))."""
     return -k_gamma * e_gamma + feedback + v_c_dot
 
 
 def correction_speed(laplacian: np.ndarray, values: np.ndarray, k_c: float) -> np.ndarray:
-    """−k_c Σ_{j∈N_in} (x_i − x_j) = −k_c (L x)_i for x = γ (v_c, eq. (45)) or x = γ̇ (v̇_c, (52)).
-
-    Parameters
-    ----------
-    laplacian : ndarray (N, N)
-        L = D_in − A.
-    values : ndarray (N,)
-        γ or γ̇.
-    k_c : float
-        Coupling gain.
-
-    References
-    ----------
-    seed 003, eqs. (45), (52).
-    """
+    """−k_c (L x)_i for x = γ (v_c, seed 003 eq. (45)) or x = γ̇ (v̇_c, eq. (52)), L = D_in − A."""
     return -k_c * (laplacian @ values)
 
 
-def desired_speed(omega_bar: float, laplacian: np.ndarray, gamma: np.ndarray, k_c: float):
-    """ω_d = ω̄ + v_c, eqs. (45)–(46) (ω_d = ω̄ for one tracker, eq. (18)).
-
-    Parameters
-    ----------
-    omega_bar : float
-    laplacian : ndarray (N, N)
-    gamma : ndarray (N,)
-    k_c : float
-
-    References
-    ----------
-    seed 003, eqs. (18), (45), (46).
-    """
+def desired_speed(
+    omega_bar: float, laplacian: np.ndarray, gamma: np.ndarray, k_c: float
+) -> np.ndarray:
+    """ω_d = ω̄ + v_c, seed 003 eqs. (45)–(46) (ω_d = ω̄ for one tracker, eq. (18))."""
     return omega_bar + correction_speed(laplacian, gamma, k_c)
+
+
+def left_eigenvector(laplacian: np.ndarray) -> tuple[Fraction, ...] | None:
+    """The exact r with rᵀL = 0, rᵀ1 = 1 (seed 003 Lemma 1), or ``None`` if 0 is not simple.
+
+    r weighs the coordination error ξ = (I − 1rᵀ)γ of eq. (56).
+    """
+    import flint  # exact; imported on use (the simulator never needs it)
+
+    n = laplacian.shape[0]
+    basis, nullity = flint.fmpz_mat(laplacian.T.astype(int).tolist()).nullspace()
+    if nullity != 1:
+        return None
+    vector = [int(basis[i, 0]) for i in range(n)]
+    total = sum(vector)
+    if total == 0:
+        return None
+    return tuple(Fraction(x, total) for x in vector)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -612,23 +352,8 @@ def desired_speed(omega_bar: float, laplacian: np.ndarray, gamma: np.ndarray, k_
 
 @dataclass(frozen=True)
 class ClosedLoopRates:
-    """Tracking errors, their time derivatives and the kinematic rates of one tracker at one state.
-
-    Attributes
-    ----------
-    e_p, e_gamma : ndarray, float
-        e_p of eq. (19) (true target) and e_γ of eq. (20)/(47).
-    de_p, de_gamma : ndarray, float
-        Their time derivatives, computed from the kinematics (2)–(5) and the controller.
-    u : ndarray
-        The input [v₁, ω] applied.
-    position_dot : ndarray
-        ṗ = R[v₁, 0(, 0)]ᵀ.
-    gamma_dot : float
-        γ̇ (ω_d for Type I).
-    feedback : float
-        ê_pᵀRᵀr′(γ) of eq. (50b) (0 for Type I).
-    """
+    """One tracker's errors e_p (19), e_γ (47), their rates from the kinematics, the input u,
+    ṗ, γ̇ and the feedback ê_pᵀRᵀr′ of (50b) (0 for Type I), at one state."""
 
     e_p: np.ndarray
     e_gamma: float
@@ -663,36 +388,12 @@ def closed_loop_rates(
     omega_d_dot: float,
     path_params: dict,
 ) -> ClosedLoopRates:
-    """Errors and error rates of one tracker under controller (49)/(50) with estimates.
+    """Errors and error rates of one tracker under controller (49)/(50) with estimates (seed 003).
 
-    The input is u = k(x̂) (eq. (51)); γ̈ follows (50b) for Type II (with ``omega_d_dot`` = v̇_c),
-    while Type I imposes γ̇ = ω_d (so e_γ = 0 and ``gamma_dot`` is ignored). The error rates are
-    obtained by differentiating e_p = Rᵀ(p − r(γ) − q) − ε with ṗ = R[v₁, 0, …]ᵀ, Ṙ = R S(ω),
-    q̇ = v — the kinematics, not eq. (21).
-
-    Parameters
-    ----------
-    position, rotation : ndarray
-        Tracker position p and attitude R.
-    gamma, gamma_dot : float
-        Path parameter and its rate.
-    target_position, target_velocity : ndarray
-        True q and v.
-    estimate_position, estimate_velocity : ndarray
-        Estimates q̂ and v̂.
-    epsilon, K_p, k_gamma, controller : see :class:`theory.pursuit.case.PursuitSpec`.
-    omega_d, omega_d_dot : float
-        Desired speed ω_d (eq. (18)/(46)) and its derivative v̇_c (eq. (52)).
-    path_params : dict
-        Keyword arguments of :func:`path` except ``gamma``.
-
-    Returns
-    -------
-    ClosedLoopRates
-
-    References
-    ----------
-    seed 003, eqs. (2)–(5), (19)–(30), (46)–(52).
+    The input is u = k(x̂) (eq. (51)); γ̈ follows (50b) for Type II (``omega_d_dot`` = v̇_c of
+    (52)), while Type I imposes γ̇ = ω_d (so e_γ = 0 and ``gamma_dot`` is ignored). The rates come
+    from differentiating e_p = Rᵀ(p − r(γ) − q) − ε with ṗ = R[v₁, 0, …]ᵀ, Ṙ = R S(ω), q̇ = v —
+    the kinematics, not eq. (21). ``path_params``: the keywords of :func:`path` but ``gamma``.
     """
     r_gamma = path(gamma, **path_params)
     r_prime = path_derivative(gamma, **path_params)

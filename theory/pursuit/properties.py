@@ -1,54 +1,78 @@
-"""Falsifiable wordings of seed 003's ISS inequalities (71), (72), (74), (75), Theorem 1's
-dissipation bound and Theorem 2 against the simulator (for ``trackcert falsify``).
+"""Falsifiable wordings of seed 003's claims for ``trackcert falsify``: the ISS inequalities
+(71), (72), (74), (75), Theorem 1's dissipation bound, Theorem 2 against the simulator, and the
+conditions swept toward their thresholds.
 
 Pursuit loop (Appendix B): ‖Φ‖² < μ‖x̃‖² (71) only holds with ≤ (checked exactly, in rational
 arithmetic, on 2D paths and rotations with rational sines and cosines); the region of (72),
 ‖e‖ ≥ c‖x̃‖/θ, lacks the factor 1/λ_min(K) that (78) has; V̇ ≤ −λ_min(K)‖e‖² + c‖e‖‖x̃‖ holds with
 the paper's c = √μ + ‖K‖ and with the sharper c♯ (Theorem 1). V̇ is evaluated from the kinematics
-(:meth:`theory.strategies.TrackerState.rates`) on cases and states drawn by
-:func:`theory.strategies.pursuit_cases` and :func:`theory.strategies.tracker_states`.
+(:meth:`theory.pursuit.strategies.TrackerState.rates`).
 
-Coordination loop (Appendix C):
-
-With ξ = (I − 1rᵀ)γ, V_c = ξᵀRξ/2 (eq. (73)) and γ̇ = ω̄1 − k_c Lγ + e_γ (eqs. (45)–(47)), the
-paper prints V̇_c ≤ −k_c r_min‖ξ‖² + ‖ξ‖‖RW‖‖e_γ‖ (eq. (74)); what the proof supports is
-V̇_c ≤ −k_c a(L) ξᵀRξ + ‖ξ‖_R b ‖e_γ‖ with a(L) of Definition 1 and b = √λ_max(WᵀRW)
-(``docs/theory/pursuit-iss.md``). Examples are strongly connected digraphs with integer states.
+Coordination loop (Appendix C): with ξ = (I − 1rᵀ)γ, V_c = ξᵀRξ/2 (eq. (73)) and
+γ̇ = ω̄1 − k_c Lγ + e_γ (eqs. (45)–(47)), the paper prints V̇_c ≤ −k_c r_min‖ξ‖² + ‖ξ‖‖RW‖‖e_γ‖
+(eq. (74)); what the proof supports is V̇_c ≤ −k_c a(L) ξᵀRξ + ‖ξ‖_R b ‖e_γ‖ with a(L) of
+Definition 1 and b = √λ_max(WᵀRW) (``docs/theory/pursuit-iss.md``).
 
 Theorem 2 against the simulator: on random certified cases
-(:func:`theory.pursuit.strategies.simulated_pursuit_blocks`: 1–3 trackers, 2D and 3D, Types I
-and II, random strongly connected digraphs), a short seeded run of ``trackcert simulate``'s loop
-stays within the certified estimate β(‖μ(0)‖, t) + γ(sup‖x̃‖) with the run's own x̃
-(:func:`theory.pursuit.iss_check.simulation_agreement`).
+(:func:`theory.pursuit.strategies.simulated_pursuit_blocks`), a short seeded run stays within
+the certified estimate β(‖μ(0)‖, t) + γ(sup‖x̃‖) with the run's own x̃
+(:func:`theory.pursuit.simulation.simulation_agreement`).
+
+Never wrong near a threshold (issue 17): the exact verdicts on ``λ_min(K) ≥ 1`` (whether the
+printed region (72) follows), ``K ≻ 0`` and the certificate (it exists iff ``ε₁ ≠ 0``) on Table I
+with three trackers (``cases/pursuit-table1-n3.yaml``), swept toward each threshold; "correct" is
+computed from the decimals as written, independently of :mod:`theory.pursuit.iss`.
 """
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, replace
 from fractions import Fraction
-from typing import Any
+from functools import cache
+from typing import Any, Literal
 
 import numpy as np
+import yaml
 from hypothesis import strategies as st
 
-from theory.core.case_file import Case
+import proofs_check
+from theory.core.case_file import Case, bundled_cases
+from theory.core.claims import Property
+from theory.core.errors import InconclusiveError, PropertyFails
 from theory.core.tolerances import INEQUALITY_RTOL, KINEMATICS_RTOL
-from theory.falsify import Property, register_property
-from theory.pursuit.case import PursuitSpec
-from theory.pursuit.iss import generalized_algebraic_connectivity, left_eigenvector, pursuit_iss
-from theory.pursuit.strategies import simulated_pursuit_blocks
-from theory.strategies import TrackerState, digraph_laplacians, pursuit_cases, tracker_states
+from theory.pursuit.case import PURSUIT, PursuitSpec
+from theory.pursuit.certificates import iss_certificate
+from theory.pursuit.iss import (
+    ConditionStatus,
+    generalized_algebraic_connectivity,
+    iss_conditions,
+    pursuit_iss,
+)
+from theory.pursuit.model import left_eigenvector
+from theory.pursuit.strategies import (
+    TrackerState,
+    digraph_laplacians,
+    pursuit_cases,
+    simulated_pursuit_blocks,
+    tracker_states,
+)
+from theory.strategy_helpers import boundary_values
 
 __all__ = [
     "AGREEMENT_RECORDS",
+    "PROPERTIES",
     "AgreementExample",
+    "CertificatePoint",
     "CoordinationExample",
     "PhiExample",
     "PursuitExample",
+    "RegionPoint",
     "agreement_case",
     "agreement_examples",
     "agreement_verdict",
+    "certificate_sound",
     "coordination_case",
     "coordination_examples",
     "coordination_terms",
@@ -58,10 +82,15 @@ __all__ = [
     "pursuit_example_case",
     "pursuit_examples",
     "pursuit_terms",
+    "region_case",
+    "region_sound",
 ]
 
 TABLE_I = {"omega_bar": 0.05, "epsilon": [-0.5, 0], "K_p": [0.4, 0.2], "k_gamma": 500}
 """Seed 003 Table I gains, used for case fields an example does not determine."""
+
+Wording = Literal["paper", "corrected"]
+"""A property's wording: the statement as printed, or as corrected."""
 
 
 # ---------------------------------------------------------------------------------------------
@@ -70,22 +99,11 @@ TABLE_I = {"omega_bar": 0.05, "epsilon": [-0.5, 0], "K_p": [0.4, 0.2], "k_gamma"
 
 @dataclass(frozen=True)
 class PhiExample:
-    """A 2D path, a path angle, an attitude and estimation errors, all rational.
+    """A 2D path (semi-axes of (15)), a path angle, an attitude and estimation errors q̃, ṽ.
 
     The path angle φ = γ + γ₀ and the attitude angle ψ are given by t = tan(φ/2) and
     s = tan(ψ/2), so that cos and sin are rational: cos φ = (1 − t²)/(1 + t²),
     sin φ = 2t/(1 + t²).
-
-    Attributes
-    ----------
-    r_x, r_y : int
-        Semi-axes of path (15).
-    t : Fraction
-        tan(φ/2), φ = γ + γ₀.
-    s : Fraction
-        tan(ψ/2) of the attitude R(ψ).
-    q_err, v_err : tuple of Fraction or int
-        Estimation errors q̃, ṽ.
     """
 
     r_x: int
@@ -181,17 +199,7 @@ def _phi_corrected(example: PhiExample) -> bool:
 
 @dataclass(frozen=True, eq=False)
 class PursuitExample:
-    """A one-tracker pursuit case, a state of its tracker and θ ∈ (0, 1) of eqs. (72)/(78).
-
-    Attributes
-    ----------
-    case : Case
-        A validated ``kind: pursuit`` case with one tracker.
-    state : TrackerState
-        The tracker's state and estimation errors.
-    theta : float
-        θ of eqs. (72)/(78).
-    """
+    """A one-tracker pursuit case, a state of its tracker and θ ∈ (0, 1) of eqs. (72)/(78)."""
 
     case: Case
     state: TrackerState
@@ -205,11 +213,11 @@ def _norms(spec: PursuitSpec, state: TrackerState) -> tuple[float, float]:
 
 
 @st.composite
-def pursuit_examples(draw: st.DrawFn, *, region: str | None = None) -> PursuitExample:
-    """Cases from :func:`~theory.strategies.pursuit_cases` (half of them with small gains and
-    paths, where λ_min(K) < 1), states from :func:`~theory.strategies.tracker_states` (in half
-    of them q̃ = 0 and ṽ = Re_p, the direction that maximises the cross term of (70)), and
-    θ ∈ {0.1, …, 0.9}.
+def pursuit_examples(draw: st.DrawFn, *, region: Wording | None = None) -> PursuitExample:
+    """Cases from :func:`~theory.pursuit.strategies.pursuit_cases` (half of them with small gains
+    and paths, where λ_min(K) < 1), states from :func:`~theory.pursuit.strategies.tracker_states`
+    (in half of them q̃ = 0 and ṽ = Re_p, the direction that maximises the cross term of (70)),
+    and θ ∈ {0.1, …, 0.9}.
 
     With ``region`` = ``paper`` or ``corrected`` the estimation error x̃ = (q̃, ṽ) is rescaled to a
     drawn fraction (0.1 to 1) of the edge of that region: ‖x̃‖ ≤ θ‖e‖/c (72) or
@@ -296,7 +304,7 @@ def pursuit_example_case(example: PursuitExample) -> dict[str, Any]:
     }
 
 
-def _region_holds(wording: str):
+def _region_holds(wording: Wording):
     def holds(example: PursuitExample) -> bool:
         terms = pursuit_terms(example)
         lam, theta = terms["lambda_min"], example.theta
@@ -325,23 +333,8 @@ def _dissipation_holds(gain: str):
 
 @dataclass(frozen=True, eq=False)
 class CoordinationExample:
-    """A digraph Laplacian, a coordination gain, path parameters γ and their errors e_γ.
-
-    Attributes
-    ----------
-    laplacian : ndarray, shape (N, N)
-        Laplacian ``L = D_in − A`` of a strongly connected digraph (seed 003 §II-B).
-    k_c : float
-        Coordination gain k_c > 0, eq. (45).
-    gamma : ndarray, shape (N,)
-        Path parameters γ of the trackers.
-    e_gamma : ndarray, shape (N,)
-        Errors e_γ entering γ̇, eq. (47) (the pursuit error e with e_p = 0, in (75)).
-    theta : float
-        θ ∈ (0, 1) of eq. (75).
-    omega_bar : float
-        Nominal path-parameter speed ω̄, eq. (46).
-    """
+    """A strongly connected digraph's Laplacian, k_c (45), path parameters γ, their errors e_γ
+    entering γ̇ (47) (the pursuit error with e_p = 0, in (75)), θ of (75) and ω̄ (46)."""
 
     laplacian: np.ndarray
     k_c: float
@@ -456,15 +449,8 @@ diverged within 3 s; a few DEKF samples)."""
 
 @dataclass(frozen=True, eq=False)
 class AgreementExample:
-    """A simulatable pursuit case (plain ``pursuit:`` block) and the seed of its run.
-
-    Attributes
-    ----------
-    block : dict
-        From :func:`theory.pursuit.strategies.simulated_pursuit_blocks`.
-    seed : int
-        Seed of the range noise.
-    """
+    """A simulatable ``pursuit:`` block (from
+    :func:`~theory.pursuit.strategies.simulated_pursuit_blocks`) and its run's noise seed."""
 
     block: dict[str, Any]
     seed: int
@@ -490,15 +476,13 @@ def agreement_case(example: AgreementExample) -> dict[str, Any]:
 
 
 def agreement_verdict(example: AgreementExample) -> dict[str, Any] | None:
-    """:func:`~theory.pursuit.iss_check.simulation_agreement` of the example's run, or ``None``
+    """:func:`~theory.pursuit.simulation.simulation_agreement` of the example's run, or ``None``
     when a condition of the analysis does not hold (nothing is certified)."""
-    from theory.core.case_file import parse_case
-    from theory.pursuit.iss import iss_conditions
-    from theory.pursuit.iss_check import simulation_agreement
-    from theory.pursuit.simulation import run_pursuit_case
+    from theory.pursuit.simulation import run_pursuit_case, simulation_agreement
 
-    spec = parse_case(agreement_case(example)).spec
-    if {c.status for c in iss_conditions(spec)} - {"holds", "not-applicable"}:
+    spec = PURSUIT.parse_case(agreement_case(example)).spec
+    certified = {ConditionStatus.HOLDS, ConditionStatus.NOT_APPLICABLE}
+    if {c.status for c in iss_conditions(spec)} - certified:
         return None
     run = run_pursuit_case(spec, np.random.default_rng(example.seed), steps=AGREEMENT_RECORDS)
     return simulation_agreement(spec, run)
@@ -510,7 +494,155 @@ def _agreement_holds(example: AgreementExample) -> bool:
 
 
 # ---------------------------------------------------------------------------------------------
-# registry
+# boundary sweeps: never wrong near a threshold
+
+BASE_CASE = "pursuit-table1-n3"
+"""The bundled case the examples vary (2-D, Type II, three trackers, r_x = r_y = 30)."""
+SHARP_THRESHOLD = Fraction(951340728979, 981035254257)
+"""≈ 0.969731439161695, the root of v(30 + v) = √(v² + 901): with K_p = vI and k_γ = v the
+sufficient test c♯ ≤ λ_min(K)·c of (72) holds iff v is at least this root (an irrational
+number; the sweep is around this rational approximation, the truth is decided exactly)."""
+
+
+def _decimal(x: float) -> Fraction:
+    return Fraction(repr(float(x)))
+
+
+@cache
+def _base() -> dict[str, Any]:
+    data = yaml.safe_load(bundled_cases()[BASE_CASE].read_text(encoding="utf-8"))
+    data.pop("expect", None)
+    return data
+
+
+def _case(K_p: Any, k_gamma: float, epsilon_1: float, name: str) -> dict[str, Any]:
+    data = copy.deepcopy(_base())
+    data["name"] = f"boundary-{name}"
+    data["source"] = "trackcert falsify (seed 003 boundary sweep, docs/theory/pursuit-iss.md)"
+    block = data["pursuit"]
+    block.update({"K_p": K_p, "k_gamma": k_gamma, "epsilon": [epsilon_1, block["epsilon"][1]]})
+    return data
+
+
+@dataclass(frozen=True)
+class RegionPoint:
+    """``K_p`` with its least eigenvalue swept through 1 by ``value`` = v.
+
+    ``form``: ``diagonal`` (``K_p = diag(v, 2)``), ``coupled`` (``[[2, v], [v, 2]]``, eigenvalues
+    ``2 ± v``), ``rotated`` (``Q diag(v, 2) Qᵀ`` with the 3-4-5 rotation ``Q``, entries computed in
+    floats: a matrix whose float eigenvalues land on 1 while its decimals do not), all with
+    ``k_γ = 5``; or ``equal`` (``K_p = vI``, ``k_γ = v``, swept through the threshold
+    ``v(30 + v) = √(v² + 901)`` of the sufficient test of (72), :data:`SHARP_THRESHOLD`).
+    """
+
+    form: Literal["diagonal", "coupled", "rotated", "equal"]
+    value: float
+
+
+def _gains(point: RegionPoint) -> list[list[float]]:
+    v = float(point.value)
+    if point.form == "equal":
+        return [[v, 0.0], [0.0, v]]
+    if point.form == "diagonal":
+        return [[v, 0.0], [0.0, 2.0]]
+    if point.form == "coupled":
+        return [[2.0, v], [v, 2.0]]
+    return [[0.36 * v + 1.28, 0.48 * v - 0.96], [0.48 * v - 0.96, 0.64 * v + 0.72]]
+
+
+def _k_gamma(point: RegionPoint) -> float:
+    return float(point.value) if point.form == "equal" else 5.0
+
+
+def region_case(point: RegionPoint) -> dict[str, Any]:
+    """The pursuit case of ``point`` (``ε = (−0.5, 0)``)."""
+    return _case(_gains(point), _k_gamma(point), -0.5, f"region-{point.form}")
+
+
+def _region_truth(point: RegionPoint) -> tuple[bool, bool | None]:
+    """(λ_min(K) ≥ 1, c♯ ≤ λ_min(K)·c) in exact rationals; the second is None for the rotated
+    form, whose eigenvalues are irrational.
+
+    For ``K_p = [[a, c], [c, d]]``, λ_min(K) ≥ 1 iff ``a ≥ 1``, ``d ≥ 1``, ``k_γ ≥ 1`` and
+    ``(a − 1)(d − 1) ≥ c²`` (K_p − I ⪰ 0); the sufficient test of (72) with ``√μ = 30`` and
+    ``c♯² = ‖K_p‖² + 1 + 900`` is decided by squaring.
+    """
+    (a, c), (_, d) = ((_decimal(x) for x in row) for row in _gains(point))
+    k_gamma = _decimal(_k_gamma(point))
+    sound = k_gamma >= 1 and a >= 1 and d >= 1 and (a - 1) * (d - 1) >= c * c
+    if point.form == "rotated":
+        return sound, None
+    kp = [2 - abs(c), 2 + abs(c)] if point.form == "coupled" else [a, d]
+    lam, top = min(*kp, k_gamma), max(*kp, k_gamma)
+    shown = lam > 0 and max(kp) ** 2 + 1 + 900 <= (lam * (30 + top)) ** 2
+    return sound, shown
+
+
+def region_sound(point: RegionPoint) -> bool:
+    """The exact verdict on ``λ_min(K) ≥ 1`` is right, ``K ≻ 0`` holds, and the sufficient test
+    of (72) is claimed only when it is true."""
+    spec = PURSUIT.parse_case(region_case(point)).spec
+    pursuit = pursuit_iss(spec)
+    sound, shown = _region_truth(point)
+    status = {c.name: c.status for c in iss_conditions(spec)}
+    return (
+        pursuit.printed_region_sound == sound
+        and (shown is not False or not pursuit.printed_region_holds)
+        and status["K_positive_definite"] == ConditionStatus.HOLDS
+    )
+
+
+def _region_points() -> st.SearchStrategy[RegionPoint]:
+    at_one = st.builds(
+        RegionPoint,
+        st.sampled_from(["diagonal", "coupled", "rotated"]),
+        boundary_values(Fraction(1)),
+    )
+    at_sharp = boundary_values(SHARP_THRESHOLD).map(lambda v: RegionPoint("equal", v))
+    return st.one_of(at_one, at_sharp)
+
+
+@dataclass(frozen=True)
+class CertificatePoint:
+    """Gains swept toward 0 (``K_p = diag(k_min, 0.2)``, ``k_γ``) and the surge offset ``ε₁``
+    toward 0 (where Δ̄ is undefined)."""
+
+    k_min: float
+    k_gamma: float
+    epsilon_1: float
+
+
+def _certificate_case(point: CertificatePoint) -> dict[str, Any]:
+    return _case([point.k_min, 0.2], point.k_gamma, point.epsilon_1, "certificate")
+
+
+def certificate_sound(point: CertificatePoint) -> bool:
+    """A certificate is issued and accepted by ``proofs_check`` (or reported inconclusive)
+    exactly when ``ε₁ ≠ 0``; it is refused only when ``ε₁ = 0``."""
+    spec = PURSUIT.parse_case(_certificate_case(point)).spec
+    exists = _decimal(point.epsilon_1) != 0
+    try:
+        cert = iss_certificate(spec)
+    except InconclusiveError:
+        return exists
+    except PropertyFails:
+        return not exists
+    return exists and proofs_check.check_certificate(cert).valid
+
+
+def _small() -> st.SearchStrategy[float]:
+    return st.integers(0, 11).map(lambda k: 10.0**-k)
+
+
+def _offsets() -> st.SearchStrategy[float]:
+    tiny = st.tuples(st.sampled_from([-1, 1]), st.integers(1, 17)).map(
+        lambda t: t[0] * 10.0 ** -t[1]
+    )
+    return st.one_of(st.just(0.0), st.just(-0.5), tiny)
+
+
+# ---------------------------------------------------------------------------------------------
+# the properties
 
 WORDINGS = (
     (
@@ -605,16 +737,44 @@ WORDINGS = (
     ),
 )
 
-for _id, _statement, _examples, _holds, _to_case, _expected in WORDINGS:
-    register_property(
-        Property(
-            id=_id,
-            claim=_id.split("/")[0],
-            wording=_id.split("/")[1],
-            statement=_statement,
-            examples=_examples,
-            holds=_holds,
-            to_case=_to_case,
-            expected_to_hold=_expected,
-        )
+
+BOUNDARY_WORDINGS = (
+    (
+        "seed003.thm1.boundary/corrected",
+        "seed003.thm1",
+        "Swept through λ_min(K) = 1 (diagonal, coupled and rotated K_p) and through the "
+        "threshold of the sufficient test c♯ ≤ λ_min(K)·c, the verdict 'the printed region (72) "
+        "follows from the argument' is exact, K ≻ 0 is decided exactly, and the sufficient test "
+        "is never claimed when false.",
+        _region_points(),
+        region_sound,
+        region_case,
+    ),
+    (
+        "seed003.thm2.certificate-boundary/corrected",
+        "seed003.thm2",
+        "With λ_min(K) and k_γ down to 1e-11 and ε₁ down to 1e-17 (and 0), an iss certificate "
+        "accepted by proofs_check (or an inconclusive report) exists iff ε₁ ≠ 0.",
+        st.builds(CertificatePoint, _small(), _small(), _offsets()),
+        certificate_sound,
+        _certificate_case,
+    ),
+)
+
+PROPERTIES = tuple(
+    Property(
+        id=name,
+        claim=name.split("/")[0],
+        wording=name.split("/")[1],
+        statement=statement,
+        examples=examples,
+        holds=holds,
+        to_case=to_case,
+        expected_to_hold=expected,
     )
+    for name, statement, examples, holds, to_case, expected in WORDINGS
+) + tuple(
+    Property(id=i, claim=c, wording="corrected", statement=s, examples=e, holds=h, to_case=t)
+    for i, c, s, e, h, t in BOUNDARY_WORDINGS
+)
+"""The pursuit domain's falsifiable properties."""

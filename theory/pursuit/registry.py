@@ -3,25 +3,17 @@
 from __future__ import annotations
 
 from theory.core.expectations import expectation_claim
-from theory.pursuit import (
-    boundary_properties,
-    certificate_claims,
-    certificates,
-    iss_claims,
-    observability_claims,
-    properties,
-    simulation_claims,
-)
-from theory.pursuit.iss_report import observe_iss
+from theory.pursuit import certificates, derivations, iss, observability, properties, simulation
 
 __all__ = ["CERTIFIERS", "CLAIMS", "PROPERTIES"]
 
 CLAIMS = (
-    *iss_claims.claims,
-    *observability_claims.claims,
-    *certificate_claims.claims,
-    *simulation_claims.claims,
-    expectation_claim("pursuit", command="iss", observe=observe_iss),
+    *derivations.claims,
+    *observability.claims,
+    *iss.claims,
+    *certificates.claims,
+    *simulation.claims,
+    expectation_claim("pursuit", command="iss", observe=iss.observe_iss),
 )
-PROPERTIES = (*properties.PROPERTIES, *boundary_properties.PROPERTIES)
+PROPERTIES = properties.PROPERTIES
 CERTIFIERS = {"pursuit": (certificates.pursuit_certificates,)}

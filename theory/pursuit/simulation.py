@@ -1,29 +1,41 @@
-"""``trackcert simulate`` for ``kind: pursuit`` cases (seed 003, 2-D and 3-D): run, summary, files.
+"""``trackcert simulate`` for ``kind: pursuit`` cases (seed 003, 2-D and 3-D), and the ISS
+estimate of Theorem 2 checked along the simulated trajectories.
 
 Adapts a :class:`~theory.pursuit.case.PursuitSpec` to
-:func:`theory.pursuit.closed_loop.simulate_dec`.
-Defaults where the case leaves the simulation unspecified (documented in
-``docs/simulation.md``): tracker ``i`` (0-based) starts at ``q(0) + (−40 + 5i, −40 − 5i[, 0])``
-m with zero Euler angles, ``γ^[i](0) = i`` rad and γ̇(0) = ω_d(0) (a case's ``gamma_dot``
-sets e_γ(0) = γ̇(0) − ω_d(0), Type II); estimates start at ``[q(0) + (5, −5[, 0]); 0]`` with
-``P = 10 I``. The loop is integrated with error control and recorded every 0.1 s.
+:func:`theory.pursuit.closed_loop.simulate_dec`. Defaults where the case leaves the simulation
+unspecified (``docs/simulation.md``): tracker ``i`` (0-based) starts at
+``q(0) + (−40 + 5i, −40 − 5i[, 0])`` m with zero Euler angles, ``γ^[i](0) = i`` rad and
+γ̇(0) = ω_d(0) (a case's ``gamma_dot`` sets e_γ(0) = γ̇(0) − ω_d(0), Type II); estimates start at
+``[q(0) + (5, −5[, 0]); 0]`` with ``P = 10 I``. The loop is integrated with error control and
+recorded every 0.1 s.
+
+With ``μ = col(ξ, e)``, ``ξ = (I − 1rᵀ)γ`` (eq. (56)), ``e^[i] = [e_p^[i], e_γ^[i]]`` (true
+target) and ``x̃`` the stacked estimation errors the controllers use,
+:func:`theory.pursuit.iss.iss_bound` gives ``‖μ(t)‖ ≤ β(‖μ(0)‖, t) + γ(sup_{s≤t}‖x̃(s)‖)``;
+:func:`simulation_agreement` checks it at every record of a run — the verdict shared by
+``trackcert simulate`` and the claim ``seed003.thm2.sim-trajectories``: does the simulated loop
+stay within what ``trackcert iss`` certifies? The estimate is conditional on x̃, which the DEKF
+produces in closed loop; a run whose estimate runs away stays within it while diverging, so the
+verdict also reports how x̃ grew.
 """
 
 from __future__ import annotations
 
 import functools
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from theory.core.case_file import Case
+from theory.core.claims import ClaimResult, ClaimSet, Context, NotApplicable
 from theory.core.errors import CaseError
 from theory.core.expectations import Observed
-from theory.core.tolerances import RUNAWAY_FACTOR
+from theory.core.tolerances import ISS_BOUND_RTOL, RUNAWAY_FACTOR
 from theory.pursuit.case import PursuitSpec
-from theory.pursuit.closed_loop import DecRun, DecSettings, simulate_dec
+from theory.pursuit.closed_loop import DecRun, DecSettings, StopCause, simulate_dec
 from theory.pursuit.model import desired_speed
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
 from theory.sim.simulate import Finished, Simulator
@@ -31,12 +43,19 @@ from theory.sim.simulate import Finished, Simulator
 __all__ = [
     "DEFAULT_DURATION",
     "RECORD_INTERVAL",
+    "SIMULATION_SEED",
+    "STOPS",
+    "IssMargin",
     "check_pursuit_case",
+    "claims",
     "dec_arguments",
+    "default_run",
     "default_steps",
+    "iss_margin_along",
     "pursuit_simulator",
     "run_pursuit_case",
     "runaway_factor_of",
+    "simulation_agreement",
     "simulation_observed",
     "summarize_pursuit",
     "write_pursuit_data",
@@ -58,17 +77,7 @@ def default_steps() -> int:
 
 
 def check_pursuit_case(spec: PursuitSpec) -> None:
-    """Refuse what the simulation cannot run, naming the field.
-
-    Parameters
-    ----------
-    spec : PursuitSpec
-
-    Raises
-    ------
-    CaseError
-        Missing ``target`` or ``dekf`` blocks, a rank-deficient ``Δ`` of (22).
-    """
+    """CaseError naming what the simulation cannot run: no ``target``, no ``dekf``, Δ singular."""
     if spec.target is None:
         raise CaseError("pursuit.target", "a target motion to simulate", "nothing")
     if spec.dekf is None:
@@ -113,23 +122,11 @@ def _initial_trackers(spec: PursuitSpec, start: np.ndarray) -> dict[str, np.ndar
 def dec_arguments(
     spec: PursuitSpec, steps: int | None = None, *, runaway_factor: float = RUNAWAY_FACTOR
 ) -> dict[str, Any]:
-    """The keyword arguments of :func:`theory.pursuit.closed_loop.simulate_dec` for a case
-    (all but ``rng``).
+    """The keyword arguments of :func:`theory.pursuit.closed_loop.simulate_dec` but ``rng``.
 
-    Parameters
-    ----------
-    spec : PursuitSpec
-        A case accepted by :func:`check_pursuit_case`.
-    steps : int, optional
-        Number of records after the first, every :data:`RECORD_INTERVAL` (default
-        :func:`default_steps`).
-    runaway_factor : float
-        A run stops as a runaway beyond this many S-T curve sizes of localization error (the
-        tolerance table's ``runaway_factor``; a case's ``tolerances:`` may set it).
-
-    Returns
-    -------
-    dict
+    ``steps`` records after the first, every :data:`RECORD_INTERVAL` (default
+    :func:`default_steps`); a run stops as a runaway beyond ``runaway_factor`` S-T curve sizes of
+    localization error.
     """
     steps = default_steps() if steps is None else steps
     dekf, d = spec.dekf, spec.dim
@@ -176,51 +173,18 @@ def run_pursuit_case(
     *,
     runaway_factor: float = RUNAWAY_FACTOR,
 ) -> DecRun:
-    """One run of the DEC loop (2-D or 3-D) for a pursuit case.
-
-    Parameters
-    ----------
-    spec : PursuitSpec
-        A case accepted by :func:`check_pursuit_case`.
-    rng : numpy.random.Generator
-        Source of the range noise.
-    steps : int, optional
-        Number of records after the first, every :data:`RECORD_INTERVAL` (default
-        :func:`default_steps`).
-    runaway_factor : float
-        The runaway threshold in S-T curve sizes (:func:`dec_arguments`).
-
-    Returns
-    -------
-    DecRun
-    """
+    """One run of the DEC loop for a pursuit case (``rng`` draws the range noise; seed 003 §V)."""
     return simulate_dec(rng=rng, **dec_arguments(spec, steps, runaway_factor=runaway_factor))
 
 
 def summarize_pursuit(
     spec: PursuitSpec, runs: Sequence[DecRun], *, runaway_factor: float = RUNAWAY_FACTOR
 ) -> dict[str, Any]:
-    """Per-tracker means over runs and the coordination outcome.
+    """Per-tracker means over runs (errors in m, γ in rad) and the coordination outcome.
 
-    Parameters
-    ----------
-    spec : PursuitSpec
-    runs : sequence of DecRun
-    runaway_factor : float
-        The runaway threshold the runs used (reported under ``tolerances``).
-
-    Returns
-    -------
-    dict
-        ``{"agents": [{"id", "final_localization_error", "mean_localization_error",
-        "final_pursuit_error", "mean_pursuit_error"}], "final_gamma_spread",
-        "final_gamma_rate_error", "omega_bar", "integration_steps", "stopped_at",
-        "stop_causes", "stop_reasons", "tolerances", "iss_agreement"}`` (means over runs; errors
-        in m, γ in rad; ``stopped_at``, ``stop_causes`` (``"runaway"`` or ``"step_floor"``,
-        :class:`~theory.pursuit.closed_loop.DecRun`) and ``stop_reasons`` per run, ``None`` when
-        the run completed; ``tolerances``: the ``runaway_factor`` used; ``iss_agreement``: run 0
-        against the certified estimate, :func:`theory.pursuit.iss_check.simulation_agreement`,
-        or ``None`` when ``trackcert iss`` certifies nothing).
+    ``stopped_at``, ``stop_causes`` and ``stop_reasons`` per run are ``None`` when it completed;
+    ``iss_agreement`` is run 0 against the certified estimate (:func:`simulation_agreement`), or
+    ``None`` when ``trackcert iss`` certifies nothing.
     """
     loc = np.mean([r.localization_errors for r in runs], axis=0)
     pur = np.mean([r.pursuit_errors for r in runs], axis=0)
@@ -251,29 +215,17 @@ def summarize_pursuit(
 
 
 def _agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any] | None:
-    from theory.pursuit.iss import iss_conditions
-    from theory.pursuit.iss_check import simulation_agreement
+    from theory.pursuit.iss import ConditionStatus, iss_conditions
 
-    statuses = {c.status for c in iss_conditions(spec)} - {"not-applicable"}
-    if statuses != {"holds"}:
+    statuses = {c.status for c in iss_conditions(spec)} - {ConditionStatus.NOT_APPLICABLE}
+    if statuses != {ConditionStatus.HOLDS}:
         return None
     return simulation_agreement(spec, run)
 
 
 def simulation_observed(summary: dict[str, Any]) -> Observed:
-    """The ``simulation_bounded`` key as run 0 of ``summary`` decides it.
-
-    Parameters
-    ----------
-    summary : dict
-        From :func:`summarize_pursuit`.
-
-    Returns
-    -------
-    Observed
-        ``simulation_bounded`` (undecided when ``trackcert iss`` certifies nothing, so there is
-        no certified estimate to stay within).
-    """
+    """``simulation_bounded`` as run 0 of a :func:`summarize_pursuit` decides it (undecided when
+    ``trackcert iss`` certifies nothing: there is no estimate to stay within)."""
     agreement = summary["iss_agreement"]
     got = None if agreement is None else agreement["simulation_bounded"]
     undecided = frozenset() if got is not None else frozenset({"simulation_bounded"})
@@ -281,23 +233,10 @@ def simulation_observed(summary: dict[str, Any]) -> Observed:
 
 
 def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
-    """The simulator of a ``kind: pursuit`` case for :func:`theory.sim.simulate.simulate_case`.
+    """The simulator of a ``kind: pursuit`` case (:func:`theory.sim.simulate.simulate_case`).
 
-    Parameters
-    ----------
-    case : Case
-        A pursuit case with ``target`` and ``dekf`` blocks.
-    steps : int, optional
-        Recorded 0.1 s steps (default :func:`default_steps`).
-
-    Returns
-    -------
-    Simulator
-
-    Raises
-    ------
-    CaseError
-        If the case cannot be simulated (no target or DEKF block), naming its file.
+    ``steps`` recorded 0.1 s steps (default :func:`default_steps`); CaseError naming the file if
+    the case cannot be simulated.
     """
     try:
         check_pursuit_case(case.spec)
@@ -336,26 +275,13 @@ def _finish(case: Case, spec: Any, results: list, folder: Path, figures: bool) -
 
 def _stop_warning(run: int, stopped: float, cause: str, reason: str) -> str:
     """The warning for run ``run`` (0-based) stopped at ``stopped`` s."""
-    if cause == "runaway":
+    if cause == StopCause.RUNAWAY:
         return f"run {run} stopped at t = {stopped:g} s, {reason}"
     return f"a run's integration stopped at t = {stopped:g} s (step below the floor)"
 
 
 def write_pursuit_data(runs: Sequence[DecRun], summary: dict[str, Any], folder: Path) -> list[Path]:
-    """``runs.npz`` (every array stacked over runs), ``agents.csv``, ``timeseries.csv``.
-
-    Parameters
-    ----------
-    runs : sequence of DecRun
-    summary : dict
-        From :func:`summarize_pursuit`.
-    folder : pathlib.Path
-        Existing output folder.
-
-    Returns
-    -------
-    list of pathlib.Path
-    """
+    """``runs.npz`` (every array stacked over runs), ``agents.csv``, ``timeseries.csv``."""
     every = slice(None, None, 10)
     series = write_timeseries_csv(
         folder / "timeseries.csv",
@@ -373,20 +299,10 @@ def write_pursuit_data(runs: Sequence[DecRun], summary: dict[str, Any], folder: 
 
 
 def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
-    """``trajectories.png`` (run 0), ``errors.png`` and ``coordination.png``.
+    """``trajectories.png`` (run 0), ``errors.png`` and ``coordination.png`` in ``folder``.
 
     Drawn without pyplot and with fixed margins (:func:`theory.sim.figures.new_figure`): the
     automatic layout would draw every tick label twice.
-
-    Parameters
-    ----------
-    runs : sequence of DecRun
-    folder : pathlib.Path
-        Existing output folder.
-
-    Returns
-    -------
-    list of pathlib.Path
     """
     from theory.sim.figures import save_figure
 
@@ -458,3 +374,209 @@ def _coordination_figure(run: DecRun) -> Any:
     axes[1].set_ylabel("dγ_i/dt (rad/s)")
     axes[1].set_xlabel("time (s)")
     return fig
+
+
+# ---------------------------------------------------------------------------------------------
+# the ISS estimate of Theorem 2 along a run
+
+
+@dataclass(frozen=True, eq=False)
+class IssMargin:
+    """Both sides of the Theorem 2 estimate at the completed records of a run.
+
+    ``mu`` is ‖μ(t)‖, ``bound`` β + γ, ``x_tilde`` ‖x̃(t)‖; ``margin`` = min(bound − mu),
+    ``relative_margin`` = min((bound − mu)/bound) (at ``worst_time``), ``holds`` within the
+    table's ``iss_bound_rtol``; ``gain`` and ``constants`` are the estimate's.
+    """
+
+    mu: np.ndarray
+    bound: np.ndarray
+    margin: float
+    relative_margin: float
+    holds: bool
+    worst_time: float
+    gain: float
+    constants: dict[str, float]
+    x_tilde: np.ndarray
+
+
+def iss_margin_along(spec: PursuitSpec, run: DecRun) -> IssMargin:
+    """Both sides of the seed 003 Theorem 2 estimate along ``run`` (its completed records).
+
+    ValueError if the analysis' conditions fail (from :func:`theory.pursuit.iss.iss_bound`).
+    """
+    from theory.pursuit.iss import coordination_iss, iss_bound
+
+    estimate = iss_bound(spec)
+    done = np.isfinite(run.pursuit_errors).all(axis=1)
+    done &= np.isfinite(run.estimation_errors).all(axis=1)
+    times, gammas = run.times[done], run.gammas[done]
+    if spec.n_trackers > 1:
+        r = np.array([float(v) for v in coordination_iss(spec).r])
+        xi_sq = ((gammas - (gammas @ r)[:, None]) ** 2).sum(axis=1)
+    else:
+        xi_sq = np.zeros(len(times))
+    e_sq = (run.pursuit_errors[done] ** 2).sum(axis=1) + (run.gamma_errors[done] ** 2).sum(axis=1)
+    mu = np.sqrt(xi_sq + e_sq)
+    x_tilde = np.sqrt((run.estimation_errors[done] ** 2).sum(axis=1))
+    sup_error = np.maximum.accumulate(x_tilde)
+    bound = np.array([estimate.beta(mu[0], t) for t in times]) + np.array(
+        [estimate.gamma(s) for s in sup_error]
+    )
+    slack = bound - mu
+    worst = int(np.argmin(slack / bound))
+    return IssMargin(
+        mu=mu,
+        bound=bound,
+        margin=float(slack.min()),
+        relative_margin=float(slack[worst] / bound[worst]),
+        holds=bool(np.all(mu <= bound * (1 + ISS_BOUND_RTOL))),
+        worst_time=float(times[worst]),
+        gain=estimate.gain,
+        constants=estimate.constants,
+        x_tilde=x_tilde,
+    )
+
+
+STOPS = {
+    StopCause.RUNAWAY: "a runaway: the DEKF lost the target",
+    StopCause.STEP_FLOOR: "the integrator's step fell below its floor",
+}
+"""How a stopped run's message names its cause (the full reason is in the run's warning)."""
+
+
+def simulation_agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any]:
+    """Whether a run of a certified case stays within the certified estimate (and finite).
+
+    ``simulation_bounded`` is true when the integration reached the last record and ‖μ(t)‖ stays
+    within β(‖μ(0)‖, t) + γ(sup‖x̃‖) at every record (slack: ``iss_bound_rtol``). ``status`` is
+    ``verified`` then, ``refuted`` when μ leaves the estimate, ``inconclusive`` when the run
+    stopped early inside it (the loop ran away with its estimate, docs/theory/pursuit-iss.md §11:
+    the certificate, which takes x̃ as its input, is not contradicted). ValueError if the
+    analysis' conditions fail (seed 003 Theorem 2).
+    """
+    along = iss_margin_along(spec, run)
+    x_tilde = along.x_tilde
+    numbers = {
+        "margin": along.margin,
+        "relative_margin": along.relative_margin,
+        "iss_bound_rtol": ISS_BOUND_RTOL,
+        "worst_time": along.worst_time,
+        "gain": along.gain,
+        "final_mu": float(along.mu[-1]),
+        "final_bound": float(along.bound[-1]),
+        "x_tilde_initial": float(x_tilde[0]),
+        "x_tilde_max": float(x_tilde.max()),
+        "x_tilde_final": float(x_tilde[-1]),
+        "completed": run.completed,
+        "stopped_at": None if run.completed else run.stopped_at,
+        "stop_cause": None if run.completed else run.stop_cause,
+    }
+    if not along.holds:
+        status = "refuted"
+        message = (
+            f"‖μ‖ leaves the certified estimate at t = {along.worst_time:g} s (relative "
+            f"margin {along.relative_margin:.3g})"
+        )
+    elif not run.completed:
+        status = "inconclusive"
+        stop = STOPS.get(run.stop_cause, run.stop_reason)
+        message = (
+            f"within the estimate until the run stopped at t = {run.stopped_at:g} s ({stop}); "
+            f"‖x̃‖ grew from {x_tilde[0]:.3g} to {x_tilde.max():.3g}"
+        )
+    else:
+        status = "verified"
+        message = (
+            f"within the certified estimate at every record (relative margin "
+            f"{along.relative_margin:.3g}); ‖x̃‖ from {x_tilde[0]:.3g} to {x_tilde[-1]:.3g}"
+        )
+    bounded = status == "verified"
+    return {"simulation_bounded": bounded, "status": status, "message": message, **numbers}
+
+
+# ---------------------------------------------------------------------------------------------
+# claim: `trackcert iss` and `trackcert simulate` agree
+
+claims = ClaimSet()
+
+SIMULATION_SEED = 0
+"""Root seed of the claim's run (``trackcert simulate``'s default)."""
+
+
+def default_run(case: Case) -> DecRun:
+    """The run ``trackcert simulate CASE`` makes by default (one run, root seed 0, 450 s)."""
+    from theory.sim.runner import run_seeds
+
+    (sequence,) = run_seeds(SIMULATION_SEED, 1)
+    rng = np.random.default_rng(sequence)
+    return run_pursuit_case(case.spec, rng, runaway_factor=runaway_factor_of(case))
+
+
+def _certified(case: Case) -> None:
+    """Raise :class:`NotApplicable` unless ``trackcert iss`` certifies the case and it simulates."""
+    from theory.pursuit.iss import ConditionStatus, iss_conditions
+
+    tol = case.tolerances.get("margin_tol")
+    options = {} if tol is None else {"margin_tol": float(tol)}
+    undecided = [
+        c.name for c in iss_conditions(case.spec, **options) if c.status != ConditionStatus.HOLDS
+    ]
+    if case.spec.n_trackers == 1:  # graph conditions are not applicable to one tracker
+        undecided = [name for name in undecided if name != "graph_strongly_connected"]
+    if undecided:
+        raise NotApplicable(f"trackcert iss certifies nothing here (conditions {undecided})")
+    try:
+        check_pursuit_case(case.spec)
+    except CaseError as error:
+        raise NotApplicable(f"nothing to simulate: {error.field} is not {error.expected}") from None
+
+
+@claims.register(
+    "seed003.thm2.sim-trajectories",
+    source="seed 003, Theorem 2 (corrected constants of theory.pursuit.iss) against the simulator",
+    statement="When trackcert iss certifies a case, its simulated trajectory (trackcert simulate, "
+    "seed 0) stays finite and within the certified estimate ‖μ(t)‖ ≤ β(‖μ(0)‖, t) + "
+    "γ(sup‖x̃‖) at every record.",
+    kinds=("pursuit",),
+)
+def check_simulation_agrees(case: Case, ctx: Context) -> list[ClaimResult]:
+    """One run of a certified case (seed 0) against the certified estimate (seed 003 Theorem 2).
+
+    ``verified`` (agreement), ``refuted`` (μ leaves the estimate) or ``inconclusive`` (stopped
+    early inside it); not applicable when a condition does not hold or nothing simulates. Draws
+    ‖μ(t)‖ against the estimate (``mu_bound.png``) when figures are on.
+    """
+    _certified(case)
+    run = default_run(case)
+    verdict = simulation_agreement(case.spec, run)
+    folder = ctx.figure_folder()
+    figures = ()
+    if folder is not None:
+        figures = (_figure(run.times, iss_margin_along(case.spec, run), folder),)
+    evidence = {k: v for k, v in verdict.items() if k not in ("status", "message")}
+    evidence |= {"seed": SIMULATION_SEED, "records": len(run.times), "steps": run.steps}
+    evidence["expectations"] = {"simulation_bounded": verdict["simulation_bounded"]}
+    return [
+        ClaimResult(
+            verdict["status"], "simulation", evidence, margin=verdict["relative_margin"],
+            tolerance={"iss_bound_rtol": verdict["iss_bound_rtol"]}, message=verdict["message"],
+            figures=figures,
+        )
+    ]  # fmt: skip
+
+
+def _figure(times: np.ndarray, along: IssMargin, folder: Path) -> str:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from theory.sim.figures import save_figure
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.semilogy(times[: len(along.mu)], along.mu, lw=1, label="‖μ(t)‖ (simulated)")
+    ax.semilogy(times[: len(along.bound)], along.bound, lw=1, label="β + γ (certified)")
+    ax.set_xlabel("time (s)")
+    ax.legend(fontsize=7)
+    return str(save_figure(fig, folder / "mu_bound.png"))

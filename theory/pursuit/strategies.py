@@ -1,8 +1,8 @@
-"""Hypothesis strategies for seed 003 pursuit: parameters, cases, tracker states, simulated cases.
+"""Hypothesis strategies for seed 003 pursuit: parameters, digraphs, cases, tracker states.
 
-Re-exported by :mod:`theory.strategies` (the public strategies module, STYLE.md *Adopt* 11).
-Names are plural nouns, bounds are keyword-only, conditioning is bounded, and impossible
-arguments raise :class:`hypothesis.errors.InvalidArgument` with the offending value.
+Re-exported by the public :mod:`theory.strategies`. Names are plural nouns, bounds are
+keyword-only, conditioning is bounded, and impossible arguments raise
+:class:`hypothesis.errors.InvalidArgument` with the offending value.
 """
 
 from __future__ import annotations
@@ -14,16 +14,17 @@ import numpy as np
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-from theory.core.case_file import Case, parse_case
-from theory.pursuit.case import PursuitSpec
-from theory.pursuit.model import closed_loop_rates, exp_skew
+from theory.core.case_file import Case
+from theory.pursuit.case import PURSUIT, PursuitSpec
+from theory.pursuit.model import ClosedLoopRates, closed_loop_rates, exp_skew
 from theory.pursuit.model import path as path_point
-from theory.strategy_helpers import case_floats, flush_tiny
+from theory.strategy_helpers import case_floats, check_range, flush_tiny
 
 __all__ = [
     "SIMULATED_BOUNDS",
     "PursuitParameters",
     "TrackerState",
+    "digraph_laplacians",
     "pursuit_cases",
     "pursuit_parameters",
     "simulated_pursuit_blocks",
@@ -36,22 +37,8 @@ __all__ = [
 class PursuitParameters:
     """Seed 003 tracking/coordination parameters (ranges of its Tables I–II).
 
-    Attributes
-    ----------
-    dim : int
-        2 or 3.
-    radius : tuple of float
-        Semi-axes of the path, one per dimension.
-    omega_bar : float
-        Nominal path-parameter speed ω̄ (rad/s), eqs. (18), (46).
-    epsilon : tuple of float
-        Offset ε of eq. (19): first entry < 0, last entry 0.
-    K_p : tuple of float
-        Diagonal of the positive-definite position gain ``K_p``.
-    k_gamma : float
-        Path-parameter gain k_γ > 0, eq. (50b).
-    k_c : float
-        Coordination gain k_c > 0, eq. (45).
+    ``radius``: path semi-axes, one per dimension; ``epsilon``: ε of (19), first entry < 0, last
+    0; ``K_p``: the diagonal of the position gain; ω̄ (18), k_γ (50b), k_c (45).
     """
 
     dim: int
@@ -61,7 +48,6 @@ class PursuitParameters:
     K_p: tuple[float, ...]
     k_gamma: float
     k_c: float
-
 
 
 @st.composite
@@ -85,27 +71,41 @@ def pursuit_parameters(draw: st.DrawFn, *, dim: int = 2) -> PursuitParameters:
     )
 
 
+@st.composite
+def digraph_laplacians(
+    draw: st.DrawFn,
+    *,
+    min_agents: int = 2,
+    max_agents: int = 7,
+    max_extra_edges: int | None = None,
+) -> np.ndarray:
+    """Integer Laplacians ``L = D_in − A`` of strongly connected digraphs (seed 003 §II-B).
+
+    The digraph is a random Hamiltonian cycle (so it is strongly connected) plus at most
+    ``max_extra_edges`` random edges (default 2n); ``a_ij = 1`` means i receives from j.
+    """
+    check_range("min_agents", min_agents, "max_agents", max_agents, 2)
+    if max_extra_edges is not None and max_extra_edges < 0:
+        raise InvalidArgument(f"max_extra_edges={max_extra_edges} must be ≥ 0")
+    n = draw(st.integers(min_agents, max_agents))
+    order = draw(st.permutations(range(n)))
+    adjacency = np.zeros((n, n), dtype=int)
+    for k in range(n):
+        adjacency[order[k], order[(k + 1) % n]] = 1
+    pairs = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1))
+    extra = draw(st.lists(pairs, max_size=2 * n if max_extra_edges is None else max_extra_edges))
+    for i, j in extra:
+        if i != j:
+            adjacency[i, j] = 1
+    return np.diag(adjacency.sum(axis=1)) - adjacency
+
 
 @dataclass(frozen=True, eq=False)
 class TrackerState:
     """One tracker's state and the estimation errors it acts on (seed 003 §IV, eqs. (19)–(31)).
 
-    Attributes
-    ----------
-    e_p : ndarray, shape (dim,)
-        Position tracking error e_p in the body frame, eq. (19).
-    e_gamma : float
-        Path-parameter error e_γ = γ̇ − ω_d (0 for controller Type I).
-    rotation : ndarray, shape (dim, dim)
-        Attitude R(η).
-    gamma : float
-        Path parameter γ.
-    q_err, v_err : ndarray, shape (dim,)
-        Target position and velocity estimation errors q̃, ṽ, eq. (67).
-    omega_d, omega_d_dot : float
-        Desired path-parameter speed ω_d = ω̄ + v_c and its derivative.
-    target, target_v : ndarray, shape (dim,)
-        Target position q and velocity v.
+    e_p (19) in the body frame, e_γ = γ̇ − ω_d (0 for Type I), attitude R, path parameter γ,
+    estimation errors q̃, ṽ (67), ω_d = ω̄ + v_c and its derivative, the target's q and v.
     """
 
     e_p: np.ndarray
@@ -119,17 +119,9 @@ class TrackerState:
     target: np.ndarray
     target_v: np.ndarray
 
-    def rates(self, spec: PursuitSpec, *, tracker: int = 0):
-        """The closed-loop rates (V̇, ė_p, ė_γ, u) of tracker ``tracker`` of ``spec`` in this
-        state, from the kinematics (:func:`theory.pursuit.model.closed_loop_rates`).
-
-        Parameters
-        ----------
-        spec : PursuitSpec
-            The case: gains, offset ε and the tracker's path.
-        tracker : int
-            0-based tracker whose path is used.
-        """
+    def rates(self, spec: PursuitSpec, *, tracker: int = 0) -> ClosedLoopRates:
+        """The closed-loop rates of tracker ``tracker`` (0-based) of ``spec`` in this state, from
+        the kinematics (:func:`theory.pursuit.model.closed_loop_rates`)."""
         path = spec.trackers[tracker]
         params = {"r_x": path.r_x, "r_y": path.r_y, "gamma0": path.gamma0}
         params |= {"r_z": path.r_z, "c": path.c} if spec.dim == 3 else {}
@@ -219,19 +211,6 @@ def pursuit_cases(
     Symmetric ``K_p`` with eigenvalues in ``gains`` (condition number ≤ high/low) and a random
     eigenbasis; ``k_γ`` and ``k_c`` in ``gains``; ε₁ ≠ 0 (|ε₁| ≥ 0.1, so Δ̄ exists); path
     semi-axes in ``path_sizes`` and, in 3D, |c| ∈ [1.2, 5].
-
-    Parameters
-    ----------
-    n_trackers : int
-        Number of trackers (≥ 1); with more than one, a directed ring and ``k_c``.
-    dims : tuple of int
-        Dimensions to draw from (2 and/or 3).
-    controllers : tuple of str
-        Controller types to draw from (``I`` and/or ``II``).
-    gains : (float, float)
-        Interval of the gains.
-    path_sizes : (float, float)
-        Interval of the path semi-axes r_x, r_y, r_z.
     """
     if n_trackers < 1:
         raise InvalidArgument(f"n_trackers={n_trackers} must be at least 1")
@@ -244,7 +223,7 @@ def pursuit_cases(
     block = _pursuit_block(draw, n_trackers, dim, controller, bounds)
     if n_trackers > 1:
         block["edges"] = [[(i + 1) % n_trackers + 1, i + 1] for i in range(n_trackers)]
-    return parse_case({"name": "random", "kind": "pursuit", "pursuit": block})
+    return PURSUIT.parse_case({"name": "random", "kind": "pursuit", "pursuit": block})
 
 
 SIMULATED_BOUNDS = {
@@ -280,16 +259,12 @@ def simulated_pursuit_cases(
     dims: tuple[int, ...] = (2, 3),
     controllers: tuple[str, ...] = ("I", "II"),
 ) -> st.SearchStrategy[Case]:
-    """:func:`simulated_pursuit_blocks`, parsed into cases.
-
-    Parameters
-    ----------
-    max_trackers, dims, controllers
-        As in :func:`simulated_pursuit_blocks`.
-    """
+    """:func:`simulated_pursuit_blocks`, parsed into cases."""
     blocks = simulated_pursuit_blocks(max_trackers=max_trackers, dims=dims, controllers=controllers)
     return blocks.map(
-        lambda block: parse_case({"name": "random-simulated", "kind": "pursuit", "pursuit": block})
+        lambda block: PURSUIT.parse_case(
+            {"name": "random-simulated", "kind": "pursuit", "pursuit": block}
+        )
     )
 
 
@@ -305,22 +280,10 @@ def simulated_pursuit_blocks(
     (seed 003 §V–VI).
 
     1 to ``max_trackers`` trackers on a random strongly connected digraph
-    (:func:`theory.strategies.digraph_laplacians`), gains, ε, ω̄ and paths in
-    :data:`SIMULATED_BOUNDS`, a target drifting at up to 0.5 m/s with a slow sinusoid, DEKF
-    settings (uniform fusion weights), and initial tracker positions within 30 m of the target,
-    random attitudes and path parameters.
-
-    Parameters
-    ----------
-    max_trackers : int
-        Largest number of trackers (≥ 1).
-    dims : tuple of int
-        Dimensions to draw from (2 and/or 3).
-    controllers : tuple of str
-        Controller types to draw from (``I`` and/or ``II``).
+    (:func:`digraph_laplacians`), gains, ε, ω̄ and paths in :data:`SIMULATED_BOUNDS`, a target
+    drifting at up to 0.5 m/s with a slow sinusoid, DEKF settings (uniform fusion weights), and
+    initial tracker positions within 30 m of the target, random attitudes and path parameters.
     """
-    from theory.strategies import digraph_laplacians
-
     if max_trackers < 1:
         raise InvalidArgument(f"max_trackers={max_trackers} must be at least 1")
     _check_choices(dims, controllers)
@@ -349,13 +312,6 @@ def tracker_states(draw: st.DrawFn, *, spec: PursuitSpec, bound: float = 10.0) -
     """States of one tracker of ``spec``: errors, attitude, γ, estimation errors, ω_d, target.
 
     Vectors have entries in ``[−bound, bound]``; e_γ = 0 for controller Type I.
-
-    Parameters
-    ----------
-    spec : PursuitSpec
-        The case (gives the dimension and the controller).
-    bound : float
-        Bound on the entries of the error, estimation-error and target vectors (> 0).
     """
     if not 0 < bound < math.inf:
         raise InvalidArgument(f"bound={bound} must be positive and finite")

@@ -5,9 +5,9 @@ Each kind's verdict is the property its command decides, computed by the same li
 function (nothing is re-derived here):
 
 * ``pursuit`` — ``trackcert iss``: every condition of the corrected Theorem 2 holds
-  (:func:`theory.pursuit.iss_report.iss_record`, the analysis part of
-  :func:`~theory.pursuit.iss_report.iss_report`, read by
-  :attr:`~theory.pursuit.iss_report.IssReport.verdict`; the case-level claims the command also
+  (:func:`theory.pursuit.iss.iss_record`, the analysis part of
+  :func:`~theory.pursuit.iss.iss_report`, read by
+  :attr:`~theory.pursuit.iss.IssReport.verdict`; the case-level claims the command also
   lists do not enter its verdict and are not run per point). Margin: the smallest relative margin
   of a condition; tolerance ``margin_tol``.
 * ``dkf`` — ``trackcert dkf``: S-detectability (seed 000 Def. 5.2.4) by
@@ -26,7 +26,7 @@ function (nothing is re-derived here):
 :data:`PREDICTIONS` says what a holding verdict predicts of the simulation: for ``pursuit``,
 Theorem 2 (seed 003) certifies that the pursuit and coordination errors μ stay within the ISS
 estimate β(‖μ(0)‖, t) + γ(sup‖x̃‖), which the pursuit simulator checks on every run
-(:func:`theory.pursuit.iss_check.simulation_agreement`, its summary's ``iss_agreement``).
+(:func:`theory.pursuit.simulation.simulation_agreement`, its summary's ``iss_agreement``).
 :func:`agreement` compares them; the other kinds predict nothing of their simulation (the dkf
 simulation runs the optimal-gain filter, whose convergence S-detectability does not decide).
 """
@@ -94,7 +94,7 @@ def pursuit_judgement(case: Case) -> Judgement:
     -------
     Judgement
     """
-    from theory.pursuit.iss_report import IssReport, iss_record
+    from theory.pursuit.iss import IssReport, iss_record
 
     record = iss_record(case)
     conditions = record["conditions"]
@@ -192,7 +192,7 @@ ANALYSES: dict[str, Callable[[Case], Judgement]] = {
 """Kind → its analysis verdict; a kind not listed is judged by its simulation alone."""
 
 ANALYSIS_MODULES: dict[str, str] = {
-    "pursuit": "theory.pursuit.iss_report",
+    "pursuit": "theory.pursuit.iss",
     "dkf": "theory.consensus.analysis",
     "tdoa": "theory.tdoa.observability.trajectory",
     "pf": "theory.particle.report",
@@ -208,7 +208,7 @@ def pursuit_prediction(summary: Mapping[str, Any]) -> tuple[Verdict, str]:
     ----------
     summary : mapping
         The pursuit simulator's summary (:func:`theory.pursuit.simulation.summarize_pursuit`),
-        whose ``iss_agreement`` is :func:`theory.pursuit.iss_check.simulation_agreement` of the
+        whose ``iss_agreement`` is :func:`theory.pursuit.simulation.simulation_agreement` of the
         run (``None`` when the analysis certifies nothing).
 
     Returns
