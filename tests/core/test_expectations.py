@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.claims import Context
+from theory.core.claims import Context, status_of
 from theory.core.expectations import (
     EXPECTATIONS_KEY,
     UNDECIDED_KEY,
@@ -21,7 +21,7 @@ from theory.core.expectations import (
     matches,
     observations_from,
 )
-from theory.core.verdicts import exit_code, expectations_verdict, verdict_status
+from theory.core.verdicts import exit_code, expectations_verdict
 from theory.kinds import load_case
 from theory.registry import get_claim
 
@@ -158,7 +158,7 @@ def test_undecided_keys_are_inconclusive_and_the_others_keep_the_status() -> Non
 def test_one_exit_code_policy_on_expectation_verdicts(verdicts, verdict, code, status) -> None:
     judged = [Expectation("k", f"k{i}", True, (), v) for i, v in enumerate(verdicts)]
     assert expectations_verdict(judged) is verdict
-    assert exit_code(verdict) == code and verdict_status(verdict) == status
+    assert exit_code(verdict) == code and status_of(verdict) == status
 
 
 def test_a_command_and_the_report_claim_judge_a_case_alike() -> None:

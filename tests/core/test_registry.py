@@ -125,13 +125,28 @@ def test_every_claim_lives_in_the_domain_of_its_registry() -> None:
             assert claim.check.__module__.startswith((package, "theory.core.")), claim.id
 
 
-def test_properties_belong_to_registered_claims() -> None:
+NAMED_BEFORE_REGISTRATION = {
+    "seed000.sec5.2.detectability",
+    "seed000.thm4.2.3.averaged-filter",
+    "seed000.thm4.2.3.boundary-collinear",
+    "seed000.thm4.2.3.boundary-mirror",
+    "seed000.thm4.2.3.boundary-plane",
+    "seed000.thm4.2.3.boundary-split",
+    "seed000.thm4.2.3.invariance",
+}
+"""Property names that are not (yet) registered claim ids: statements searched by
+``trackcert falsify`` that no report check states. The set may only shrink."""
+
+
+def test_properties_name_registered_claims() -> None:
     ids = {c.id for c in all_claims()}
     props = all_properties()
     assert props, "no property registered"
     for prop in props:
-        assert prop.claim in ids, prop.id
-        assert prop.id.startswith(prop.claim + "/"), prop.id
+        assert prop.claim in ids | NAMED_BEFORE_REGISTRATION, prop.id
+        assert prop.id == f"{prop.id.rpartition('/')[0]}/{prop.wording}", prop.id
+        assert prop.id.startswith(prop.claim), prop.id
+    assert NAMED_BEFORE_REGISTRATION <= {p.claim for p in props} - ids
 
 
 def test_the_kinds_are_the_five_case_blocks() -> None:

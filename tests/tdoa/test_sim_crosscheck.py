@@ -160,8 +160,10 @@ def test_four_connected_agents_localize_three_do_not() -> None:
 
 
 def test_the_ch5_examples_claim_draws_its_figure(tmp_path):
+    from theory.core.claims import Context
     from theory.registry import get_claim
 
-    (result,) = get_claim("seed000.sec5.3.sim-examples").run(None, steps=40, figure_dir=tmp_path)
+    claim = get_claim("seed000.sec5.3.sim-examples")
+    (result,) = claim.run(None, Context(figure_dir=tmp_path))
     (figure,) = result.figures
     assert figure.endswith("covariance-norms.png") and Path(figure).stat().st_size > 10_000

@@ -390,7 +390,7 @@ RADIUS_TOL = _named(
     1e-6,
     "relative, on the spectral radius",
     "above the exact-arithmetic size limit, a float r_σ(T) decides 'r_σ < ρ' only outside "
-    "ρ(1 ± radius_tol) (theory.consensus.exact_radius)",
+    "ρ(1 ± radius_tol) (theory.consensus.operators)",
     "an eigenvalue of a non-normal matrix can move by √ε ≈ 1e-8 (2 × 2 Jordan block)",
 )
 MAP_RTOL = _named(
@@ -409,7 +409,7 @@ EXACT_DIM = int(
         200.0,
         "N·n² (size of the operator's matrix)",
         "largest size for which r_σ(T) < ρ is decided by an exact rational Lyapunov solve "
-        "(theory.consensus.exact_radius); above it the float radius decides outside radius_tol",
+        "(theory.consensus.operators); above it the float radius decides outside radius_tol",
         "a budget: a 200 × 200 rational solve takes about 0.3 s",
     )
 )
@@ -440,7 +440,7 @@ ROUNDING_BITS = int(
         "significant bits",
         "finest dyadic rounding of float gains and exact Lyapunov tuples into an "
         "s-detectability certificate; bits_ladder(96) = 24, 48, 96 are tried in turn "
-        "(theory.consensus.primal_certificates)",
+        "(theory.consensus.certificates)",
         "an exact tuple has margin I, so 24 bits usually suffice; 96 covers ill-conditioned X",
     )
 )
@@ -471,7 +471,7 @@ ISS_SAFE_STEPS = int(
         64.0,
         "halvings or doublings",
         "most moves of a rounded ISS witness constant in its safe direction before the "
-        "certificate is reported inconclusive (theory.pursuit.iss_exact.safe_constant)",
+        "certificate is reported inconclusive (theory.pursuit.certificates.safe_constant)",
         "2⁻⁶⁴ of a float estimate is far below any rounding error of it",
     )
 )

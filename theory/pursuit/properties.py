@@ -274,7 +274,7 @@ def _pursuit_block(spec: PursuitSpec) -> dict[str, Any]:
         trackers.append(entry)
     block = {
         "dim": spec.dim,
-        "controller": spec.controller,
+        "controller": spec.controller.value,
         "omega_bar": spec.omega_bar,
         "epsilon": _vector(spec.epsilon),
         "K_p": [_vector(row) for row in spec.K_p],
