@@ -61,6 +61,7 @@ ORDERS = {"consensus-then-filter": "L", "filter-then-consensus": "J"}
 SOURCES = {
     "mjls-stability": "seed 000, Lemma 5.2.2",
     "s-detectability": "seed 000, Definition 5.2.4 and Lemma 5.2.2",
+    "gains-radius-below": "seed 000, Lemma 5.2.2; docs/theory/s-detectability.md, Lemma 1",
 }
 
 
@@ -247,7 +248,8 @@ def s_detectability_certificate(
     dual : bool
         Whether ``Ps`` is the dual tuple ``Y`` (operator ``L-adjoint``).
     rho : float or Fraction
-        ``ρ ∈ (0, 1]``: the claim is ``r_σ(L) < ρ`` (1 for S-detectability).
+        ``ρ > 0``: the claim is ``r_σ(L) < ρ``; the kind is ``s-detectability`` for ``ρ ≤ 1``
+        (1 for S-detectability), ``gains-radius-below`` above 1.
     certificate_margin : float
         As in :func:`mjls_stability_certificate`.
     precisions : sequence of int
@@ -322,7 +324,7 @@ def exact_s_detectability_certificate(
     operator : {"L", "J", "L-adjoint", "J-adjoint"}
         The operator ``T`` of ``P ≻ 0``, ``ρP − T(P) ≻ 0``.
     rho : float or Fraction
-        ``ρ ∈ (0, 1]``.
+        ``ρ > 0`` (as in :func:`s_detectability_certificate`).
     case : str, optional
         Case name recorded in the certificate.
 
@@ -380,8 +382,10 @@ def _document(
 ) -> dict:
     A_q, C_q, W_q = exact["A"], exact["C"], exact["W"]
     gammas = [sub(A_q, matmul(g, c)) for g, c in zip(gains, C_q, strict=True)]
+    kind = "s-detectability" if bound <= 1 else "gains-radius-below"
     claim = {
-        "statement": "(A, C, W) is S-detectable: r_σ(L) < ρ with Γ_i = A − L_i C_i",
+        "statement": ("(A, C, W) is S-detectable: " if bound <= 1 else "")
+        + "r_σ(L) < ρ with Γ_i = A − L_i C_i",
         "spectral_radius_below": str(bound),
     }
     data = {"A": fraction_strings(A_q), "C": strings(C_q), "W": fraction_strings(W_q)}
@@ -391,6 +395,4 @@ def _document(
         "P": strings(P),
         "decrease": decrease_strings(operator, W_q, gammas, P, bound),
     }
-    return envelope(
-        "s-detectability", claim, data, witness, source=SOURCES["s-detectability"], case=case
-    )
+    return envelope(kind, claim, data, witness, source=SOURCES[kind], case=case)
