@@ -41,6 +41,7 @@ def tdoa_scenes(draw, *, max_agents: int = 4):
     edges = {tuple(sorted((int(order[k]), int(order[k + 1])))) for k in range(n - 1)}
     edges |= {tuple(sorted(map(int, rng.choice(n, 2, replace=False)))) for _ in range(n // 2)}
     block = {
+        "T": 1.0,
         "T": float(draw(st.sampled_from([0.5, 1.0, 2.0]))),
         "agents": agents.tolist(),
         "target": target.tolist(),
@@ -164,6 +165,7 @@ def test_rational_unit_vectors_are_exactly_unit_and_close() -> None:
 
 def test_moving_agents_on_one_network_share_one_certificate_set() -> None:
     block = {
+        "T": 1.0,
         "agents": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 1], [1, 0, 1], [0, 1, 1]]],
         "target": [5, 5, 5],
         "edges": [[1, 2], [2, 3]],
@@ -179,7 +181,8 @@ def test_moving_agents_on_one_network_share_one_certificate_set() -> None:
 
 
 def test_a_scene_without_tdoa_rows_gets_no_certificate() -> None:
-    block = {"agents": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "target": [5, 5, 5], "edges": []}
+    block = {"T": 1.0, "agents": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "target": [5, 5, 5]}
+    block["edges"] = []
     spec = parse_case({"name": "mute", "kind": "tdoa", "tdoa": block}).spec
     with pytest.raises(RationalizationError, match="no TDOA rows"):
         generic_rank_certificates(spec)
