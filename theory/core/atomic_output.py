@@ -204,19 +204,25 @@ def replaced_folder(target: str | Path, marker: str) -> Iterator[Path]:
 
 
 def _swap(staging: Path, real: Path) -> None:
-    """Put ``staging`` in place of ``real`` (which may not exist) with two renames."""
-    with _signals_held():
-        if not os.path.lexists(real):
-            os.rename(staging, real)
-            return
-        aside = _sibling(real, "old")
-        os.rename(real, aside)
-        try:
-            os.rename(staging, real)
-        except BaseException:
-            os.rename(aside, real)
-            raise
-    shutil.rmtree(aside, ignore_errors=True)
+    """Put ``staging`` in place of ``real`` (which may not exist) with two renames, then delete
+    the old folder (also when a signal held during the renames is delivered after them)."""
+    aside = None
+    try:
+        with _signals_held():
+            if os.path.lexists(real):
+                moved = _sibling(real, "old")
+                os.rename(real, moved)
+                aside = moved
+            try:
+                os.rename(staging, real)
+            except BaseException:
+                if aside is not None:
+                    os.rename(aside, real)
+                    aside = None
+                raise
+    finally:
+        if aside is not None:
+            shutil.rmtree(aside, ignore_errors=True)
 
 
 def write_file(path: str | Path, content: str | bytes) -> Path:
