@@ -10,7 +10,7 @@ import random
 import signal
 
 import pytest
-from fault_commands import commands, restore, run, run_forked, siblings, snapshot, write_events
+from fault_commands import restore, run_forked, siblings, snapshot
 
 from theory.core.atomic_output import recover
 from theory.core.verdicts import interrupted_code
@@ -18,29 +18,6 @@ from theory.core.verdicts import interrupted_code
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="needs os.fork")
 
 SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGKILL)
-
-
-@pytest.fixture(scope="module")
-def prepared(tmp_path_factory):
-    """Per command: the target path, a saved copy of its old output, both snapshots, and the
-    number of write events of the new run."""
-    folder = tmp_path_factory.mktemp("faults")
-    prepared = {}
-    for name, command in commands(folder).items():
-        target = folder / command.output
-        assert run(command.args("new", target)).exit_code in (0, 3)  # first-use writes (caches)
-        with write_events(lambda k, what: None) as seen:
-            assert run(command.args("new", target)).exit_code in (0, 3)
-        new = snapshot(target)
-        assert run(command.args("old", target)).exit_code in (0, 3)
-        old = snapshot(target)
-        assert old and new and old != new, name
-        copy = folder / f"{command.output}.old-copy"
-        restore(target, copy)
-        renames = [k for k, what in enumerate(seen, 1) if what.startswith(("rename", "replace"))]
-        last_rename = renames[-1]
-        prepared[name] = (command, target, copy, old, new, len(seen), last_rename)
-    return prepared
 
 
 def _points(name: str, signum: int, events: int, last_rename: int) -> list[int]:
@@ -55,7 +32,9 @@ def _points(name: str, signum: int, events: int, last_rename: int) -> list[int]:
 def test_an_interrupted_write_leaves_the_old_output_or_the_new_one(
     prepared, name, signum, tmp_path
 ) -> None:
-    command, target, copy, old, new, events, last_rename = prepared[name]
+    this = prepared[name]
+    command, target, copy, old, new = this.command, this.target, this.copy, this.old, this.new
+    events, last_rename = len(this.events), this.indices("rename", "replace")[-1]
     for k in _points(name, signum, events, last_rename):
         restore(copy, target)
         log = tmp_path / f"{k}.log"

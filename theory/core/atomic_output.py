@@ -205,24 +205,26 @@ def replaced_folder(target: str | Path, marker: str) -> Iterator[Path]:
 
 def _swap(staging: Path, real: Path) -> None:
     """Put ``staging`` in place of ``real`` (which may not exist) with two renames, then delete
-    the old folder (also when a signal held during the renames is delivered after them)."""
-    aside = None
+    the old folder — only once the new one is in place (also when a signal held during the
+    renames is delivered after them). If the second rename fails, the old folder is renamed
+    back; if that fails too, it stays aside and :func:`recover` restores it on the next run."""
+    replaced = None
     try:
         with _signals_held():
-            if os.path.lexists(real):
-                moved = _sibling(real, "old")
-                os.rename(real, moved)
-                aside = moved
+            if not os.path.lexists(real):
+                os.rename(staging, real)
+                return
+            aside = _sibling(real, "old")
+            os.rename(real, aside)
             try:
                 os.rename(staging, real)
             except BaseException:
-                if aside is not None:
-                    os.rename(aside, real)
-                    aside = None
+                os.rename(aside, real)
                 raise
+            replaced = aside
     finally:
-        if aside is not None:
-            shutil.rmtree(aside, ignore_errors=True)
+        if replaced is not None:
+            shutil.rmtree(replaced, ignore_errors=True)
 
 
 def write_file(path: str | Path, content: str | bytes) -> Path:
