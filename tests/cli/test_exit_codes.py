@@ -98,3 +98,40 @@ def test_certify_judges_no_expectation_so_its_property_decides(tmp_path) -> None
     done = runner.invoke(app, ["certify", "ch5-example-1-wb", "-o", str(tmp_path / "c.json")])
     assert done.exit_code == 1 and done.stderr.startswith("does not hold:")
     assert not (tmp_path / "c.json").exists()
+
+
+def test_epsilon_1_zero_is_the_same_verdict_from_iss_certify_and_simulate(tmp_path) -> None:
+    """ε₁ = 0: a valid case on which Remark 6's hypothesis fails (Δ of seed 003 eq. (22) loses
+    rank, the controller (26) does not exist; docs/errata.md). Not bad input: each command
+    decides the property it is asked about is false, exit 1."""
+    data = yaml.safe_load(bundled_cases()["pursuit-table1-n1"].read_text())
+    data.pop("expect")
+    data["pursuit"]["epsilon"] = [0, 0.5]
+    case = tmp_path / "singular.yaml"
+    case.write_text(yaml.safe_dump(data, sort_keys=False))
+    runs = {
+        "iss": ["iss", str(case)],
+        "certify": ["certify", str(case), "-o", str(tmp_path / "c.json")],
+        "simulate": ["simulate", str(case), "--steps", "20", "-o", str(tmp_path / "sim")],
+    }
+    for name, args in runs.items():
+        done = runner.invoke(app, args)
+        assert done.exit_code == 1, (name, done.output)
+        assert "Traceback" not in done.output
+    assert "ε₁ = 0" in done.stderr and "Remark 6" in done.stderr
+    assert not (tmp_path / "c.json").exists() and not (tmp_path / "sim").exists()
+
+
+def test_a_missing_ping_period_is_refused_naming_the_field(tmp_path) -> None:
+    """``tdoa.T`` is a physical quantity: never silently 1 s (the bundled cases and the design
+    example all state it)."""
+    data = yaml.safe_load(bundled_cases()["fig43-case-d"].read_text())
+    del data["tdoa"]["T"]
+    case = tmp_path / "no-period.yaml"
+    case.write_text(yaml.safe_dump(data, sort_keys=False))
+    done = runner.invoke(app, ["topology", str(case)])
+    assert done.exit_code == 2
+    assert f"{case}: field 'tdoa.T': expected the ping period in seconds" in done.stderr
+    for path in bundled_cases().values():
+        data = yaml.safe_load(path.read_text())
+        assert data["kind"] != "tdoa" or "T" in data["tdoa"], path.name
