@@ -41,7 +41,6 @@ def tdoa_scenes(draw, *, max_agents: int = 4):
     edges = {tuple(sorted((int(order[k]), int(order[k + 1])))) for k in range(n - 1)}
     edges |= {tuple(sorted(map(int, rng.choice(n, 2, replace=False)))) for _ in range(n // 2)}
     block = {
-        "T": 1.0,
         "T": float(draw(st.sampled_from([0.5, 1.0, 2.0]))),
         "agents": agents.tolist(),
         "target": target.tolist(),
