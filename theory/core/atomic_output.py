@@ -14,7 +14,9 @@ leaves either the complete old output or the complete new one, never a mix:
   ``os.replace`` it onto ``NAME``.
 * SIGINT and SIGTERM are held back during the two renames (:func:`_signals_held`) and delivered
   right after them, so a signal never lands between them.
-* Only SIGKILL (or a power cut) can stop the process elsewhere. What it leaves is settled by
+* Only SIGKILL can stop the process elsewhere (a folder's files are not flushed to disk before
+  the swap: the guarantee is against the process dying, not the machine). What it leaves is
+  settled by
   :func:`recover`, which every writer runs first on its target: a sibling whose process (the
   ``PID`` in its name) is no longer running is stale. If ``NAME`` is missing and a stale
   ``…-old-…`` sibling exists, the process died between the two renames, and that sibling — the
