@@ -4,7 +4,8 @@
 and every registered claim of kind ``pf``; the claims observe the case's ``expect`` keys in their
 evidence (``kind: pf`` has no separate observer), and the block is judged from those
 observations with :mod:`theory.core.expectations`, exactly as ``trackcert report`` judges it.
-With a folder it writes ``pf.json`` and the figures. The command only prints the record and
+With a folder it writes ``pf.json`` and the figures, replacing the folder whole
+(:func:`theory.core.atomic_output.replaced_folder`). The command only prints the record and
 exits with the expectations' verdict (:mod:`theory.core.verdicts`).
 """
 
@@ -16,6 +17,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
+from theory.core.atomic_output import check_replaceable, replaced_folder
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, all_claims, applicable_results, get_claim
 from theory.core.errors import CaseError
@@ -25,7 +27,10 @@ from theory.core.parallel import TaskRunner
 from theory.core.run_cache import RunCache
 from theory.core.verdicts import Verdict, expectations_verdict
 
-__all__ = ["SNAPSHOT_STEPS", "PfReport", "pf_report"]
+__all__ = ["MARKER", "SNAPSHOT_STEPS", "PfReport", "pf_report"]
+
+MARKER = "pf.json"
+"""The file every ``pf`` folder has: a folder without it is not replaced (unless empty)."""
 
 SNAPSHOT_STEPS = (0, 5, 20)
 """Steps whose particle clouds the figures show."""
@@ -96,7 +101,7 @@ def pf_report(
     runs, seed : int, optional
         Monte Carlo runs and base seed (``None``: the case's own).
     out : Path, optional
-        Folder for ``pf.json`` and figures (``None``: write nothing).
+        Folder for ``pf.json`` and figures, replaced whole (``None``: write nothing).
     runner : TaskRunner, optional
         An open engine for the Monte Carlo runs (default: this process, serially); the claims
         share them through one :class:`~theory.core.run_cache.RunCache`.
@@ -110,7 +115,9 @@ def pf_report(
     Raises
     ------
     CaseError
-        If the case is not ``kind: pf``.
+        If the case is not ``kind: pf``, or ``out`` holds files but no ``pf.json``.
+    OutputError
+        If writing ``out`` fails (it is left as it was).
     """
     from theory.particle.experiments import node_summary, shared_monte_carlo
 
@@ -118,6 +125,8 @@ def pf_report(
         raise CaseError(
             "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
         )
+    if out is not None:
+        check_replaceable(out, MARKER)
     spec = replace(
         case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
     )
@@ -134,10 +143,13 @@ def pf_report(
         found for r in claims for found in observations_from(r.claim, plain(r.evidence), r.status)
     ]
     expectations = evaluate(case.name, plain(case.expect), observed)
-    figures = () if out is None else _figures(case, mc, Path(out))
-    report = PfReport(case, node_summary(mc, spec), tuple(claims), tuple(expectations), figures)
-    if out is not None:
-        (Path(out) / "pf.json").write_text(json.dumps(plain(report.to_json()), indent=2) + "\n")
+    report = PfReport(case, node_summary(mc, spec), tuple(claims), tuple(expectations), ())
+    if out is None:
+        return report
+    with replaced_folder(out, MARKER) as staging:
+        figures = tuple(str(Path(out) / Path(f).name) for f in _figures(case, mc, staging))
+        report = replace(report, figures=figures)
+        (staging / MARKER).write_text(json.dumps(plain(report.to_json()), indent=2) + "\n")
     return report
 
 

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.case_file import Case
-from theory.core.errors import CaseError
+from theory.core.errors import CaseError, PropertyFails
 from theory.core.expectations import Observed
 from theory.core.tolerances import RUNAWAY_FACTOR
 from theory.pursuit.case import PursuitSpec
@@ -58,7 +58,8 @@ def default_steps() -> int:
 
 
 def check_pursuit_case(spec: PursuitSpec) -> None:
-    """Refuse what the simulation cannot run, naming the field.
+    """Refuse what the simulation cannot run: bad input (a missing block), or a case whose
+    controller does not exist.
 
     Parameters
     ----------
@@ -67,17 +68,21 @@ def check_pursuit_case(spec: PursuitSpec) -> None:
     Raises
     ------
     CaseError
-        Missing ``target`` or ``dekf`` blocks, a rank-deficient ``Δ`` of (22).
+        Missing ``target`` or ``dekf`` blocks.
+    PropertyFails
+        A rank-deficient ``Δ`` of (22) (ε₁ = 0): a valid case on which Remark 6's hypothesis
+        fails, so the controller (26) does not exist — as ``trackcert iss`` and ``certify``
+        decide (exit 1), not bad input (seed 003 Remark 6; docs/errata.md).
     """
     if spec.target is None:
         raise CaseError("pursuit.target", "a target motion to simulate", "nothing")
     if spec.dekf is None:
         raise CaseError("pursuit.dekf", "DEKF settings (Ts, sigma, V, Q) to simulate", "nothing")
     if spec.epsilon[0] == 0:
-        raise CaseError(
-            "pursuit.epsilon",
-            "an ε making Δ of (22) full row rank (ε₁ ≠ 0 in 2-D)",
-            [float(e) for e in spec.epsilon],
+        raise PropertyFails(
+            f"pursuit.epsilon = {[float(e) for e in spec.epsilon]}: ε₁ = 0, so Δ of eq. (22) is "
+            "not of full row rank and the controller (26) does not exist (seed 003 Remark 6 "
+            "needs ε₁ ≠ 0, docs/errata.md): there is nothing to simulate"
         )
 
 

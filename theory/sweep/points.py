@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.case_file import Case, kind_spec, parse_case
-from theory.core.errors import CaseError, InconclusiveError, SolverError
+from theory.core.errors import CaseError, InconclusiveError, PropertyFails, SolverError
 from theory.core.expectations import Observed, judge
 from theory.core.verdicts import (
     EXIT_BAD_INPUT,
@@ -149,7 +149,9 @@ def simulate_point(
     Raises
     ------
     CaseError
-        If the simulator refuses the case (e.g. a pursuit case with ε₁ = 0).
+        If the simulator refuses the case (e.g. a pursuit case without a target).
+    PropertyFails
+        If the case's controller does not exist (a pursuit case with ε₁ = 0).
     """
     from theory.sim.runner import monte_carlo
     from theory.simulate import simulator_for
@@ -221,6 +223,8 @@ def evaluate_point(setup: SweepSetup, point: int, values: Sequence[Any]) -> Row:
             summary, observed = simulate_point(case, setup.steps, seed)
         except CaseError as error:
             seed, notes = None, [f"not simulated: {error.expected} at {error.field}"]
+        except PropertyFails as error:  # e.g. ε₁ = 0: the controller does not exist
+            seed, notes = None, [f"not simulated: {error}"]
         notes += list(summary.get("warnings") or [])
     if judgement is None:
         judgement = _by_simulation(case, observed, summary)

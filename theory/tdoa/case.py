@@ -3,7 +3,7 @@
 Block fields::
 
     tdoa:
-      T: 1.0                     # ping period (s), > 0; default 1
+      T: 1.0                     # ping period (s), > 0; required (a physical quantity)
       dim: 3                     # 2 or 3; default: inferred from the coordinates
       agents: [[x, y, z], ...]   # N × dim, or a trajectory: steps × N × dim
       target: [x, y, z]          # dim, or a trajectory: steps × dim
@@ -45,7 +45,7 @@ from theory.core.validation import (
     row_stochastic,
 )
 
-__all__ = ["TdoaSpec", "check_tdoa_expect", "parse_tdoa"]
+__all__ = ["TdoaSpec", "check_tdoa_expect", "parse_tdoa", "required_period"]
 
 FIELDS = ("T", "dim", "agents", "target", "edges", "comm_range", "directed", "weights")
 EXPECT_KEYS = (
@@ -108,6 +108,32 @@ class TdoaSpec:
         return self.agents.shape[0]
 
 
+def required_period(block: Mapping[str, Any], field: str) -> float:
+    """The ping period ``T`` of a tdoa or tdoa-sim block: required, as a physical quantity is
+    never defaulted silently.
+
+    Parameters
+    ----------
+    block : Mapping
+        The kind's block.
+    field : str
+        Its dotted name in messages (``tdoa.T``).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    CaseError
+        If ``T`` is missing or not a number > 0.
+    """
+    if "T" not in block:
+        hint = "The field is required (it is never defaulted); e.g. `T: 1.0`."
+        raise CaseError(field, "the ping period in seconds, > 0", "nothing", hint=hint)
+    return positive_number(block["T"], field)
+
+
 def parse_tdoa(block: Mapping[str, Any]) -> TdoaSpec:
     """Validate a ``tdoa:`` block (see the module docstring for the fields).
 
@@ -117,7 +143,7 @@ def parse_tdoa(block: Mapping[str, Any]) -> TdoaSpec:
         For any missing, unknown or invalid field, naming it.
     """
     check_keys(block, FIELDS, "tdoa")
-    T = positive_number(block.get("T", 1.0), "tdoa.T")
+    T = required_period(block, "tdoa.T")
     agents, target = _positions(block)
     dim = agents.shape[2]
     _check_distinct(agents, target)

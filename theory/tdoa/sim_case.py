@@ -8,8 +8,8 @@ Block fields (seed 000 §4.4 defaults in brackets)::
       target_velocity: [0, 0, 0]   # initial target velocity [0]
       Q: 0.01                      # white-acceleration covariance: number (· I₃) or 3 × 3
       R: 1.0                       # TDOA noise variance r, R_i = r I_{|N_i|}
-      T: 1.0                       # ping period (s)
-      tau: 0.1                     # consensus period (s); T/tau must be an integer
+      T: 1.0                       # ping period (s) [1]
+      tau: 0.1                     # consensus period (s); T/tau must be an integer [T]
       P0: 100                      # initial covariance: number (· I₆) or 6 × 6
       x0: [0, 0, 0, 0, 0, 0]       # initial estimate of every agent [0]
       b: 0                         # movement threshold: move iff ‖P_i‖ > b; .inf never moves

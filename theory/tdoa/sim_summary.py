@@ -84,7 +84,7 @@ def tdoa_simulator(case: Case, steps: int | None = None) -> Simulator:
     from theory.tdoa.scenario import run_tdoa_scenario
 
     spec = case.spec if steps is None else dataclasses.replace(case.spec, steps=steps)
-    fields = {"filter": spec.filter, "b": spec.b, "steps": spec.steps}
+    fields = {"filter": spec.filter, "b": spec.b, "steps": spec.steps, "T": spec.T, "tau": spec.tau}
     return Simulator(spec, run_tdoa_scenario, fields, _finish)
 
 
