@@ -5,7 +5,9 @@ Every function takes the parsed JSON of one certificate, validates its shape (ra
 ``witness`` and returns the list of :class:`Check` results. Nothing a certificate says about
 itself is trusted: stated values (the decrease matrices ``ρP_i − T_i(P)``, the minor of
 ``generic-rank``, the constants of ``iss``) are recomputed and compared exactly, and positivity
-is tested on the recomputed matrices.
+is tested on the recomputed matrices. A kind's name is its claim: the number a claim states
+about itself (``ρ``, a rate) is read by :func:`proofs_check.claims.claimed`, which refuses it
+outside the range in which it implies that claim.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from typing import Any
 
 from proofs_check import linalg as la
 from proofs_check import parse as p
+from proofs_check.claims import claimed
 from proofs_check.linalg import Matrix
 from proofs_check.operators import OPERATORS, apply_operator
 
@@ -159,43 +162,33 @@ def _lyapunov(operator: str, W: Matrix, gammas: list[Matrix], witness: dict, bou
     return checks + _decrease(name, operator, W, gammas, P, bound, R)
 
 
-def _bound(claim: dict[str, Any], key: str, *, at_most_one: bool = True) -> Fraction:
-    bound = p.rational(claim[key], f"claim.{key}")
-    if not 0 < bound <= (1 if at_most_one else bound):
-        expected = "(0, 1]" if at_most_one else "(0, ∞)"
-        raise p.MalformedError(f"claim.{key}: expected a rational in {expected}, got {bound}")
-    return bound
-
-
 def _system(cert: dict[str, Any], witness_keys: tuple[str, ...], size_key: str):
-    """Claim ``ρ``, witness, ``n``, ``A``, ``W`` (with its checks) and ``C`` of the two
-    S-detectability kinds; ``ρ`` may exceed 1 (Lemma 1 of the theory note holds for any ρ > 0)."""
-    claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
+    """Claimed ``ρ``, witness, ``n``, ``A``, ``W`` (with its checks) and ``C`` of the four kinds
+    about gains ``L_i`` for ``(A, C, W)`` (Lemma 1 of the theory note holds for any ρ > 0)."""
+    rho = claimed(cert)
     data = p.fields(cert["data"], "data", ("A", "C", "W"))
     witness = p.fields(cert["witness"], "witness", witness_keys)
     n = _size(witness[size_key], f"witness.{size_key}")
     A = p.matrix(data["A"], "data.A", n, n)
     W, checks = _weights(data["W"])
     C = p.matrix_list(data["C"], "data.C", len(W), None, n)
-    rho = _bound(claim, "spectral_radius_below", at_most_one=False)
     return rho, witness, n, A, W, checks, C
 
 
 def mjls_stability(cert: dict[str, Any]) -> list[Check]:
-    """``r_σ(L) < ρ`` for given ``Γ_i`` and ``W`` (seed 000 Lemma 5.2.2)."""
-    claim = p.fields(cert["claim"], "claim", ("spectral_radius_below",), ("statement",))
+    """``r_σ(L) < ρ ≤ 1`` for given ``Γ_i`` and ``W`` (seed 000 Lemma 5.2.2)."""
+    bound = claimed(cert)
     data = p.fields(cert["data"], "data", ("W", "Gamma"))
     witness = p.fields(cert["witness"], "witness", ("operator", "P", "decrease"))
     operator = p.text(witness["operator"], "witness.operator", OPERATORS)
     n = _size(data["Gamma"], "data.Gamma")
     W, checks = _weights(data["W"])
     gammas = p.matrix_list(data["Gamma"], "data.Gamma", len(W), n, n)
-    bound = _bound(claim, "spectral_radius_below")
     return checks + _lyapunov(operator, W, gammas, witness, bound)
 
 
 def s_detectability(cert: dict[str, Any]) -> list[Check]:
-    """``(A, C, W)`` is S-detectable: ``r_σ(L) < ρ`` with ``Γ_i = A − L_i C_i`` (Def. 5.2.4)."""
+    """Gains give ``r_σ(L) < ρ`` with ``Γ_i = A − L_i C_i``; S-detectable if ρ ≤ 1 (Def. 5.2.4)."""
     keys = ("operator", "gains", "P", "decrease")
     bound, witness, n, A, W, checks, C = _system(cert, keys, "P")
     operator = p.text(witness["operator"], "witness.operator", OPERATORS)
@@ -209,7 +202,7 @@ def s_detectability(cert: dict[str, Any]) -> list[Check]:
 
 
 def s_detectability_infeasible(cert: dict[str, Any]) -> list[Check]:
-    """``(A, C, W)`` is not S-detectable: no gains give ``r_σ(L) < ρ`` (Farkas witness).
+    """No gains give ``r_σ(L) < ρ`` (Farkas witness); not S-detectable if ``ρ ≥ 1`` (Def. 5.2.4).
 
     The witness is multipliers ``Λ_j ⪰ 0`` (n × n) and ``Ψ_i ⪰ 0`` (2n × 2n), not all zero, that
     annihilate the LMI of Theorem 3 in ``docs/theory/s-detectability.md``:
@@ -265,7 +258,7 @@ def covariance_bound(cert: dict[str, Any]) -> list[Check]:
 
     Modes are given as ``M`` directly or as ``M^j = A (I − K^j H^j)`` from ``A``, ``K``, ``H``.
     """
-    claim = p.fields(cert["claim"], "claim", ("rate",), ("statement",))
+    rate = claimed(cert)
     data = p.fields(cert["data"], "data", ("W", "modes"), ("A",))
     witness = p.fields(cert["witness"], "witness", ("X", "decrease"))
     n = _size(witness["X"], "witness.X")
@@ -280,7 +273,6 @@ def covariance_bound(cert: dict[str, Any]) -> list[Check]:
         p.matrix_list(item, f"witness.decrease[{k + 1}]", len(W), n, n)
         for k, item in enumerate(_items(witness["decrease"], "witness.decrease", len(modes)))
     ]
-    rate = _bound(claim, "rate")
     checks += [definite(f"X_{i + 1} ≻ 0", X_i) for i, X_i in enumerate(X)]
     for k, M in enumerate(modes):
         label = f"mode {k + 1}: " if len(modes) > 1 else ""
@@ -327,7 +319,7 @@ def generic_rank(cert: dict[str, Any]) -> list[Check]:
     witness = p.fields(cert["witness"], "witness", ("directions", "rows", "cols", "minor"))
     p.text(data["model"], "data.model", ("tdoa-network-observability",))
     dim = p.index(data["dim"], "data.dim", 2, 3)
-    T = p.rational(data["T"], "data.T")
+    T = p.bounded(data["T"], "data.T", "(0, ∞)", "T is the sampling period of eq. (4.6)")
     W, checks = _weights(data["W"])
     agents = len(W)
     neighbours = _neighbours(data["neighbours"], agents)
@@ -429,7 +421,7 @@ def iss(cert: dict[str, Any]) -> list[Check]:
     if two_stage:
         K[dim].append(p.rational(data["k_gamma"], "data.k_gamma"))
     lam, kp_bar, s = w["lambda"], w["kp_bar"], w["s"]
-    mu_r = max(max(v[:2]) ** 2 + ((v[2] / v[3]) ** 2 if dim == 3 else 0) for v in paths)
+    mu_r = max(max(v[0] ** 2, v[1] ** 2) + ((v[2] / v[3]) ** 2 if dim == 3 else 0) for v in paths)
     bound = f"k̄_p² + 1{' + μ_r' if two_stage else ''}"
     room = s * s - kp_bar**2 - 1 - (mu_r if two_stage else 0)
     sharp = f"s = {show(s)}, s² − ({bound}) = {show(room)}"
@@ -438,7 +430,7 @@ def iss(cert: dict[str, Any]) -> list[Check]:
         Check("E2: λ > 0", lam > 0, f"λ = {show(lam)}"),
         definite("E2: K − λI ⪰ 0", la.sub(K, la.scale(lam, la.identity(len(K)))), semi=True),
         definite("E3: k̄_p I − K_p ⪰ 0", la.sub(la.scale(kp_bar, la.identity(dim)), K_p), semi=True),
-        _same("E4: μ_r = max_i max(r_x, r_y)² (+ (r_z/c)² in 3D)", w["mu_r"], mu_r),
+        _same("E4: μ_r = max_i max(r_x², r_y²) (+ (r_z/c)² in 3D)", w["mu_r"], mu_r),
         Check(f"E4: s ≥ 0, s² ≥ {bound}", s >= 0 and room >= 0, sharp),
         _same("E5: g_e = s/λ", w["g_e"], s / lam if lam else Fraction(0)),
     ]
@@ -463,6 +455,7 @@ def _coordination(raw_L: Any, raw_r: Any, n: int, k_c: Fraction, w: dict, two: b
     g_xi = b / (rho * alpha) if two and rho * alpha else Fraction(0)
     spread = kappa**2 * min(r) - max(r)
     room = f"ρ = {show(rho)}, min r_i − ρ² = {show(min(r) - rho**2)}"
+    kappa_room = f"κ = {show(kappa)}, κ² min r_i − max r_i = {show(spread)}"
     rows = ", ".join(show(sum(row)) for row in L)
     M1 = ", ".join(show(sum(row)) for row in M)
     stochastic = f"Σr_i = {show(sum(r))}, min r_i = {show(min(r))}"
@@ -477,7 +470,7 @@ def _coordination(raw_L: Any, raw_r: Any, n: int, k_c: Fraction, w: dict, two: b
         Check("C4: b ≥ 0", b >= 0, f"b = {show(b)}"),
         definite("C4: b²I − WᵀRW ⪰ 0", la.sub(la.scale(b * b, la.identity(n)), WRW), semi=True),
         Check("C5: ρ > 0, ρ² ≤ min r_i", 0 < rho and rho**2 <= min(r), room),
-        Check("C5: κ² min r_i ≥ max r_i", spread >= 0, f"κ² min r_i − max r_i = {show(spread)}"),
+        Check("C5: κ > 0, κ² min r_i ≥ max r_i", kappa > 0 and spread >= 0, kappa_room),
         Check("C6: k_c > 0", k_c > 0, f"k_c = {show(k_c)}"),
         _same("C6: α = k_c a", w["alpha"], alpha),
         _same(f"C6: g_ξ = {'b/(ρα)' if two else '0 (Type I)'}", w["g_xi"], g_xi),
@@ -493,7 +486,9 @@ def _coordination(raw_L: Any, raw_r: Any, n: int, k_c: Fraction, w: dict, two: b
 KINDS = {
     "mjls-stability": mjls_stability,
     "s-detectability": s_detectability,
+    "gains-radius-below": s_detectability,
     "s-detectability-infeasible": s_detectability_infeasible,
+    "gains-radius-below-infeasible": s_detectability_infeasible,
     "covariance-bound": covariance_bound,
     "generic-rank": generic_rank,
     "iss": iss,

@@ -1,9 +1,10 @@
-"""Reading a certificate file safely: size limits, exact rationals, typed fields.
+"""Reading a certificate file safely: size limits, canonical exact rationals, typed fields.
 
 Everything here raises :class:`MalformedError` (exit code 2) on input that is not a well-formed
 certificate: unreadable or oversized files, invalid JSON, nesting too deep, JSON floats (numbers
-must be exact rational strings), numbers longer than :data:`MAX_NUMBER_CHARS`, a key repeated
-in one object (JSON parsers silently keep the last), wrong types or shapes, unknown fields.
+must be exact rational strings, spelled canonically: ``"2/2"``, ``"-0"`` are refused), numbers
+longer than :data:`MAX_NUMBER_CHARS`, a key repeated in one object (JSON parsers silently keep
+the last), wrong types or shapes, unknown fields, a number outside its range (:func:`bounded`).
 Nothing here decides whether a claim holds.
 """
 
@@ -21,8 +22,10 @@ __all__ = [
     "MAX_INT_DIGITS",
     "MAX_ITEMS",
     "MAX_NUMBER_CHARS",
+    "SPANS",
     "MalformedError",
     "Matrix",
+    "bounded",
     "fields",
     "index",
     "load",
@@ -109,6 +112,8 @@ def _small_int(token: str) -> int:
     if len(digits) > MAX_INT_DIGITS:
         why = f"JSON integer of {len(digits)} digits: only small indices are integers"
         raise MalformedError(why)
+    if token == "-0":
+        raise MalformedError("JSON integer -0: write 0 (numbers are canonical)")
     return int(token)
 
 
@@ -142,7 +147,7 @@ def index(value: Any, where: str, low: int, high: int) -> int:
 
 
 def rational(value: Any, where: str) -> Fraction:
-    """An exact rational from a string ``"p"`` or ``"p/q"`` (q > 0, no spaces, no exponent)."""
+    """An exact rational from its canonical string ``"p"`` or ``"p/q"`` (``str`` of a Fraction)."""
     if not isinstance(value, str):
         why = f'{where}: expected a rational string like "-3/7", got {value!r}'[:200]
         raise MalformedError(why)
@@ -151,7 +156,25 @@ def rational(value: Any, where: str) -> Fraction:
         raise MalformedError(why)
     if not _RATIONAL.fullmatch(value):
         raise MalformedError(f'{where}: {value[:60]!r} is not a rational string like "-3/7"')
-    return Fraction(value)
+    number = Fraction(value)
+    if str(number) != value:
+        why = "lowest terms, no denominator 1, no -0"
+        raise MalformedError(
+            f"{where}: {value[:60]!r} is not canonical ({why}); write {number!s:.60}"
+        )
+    return number
+
+
+SPANS = {"(0, 1]": lambda x: 0 < x <= 1, "[1, ∞)": lambda x: x >= 1, "(0, ∞)": lambda x: x > 0}
+"""The ranges a claimed number may be restricted to (see :func:`bounded`)."""
+
+
+def bounded(value: Any, where: str, span: str, why: str) -> Fraction:
+    """A rational in ``span`` (a key of :data:`SPANS`); ``why`` ends the message when it is not."""
+    number = rational(value, where)
+    if not SPANS[span](number):
+        raise MalformedError(f"{where}: expected a rational in {span}, got {number}: {why}")
+    return number
 
 
 def matrix(value: Any, where: str, rows: int | None = None, cols: int | None = None) -> Matrix:

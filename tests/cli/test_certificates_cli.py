@@ -47,7 +47,12 @@ def test_nothing_is_written_when_no_certificate_can_be_made(tmp_path: Path) -> N
     case = {
         "name": "mute",
         "kind": "tdoa",
-        "tdoa": {"agents": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "target": [5, 5, 5], "edges": []},
+        "tdoa": {
+            "T": 1.0,
+            "agents": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+            "target": [5, 5, 5],
+            "edges": [],
+        },
     }
     path = tmp_path / "mute.yaml"
     path.write_text(yaml.safe_dump(case), encoding="utf-8")

@@ -59,7 +59,8 @@ def test_agents_without_measurements_get_a_zero_row() -> None:
 
 def test_paper_example_1_certified_only_below_the_self_weight_bound(tmp_path: Path) -> None:
     """Seed 000 §5.3.1: W_g (w_ii = 0.24) is certified S-detectable; for W_c (0.25) and W_b
-    (0.26) are decided not S-detectable, so nothing is written (exit 1, as ``trackcert dkf``)."""
+    (0.26) are decided not S-detectable, so nothing is written (exit 1: certify judges no
+    expectation; ``trackcert dkf`` decides the same and exits 0 as the cases expect it)."""
     out = tmp_path / "wg.json"
     assert runner.invoke(app, ["certify", "ch5-example-1-wg", "-o", str(out)]).exit_code == 0
     assert runner.invoke(app, ["check", str(out)]).exit_code == 0
@@ -70,7 +71,9 @@ def test_paper_example_1_certified_only_below_the_self_weight_bound(tmp_path: Pa
         result = runner.invoke(app, ["certify", name, "-o", str(bad)])
         assert result.exit_code == 1
         assert "not S-detectable" in result.stderr and "nothing to certify" in result.stderr
-        assert runner.invoke(app, ["dkf", name]).exit_code == 1
+        decided = runner.invoke(app, ["dkf", name, "--json", "--no-self-weight"])
+        assert json.loads(decided.stdout)["s_detectable"] is False
+        assert decided.exit_code == 0  # the case expects exactly that (docs/cli.md, Exit codes)
         assert not bad.exists()
 
 

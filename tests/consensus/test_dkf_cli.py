@@ -26,15 +26,17 @@ def run(*args: str):
 
 
 @pytest.mark.parametrize(
-    ("case", "code"),
-    [("ch5-example-1-wg", 0), ("ch5-example-1-wb", 1), ("ch5-blind-cycle", 1)],
+    ("case", "detectable"),
+    [("ch5-example-1-wg", True), ("ch5-example-1-wb", False), ("ch5-blind-cycle", False)],
 )
-def test_exit_codes_and_keys(case, code):
+def test_exit_codes_and_keys(case, detectable):
+    """Each case expects its verdict, so every one exits 0 (docs/cli.md, Exit codes: the
+    expectations decide; tests/cli/test_exit_codes.py covers the code without them)."""
     result = run(case, "--json", "--no-self-weight")
-    assert result.exit_code == code, result.output
+    assert result.exit_code == 0, result.output
     data = json.loads(result.stdout)
     assert KEYS <= set(data)
-    assert data["s_detectable"] is (code == 0)
+    assert data["s_detectable"] is detectable
     for component in data["source_components"]:
         assert set(component) == {"agents", "detectable"}
     assert {c["status"] for c in data["claims"]} <= {

@@ -158,7 +158,7 @@ def test_generated_hostile_file_is_refused(name: str, tmp_path: Path) -> None:
 
 def test_a_million_agents_are_refused_before_reading_them() -> None:
     agents = [[float(k), 0.0, 1.0] for k in range(10**6)]
-    data = {"name": "big", "kind": "tdoa", "tdoa": {"agents": agents, "target": [0, 1, 2]}}
+    data = {"name": "big", "kind": "tdoa", "tdoa": {"T": 1, "agents": agents, "target": [0, 1, 2]}}
     with pytest.raises(CaseError, match="TRACKCERT_MAX_AGENTS") as info:
         parse_case(data)
     assert info.value.field == "tdoa.agents"

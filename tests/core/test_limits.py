@@ -113,7 +113,7 @@ def test_dense_tdoa_scene_is_refused_by_its_memory_estimate() -> None:
     data = {
         "name": "dense",
         "kind": "tdoa",
-        "tdoa": {"agents": agents, "target": [0.5, 0.5, 0.5], "comm_range": 100},
+        "tdoa": {"T": 1, "agents": agents, "target": [0.5, 0.5, 0.5], "comm_range": 100},
     }
     with pytest.raises(CaseError, match="M = 999000 TDOA rows") as info:
         parse_case(data)

@@ -1,4 +1,5 @@
-"""A check that runs past the report's time limit becomes inconclusive; the others still run."""
+"""A check that uses up the report's CPU-time limit becomes inconclusive; the others still run;
+a check that waits (a busy machine) is not stopped by it."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ from typer.testing import CliRunner
 from theory.cli import app
 from theory.kinds import load_case
 from theory.report.runner import run_claims
-from theory.report.time_limit import TimeLimitExceeded, enforceable, time_limit
+from theory.report.time_limit import TimeLimitExceeded, clock_name, enforceable, time_limit
 
 pytestmark = pytest.mark.skipif(not enforceable(), reason="needs PyThreadState_SetAsyncExc")
 runner = CliRunner()
@@ -28,7 +29,7 @@ def _spin(seconds: float) -> None:
 
 
 def _timers() -> list[threading.Thread]:
-    return [t for t in threading.enumerate() if isinstance(t, threading.Timer) and t.is_alive()]
+    return [t for t in threading.enumerate() if t.name == "trackcert-time-limit" and t.is_alive()]
 
 
 def test_the_limit_interrupts_python_code_and_leaves_no_timer() -> None:
@@ -37,6 +38,28 @@ def test_the_limit_interrupts_python_code_and_leaves_no_timer() -> None:
         _spin(5.0)
     assert time.monotonic() - started < 2.0
     assert _timers() == []
+
+
+def test_waiting_is_not_work_so_it_does_not_count() -> None:
+    """Wall time spent without the CPU — a sleep, or a core held by other processes on a loaded
+    machine — leaves the budget as it was: a verdict never turns inconclusive from load."""
+    with time_limit(0.1):
+        time.sleep(0.4)  # four times the limit in wall time, almost no CPU
+        _spin(0.02)
+    assert _timers() == []
+
+
+def test_the_cpu_of_other_threads_does_not_count() -> None:
+    """The clock is the checking thread's: another thread's work (another task, the progress
+    line, Dask's event loop) does not use its budget."""
+    other = threading.Thread(target=_spin, args=(0.4,))
+    other.start()
+    try:
+        with time_limit(0.15):
+            time.sleep(0.4)
+    finally:
+        other.join()
+    assert clock_name() == "thread CPU time"
 
 
 def test_no_limit_and_a_check_that_finishes_in_time() -> None:
@@ -137,7 +160,7 @@ def test_a_slow_check_is_inconclusive_and_the_report_goes_on(monkeypatch, tmp_pa
         "seed003.fake.random": "verified",
     }
     (slow,) = [r for r in run.records if r.id == "seed002.fake.slow"]
-    assert slow.method == "none" and "time limit of 0.2 s" in slow.message
+    assert slow.method == "none" and "CPU-time limit of 0.2 s" in slow.message
     assert slow.evidence["error"]["type"] == "TimeLimitExceeded"
     assert run.all_expectations_met and run.time_limit == 0.2
 

@@ -163,6 +163,7 @@ def test_rational_unit_vectors_are_exactly_unit_and_close() -> None:
 
 def test_moving_agents_on_one_network_share_one_certificate_set() -> None:
     block = {
+        "T": 1.0,
         "agents": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 1], [1, 0, 1], [0, 1, 1]]],
         "target": [5, 5, 5],
         "edges": [[1, 2], [2, 3]],
@@ -178,7 +179,8 @@ def test_moving_agents_on_one_network_share_one_certificate_set() -> None:
 
 
 def test_a_scene_without_tdoa_rows_gets_no_certificate() -> None:
-    block = {"agents": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "target": [5, 5, 5], "edges": []}
+    block = {"T": 1.0, "agents": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "target": [5, 5, 5]}
+    block["edges"] = []
     spec = parse_case({"name": "mute", "kind": "tdoa", "tdoa": block}).spec
     with pytest.raises(RationalizationError, match="no TDOA rows"):
         generic_rank_certificates(spec)

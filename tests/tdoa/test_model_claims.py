@@ -118,6 +118,7 @@ def test_metropolis_claim_does_not_apply_to_uniform_weights() -> None:
         "source": "test",
         "kind": "tdoa",
         "tdoa": {
+            "T": 1.0,
             "target": [1, 2, 3],
             "agents": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
             "edges": [[1, 2], [2, 3]],
@@ -143,6 +144,7 @@ def test_metropolis_claim_checks_every_step_of_a_time_varying_network() -> None:
         "source": "test",
         "kind": "tdoa",
         "tdoa": {
+            "T": 1.0,
             "target": [[17, -5, -15], [16, -4, -14], [15, -3, -13]],
             "agents": [
                 [[-7, 3, 5], [1, -2, -5], [5, -1, 4], [7, 4, -2]],

@@ -52,9 +52,20 @@ def test_json_has_the_design_keys_and_exit_code_follows_the_verdict(name: str) -
     assert all(AGENT_KEYS <= set(agent) for agent in data["agents"])
     assert data["expectations"]["met"]
     assert data["tolerances"]["rank_tol"] > 0
-    trajectory = analyze_trajectory(load_case(name).spec)
-    assert result.exit_code == (0 if trajectory.first_failure_step is None else 1)
+    assert result.exit_code == 0  # every bundled case's expectations are met (command_verdict)
     assert data["exit_code"] == result.exit_code
+
+
+@pytest.mark.parametrize("name", TDOA_CASES)
+def test_without_an_expect_block_the_exit_code_follows_the_verdict(name: str, tmp_path) -> None:
+    data = yaml.safe_load(bundled_cases()[name].read_text())
+    data.pop("expect")
+    path = tmp_path / "case.yaml"
+    path.write_text(yaml.safe_dump(data))
+    result = invoke(str(path), "--json")
+    trajectory = analyze_trajectory(load_case(name).spec)
+    assert result.exit_code == (0 if trajectory.first_failure_step is None else 1), result.output
+    assert json.loads(result.stdout)["exit_code"] == result.exit_code
 
 
 def test_human_output_has_a_table_and_a_verdict_line() -> None:
@@ -74,6 +85,7 @@ def write_case(tmp_path: Path, block: dict, **header) -> str:
 
 
 BASE = {
+    "T": 1.0,
     "target": [17, -5, -15],
     "agents": [[-7, 3, 5], [1, -2, -5], [5, -1, 4], [7, 4, -2]],
     "edges": [[1, 2], [2, 3], [3, 4]],
@@ -119,6 +131,7 @@ def test_missing_case_and_malformed_yaml_exit_2(tmp_path) -> None:
 def test_singular_value_inside_tolerance_exits_3(tmp_path) -> None:
     """The cone case nudged off the cone by 1e-8: σ_min ≈ 1e-9·σ_max, inside the tolerance."""
     block = {
+        "T": 1.0,
         "target": [1, 2, -3],
         "agents": [[4, 2, 1], [1, 8, 5], [-8, 2, 9], [1, -10, 13 + 1e-8]],
         "edges": [[1, 2], [2, 3], [3, 4]],

@@ -36,6 +36,7 @@ def edge_lists(draw, n: int, *, directed: bool = False):
 
 def spec_of(agents, target, edges, *, directed=False, weights=None):
     block = {
+        "T": 1.0,
         "agents": np.asarray(agents).tolist(),
         "target": np.asarray(target).tolist(),
         "edges": [list(e) for e in edges],

@@ -1,15 +1,14 @@
 """``trackcert certify CASE -o FILE`` and ``trackcert check FILE`` (DESIGN.md, *CLI*).
 
 ``certify`` is a shell over :func:`theory.certify.certificate_bundle` (exit 0 written, 1 the
-property is decided false, 3 no certificate could be made, 2 bad input); ``check`` over
-``proofs_check``'s own entry point (0 valid, 1 invalid, 2 malformed).
+property is decided false, 3 no certificate could be made, 2 bad input, 4 the file could not be
+written: it is then left as it was, :func:`theory.core.atomic_output.write_file`); ``check``
+over ``proofs_check``'s own entry point (0 valid, 1 invalid, 2 malformed).
 """
 
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 from typing import Annotated
 
@@ -17,43 +16,13 @@ import typer
 
 import proofs_check.__main__
 from proofs_check.deadline import DEFAULT_SECONDS
-from theory.cli.common import COMMAND_LINE, check_output, console, print_json, reports_errors
-from theory.core.errors import CaseError
+from theory.cli.common import check_file_output, console, print_json, reports_errors
+from theory.core.atomic_output import write_file
 from theory.kinds import load_case
 
-__all__ = ["register", "write_atomically"]
+__all__ = ["register"]
 
 OUTPUT = "-o/--output"
-
-
-def write_atomically(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file and a rename (never half-written).
-
-    Parameters
-    ----------
-    path : Path
-        Destination.
-    text : str
-        Content (UTF-8).
-
-    Raises
-    ------
-    OSError
-        If the folder is not writable (the temporary file is removed).
-    """
-    path = Path(path)
-    handle = tempfile.NamedTemporaryFile(
-        "w", encoding="utf-8", dir=path.parent or Path("."), prefix=f".{path.name}.", delete=False
-    )
-    try:
-        with handle:
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(handle.name, path)
-    except BaseException:
-        Path(handle.name).unlink(missing_ok=True)
-        raise
 
 
 def register(app: typer.Typer) -> None:
@@ -71,19 +40,14 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Write every certificate the case supports (a bundle), re-checked exactly."""
         if output is not None:
-            check_output(output, OUTPUT, folder=False)
+            check_file_output(output, OUTPUT)
         loaded = load_case(case)
         from theory.certify import certificate_bundle  # cvxpy: imported on use
 
         document = certificate_bundle(loaded, seed=seed)
         text = json.dumps(document, indent=1, ensure_ascii=False) + "\n"
         if output is not None:
-            try:
-                write_atomically(output, text)
-            except OSError as error:
-                raise CaseError(
-                    OUTPUT, "a writable file path", str(output), file=COMMAND_LINE
-                ) from error
+            write_file(output, text)
         if as_json or output is None:
             print_json(document)
             return

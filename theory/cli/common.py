@@ -1,4 +1,4 @@
-"""Helpers shared by the CLI commands: error handling, JSON output, exit codes.
+"""Helpers shared by the CLI commands: error handling, JSON output, exit codes, progress.
 
 The exit codes and the verdict → code rule are the library's (:mod:`theory.core.verdicts`);
 JSON conversion is :func:`theory.core.jsonable.plain`.
@@ -10,8 +10,11 @@ import contextlib
 import functools
 import json
 import os
+import signal
 import sys
-from collections.abc import Callable, Iterator
+import threading
+import time
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any, NoReturn, TypeVar
 
@@ -19,8 +22,12 @@ import numpy as np
 import typer
 from rich.console import Console
 
+from theory.core.atomic_output import replaceable_problem
 from theory.core.errors import (
+    COMMAND_LINE,
+    ENVIRONMENT,
     CaseError,
+    FaultError,
     InconclusiveError,
     PropertyFails,
     SolverError,
@@ -30,27 +37,31 @@ from theory.core.jsonable import plain
 from theory.core.verdicts import (
     EXIT_BAD_INPUT,
     EXIT_FAILS,
+    EXIT_FAULT,
     EXIT_INCONCLUSIVE,
+    command_verdict,
+    exit_code,
+    interrupted_code,
 )
 
 __all__ = [
     "COMMAND_LINE",
     "NUMERICAL_FAILURES",
+    "PROGRESS_SETTING",
     "case_argument",
-    "check_output",
+    "check_file_output",
+    "check_folder_output",
     "console",
     "error_console",
     "finish",
     "json_option",
+    "print_exit_rule",
     "print_json",
     "progress_bar",
     "reports_errors",
     "scheduler_option",
     "workers_option",
 ]
-
-COMMAND_LINE = "<command line>"
-"""The ``file`` of an error in a command-line option (not in a case file)."""
 
 console = Console()
 error_console = Console(stderr=True)
@@ -68,22 +79,29 @@ NUMERICAL_FAILURE = (
 
 
 def reports_errors(command: F) -> F:
-    """Wrap ``command`` so trackcert errors become a stderr line and the DESIGN.md exit code.
+    """Wrap ``command`` so that no error is a traceback and every one has its exit code.
 
-    A numerical failure the library did not turn into a :class:`SolverError`
-    (:data:`NUMERICAL_FAILURES`) is inconclusive too (exit 3), naming the error.
+    Trackcert errors become one stderr line and the code of :mod:`theory.core.verdicts`; a
+    numerical failure the library did not turn into a :class:`SolverError`
+    (:data:`NUMERICAL_FAILURES`) is inconclusive (exit 3), naming the error; a fault of the
+    machine — a :class:`FaultError`, any other ``OSError``, ``MemoryError`` — is exit 4;
+    SIGINT and SIGTERM stop the command with 128 + the signal's number (130, 143), after the
+    outputs being written were discarded (:mod:`theory.core.atomic_output`).
     """
 
     @functools.wraps(command)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
-            return command(*args, **kwargs)
+            with _terminate_raises():
+                return command(*args, **kwargs)
         except CaseError as error:
             _fail(f"error: {error}", EXIT_BAD_INPUT)
         except (InconclusiveError, SolverError) as error:
             _fail(f"inconclusive: {error}", EXIT_INCONCLUSIVE)
         except PropertyFails as error:
             _fail(f"does not hold: {error}", EXIT_FAILS)
+        except FaultError as error:
+            _fail(f"fault: {error}", EXIT_FAULT)
         except TrackcertError as error:
             _fail(f"error: {error}", EXIT_BAD_INPUT)
         except NUMERICAL_FAILURES as error:
@@ -91,14 +109,77 @@ def reports_errors(command: F) -> F:
                 f"inconclusive: {NUMERICAL_FAILURE}: {type(error).__name__}: {error}",
                 EXIT_INCONCLUSIVE,
             )
+        except OSError as error:
+            _fail(f"fault: {_os_error(error)}", EXIT_FAULT)
+        except MemoryError:
+            _fail("fault: out of memory", EXIT_FAULT)
+        except (KeyboardInterrupt, Terminated) as error:
+            signum = getattr(error, "signum", signal.SIGINT)
+            name = signal.Signals(signum).name
+            message = f"interrupted by {name}: no output was left half-written"
+            _fail(message, interrupted_code(signum))
 
     return wrapper  # type: ignore[return-value]
 
 
-def _fail(message: str, code: int) -> None:
+class Terminated(BaseException):
+    """SIGTERM, raised in the main thread as SIGINT raises ``KeyboardInterrupt``."""
+
+    def __init__(self, signum: int) -> None:
+        self.signum = signum
+        super().__init__(signal.Signals(signum).name)
+
+
+@contextlib.contextmanager
+def _terminate_raises() -> Iterator[None]:
+    """SIGTERM raises :class:`Terminated` in the block (main thread only), so the outputs being
+    written are cleaned up as for Ctrl-C instead of the process vanishing mid-write."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def raise_terminated(signum: int, _frame: Any) -> None:
+        raise Terminated(signum)
+
+    previous = signal.signal(signal.SIGTERM, raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _os_error(error: OSError) -> str:
+    reason = error.strerror or str(error) or type(error).__name__
+    return f"{error.filename}: {reason}" if error.filename else reason
+
+
+def _fail(message: str, code: int) -> NoReturn:
     # one line, verbatim (no markup, no emoji codes such as ':b:')
     error_console.print(message, markup=False, highlight=False, soft_wrap=True, emoji=False)
     raise typer.Exit(code)
+
+
+def print_exit_rule(property_verdict: bool | None, expectations: Sequence[Any]) -> None:
+    """Say, when they differ, that the case's expectations and not the property decide the exit
+    code (:func:`theory.core.verdicts.command_verdict`).
+
+    Parameters
+    ----------
+    property_verdict : bool or None
+        The command's property verdict.
+    expectations : sequence of Expectation
+        The expectations it judged.
+    """
+    decided = command_verdict(property_verdict, expectations)
+    if decided == property_verdict:
+        return
+    words = {True: "holds", False: "fails", None: "is inconclusive"}
+    console.print(
+        f"exit code {exit_code(decided)}: the case's expect block decides it (the property "
+        f"{words[property_verdict]}; without expectations the property decides)",
+        markup=False,
+        highlight=False,
+    )
 
 
 def print_json(data: Any) -> None:
@@ -128,7 +209,14 @@ def json_option(help: str = "Print JSON.") -> Any:
     return typer.Option(False, "--json", help=help)
 
 
-def finish(data: Any, code: int, *, as_json: bool, show: Callable[[], None]) -> NoReturn:
+def finish(
+    data: Any,
+    code: int,
+    *,
+    as_json: bool,
+    show: Callable[[], None],
+    verdicts: tuple[bool | None, Sequence[Any]] | None = None,
+) -> NoReturn:
     """Print ``data`` as JSON (``as_json``) or call ``show``, then exit with ``code``.
 
     Parameters
@@ -141,6 +229,9 @@ def finish(data: Any, code: int, *, as_json: bool, show: Callable[[], None]) -> 
         The ``--json`` flag.
     show : callable
         Prints the human-readable form.
+    verdicts : (bool or None, sequence of Expectation), optional
+        The property's verdict and the expectations judged: after ``show``,
+        :func:`print_exit_rule` says when the expectations decided ``code``.
 
     Raises
     ------
@@ -151,15 +242,19 @@ def finish(data: Any, code: int, *, as_json: bool, show: Callable[[], None]) -> 
         print_json(data)
     else:
         show()
+        if verdicts is not None:
+            print_exit_rule(*verdicts)
     raise typer.Exit(code)
 
 
-def check_output(path: str | Path, option: str, *, folder: bool) -> Path:
-    """Refuse an output path that cannot be written, before any work is done (nothing written).
+def check_folder_output(path: str | Path, option: str, marker: str) -> Path:
+    """Refuse an output folder that cannot be written or replaced, before any work is done.
 
-    A folder may not exist yet (it and missing parents are created later) but nothing on its way
-    may be a file, and its nearest existing ancestor must be a writable folder; a file's folder
-    must exist and be writable, and the file itself must not be a folder.
+    The folder may not exist yet (it and missing parents are created later) but nothing on its
+    way may be a file, and its nearest existing ancestor must be a writable folder. An existing
+    folder is replaced whole (:mod:`theory.core.atomic_output`), so it must be empty or an
+    earlier output of the command (it has ``marker``), and neither the current folder nor one
+    of its parents.
 
     Parameters
     ----------
@@ -167,8 +262,8 @@ def check_output(path: str | Path, option: str, *, folder: bool) -> Path:
         The value of the option.
     option : str
         The option, as named in the message (``-o/--output``).
-    folder : bool
-        Whether the option names a folder (else a file).
+    marker : str
+        The file every output of the command has (``report.json``).
 
     Returns
     -------
@@ -180,7 +275,35 @@ def check_output(path: str | Path, option: str, *, folder: bool) -> Path:
         Naming ``option`` (file ``<command line>``), what it must be and the path.
     """
     path = Path(path)
-    problem = _folder_problem(path) if folder else _file_problem(path)
+    problem = _folder_problem(path) or replaceable_problem(path, marker)
+    if problem:
+        raise CaseError(option, problem, str(path), file=COMMAND_LINE)
+    return path
+
+
+def check_file_output(path: str | Path, option: str) -> Path:
+    """Refuse an output file that cannot be written, before any work is done.
+
+    Its folder must exist and be writable, and the file itself must not be a folder.
+
+    Parameters
+    ----------
+    path : str or Path
+        The value of the option.
+    option : str
+        The option, as named in the message (``-o/--output``).
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    CaseError
+        Naming ``option`` (file ``<command line>``), what it must be and the path.
+    """
+    path = Path(path)
+    problem = _file_problem(path)
     if problem:
         raise CaseError(option, problem, str(path), file=COMMAND_LINE)
     return path
@@ -231,23 +354,33 @@ def scheduler_option() -> Any:
     )
 
 
+PROGRESS_SETTING = "TRACKCERT_PROGRESS_SECONDS"
+"""Environment setting: seconds between two progress lines off a terminal (0: only the first
+and the last line)."""
+
+PROGRESS_SECONDS = 15.0
+"""Default seconds between two progress lines off a terminal."""
+
+
 @contextlib.contextmanager
 def progress_bar(
     total: int, description: str, *, quiet: bool = False
 ) -> Iterator[Callable[..., None]]:
-    """A progress bar on stderr (done/total, elapsed, ETA) and the hook advancing it.
+    """Progress on stderr, and the hook advancing it.
 
-    Quiet (the hook does nothing) when ``quiet`` (``--json``) or when stdout or stderr is not a
-    terminal.
+    On a terminal (stderr is one): a bar (done/total, elapsed, ETA), not shown when ``quiet``
+    (``--json``). Off a terminal (CI, ``nohup``, a notebook's ``!trackcert``, a file), whatever
+    ``quiet`` says: plain lines — when the work starts, every :data:`PROGRESS_SECONDS`
+    (``$TRACKCERT_PROGRESS_SECONDS``), and when it ends — so a long run is never silent.
 
     Parameters
     ----------
     total : int
-        Number of units (tasks, runs, checks).
+        Number of units (tasks, runs, checks); 0 if not known yet.
     description : str
-        Shown beside the bar.
+        Shown beside the bar (``checking``, ``simulating NAME``).
     quiet : bool
-        Show nothing.
+        No bar on a terminal.
 
     Yields
     ------
@@ -255,8 +388,17 @@ def progress_bar(
         ``advance(done, label=None, total=None)``: ``done`` units finished so far; ``label``
         replaces the description (e.g. the check that just finished); ``total`` corrects the
         number of units once it is known.
+
+    Raises
+    ------
+    CaseError
+        If ``$TRACKCERT_PROGRESS_SECONDS`` is not a number ≥ 0.
     """
-    if quiet or not (console.is_terminal and error_console.is_terminal):
+    if not error_console.is_terminal:
+        with _progress_lines(total, description, _progress_seconds()) as advance:
+            yield advance
+        return
+    if quiet or not console.is_terminal:
         yield lambda done, label=None, total=None: None
         return
     from rich.progress import (
@@ -285,3 +427,62 @@ def progress_bar(
                 progress.update(task, total=total)
 
         yield advance
+
+
+def _progress_seconds() -> float:
+    text = os.environ.get(PROGRESS_SETTING)
+    if text is None:
+        return PROGRESS_SECONDS
+    try:
+        seconds = float(text)
+    except ValueError:
+        seconds = -1.0
+    if not seconds >= 0:
+        raise CaseError(PROGRESS_SETTING, "a number of seconds ≥ 0", text, file=ENVIRONMENT)
+    return seconds
+
+
+@contextlib.contextmanager
+def _progress_lines(
+    total: int, description: str, seconds: float
+) -> Iterator[Callable[..., None]]:
+    """Plain progress lines on stderr: first, every ``seconds`` (if > 0) from a timer thread,
+    and last (when the block ends without an error)."""
+    state = {"done": 0, "total": total, "label": ""}
+    began = time.monotonic()
+    lock = threading.Lock()
+    stop = threading.Event()
+
+    def line(what: str) -> None:
+        elapsed = _duration(time.monotonic() - began)
+        of = f"/{state['total']}" if state["total"] else ""
+        last = f"; last: {state['label']}" if state["label"] else ""
+        with lock:
+            sys.stderr.write(f"{description}: {state['done']}{of} {what}, {elapsed}{last}\n")
+            sys.stderr.flush()
+
+    def beat() -> None:
+        while not stop.wait(seconds):
+            line("done")
+
+    def advance(done: int, label: str | None = None, total: int | None = None) -> None:
+        state["done"], state["label"] = done, label or state["label"]
+        if total is not None:
+            state["total"] = total
+
+    line("done (started)")
+    timer = threading.Thread(target=beat, name="trackcert-progress", daemon=True)
+    if seconds > 0:
+        timer.start()
+    try:
+        yield advance
+    finally:
+        stop.set()
+        if timer.is_alive():
+            timer.join()
+    line("done (finished)")
+
+
+def _duration(seconds: float) -> str:
+    minutes, rest = divmod(int(seconds), 60)
+    return f"{minutes}m{rest:02d}s elapsed" if minutes else f"{seconds:.0f}s elapsed"

@@ -1,9 +1,10 @@
 """``trackcert dkf CASE``: S-detectability and necessary conditions of a consensus Kalman filter.
 
-A shell over :func:`theory.consensus.analysis.dkf_report`. Exit codes
-(:mod:`theory.core.verdicts`): 0 S-detectable (witness verified), 1 not (certificate verified),
-2 bad input, 3 inconclusive (the LMI decision is near its boundary or the solver failed: the
-output says which).
+A shell over :func:`theory.consensus.analysis.dkf_report`. Exit code
+(:func:`theory.core.verdicts.command_verdict`): the verdict of the case's expectations this
+command observes when the case states any; otherwise the property's: 0 S-detectable (witness
+verified), 1 not (certificate verified), 3 inconclusive (the LMI decision is near its boundary or
+the solver failed: the output says which); 2 bad input.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ import typer
 from rich.table import Table
 
 from theory.cli.common import case_argument, console, finish, json_option, reports_errors
-from theory.core.verdicts import exit_code
+from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
 from theory.registry import claims_for
 
@@ -46,8 +47,9 @@ def register(app: typer.Typer) -> None:
             loaded, claims_for(loaded), search_self_weight=self_weight, solver=solver
         )
         data = report.to_json()
-        code = exit_code(report.verdict)
-        finish(data, code, as_json=as_json, show=lambda: _print_table(data))
+        code = exit_code(command_verdict(report.verdict, report.expectations))
+        verdicts = (report.verdict, report.expectations)
+        finish(data, code, as_json=as_json, show=lambda: _print_table(data), verdicts=verdicts)
 
 
 def _print_table(data: dict) -> None:

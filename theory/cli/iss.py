@@ -1,9 +1,11 @@
 """``trackcert iss CASE``: ISS Lyapunov analysis of the pursuit/coordination loop (seed 003).
 
-A shell over :func:`theory.pursuit.iss.iss_report`. Exit codes
-(:mod:`theory.core.verdicts`): 0 every condition holds, 1 a condition fails (e.g. ε₁ = 0 so ΔΔᵀ
-is singular, or a graph without the strong connectivity Lemma 3 needs), 2 bad input, 3 a margin
-lies inside ``margin_tol`` (inconclusive; the output says which condition).
+A shell over :func:`theory.pursuit.iss.iss_report`. Exit code
+(:func:`theory.core.verdicts.command_verdict`): the verdict of the case's expectations this
+command observes when the case states any; otherwise the property's: 0 every condition holds, 1 a
+condition fails (e.g. ε₁ = 0 so ΔΔᵀ is singular, or a graph without the strong connectivity
+Lemma 3 needs), 3 a margin lies inside ``margin_tol`` (inconclusive; the output says which
+condition); 2 bad input.
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ import typer
 from rich.table import Table
 
 from theory.cli.common import case_argument, console, finish, json_option, reports_errors
-from theory.core.verdicts import exit_code
+from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
 
 __all__ = ["register"]
@@ -75,5 +77,11 @@ def register(app: typer.Typer) -> None:
         from theory.pursuit.iss import iss_report  # sympy/scipy: imported on use
 
         report = iss_report(load_case(case), margin_tol=margin_tol)
-        code = exit_code(report.verdict)
-        finish(report.to_json(), code, as_json=as_json, show=lambda: _print_table(report))
+        code = exit_code(command_verdict(report.verdict, report.expectations))
+        finish(
+            report.to_json(),
+            code,
+            as_json=as_json,
+            show=lambda: _print_table(report),
+            verdicts=(report.verdict, report.expectations),
+        )

@@ -4,7 +4,8 @@ A shell over :func:`theory.particle.report.pf_report`: prints the per-node error
 verdicts of every registered claim for ``kind: pf`` cases, and each key of the case's ``expect``
 block with the value the claims observed (judged by :mod:`theory.core.expectations`, as
 ``trackcert report`` judges it); with ``-o DIR`` the library writes ``DIR/pf.json`` and the
-figures. Exit code (:mod:`theory.core.verdicts`): 0 every expectation met, 1 one unmet, 3 one
+figures, replacing the folder whole. Exit code (:func:`theory.core.verdicts.command_verdict`: pf
+decides no property of its own): 0 every expectation met (or none stated), 1 one unmet, 3 one
 inconclusive or unchecked.
 """
 
@@ -18,7 +19,7 @@ from rich.table import Table
 
 from theory.cli.common import (
     COMMAND_LINE,
-    check_output,
+    check_folder_output,
     console,
     print_json,
     progress_bar,
@@ -29,7 +30,7 @@ from theory.cli.common import (
 from theory.core.case_file import Case
 from theory.core.errors import CaseError
 from theory.core.limits import check_count
-from theory.core.verdicts import exit_code
+from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
 
 __all__ = ["register", "run_pf_case"]
@@ -94,10 +95,10 @@ def run_pf_case(
     """
     from theory.core.parallel import engine
     from theory.particle.case import check_pf_work
-    from theory.particle.report import pf_report
+    from theory.particle.report import MARKER, pf_report
 
     if out is not None:
-        check_output(out, "-o/--out", folder=True)
+        check_folder_output(out, "-o/--out", MARKER)
     if runs is not None:
         check_count("runs", runs, "--runs", file=COMMAND_LINE)
         spec = case.spec
@@ -123,7 +124,7 @@ def run_pf_case(
         print_json(record)
     else:
         _print(record)
-    return exit_code(report.verdict)
+    return exit_code(command_verdict(True, report.expectations))
 
 
 def _print(report: dict) -> None:

@@ -5,8 +5,9 @@ A shell over :func:`theory.sim.simulate.simulate_case` with the case kind's simu
 :mod:`theory.tdoa.estimation.simulation`, ``kind: dkf`` in :mod:`theory.consensus.kalman_filter`,
 ``kind: pursuit`` in :mod:`theory.pursuit.simulation`); ``kind: pf`` cases are handed to
 :func:`theory.cli.pf.run_pf_case`, as ``trackcert pf`` runs them. Exit code
-(:mod:`theory.core.verdicts`): the expectations' verdict, 0 all met (or none stated), 1 one
-unmet, 3 one inconclusive or unchecked.
+(:func:`theory.core.verdicts.command_verdict`: simulate decides no property of its own): the
+expectations' verdict, 0 all met (or none stated), 1 one unmet, 3 one inconclusive or unchecked;
+1 too when the case's controller does not exist (``PropertyFails``, e.g. ε₁ = 0 in seed 003).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import typer
 
 from theory.cli.common import (
     COMMAND_LINE,
-    check_output,
+    check_folder_output,
     console,
     error_console,
     print_json,
@@ -29,7 +30,7 @@ from theory.cli.common import (
 )
 from theory.core.errors import CaseError
 from theory.core.limits import check_count
-from theory.core.verdicts import exit_code
+from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
 
 __all__ = ["check_options", "register"]
@@ -70,9 +71,9 @@ def register(app: typer.Typer) -> None:
         """Simulate the closed loop; write runs.npz, CSV tables, PNG figures and summary.json."""
         from theory.core.parallel import default_workers
         from theory.kinds import simulator_for
-        from theory.sim.simulate import simulate_case
+        from theory.sim.simulate import MARKER, simulate_case
 
-        check_options(output, runs, steps)
+        check_options(runs, steps)
         loaded = load_case(case)
         if loaded.kind not in KINDS:
             raise CaseError(
@@ -85,6 +86,7 @@ def register(app: typer.Typer) -> None:
                 loaded, runs, seed, output, as_json, workers=workers, scheduler=scheduler
             )
             raise typer.Exit(code)
+        check_folder_output(output, "-o/--output", MARKER)
         runs, seed = runs or 1, seed or 0
         chosen = simulator_for(loaded, steps)
         workers = workers or default_workers()
@@ -107,16 +109,14 @@ def register(app: typer.Typer) -> None:
             print_json(report)
         else:
             _print_table(report)
-        raise typer.Exit(exit_code(simulation.verdict))
+        raise typer.Exit(exit_code(command_verdict(True, simulation.expectations)))
 
 
-def check_options(output: str, runs: int | None, steps: int | None) -> None:
-    """Refuse ``-o``, ``--runs`` or ``--steps`` before any work (:mod:`theory.core.limits`).
+def check_options(runs: int | None, steps: int | None) -> None:
+    """Refuse ``--runs`` or ``--steps`` before any work (:mod:`theory.core.limits`).
 
     Parameters
     ----------
-    output : str
-        The ``-o`` folder.
     runs, steps : int or None
         The options' values (``None``: not given).
 
@@ -125,7 +125,6 @@ def check_options(output: str, runs: int | None, steps: int | None) -> None:
     CaseError
         Naming the option, the limit and how to raise it.
     """
-    check_output(output, "-o/--output", folder=True)
     for name, value in (("runs", runs), ("steps", steps)):
         if value is not None:
             check_count(name, value, f"--{name}", file=COMMAND_LINE)

@@ -18,7 +18,7 @@ import typer
 
 from theory.cli.common import (
     COMMAND_LINE,
-    check_output,
+    check_folder_output,
     console,
     json_option,
     print_json,
@@ -86,10 +86,10 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Judge and simulate CASE at every point of a parameter grid; write CSV, JSON, PNG."""
         from theory.sweep.grid import MAX_POINTS
-        from theory.sweep.outputs import write_sweep
+        from theory.sweep.outputs import MARKER, write_sweep
         from theory.sweep.run import sweep_case
 
-        check_output(output, "-o/--output", folder=True)
+        check_folder_output(output, "-o/--output", MARKER)
         if steps is not None:
             check_count("steps", steps, "--steps", file=COMMAND_LINE)
         with progress_bar(0, "sweep", quiet=as_json) as advance:

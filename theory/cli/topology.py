@@ -1,9 +1,10 @@
 """``trackcert topology CASE``: distributed TDOA observability of every agent (DESIGN.md).
 
-A shell over :func:`theory.tdoa.observability.trajectory.topology_report`. Exit codes
-(:mod:`theory.core.verdicts`): 0 every agent can localize the target at every step, 1 some agent
-cannot, 2 bad input, 3 inconclusive (a deciding singular value lies within
-``inconclusive_factor`` of its threshold, or a linear-algebra routine failed).
+A shell over :func:`theory.tdoa.observability.trajectory.topology_report`. Exit code
+(:func:`theory.core.verdicts.command_verdict`): the verdict of the case's expectations this
+command observes when the case states any; otherwise the property's: 0 every agent can localize
+the target at every step, 1 some agent cannot, 3 inconclusive (a deciding singular value lies
+within ``inconclusive_factor`` of its threshold, or a linear-algebra routine failed); 2 bad input.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from rich.table import Table
 
 from theory.cli.common import case_argument, console, finish, json_option, reports_errors
 from theory.core.case_file import Case
-from theory.core.verdicts import exit_code
+from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
 from theory.tdoa.observability.topology import TopologyResult
 from theory.tdoa.observability.trajectory import (
@@ -54,12 +55,13 @@ def register(app: typer.Typer) -> None:
             rank_tol=rank_tol,
             inconclusive_factor=inconclusive_factor,
         )
-        code = exit_code(report.verdict)
+        code = exit_code(command_verdict(report.verdict, report.expectations))
         finish(
             {**report.to_json(), "exit_code": code},
             code,
             as_json=as_json,
             show=lambda: _print_human(report),
+            verdicts=(report.verdict, report.expectations),
         )
 
 

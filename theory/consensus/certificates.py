@@ -77,6 +77,7 @@ __all__ = [
 SOURCES = {
     "mjls-stability": "seed 000, Lemma 5.2.2",
     "s-detectability": "seed 000, Definition 5.2.4 and Lemma 5.2.2",
+    "gains-radius-below": "seed 000, Lemma 5.2.2; docs/theory/s-detectability.md, Lemma 1",
 }
 
 
@@ -250,8 +251,10 @@ def _document(
 ) -> dict:
     A_q, C_q, W_q = exact["A"], exact["C"], exact["W"]
     gammas = [sub(A_q, matmul(g, c)) for g, c in zip(gains, C_q, strict=True)]
+    kind = "s-detectability" if bound <= 1 else "gains-radius-below"  # ρ > 1 proves less
     claim = {
-        "statement": "(A, C, W) is S-detectable: r_σ(L) < ρ with Γ_i = A − L_i C_i",
+        "statement": ("(A, C, W) is S-detectable: " if bound <= 1 else "")
+        + "r_σ(L) < ρ with Γ_i = A − L_i C_i",
         "spectral_radius_below": str(bound),
     }
     data = {"A": fraction_strings(A_q), "C": strings(C_q), "W": fraction_strings(W_q)}
@@ -261,9 +264,7 @@ def _document(
         "P": strings(P),
         "decrease": decrease_strings(operator, W_q, gammas, P, bound),
     }
-    return envelope(
-        "s-detectability", claim, data, witness, source=SOURCES["s-detectability"], case=case
-    )
+    return envelope(kind, claim, data, witness, source=SOURCES[kind], case=case)
 
 
 def primal_lyapunov(

@@ -186,31 +186,35 @@ def infeasibility_certificate(
     rho: float | Fraction = 1,
     case: str | None = None,
 ) -> dict:
-    """The ``s-detectability-infeasible`` certificate (no gains give ``r_σ(L) < ρ``), checked
-    by proofs_check; data read as written decimals, rows of ``W`` summing to exactly 1 (seed 000
-    Def. 5.2.4; ``docs/theory/s-detectability.md``, Theorems 3 and 4).
-    :class:`RationalizationError` when no exact Farkas witness is found (then inconclusive)."""
+    """The certificate that no gains give ``r_σ(L) < ρ``, checked by proofs_check: kind
+    ``s-detectability-infeasible`` (not S-detectable) when ``ρ ≥ 1``, else
+    ``gains-radius-below-infeasible`` (multipliers at ``ρ < 1`` leave ``r_σ(L) < 1`` open). Data
+    read as written decimals, rows of ``W`` summing to exactly 1 (seed 000 Def. 5.2.4;
+    ``docs/theory/s-detectability.md``, Theorems 3 and 4). :class:`RationalizationError` when no
+    exact Farkas witness is found (then inconclusive)."""
     n = np.asarray(A).shape[0]
     bound = rational_bound(rho)
+    kind = "s-detectability-infeasible" if bound >= 1 else "gains-radius-below-infeasible"
     A_q, W_q = rational_matrix(A), stochastic_matrix(W)
     C_q = [rational_matrix(np.asarray(c, float).reshape(-1, n)) if np.size(c) else [] for c in C]
     found = blind_set_witness(A_q, C_q, W_q, bound)
     if found is None:
         raise RationalizationError(
-            "s-detectability-infeasible: no rational blind set with λ² r_σ(W_SS) ≥ ρ, so no "
+            f"{kind}: no rational blind set with λ² r_σ(W_SS) ≥ ρ, so no "
             "exact Farkas witness of the LMI"
         )
     padded = [c if c else [[Fraction(0)] * n] for c in C_q]
     claim = {
-        "statement": "(A, C, W) is not S-detectable: no gains L_i give r_σ(L) < ρ",
+        "statement": ("(A, C, W) is not S-detectable: " if bound >= 1 else "")
+        + "no gains L_i give r_σ(L) < ρ",
         "spectral_radius_below": str(bound),
     }
     data = {"A": fraction_strings(A_q), "C": strings(padded), "W": fraction_strings(W_q)}
     witness = {"Lambda": strings(found["Lambda"]), "Psi": strings(found["Psi"])}
-    cert = envelope("s-detectability-infeasible", claim, data, witness, source=SOURCE, case=case)
+    cert = envelope(kind, claim, data, witness, source=SOURCE, case=case)
     why = checked(cert)
     if why is not None:  # too costly to check, or a bug: never a reason to weaken the claim
-        raise RationalizationError(f"s-detectability-infeasible: {why}")
+        raise RationalizationError(f"{kind}: {why}")
     cert["produced_by"] = {
         "tool": "trackcert",
         "construction": "blind set",

@@ -2,19 +2,30 @@
 
 Every class derives from :class:`TrackcertError` and from the builtin it refines, so callers may
 catch either. The CLI turns any :class:`TrackcertError` into exit code 2 (bad input), 1 (the
-property does not hold: :class:`PropertyFails`) or 3 (inconclusive) with its message and never a
-traceback.
+property does not hold: :class:`PropertyFails`), 3 (inconclusive) or 4 (a fault of the machine,
+:class:`FaultError`) with its message and never a traceback (:mod:`theory.core.verdicts`).
 """
 
 from __future__ import annotations
 
 __all__ = [
+    "COMMAND_LINE",
+    "ENVIRONMENT",
     "CaseError",
+    "ClusterError",
+    "FaultError",
     "InconclusiveError",
+    "OutputError",
     "PropertyFails",
     "SolverError",
     "TrackcertError",
 ]
+
+COMMAND_LINE = "<command line>"
+"""The ``file`` of an error in a command-line option (not in a case file)."""
+
+ENVIRONMENT = "<environment>"
+"""The ``file`` of an error in an environment setting (``TRACKCERT_…``)."""
 
 
 class TrackcertError(Exception):
@@ -78,6 +89,34 @@ class PropertyFails(TrackcertError):  # noqa: N818 (a verdict, not a malfunction
     For example ``trackcert certify`` on a case whose S-detectability an exact alternative
     certificate refutes. The message says which check decided it.
     """
+
+
+class FaultError(TrackcertError):
+    """The run could not finish for a reason that is neither the input nor the property: the
+    machine failed (a write, the cluster). Never a verdict (CLI exit code 4)."""
+
+
+class OutputError(FaultError, OSError):
+    """Writing an output failed (a full disk, a lost permission): names the path and the reason.
+
+    Parameters
+    ----------
+    path : str
+        The output as the user named it (a file, or the ``-o`` folder).
+    reason : str
+        The system's reason (``No space left on device``).
+    left : str
+        What the output is now (``left as it was``).
+    """
+
+    def __init__(self, path: str, reason: str, left: str) -> None:
+        self.path = path
+        self.reason = reason
+        super().__init__(f"could not write {path}: {reason}; {left}")
+
+
+class ClusterError(FaultError, TimeoutError):
+    """The Dask cluster cannot run the tasks (no worker joined it in time)."""
 
 
 def _brief(value: object, limit: int = 120) -> str:

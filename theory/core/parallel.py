@@ -18,39 +18,60 @@ Where the tasks run:
   the context ends. Its workers are forked from a ``forkserver`` that has imported the caller's
   ``preload`` modules once, so no worker imports them again;
 * ``scheduler="tcp://host:8786"`` (or the ``TRACKCERT_SCHEDULER`` setting): an existing Dask
-  cluster, whose workers must have trackcert installed.
+  cluster, whose workers must have trackcert installed. The engine waits at most
+  ``$TRACKCERT_WORKER_TIMEOUT`` seconds (default :data:`WORKER_TIMEOUT`) for a first worker, and
+  as long again whenever the cluster has lost every worker while tasks are pending; then it
+  raises :class:`~theory.core.errors.ClusterError` (CLI exit 4) instead of waiting for ever.
 
 Inside a task (on a Dask worker) :func:`engine` always runs serially: nested parallelism would
 only oversubscribe the cores.
+
+Every task runs with its BLAS and OpenMP thread pools pinned to one thread (``threadpoolctl``),
+wherever it runs — in this process on the serial path, on a local or remote worker — so a
+result never depends on how many threads summed a matrix product (:func:`_one_thread`).
 """
 
 from __future__ import annotations
 
+import functools
 import logging
 import os
+import queue
 import threading
+import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
-from theory.core.errors import CaseError
+from theory.core.errors import COMMAND_LINE, ENVIRONMENT, CaseError, ClusterError
 
 __all__ = [
     "SCHEDULER_SETTING",
+    "WORKER_TIMEOUT_SETTING",
     "Outcome",
     "TaskRunner",
     "default_workers",
     "engine",
     "in_worker",
     "scheduler_address",
+    "worker_timeout",
 ]
 
 SCHEDULER_SETTING = "TRACKCERT_SCHEDULER"
 """Environment setting naming a Dask scheduler address (``--scheduler`` overrides it)."""
 
+WORKER_TIMEOUT_SETTING = "TRACKCERT_WORKER_TIMEOUT"
+"""Environment setting: seconds to wait for a worker on a scheduler that has none."""
+
 CONNECT_TIMEOUT = 10.0
 """Seconds to wait for a scheduler given by address before reporting it unreachable."""
+
+WORKER_TIMEOUT = 60.0
+"""Default seconds to wait for a worker (a ``dask worker`` joins in a few seconds)."""
+
+POLL_SECONDS = 2.0
+"""While tasks are pending and none finishes, how often the engine counts the cluster's workers."""
 
 WORKER_MEMORY = "2GiB"
 """Memory limit of each LocalCluster worker (Dask pauses, then restarts, a worker above it)."""
@@ -105,6 +126,32 @@ def scheduler_address(option: str | None = None) -> str | None:
     return option or os.environ.get(SCHEDULER_SETTING) or None
 
 
+def worker_timeout() -> float:
+    """Seconds to wait for a worker: ``$TRACKCERT_WORKER_TIMEOUT``, else :data:`WORKER_TIMEOUT`.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    CaseError
+        If the setting is not a number of seconds > 0 (file ``<environment>``).
+    """
+    text = os.environ.get(WORKER_TIMEOUT_SETTING)
+    if text is None:
+        return WORKER_TIMEOUT
+    try:
+        seconds = float(text)
+    except ValueError:
+        seconds = 0.0
+    if not 0 < seconds < float("inf"):
+        raise CaseError(
+            WORKER_TIMEOUT_SETTING, "a number of seconds > 0", text, file=ENVIRONMENT
+        )
+    return seconds
+
+
 def in_worker() -> bool:
     """Whether this code runs inside a task on a Dask worker."""
     try:
@@ -129,12 +176,27 @@ class TaskRunner:
         Address of an existing scheduler.
     preload : tuple of str
         Modules the local cluster's forkserver imports before forking the workers.
+    named : tuple of str
+        Where the scheduler's address came from, for messages: (field, file), e.g.
+        ``("--scheduler", "<command line>")``.
+    wait : float
+        Seconds to wait for a worker (:func:`worker_timeout`).
     """
 
-    def __init__(self, workers: int, scheduler: str | None, preload: Sequence[str] = ()) -> None:
+    def __init__(
+        self,
+        workers: int,
+        scheduler: str | None,
+        preload: Sequence[str] = (),
+        *,
+        named: tuple[str, str] = ("--scheduler", COMMAND_LINE),
+        wait: float = WORKER_TIMEOUT,
+    ) -> None:
         self.workers = workers
         self.scheduler = scheduler
         self.preload = tuple(preload)
+        self.named = named
+        self.wait = wait
         self._client: Any = None
         self._cluster: Any = None
         self._starting: threading.Thread | None = None
@@ -208,16 +270,42 @@ class TaskRunner:
         if self.serial or (len(items) <= 1 and self.scheduler is None):
             yield from _serial(fn, items)  # one task is not worth starting a local cluster
             return
-        from distributed import as_completed
-
         client = self._connect()
-        futures = client.map(fn, list(items), pure=False)
+        futures = client.map(functools.partial(_one_thread, fn), list(items), pure=False)
         index = {future.key: i for i, future in enumerate(futures)}
+        finished: queue.SimpleQueue = queue.SimpleQueue()
+        for future in futures:
+            future.add_done_callback(finished.put)
+        remaining, idle_since = len(futures), None
         try:
-            for future in as_completed(futures):
+            while remaining:
+                try:
+                    future = finished.get(timeout=POLL_SECONDS)
+                except queue.Empty:
+                    idle_since = self._check_workers(client, idle_since)
+                    continue
+                remaining -= 1
                 yield _outcome(index[future.key], future)
         finally:
             client.cancel(futures)
+
+    def _check_workers(self, client: Any, idle_since: float | None) -> float | None:
+        """``None`` while the cluster has a worker, else when it lost the last; raise once that
+        is :attr:`wait` seconds ago (the tasks would wait for ever)."""
+        if client.nthreads():
+            return None
+        now = time.monotonic()
+        if idle_since is None:
+            return now
+        if now - idle_since >= self.wait:
+            raise ClusterError(self._no_worker(f"has had no worker for {self.wait:g} s"))
+        return idle_since
+
+    def _no_worker(self, what: str) -> str:
+        return (
+            f"the Dask scheduler at {self.scheduler} {what} (the wait is "
+            f"${WORKER_TIMEOUT_SETTING}); start one with `dask worker {self.scheduler}`"
+        )
 
     @property
     def size(self) -> int:
@@ -267,12 +355,20 @@ class TaskRunner:
         if self.scheduler is not None:
             try:
                 self._client = Client(self.scheduler, timeout=CONNECT_TIMEOUT)
-            except (OSError, TimeoutError) as error:
+            except (OSError, ValueError) as error:
+                field, file = self.named
                 raise CaseError(
-                    "--scheduler",
+                    field,
                     "the address of a running Dask scheduler",
                     self.scheduler,
+                    file=file,
                     hint=f"{error}; start one with `dask scheduler` and `dask worker ADDRESS`",
+                ) from None
+            try:
+                self._client.wait_for_workers(1, timeout=self.wait)
+            except TimeoutError:
+                raise ClusterError(
+                    self._no_worker(f"has no worker after {self.wait:g} s")
                 ) from None
             return
         import dask
@@ -347,11 +443,26 @@ class Outcome:
 def _serial(fn: Callable[[T], R], items: Sequence[T]) -> Iterator[Outcome]:
     for i, item in enumerate(items):
         try:
-            value = fn(item)
+            value = _one_thread(fn, item)
         except Exception as error:
             yield Outcome(i, error=error)
         else:
             yield Outcome(i, value)
+
+
+def _one_thread(fn: Callable[[T], R], item: T) -> R:
+    """``fn(item)`` with the BLAS and OpenMP pools of this process at one thread.
+
+    The same on every path: a multi-threaded BLAS sums a product in another order than a
+    single-threaded one, and the last digit of a result would then depend on where its task ran.
+    SciPy's BLAS is loaded first (numpy's is loaded with numpy), so that a task importing
+    ``scipy.linalg`` for the first time does not get an unpinned pool.
+    """
+    import scipy.linalg  # noqa: F401 (loads SciPy's BLAS, so that it is pinned too)
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1):
+        return fn(item)
 
 
 def _outcome(i: int, future: Any) -> Outcome:
@@ -388,12 +499,20 @@ def engine(
     Raises
     ------
     CaseError
-        If ``workers < 1`` (field ``--workers``), or the scheduler cannot be reached.
+        If ``workers < 1`` (field ``--workers``), the scheduler cannot be reached (its first
+        use; field ``--scheduler`` or ``TRACKCERT_SCHEDULER``), or ``$TRACKCERT_WORKER_TIMEOUT``
+        is not a number of seconds.
+    ClusterError
+        If the scheduler has no worker for ``$TRACKCERT_WORKER_TIMEOUT`` seconds while tasks
+        wait (its first use).
     """
     count = default_workers() if workers is None else workers
     if count < 1:
-        raise CaseError("--workers", "an integer ≥ 1", workers)
-    runner = TaskRunner(count, scheduler_address(scheduler), preload)
+        raise CaseError("--workers", "an integer ≥ 1", workers, file=COMMAND_LINE)
+    address = scheduler_address(scheduler)
+    named = ("--scheduler", COMMAND_LINE) if scheduler else (SCHEDULER_SETTING, ENVIRONMENT)
+    wait = worker_timeout() if address is not None else WORKER_TIMEOUT
+    runner = TaskRunner(count, address, preload, named=named, wait=wait)
     try:
         yield runner
     finally:

@@ -1,38 +1,48 @@
-"""One exit-code policy for every command, and the verdict words it maps (DESIGN.md, *CLI*).
+"""One exit-code rule for every command, and the verdict words it maps (DESIGN.md, *CLI*).
 
 A command decides a property — True (holds), False (fails) or None (inconclusive: a margin lies
-inside its tolerance, a solver failed) — or judges a case's ``expect`` block
-(:mod:`theory.core.expectations`), which reduces to the same three values by
+inside its tolerance, a solver failed) — and judges the keys of the case's ``expect`` block that
+it observes (:mod:`theory.core.expectations`), which reduce to the same three values by
 :func:`expectations_verdict`: every expectation met → True, one unmet → False, otherwise (one
-inconclusive or unchecked, none unmet) → None. Then
+inconclusive or unchecked, none unmet) → None. :func:`command_verdict` is the rule: **when the
+command judged at least one expectation, the expectations' verdict decides; otherwise the
+property's** (a command with no property of its own — ``simulate``, ``pf``, ``report`` — has
+True: it ran). Then
 
 - True → exit 0 (:data:`EXIT_HOLDS`), claim status ``verified``
   (:func:`theory.core.claims.status_of`);
 - False → exit 1 (:data:`EXIT_FAILS`), claim status ``refuted``;
 - None → exit 3 (:data:`EXIT_INCONCLUSIVE`), claim status ``inconclusive``;
-- bad input → exit 2 (:data:`EXIT_BAD_INPUT`).
+- bad input → exit 2 (:data:`EXIT_BAD_INPUT`);
+- a fault of the machine → exit 4 (:data:`EXIT_FAULT`): writing an output failed, no worker
+  joined the cluster in time, memory ran out;
+- interrupted by a signal → 128 + its number (:func:`interrupted_code`: SIGINT 130, SIGTERM 143).
 
-Bad input is not a verdict: it is a :class:`~theory.core.errors.CaseError` (or another
-:class:`~theory.core.errors.TrackcertError` that is not a verdict), reported on stderr.
+Bad input and faults are not verdicts: a :class:`~theory.core.errors.CaseError` (or another
+:class:`~theory.core.errors.TrackcertError` that is not a verdict) and a
+:class:`~theory.core.errors.FaultError`, reported on stderr.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 __all__ = [
     "EXIT_BAD_INPUT",
     "EXIT_FAILS",
+    "EXIT_FAULT",
     "EXIT_HOLDS",
     "EXIT_INCONCLUSIVE",
     "Verdict",
     "all_hold",
+    "command_verdict",
     "exit_code",
     "expectations_verdict",
+    "interrupted_code",
 ]
 
-EXIT_HOLDS, EXIT_FAILS, EXIT_BAD_INPUT, EXIT_INCONCLUSIVE = 0, 1, 2, 3
+EXIT_HOLDS, EXIT_FAILS, EXIT_BAD_INPUT, EXIT_INCONCLUSIVE, EXIT_FAULT = 0, 1, 2, 3, 4
 
 Verdict = bool | None
 """True holds, False fails, None inconclusive."""
@@ -80,3 +90,36 @@ def expectations_verdict(expectations: Iterable[Any]) -> Verdict:
     if "unmet" in verdicts:
         return False
     return None if verdicts - {"met"} else True
+
+
+def command_verdict(property_verdict: Verdict, expectations: Sequence[Any]) -> Verdict:
+    """The verdict a command exits with: its expectations' if it judged any, else its property's.
+
+    Parameters
+    ----------
+    property_verdict : bool or None
+        What the command decided (True for a command that decides no property of its own).
+    expectations : sequence of Expectation
+        The expectations the command judged (the keys of the case's ``expect`` block it
+        observes; empty when the case states none of them).
+
+    Returns
+    -------
+    bool or None
+    """
+    return expectations_verdict(expectations) if expectations else property_verdict
+
+
+def interrupted_code(signum: int) -> int:
+    """The exit code of a command stopped by signal ``signum``: 128 + ``signum``, as shells do.
+
+    Parameters
+    ----------
+    signum : int
+        The signal (``signal.SIGINT`` = 2 → 130, ``signal.SIGTERM`` = 15 → 143).
+
+    Returns
+    -------
+    int
+    """
+    return 128 + signum

@@ -4,7 +4,8 @@
 and every ``pf`` claim of the domain's registry on it; the claims observe the case's ``expect``
 keys in their evidence (``kind: pf`` has no separate observer), and the block is judged from
 those observations with :mod:`theory.core.expectations`, exactly as ``trackcert report`` judges
-it. With a folder it writes ``pf.json`` and the figures.
+it. With a folder it writes ``pf.json`` and the figures, replacing the folder whole
+(:func:`theory.core.atomic_output.replaced_folder`).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
+from theory.core.atomic_output import check_replaceable, replaced_folder
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, Context, RunCache
 from theory.core.errors import CaseError
@@ -31,7 +33,10 @@ from theory.particle.experiments import (
 )
 from theory.particle.registry import CLAIMS
 
-__all__ = ["SNAPSHOT_STEPS", "PfReport", "pf_report"]
+__all__ = ["MARKER", "SNAPSHOT_STEPS", "PfReport", "pf_report"]
+
+MARKER = "pf.json"
+"""The file every ``pf`` folder has: a folder without it is not replaced (unless empty)."""
 
 SNAPSHOT_STEPS = (0, 5, 20)
 """Steps whose particle clouds the figures show."""
@@ -88,12 +93,16 @@ def pf_report(
 
     ``runs`` and ``seed`` default to the case's; the Monte Carlo runs go to ``runner`` (default:
     this process) and are shared by the claims; ``progress`` is called with the number of runs
-    finished; ``out`` is the folder for ``pf.json`` and the figures (``None``: write nothing).
+    finished; ``out`` is the folder for ``pf.json`` and the figures, replaced whole (``None``:
+    write nothing; :class:`CaseError` if it holds files but no ``pf.json``,
+    :class:`OutputError` if writing fails, leaving it as it was).
     """
     if case.kind != "pf":
         raise CaseError(
             "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
         )
+    if out is not None:
+        check_replaceable(out, MARKER)
     spec = replace(
         case.spec, runs=runs or case.spec.runs, seed=case.spec.seed if seed is None else seed
     )
@@ -105,10 +114,13 @@ def pf_report(
         found for r in claims for found in observations_from(r.claim, plain(r.evidence), r.status)
     ]
     expectations = evaluate(case.name, plain(case.expect), observed)
-    figures = () if out is None else _figures(case, mc, Path(out))
-    report = PfReport(case, node_summary(mc, spec), tuple(claims), tuple(expectations), figures)
-    if out is not None:
-        (Path(out) / "pf.json").write_text(json.dumps(plain(report.to_json()), indent=2) + "\n")
+    report = PfReport(case, node_summary(mc, spec), tuple(claims), tuple(expectations), ())
+    if out is None:
+        return report
+    with replaced_folder(out, MARKER) as staging:
+        figures = tuple(str(Path(out) / Path(f).name) for f in _figures(case, mc, staging))
+        report = replace(report, figures=figures)
+        (staging / MARKER).write_text(json.dumps(plain(report.to_json()), indent=2) + "\n")
     return report
 
 

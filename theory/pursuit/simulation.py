@@ -31,7 +31,7 @@ import numpy as np
 
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, NotApplicable
-from theory.core.errors import CaseError
+from theory.core.errors import CaseError, PropertyFails
 from theory.core.expectations import Observed
 from theory.core.tolerances import ISS_BOUND_RTOL, RUNAWAY_FACTOR
 from theory.pursuit.case import PursuitSpec
@@ -77,16 +77,18 @@ def default_steps() -> int:
 
 
 def check_pursuit_case(spec: PursuitSpec) -> None:
-    """CaseError naming what the simulation cannot run: no ``target``, no ``dekf``, Δ singular."""
+    """CaseError naming what the simulation cannot run (no ``target``, no ``dekf``); PropertyFails
+    for a rank-deficient Δ of (22) (ε₁ = 0): a valid case whose controller (26) does not exist,
+    as ``trackcert iss`` and ``certify`` decide (seed 003 Remark 6; docs/errata.md)."""
     if spec.target is None:
         raise CaseError("pursuit.target", "a target motion to simulate", "nothing")
     if spec.dekf is None:
         raise CaseError("pursuit.dekf", "DEKF settings (Ts, sigma, V, Q) to simulate", "nothing")
     if spec.epsilon[0] == 0:
-        raise CaseError(
-            "pursuit.epsilon",
-            "an ε making Δ of (22) full row rank (ε₁ ≠ 0 in 2-D)",
-            [float(e) for e in spec.epsilon],
+        raise PropertyFails(
+            f"pursuit.epsilon = {[float(e) for e in spec.epsilon]}: ε₁ = 0, so Δ of eq. (22) is "
+            "not of full row rank and the controller (26) does not exist (seed 003 Remark 6 "
+            "needs ε₁ ≠ 0, docs/errata.md): there is nothing to simulate"
         )
 
 

@@ -2,7 +2,7 @@
 
 - :mod:`theory.report.runner` runs the claims as tasks on the engine (:mod:`theory.core.parallel`)
   and never lets one failing check stop the rest; :mod:`theory.report.tasks` is what a worker
-  runs (claims of one case, their shared :class:`~theory.core.run_cache.RunCache`);
+  runs (claims of one case, their shared :class:`~theory.core.claims.RunCache`);
   :mod:`theory.report.records` the records they return; :mod:`theory.report.time_limit` the
   per-check limit; :mod:`theory.report.timings` writes ``timings.json``;
 - :mod:`theory.core.expectations` compares each case's ``expect`` block with the claims' values;

@@ -2,10 +2,12 @@
 
 :func:`build_report` runs :func:`theory.report.runner.run_claims` on the caller's task engine
 (:func:`theory.core.parallel.engine`, preloading :func:`theory.report.tasks.worker_modules`;
-default: serially in this process) with figures drawn in a temporary folder, writes the report with
-:func:`theory.report.render.write_report` and the checks' times with
-:func:`theory.report.timings.write_timings`; the command only shows progress and a summary and
-exits with the expectations' verdict (:mod:`theory.core.verdicts`).
+default: serially in this process) with figures drawn in a temporary folder, then writes the report
+with :func:`theory.report.render.write_report` and the checks' times with
+:func:`theory.report.timings.write_timings` into a staging folder that replaces the report folder
+whole (:func:`theory.core.atomic_output.replaced_folder`): a failure or a signal leaves the old
+report as it was. The command only shows progress and a summary and exits with the expectations'
+verdict (:mod:`theory.core.verdicts`).
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from theory.core.atomic_output import check_replaceable, recover, replaced_folder
 from theory.core.case_file import Case
 from theory.core.claims import Claim
 from theory.core.errors import CaseError
@@ -26,7 +29,10 @@ from theory.report.runner import ProgressHook, RunResult, run_claims, select_cla
 from theory.report.schedule import load_estimates
 from theory.report.timings import timings_document, write_timings
 
-__all__ = ["build_report", "check_count", "choose_claims"]
+__all__ = ["MARKER", "build_report", "check_count", "choose_claims"]
+
+MARKER = "report.json"
+"""The file every report folder has: a folder without it is not replaced (unless empty)."""
 
 
 def choose_claims(patterns: Sequence[str] = ()) -> list[Claim]:
@@ -120,13 +126,18 @@ def build_report(
     Raises
     ------
     CaseError
-        If ``errata_path`` is not a readable file, the folder cannot be written or the engine's
-        scheduler cannot be reached.
+        If ``errata_path`` is not a readable file, the folder is not a report folder
+        (:func:`theory.core.atomic_output.replaceable_problem`) or the engine's scheduler cannot
+        be reached.
+    OutputError
+        If writing fails (the folder is left as it was).
     """
     if errata_path is not None and not Path(errata_path).is_file():
         raise CaseError(
             "--errata", "a readable Markdown file", str(errata_path), file="<command line>"
         )
+    recover(out_dir)  # a report killed while swapping folders: its old folder comes back first
+    check_replaceable(out_dir, MARKER)
     with tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures:
         started = time.perf_counter()
         run = run_claims(
@@ -140,12 +151,13 @@ def build_report(
             estimates=load_estimates(Path(out_dir)),
         )
         wall = time.perf_counter() - started
-        document = write_report(run, out_dir, errata_path=errata_path)
         timings = timings_document(
             run,
             wall_seconds=wall,
             workers=1 if runner is None else runner.size,
             scheduler=None if runner is None else runner.scheduler,
         )
-        write_timings(timings, Path(out_dir))
+        with replaced_folder(out_dir, MARKER) as staging:
+            document = write_report(run, staging, errata_path=errata_path)
+            write_timings(timings, staging)
     return run, document

@@ -19,7 +19,7 @@ from theory.core.case_file import Case, bundled_case_dir
 from theory.core.tolerances import table
 from theory.registry import all_claims
 from theory.report.records import Record
-from theory.report.time_limit import enforceable
+from theory.report.time_limit import clock_name, enforceable
 
 __all__ = ["PACKAGES", "SEED_RULE", "environment"]
 
@@ -39,6 +39,7 @@ PACKAGES = (
     "jinja2",
     "pyyaml",
     "hypothesis",
+    "threadpoolctl",
 )
 """Distributions whose versions the report records (trackcert's runtime dependencies)."""
 
@@ -62,7 +63,7 @@ def environment(
     records : sequence of Record
         The results (their tolerances are summarised).
     time_limit : float or None
-        Seconds allowed to each check (``None``: no limit).
+        CPU seconds allowed to each check (``None``: no limit).
 
     Returns
     -------
@@ -72,9 +73,10 @@ def environment(
         ``seed_rule``, ``cases`` (name, kind, file, SHA-256, tolerance overrides),
         ``claim_modules``, ``claims_registered``, ``tolerances`` (name → the distinct
         values used by the claims), ``tolerance_table`` (every named tolerance with its default,
-        unit, meaning and why: :func:`theory.core.tolerances.table`), ``time_limit`` (seconds or
-        ``None``) and
-        ``time_limit_enforced`` (whether this platform can interrupt a check).
+        unit, meaning and why: :func:`theory.core.tolerances.table`), ``time_limit`` (CPU
+        seconds or ``None``), ``time_limit_clock`` (what is counted:
+        :func:`theory.report.time_limit.clock_name`) and ``time_limit_enforced`` (whether this
+        platform can interrupt a check).
     """
     return {
         "python": platform.python_version(),
@@ -90,6 +92,7 @@ def environment(
         "tolerances": _tolerances(records),
         "tolerance_table": table(),
         "time_limit": time_limit,
+        "time_limit_clock": clock_name(),
         "time_limit_enforced": time_limit is not None and enforceable(),
     }
 

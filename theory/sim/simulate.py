@@ -6,23 +6,30 @@ A kind that ``trackcert simulate`` runs has a simulator (:func:`theory.kinds.sim
 observed (:class:`Finished`). :func:`simulate_case` runs it on the engine
 (:func:`theory.sim.runner.monte_carlo`: run ``i`` seeded by child ``i`` of
 ``SeedSequence(seed)``), judges the case's ``expect`` block with
-:mod:`theory.core.expectations` when the simulator observes it, and writes ``summary.json``.
+:mod:`theory.core.expectations` when the simulator observes it, and writes the files and
+``summary.json`` into a staging folder that replaces the output folder whole
+(:func:`theory.core.atomic_output.replaced_folder`): a failure or a signal leaves the old folder as
+it was.
 """
 
 from __future__ import annotations
 
 import json
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+from theory.core.atomic_output import check_replaceable, replaced_folder
 from theory.core.case_file import Case
 from theory.core.expectations import Expectation, Observed, judge
 from theory.core.jsonable import plain
 from theory.core.verdicts import Verdict, expectations_verdict
 
-__all__ = ["Finished", "Simulation", "Simulator", "simulate_case"]
+__all__ = ["MARKER", "Finished", "Simulation", "Simulator", "simulate_case"]
+
+MARKER = "summary.json"
+"""The file every simulation folder has: a folder without it is not replaced (unless empty)."""
 
 SOURCE = "trackcert simulate"
 """The observations' source in the command's verdict records."""
@@ -144,7 +151,8 @@ def simulate_case(
     simulator : Simulator
         From :func:`theory.kinds.simulator_for` (or an interim one).
     folder : Path
-        Where data, figures and ``summary.json`` go (created).
+        Where data, figures and ``summary.json`` go: created, or replaced whole if it is an
+        earlier simulation's (or empty).
     runs, seed, workers : int
         Monte Carlo runs, root seed (run ``i`` uses child ``i``) and local worker processes.
     scheduler : str, optional
@@ -157,10 +165,19 @@ def simulate_case(
     Returns
     -------
     Simulation
+
+    Raises
+    ------
+    CaseError
+        If ``folder`` holds files but no ``summary.json``
+        (:func:`theory.core.atomic_output.replaceable_problem`).
+    OutputError
+        If writing fails (the folder is left as it was).
     """
     from theory.core.parallel import engine
     from theory.sim.runner import monte_carlo
 
+    check_replaceable(folder, MARKER)
     with engine(min(workers, runs), scheduler) as runner:
         results = monte_carlo(
             simulator.spec,
@@ -171,13 +188,15 @@ def simulate_case(
             simulate=simulator.run,
         )
     folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    finished = simulator.finish(case, simulator.spec, results, folder, figures)
-    expectations = (
-        () if finished.observed is None else judge(case, finished.observed, source=SOURCE)
-    )
-    simulation = Simulation(
-        case, runs, seed, min(workers, runs), simulator.fields, finished, tuple(expectations)
-    )
-    (folder / "summary.json").write_text(json.dumps(plain(simulation.to_json()), indent=2))
+    with replaced_folder(folder, MARKER) as staging:
+        finished = simulator.finish(case, simulator.spec, results, staging, figures)
+        files = [folder / Path(f).relative_to(staging) for f in finished.files]
+        finished = replace(finished, files=files)
+        expectations = (
+            () if finished.observed is None else judge(case, finished.observed, source=SOURCE)
+        )
+        simulation = Simulation(
+            case, runs, seed, min(workers, runs), simulator.fields, finished, tuple(expectations)
+        )
+        (staging / MARKER).write_text(json.dumps(plain(simulation.to_json()), indent=2))
     return simulation

@@ -1,27 +1,29 @@
 """``sweep.csv``, ``sweep.json`` and ``sweep.png``, written all or nothing.
 
-The three files are written into a fresh temporary folder next to the output folder and then
-moved into it (``os.replace``), so an error while writing (a full disk, a figure that fails)
-leaves the output folder as it was. ``sweep.csv`` is tidy: one row per point, the columns of
-:meth:`theory.sweep.run.Sweep.columns`; floats are written with ``repr`` (round-trip exact),
-missing values as empty cells, the tolerances as ``name=value`` pairs separated by ``;``.
+The three files are written into a staging folder next to the output folder, which then replaces
+it whole (:func:`theory.core.atomic_output.replaced_folder`), so an error while writing (a full
+disk, a figure that fails) or a signal leaves the output folder as it was. ``sweep.csv`` is
+tidy: one row per point, the columns of :meth:`theory.sweep.run.Sweep.columns`; floats are
+written with ``repr`` (round-trip exact), missing values as empty cells, the tolerances as
+``name=value`` pairs separated by ``;``.
 """
 
 from __future__ import annotations
 
 import csv
 import json
-import os
-import shutil
-import tempfile
 from pathlib import Path
 from typing import Any
 
+from theory.core.atomic_output import replaced_folder
 from theory.sweep.figure import write_sweep_figure
 
-__all__ = ["FILES", "csv_cell", "write_sweep", "write_sweep_csv"]
+__all__ = ["FILES", "MARKER", "csv_cell", "write_sweep", "write_sweep_csv"]
 
 FILES = ("sweep.csv", "sweep.json", "sweep.png")
+
+MARKER = "sweep.json"
+"""The file every sweep folder has: a folder without it is not replaced (unless empty)."""
 
 
 def csv_cell(value: Any) -> str:
@@ -68,14 +70,14 @@ def write_sweep_csv(sweep: Any, path: Path) -> Path:
 
 
 def write_sweep(sweep: Any, folder: Path, *, figure: bool = True) -> list[Path]:
-    """Write ``sweep.csv``, ``sweep.json`` and (``figure``) ``sweep.png`` into ``folder``.
+    """Write ``sweep.csv``, ``sweep.json`` and (``figure``) ``sweep.png`` as the folder ``folder``.
 
     Parameters
     ----------
     sweep : Sweep
         From :func:`theory.sweep.run.sweep_case`.
     folder : pathlib.Path
-        The output folder (created; other files in it are left alone).
+        The output folder: created, or replaced whole if it is an earlier sweep's (or empty).
     figure : bool
         Whether to draw ``sweep.png``.
 
@@ -83,21 +85,20 @@ def write_sweep(sweep: Any, folder: Path, *, figure: bool = True) -> list[Path]:
     -------
     list of pathlib.Path
         The files written, in :data:`FILES` order.
+
+    Raises
+    ------
+    CaseError
+        If ``folder`` holds files but no ``sweep.json``.
+    OutputError
+        If writing fails (the folder is left as it was).
     """
     folder = Path(folder)
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{folder.name}-", dir=folder.parent))
-    try:
+    names = FILES[: 3 if figure else 2]
+    with replaced_folder(folder, MARKER) as staging:
         write_sweep_csv(sweep, staging / FILES[0])
         text = json.dumps(sweep.to_json(), indent=2, ensure_ascii=False) + "\n"
         (staging / FILES[1]).write_text(text, encoding="utf-8")
         if figure:
             write_sweep_figure(sweep, staging / FILES[2])
-        folder.mkdir(exist_ok=True)
-        written = []
-        for name in FILES[: 3 if figure else 2]:
-            os.replace(staging / name, folder / name)
-            written.append(folder / name)
-        return written
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)
+    return [folder / name for name in names]

@@ -24,7 +24,7 @@ import numpy as np
 
 from theory.core.case_file import Case
 from theory.core.claims import status_of
-from theory.core.errors import CaseError, InconclusiveError, SolverError
+from theory.core.errors import CaseError, InconclusiveError, PropertyFails, SolverError
 from theory.core.expectations import Observed, judge
 from theory.core.verdicts import (
     EXIT_BAD_INPUT,
@@ -150,7 +150,9 @@ def simulate_point(
     Raises
     ------
     CaseError
-        If the simulator refuses the case (e.g. a pursuit case with ε₁ = 0).
+        If the simulator refuses the case (e.g. a pursuit case without a target).
+    PropertyFails
+        If the case's controller does not exist (a pursuit case with ε₁ = 0).
     """
     from theory.kinds import simulator_for
     from theory.sim.runner import monte_carlo
@@ -222,6 +224,8 @@ def evaluate_point(setup: SweepSetup, point: int, values: Sequence[Any]) -> Row:
             summary, observed = simulate_point(case, setup.steps, seed)
         except CaseError as error:
             seed, notes = None, [f"not simulated: {error.expected} at {error.field}"]
+        except PropertyFails as error:  # e.g. ε₁ = 0: the controller does not exist
+            seed, notes = None, [f"not simulated: {error}"]
         notes += list(summary.get("warnings") or [])
     if judgement is None:
         judgement = _by_simulation(case, observed, summary)

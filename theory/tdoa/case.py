@@ -2,7 +2,7 @@
 
 ``tdoa:`` block (seed 000 ch. 4)::
 
-    T: 1.0                     # ping period (s), > 0; default 1
+    T: 1.0                     # ping period (s), > 0; required (a physical quantity)
     dim: 3                     # 2 or 3; default: inferred from the coordinates
     agents: [[x, y, z], ...]   # N × dim, or a trajectory: steps × N × dim
     target: [x, y, z]          # dim, or a trajectory: steps × dim
@@ -20,8 +20,8 @@ matrix's support (directed if it is not symmetric).
     target_velocity: [0, 0, 0]   # initial target velocity [0]
     Q: 0.01                      # white-acceleration covariance: number (· I₃) or 3 × 3
     R: 1.0                       # TDOA noise variance r, R_i = r I_{|N_i|}
-    T: 1.0                       # ping period (s)
-    tau: 0.1                     # consensus period (s); T/tau must be an integer
+    T: 1.0                       # ping period (s) [1]
+    tau: 0.1                     # consensus period (s); T/tau must be an integer [T]
     P0: 100                      # initial covariance: number (· I₆) or 6 × 6
     x0: [0, 0, 0, 0, 0, 0]       # initial estimate of every agent [0]
     b: 0                         # movement threshold: move iff ‖P_i‖ > b; .inf never moves
@@ -192,10 +192,18 @@ class TdoaSpec:
         )
 
 
+def required_period(block: Mapping[str, Any], field: str) -> float:
+    """The ping period ``T`` of a ``tdoa`` block: required, never defaulted silently."""
+    if "T" not in block:
+        hint = "The field is required (it is never defaulted); e.g. `T: 1.0`."
+        raise CaseError(field, "the ping period in seconds, > 0", "nothing", hint=hint)
+    return positive_number(block["T"], field)
+
+
 def parse_tdoa(block: Mapping[str, Any]) -> TdoaSpec:
     """Validate a ``tdoa:`` block; a :class:`CaseError` names any bad field."""
     check_keys(block, FIELDS, "tdoa")
-    T = positive_number(block.get("T", 1.0), "tdoa.T")
+    T = required_period(block, "tdoa.T")
     agents, target = _positions(block)
     dim = agents.shape[2]
     _check_distinct(agents, target)

@@ -2,7 +2,7 @@
 
 Run from the repository root: ``PYTHONPATH=. python tests/data/certificates/generate.py``.
 ``valid/`` files must be accepted by ``proofs_check`` (exit 0), ``invalid/`` ones rejected
-(exit 1) and ``malformed/`` ones refused (exit 2); ``tests/test_proofs_check.py`` asserts
+(exit 1) and ``malformed/`` ones refused (exit 2); ``tests/proofs_check/`` asserts
 exactly that. Every bad file is a good one with one deliberate defect, named by the file.
 """
 
@@ -11,6 +11,7 @@ from __future__ import annotations
 import copy
 import json
 from fractions import Fraction
+from math import isqrt
 from pathlib import Path
 
 import numpy as np
@@ -96,6 +97,7 @@ def good() -> dict[str, dict]:
     ekf_modes = [[A_ekf @ (np.eye(2) - k @ h) for k, h in zip(Ks[0], Hs[0], strict=True)]]
     cases = HERE.parents[2] / "cases"
     case = load_case(cases / "fig43-case-d.yaml")
+    split = load_case(cases / "seed002-fig32-split.yaml")
     example2 = load_case(cases / "ch5-example-2-wg.yaml").spec
     lmi = s_detectability_witness(example2.A, example2.C, example2.W)
     return {
@@ -129,7 +131,11 @@ def good() -> dict[str, dict]:
             dual=True,
         ),
         **_boundary(),
+        **_radius_kinds(),
         "generic-rank-fig43-case-d": bundle(generic_rank_certificates(case.spec, case=case.name)),
+        "generic-rank-seed002-fig32-split-agent4": generic_rank_certificates(
+            split.spec, case=split.name
+        )[4],
         **{
             f"iss-{name}": iss_certificate(load_case(cases / f"{name}.yaml").spec, case=name)
             for name in ("pursuit-table1-n3", "pursuit-table2-n1")
@@ -156,6 +162,41 @@ def _boundary() -> dict[str, dict]:
         ),
         "s-detectability-infeasible-ch5-example2-Wb": infeasibility_certificate(
             example2.A, example2.C, example2.W
+        ),
+    }
+
+
+def _forged_example1() -> dict:
+    """Issue 23's forgery: seed 000 Example 1 at w₁₁ = w₂₂ = 0.3 (not S-detectable), zero gains,
+    P = I and ρ = 5. Its inequalities hold (5P_i − L_i(P) = 5I − 4I), so r_σ(L) < 5 is proved:
+    valid as ``gains-radius-below``, refused as ``s-detectability``."""
+    eye = [["1", "0"], ["0", "1"]]
+    return {
+        "format": "trackcert-certificate/1",
+        "kind": "gains-radius-below",
+        "source": "issue 23 (forged S-detectability certificate)",
+        "claim": {"statement": "r_σ(L) < 5 with zero gains", "spectral_radius_below": "5"},
+        "data": {
+            "A": [["2", "0"], ["0", "2"]],
+            "C": [[["1", "0"]], [["0", "1"]], eye],
+            "W": [["3/10", "7/10", "0"], ["7/10", "3/10", "0"], ["0", "0", "1"]],
+        },
+        "witness": {
+            "operator": "L",
+            "gains": [[["0"], ["0"]], [["0"], ["0"]], [["0", "0"], ["0", "0"]]],
+            "P": [eye, eye, eye],
+            "decrease": [eye, eye, eye],
+        },
+    }
+
+
+def _radius_kinds() -> dict[str, dict]:
+    """The kinds for any ρ: the forgery above, and Example 1 at w = 0.24 (S-detectable) where
+    no gains give r_σ(L) < 0.96 = λ² w₁₁ (exact multipliers of the blind agent 1)."""
+    return {
+        "gains-radius-below-ch5-example1-w0.3-zero-gains": _forged_example1(),
+        "gains-radius-below-infeasible-ch5-example1-w0.24-rho0.96": infeasibility_certificate(
+            *_example1(0.24)[:3], rho=Fraction(24, 25)
         ),
     }
 
@@ -224,6 +265,7 @@ def bad(valid: dict[str, dict]) -> tuple[dict[str, dict], dict[str, object]]:
     c["witness"]["rows"] = [1, 2, 3, 4, 5, 6]
     c["witness"]["minor"] = "0"
     invalid["generic-rank-singular-minor"] = c
+    malformed |= _claims_beyond_the_kind(valid)
     c = copy.deepcopy(valid["mjls-stability-scalar"])
     c["format"] = "trackcert-certificate/2"
     malformed["wrong-format-version"] = c
@@ -246,10 +288,63 @@ def bad(valid: dict[str, dict]) -> tuple[dict[str, dict], dict[str, object]]:
         valid["iss-pursuit-table2-n1"], "kp_bar", Fraction(9, 10)
     )
     c = copy.deepcopy(valid["iss-pursuit-table1-n3"])
+    c["witness"]["kappa"] = "-" + c["witness"]["kappa"]
+    invalid["iss-negative-kappa"] = c
+    invalid["iss-negative-radius-mu-r-understated"] = _negative_radius(
+        valid["iss-pursuit-table1-n3"]
+    )
+    c = copy.deepcopy(valid["iss-pursuit-table1-n3"])
     del c["witness"]["r"]
     malformed["iss-dropped-left-eigenvector"] = c
     malformed["nested-bundle"] = bundle([bundle([valid["mjls-stability-scalar"]])])
     return invalid, malformed
+
+
+def _claims_beyond_the_kind(valid: dict[str, dict]) -> dict[str, dict]:
+    """Certificates whose claimed numbers fall outside their kind's range, or are not canonical.
+
+    Each keeps inequalities that hold: only the kind's claim (or the spelling) is wrong."""
+    out = {}
+    c = copy.deepcopy(valid["gains-radius-below-ch5-example1-w0.3-zero-gains"])
+    c["kind"] = "s-detectability"
+    c["claim"]["statement"] = "(A, C, W) is S-detectable"
+    out["s-detectability-forged-rho5-ch5-example1-w0.3"] = c
+    c = copy.deepcopy(valid["gains-radius-below-infeasible-ch5-example1-w0.24-rho0.96"])
+    c["kind"] = "s-detectability-infeasible"
+    c["claim"]["statement"] = "(A, C, W) is not S-detectable"
+    out["s-detectability-infeasible-rho0.96-ch5-example1-w0.24"] = c
+    for name, path, text in (
+        ("two-halves", ("claim", "spectral_radius_below"), "2/2"),
+        ("four-halves", ("data", "A", 0, 0), "4/2"),
+        ("negative-zero", ("data", "A", 0, 1), "-0"),
+    ):
+        c = copy.deepcopy(valid["s-detectability-ch5-example1-Wg"])
+        node = c
+        for key in path[:-1]:
+            node = node[key]
+        assert Fraction(node[path[-1]]) == Fraction(text)
+        node[path[-1]] = text
+        out[f"non-canonical-{name}"] = c
+    c = copy.deepcopy(valid["generic-rank-fig43-case-d"])
+    c["certificates"][0]["data"]["T"] = "0"
+    out["generic-rank-zero-sampling-period"] = c
+    return out
+
+
+def _negative_radius(cert: dict) -> dict:
+    """r_x = −30, r_y = 1: sup‖r′‖² = 900, but max(r_x, r_y)² = 1. With μ_r = 1 and s shrunk to
+    √(k̄_p² + 2) (rounded up), every check of the old rule passes and the gain is too small."""
+    c = copy.deepcopy(cert)
+    for path in c["data"]["paths"]:
+        path["r_x"], path["r_y"] = "-30", "1"
+    w = {k: Fraction(v) for k, v in c["witness"].items() if k != "r"}
+    scale = 10**9
+    w["mu_r"] = Fraction(1)
+    w["s"] = Fraction(isqrt(int((w["kp_bar"] ** 2 + 2) * scale**2)) + 1, scale)
+    w["g_e"] = w["s"] / w["lambda"]
+    w["gain"] = w["g_e"] * (1 + w["g_xi"])
+    c["witness"] |= {k: str(v) for k, v in w.items()}
+    return c
 
 
 def _iss_changed(cert: dict, key: str, factor) -> dict:

@@ -207,7 +207,7 @@ def sim_observed(summary: dict[str, Any]) -> Observed:
 def tdoa_simulator(case: Case, steps: int | None = None) -> Simulator:
     """The simulator of a tdoa-sim ``case`` (``steps`` overrides its pings)."""
     spec = case.spec if steps is None else dataclasses.replace(case.spec, steps=steps)
-    fields = {"filter": spec.filter, "b": spec.b, "steps": spec.steps}
+    fields = {"filter": spec.filter, "b": spec.b, "steps": spec.steps, "T": spec.T, "tau": spec.tau}
     return Simulator(spec, run_tdoa_scenario, fields, _finish)
 
 

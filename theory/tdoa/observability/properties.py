@@ -282,6 +282,7 @@ class BoundaryScene:
 def scene_block(scene: BoundaryScene) -> dict[str, Any]:
     """The ``tdoa:`` block of ``scene`` (floats whose shortest decimals are the exact values)."""
     block: dict[str, Any] = {
+        "T": 1.0,  # the rank verdicts do not depend on the ping period T > 0
         "agents": [[float(x) for x in p] for p in scene.agents],
         "target": [float(x) for x in scene.target],
         "weights": "metropolis",
