@@ -32,7 +32,7 @@ from concurrent.futures import ProcessPoolExecutor
 from theory.kinds import load_case
 from theory.pursuit.closed_loop import DecSettings, simulate_dec
 from theory.pursuit.dekf import table_target
-from theory.sim.runner import monte_carlo
+from theory.sim.simulate import monte_carlo
 from theory.tdoa.estimation.agents import linearizing_control
 from theory.tdoa.estimation.scenario import run_tdoa_scenario, run_tdoa_scenarios
 from theory.tdoa.estimation.simulation import B_SWEEP, SWEEP_MAX_STEPS, SWEEP_SEEDS

@@ -13,7 +13,7 @@ import numpy as np
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-from theory.core.limits import limit
+from theory.core.validation import limit
 
 __all__ = [
     "boundary_values",

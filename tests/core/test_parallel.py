@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from theory.core.claims import Context, RunCache
 from theory.core.errors import CaseError
 from theory.core.parallel import SCHEDULER_SETTING, engine, scheduler_address
-from theory.sim.runner import monte_carlo
+from theory.sim.simulate import monte_carlo
 
 # Workers unpickle this module's functions by value: the test folder is not importable there.
 cloudpickle.register_pickle_by_value(sys.modules[__name__])

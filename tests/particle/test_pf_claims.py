@@ -12,6 +12,7 @@ import pytest
 import yaml
 from hypothesis import given
 from hypothesis import strategies as st
+from theory.report.canonical import canonical
 from typer.testing import CliRunner
 
 from theory.cli import app
@@ -23,7 +24,6 @@ from theory.kinds import load_case, parse_case
 from theory.particle.case import PARAM_NAMES
 from theory.particle.experiments import learned_bias
 from theory.registry import all_claims, get_claim
-from theory.report.canonical import canonical
 
 runner = CliRunner()
 PF_CASES = tuple(name for name, path in bundled_cases().items() if name.startswith("pf-"))

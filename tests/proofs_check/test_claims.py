@@ -28,12 +28,12 @@ from typer.testing import CliRunner
 
 from proofs_check import MalformedError, check_certificate
 from proofs_check.parse import loads, rational
-from theory.certify import certificate_bundle, certifiers
 from theory.cli import app
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.core.case_file import bundled_cases
-from theory.kinds import load_case
 from theory.core.errors import PropertyFails
+from theory.kinds import load_case
+from theory.registry import certificate_bundle, certifiers
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "certificates"
 TINY = Fraction(1, 10**9)

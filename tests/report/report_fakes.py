@@ -1,15 +1,13 @@
-"""Fake claim registries and case files for the report's tests (imported by tests/test_report*)."""
+"""Fake claims and case files for the report's tests (registered on the ``fakes`` fixture)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
-import pytest
 import yaml
 
-from theory.core import claims
-from theory.core.claims import ClaimResult, register
+from theory.core.claims import ClaimResult, ClaimSet
 
 CASE = {
     "name": "four-path",
@@ -34,48 +32,44 @@ def write_case(folder: Path, name: str = "four-path", **changes: object) -> Path
     return path
 
 
-def fake_registry(monkeypatch: pytest.MonkeyPatch):
-    """Give the test an empty claim registry; returns :func:`theory.core.claims.register`."""
-    monkeypatch.setattr(claims, "_REGISTRY", {})
-    monkeypatch.setattr(claims, "claim_modules", tuple)
-    return register
-
-
-def result(case, status: str = "verified", **fields) -> ClaimResult:
-    """A ClaimResult on ``case`` (``None`` for model claims)."""
-    name = "-" if case is None else case.name
+def result(status: str = "verified", **fields) -> ClaimResult:
+    """A ClaimResult (the claim id and the case are stamped by ``Claim.run``)."""
     fields.setdefault("method", "numeric")
-    return ClaimResult(claim=fields.pop("claim", "x"), case=name, status=status, **fields)
+    return ClaimResult(status=status, **fields)
 
 
-def register_standard_fakes(register, *, observable=(True, True, True, True), crash=False):
+def register_standard_fakes(fakes: ClaimSet, *, observable=(True, True, True, True), crash=False):
     """Three fake claims: a model claim, a tdoa claim reporting ``observable``, a seeded one."""
 
-    @register("seed000.fake.model", source="seed 000 eq. (9.9)", statement="model fact")
-    def model(case):
-        return [result(case, claim="seed000.fake.model", evidence={"value": np.float64(1 / 3)})]
+    @fakes.register("seed000.fake.model", source="seed 000 eq. (9.9)", statement="model fact")
+    def model(case, ctx):
+        return [result(evidence={"value": np.float64(1 / 3)})]
 
-    @register(
+    @fakes.register(
         "seed001.fake.observable",
         source="seed 001 Thm 1",
         statement="every agent observes",
         kinds=("tdoa",),
     )
-    def observe(case):
+    def observe(case, ctx):
         if crash:
             raise ZeroDivisionError("division by zero in the fake check")
         return [
             result(
-                case,
-                claim="seed001.fake.observable",
                 margin=12.5,
                 tolerance={"rank_tol": 1e-9},
                 evidence={"expectations": {"observable": list(observable)}},
             )
         ]
 
-    @register("seed003.fake.random", source="seed 003 eq. (4)", statement="seeded", kinds=("tdoa",))
-    def seeded(case, *, seed):
-        draw = np.random.default_rng(seed).normal(size=3)
+    @fakes.register(
+        "seed003.fake.random",
+        source="seed 003 eq. (4)",
+        statement="seeded",
+        kinds=("tdoa",),
+        seeded=True,
+    )
+    def seeded(case, ctx):
+        draw = np.random.default_rng(ctx.seed).normal(size=3)
         evidence = {"draw": draw, "probability_bound": 1e-12}
-        return [result(case, claim="seed003.fake.random", method="exact-random", evidence=evidence)]
+        return [result(method="exact-random", evidence=evidence)]

@@ -15,7 +15,7 @@ from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
-from report_fakes import fake_registry, register_standard_fakes, result, write_case
+from report_fakes import register_standard_fakes, result, write_case
 
 from theory.kinds import load_case
 from theory.report.render import write_report
@@ -71,18 +71,19 @@ class _Page(HTMLParser):
             self._in_summary = False
 
 
-def test_index_html_renders_in_chromium(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register, crash=True)
+def test_index_html_renders_in_chromium(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes, crash=True)
     figure = tmp_path / "figure.svg"
     figure.write_text(
         '<svg xmlns="http://www.w3.org/2000/svg" width="120" height="40">'
         '<rect width="120" height="40" fill="#1f5fa8"/></svg>'
     )
 
-    @register("seed002.fake.figure", source="seed 002 Fig. 3.2", statement="t", kinds=("tdoa",))
-    def with_figure(case):
-        return [result(case, claim="seed002.fake.figure", figures=(str(figure),))]
+    @fakes.register(
+        "seed002.fake.figure", source="seed 002 Fig. 3.2", statement="t", kinds=("tdoa",)
+    )
+    def with_figure(case, ctx):
+        return [result(figures=(str(figure),))]
 
     out = tmp_path / "report"
     cases = [load_case(write_case(tmp_path, "case-a")), load_case(write_case(tmp_path, "case-b"))]
@@ -103,10 +104,9 @@ def test_index_html_renders_in_chromium(monkeypatch, tmp_path) -> None:
     assert not any(page.hidden), "the summary filter hides rows by default"
 
 
-def test_summary_filter_presets_from_the_address(monkeypatch, tmp_path) -> None:
+def test_summary_filter_presets_from_the_address(fakes, tmp_path) -> None:
     """``#status=inconclusive&text=case-b`` shows exactly the inconclusive rows of case-b."""
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register, crash=True)
+    register_standard_fakes(fakes, crash=True)
     out = tmp_path / "report"
     cases = [load_case(write_case(tmp_path, "case-a")), load_case(write_case(tmp_path, "case-b"))]
     document = write_report(run_claims(cases, seed=0), out)

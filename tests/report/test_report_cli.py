@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from report_fakes import fake_registry, register_standard_fakes, write_case
+from report_fakes import register_standard_fakes, write_case
 from typer.testing import CliRunner
 
 from theory.cli import app
@@ -18,9 +18,8 @@ def _report(*args: str):
     return runner.invoke(app, ["report", "--workers", "1", *args])
 
 
-def test_met_expectations_exit_0(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_met_expectations_exit_0(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
     out = tmp_path / "out"
     done = _report(str(write_case(tmp_path)), "-o", str(out), "--seed", "3")
     assert done.exit_code == 0, done.output
@@ -34,9 +33,8 @@ def test_met_expectations_exit_0(monkeypatch, tmp_path) -> None:
     assert json.loads((out / "report.json").read_text())["seed"] == 3
 
 
-def test_unmet_expectation_exits_1(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register, observable=(True, True, False, True))
+def test_unmet_expectation_exits_1(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes, observable=(True, True, False, True))
     done = _report(str(write_case(tmp_path)), "-o", str(tmp_path / "out"))
     assert done.exit_code == 1
     (expectation,) = json.loads((tmp_path / "out" / "report.json").read_text())["expectations"]
@@ -47,11 +45,10 @@ def test_unmet_expectation_exits_1(monkeypatch, tmp_path) -> None:
     assert "seed001.fake.observable │ 1" in shown  # one row per claim, results counted
 
 
-def test_crashing_check_is_reported_and_exits_3(monkeypatch, tmp_path) -> None:
+def test_crashing_check_is_reported_and_exits_3(fakes, tmp_path) -> None:
     """The only observer of ``observable`` crashed: the expectation is unchecked, which the
     exit-code policy (theory.core.verdicts) reports as inconclusive, not as failed."""
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register, crash=True)
+    register_standard_fakes(fakes, crash=True)
     done = _report(str(write_case(tmp_path)), "-o", str(tmp_path / "out"))
     assert done.exit_code == 3
     document = json.loads((tmp_path / "out" / "report.json").read_text())
@@ -64,16 +61,14 @@ def test_crashing_check_is_reported_and_exits_3(monkeypatch, tmp_path) -> None:
     }
 
 
-def test_a_case_without_expectations_exits_0(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register, crash=True)
+def test_a_case_without_expectations_exits_0(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes, crash=True)
     case = write_case(tmp_path, expect={})
     assert _report(str(case), "-o", str(tmp_path / "out")).exit_code == 0
 
 
-def test_bad_case_exits_2_and_writes_nothing(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_bad_case_exits_2_and_writes_nothing(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
     good = write_case(tmp_path)
     bad = write_case(tmp_path, "bad", expect={"colour": "red"})
     out = tmp_path / "out"

@@ -7,13 +7,13 @@ import json
 
 import pytest
 from distributed import Client, LocalCluster
-from report_fakes import fake_registry, register_standard_fakes, write_case
+from report_fakes import register_standard_fakes, write_case
 from typer.testing import CliRunner
 
 from theory.cli import app
-from theory.core.claims import all_claims
 from theory.core.parallel import Outcome, engine
 from theory.kinds import load_case
+from theory.registry import all_claims
 from theory.report.runner import run_claims
 from theory.report.tasks import plan_tasks
 
@@ -85,10 +85,9 @@ def test_claims_taking_cache_share_one_task_per_case() -> None:
     assert len(shared) == 1 and set(shared[0].claims) >= {"seed000.def5.2.4", "seed000.lem5.2.2"}
 
 
-def test_a_check_missing_on_the_workers_is_inconclusive(monkeypatch, tmp_path) -> None:
+def test_a_check_missing_on_the_workers_is_inconclusive(fakes, tmp_path) -> None:
     """Fake claims exist only in this process: the workers cannot run them, the report goes on."""
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+    register_standard_fakes(fakes)
     with engine(2) as two:
         run = run_claims([load_case(write_case(tmp_path))], seed=0, runner=two)
     assert {r.status for r in run.records} == {"inconclusive"}
@@ -106,9 +105,8 @@ class _LosingRunner:
             yield Outcome(i, error=RuntimeError("worker lost"))
 
 
-def test_a_lost_task_is_inconclusive(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_a_lost_task_is_inconclusive(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
     run = run_claims([load_case(write_case(tmp_path))], seed=5, runner=_LosingRunner())
     assert [r.status for r in run.records] == ["inconclusive"] * 3
     assert all(r.method == "none" and "worker lost" in r.message for r in run.records)
@@ -137,7 +135,7 @@ def _missing_worker_modules() -> list[str]:
 
 
 def test_a_worker_started_with_the_preload_has_every_claim_module_before_its_first_task() -> None:
-    """``dask worker ADDRESS --preload theory.report.worker_preload``: a spawned worker (Dask's
+    """``dask worker ADDRESS --preload theory.report.tasks``: a spawned worker (Dask's
     default, as ``dask worker`` starts them) imports the claim modules as it starts."""
     import dask
 
@@ -148,7 +146,7 @@ def test_a_worker_started_with_the_preload_has_every_claim_module_before_its_fir
             threads_per_worker=1,
             processes=True,
             dashboard_address=None,
-            preload=["theory.report.worker_preload"],
+            preload=["theory.report.tasks"],
         ) as cluster,
         Client(cluster) as client,
     ):

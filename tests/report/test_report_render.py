@@ -12,17 +12,16 @@ import pytest
 import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
-from report_fakes import fake_registry, register_standard_fakes, result, write_case
+from report_fakes import register_standard_fakes, result, write_case
 
 from theory.core.claims import NotApplicable
 from theory.core.errors import CaseError
+from theory.core.jsonable import canonical, dumps
 from theory.kinds import load_case
-from theory.report.artifacts import check_document, check_with_cli, prechecked
-from theory.report.canonical import canonical, dumps
-from theory.report.errata import parse_errata
-from theory.report.markup import markdown_to_html
-from theory.report.render import write_report
+from theory.report.document import parse_errata
+from theory.report.render import markdown_to_html, write_report
 from theory.report.runner import run_claims
+from theory.report.tasks import check_document, check_with_cli, prechecked
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
@@ -52,9 +51,8 @@ def _report(tmp_path: Path, name: str, seed: int, **kwargs) -> dict[str, bytes]:
     return {f: (out / f).read_bytes() for f in FILES}
 
 
-def test_same_inputs_and_seed_give_identical_files(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_same_inputs_and_seed_give_identical_files(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
     first = _report(tmp_path, "one", seed=5)
     second = _report(tmp_path, "two", seed=5)
     assert first == second
@@ -62,9 +60,8 @@ def test_same_inputs_and_seed_give_identical_files(monkeypatch, tmp_path) -> Non
     assert other["report.json"] != first["report.json"]
 
 
-def test_report_json_follows_the_design_contract(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_report_json_follows_the_design_contract(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
     document = json.loads(_report(tmp_path, "out", seed=1)["report.json"])
     assert {"claims", "environment"} <= set(document)
     for record in document["claims"]:
@@ -82,9 +79,8 @@ def test_report_json_follows_the_design_contract(monkeypatch, tmp_path) -> None:
     assert document["summary"]["all_expectations_met"] is True
 
 
-def test_html_and_markdown_show_every_result(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register, crash=True)
+def test_html_and_markdown_show_every_result(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes, crash=True)
     files = _report(tmp_path, "out", seed=0)
     page, text = files["index.html"].decode(), files["report.md"].decode()
     for claim in ("seed000.fake.model", "seed001.fake.observable", "seed003.fake.random"):
@@ -94,14 +90,13 @@ def test_html_and_markdown_show_every_result(monkeypatch, tmp_path) -> None:
     assert "<style>" in page and "<link" not in page  # self-contained
 
 
-def test_each_result_shows_the_seed_it_used(monkeypatch, tmp_path) -> None:
+def test_each_result_shows_the_seed_it_used(fakes, tmp_path) -> None:
     """The derived seed where the check takes one, else the seed its evidence names."""
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+    register_standard_fakes(fakes)
 
-    @register("seed002.fake.own-seed", source="s", statement="t", kinds=("tdoa",))
-    def own_seed(case):
-        return [result(case, claim="seed002.fake.own-seed", evidence={"seed": 2})]
+    @fakes.register("seed002.fake.own-seed", source="s", statement="t", kinds=("tdoa",))
+    def own_seed(case, ctx):
+        return [result(evidence={"seed": 2})]
 
     files = _report(tmp_path, "out", seed=4)
     document = json.loads(files["report.json"])
@@ -112,12 +107,11 @@ def test_each_result_shows_the_seed_it_used(monkeypatch, tmp_path) -> None:
     assert "seed —)" in text  # the model claim uses no randomness
 
 
-def test_not_applicable_pairs_are_listed_with_their_reason(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_not_applicable_pairs_are_listed_with_their_reason(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
 
-    @register("seed002.fake.lemma", source="s", statement="if H then P", kinds=("tdoa",))
-    def lemma(case):
+    @fakes.register("seed002.fake.lemma", source="s", statement="if H then P", kinds=("tdoa",))
+    def lemma(case, ctx):
         raise NotApplicable("hypothesis H <fails> here")
 
     files = _report(tmp_path, "out", seed=0)
@@ -133,13 +127,14 @@ def test_not_applicable_pairs_are_listed_with_their_reason(monkeypatch, tmp_path
     assert all(c["id"] != "seed002.fake.lemma" for c in document["claims"])
 
 
-def test_a_paper_section_lists_the_claims_that_cite_it(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_a_paper_section_lists_the_claims_that_cite_it(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
 
-    @register("seed000.fake.cross", source="seed 000 Lemma 1; seed 002 Lemma 9", statement="t")
-    def cross(case):
-        return [result(case, claim="seed000.fake.cross", status="corrected")]
+    @fakes.register(
+        "seed000.fake.cross", source="seed 000 Lemma 1; seed 002 Lemma 9", statement="t"
+    )
+    def cross(case, ctx):
+        return [result(status="corrected")]
 
     text = _report(tmp_path, "out", seed=0)["report.md"].decode()
     seed002 = text[text.index("## Seed 002") : text.index("## Seed 003")]
@@ -148,9 +143,8 @@ def test_a_paper_section_lists_the_claims_that_cite_it(monkeypatch, tmp_path) ->
     assert "seed000.fake.cross" not in seed001
 
 
-def test_errata_are_linked_to_their_claims_and_escaped(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_errata_are_linked_to_their_claims_and_escaped(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
     files = _report(tmp_path, "out", seed=0)
     document = json.loads(files["report.json"])
     titles = [e["title"] for e in document["errata"]]
@@ -167,8 +161,7 @@ def test_errata_are_linked_to_their_claims_and_escaped(monkeypatch, tmp_path) ->
     assert "<script>alert(1)" not in page and "&lt;script&gt;alert(1)" in page
 
 
-def test_figures_are_copied_hashed_and_embedded(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
+def test_figures_are_copied_hashed_and_embedded(fakes, tmp_path) -> None:
     figure = tmp_path / "made-by-claim" / "error.png"
     figure.parent.mkdir()
     fig, ax = plt.subplots(figsize=(2, 1.5), dpi=50)
@@ -176,9 +169,9 @@ def test_figures_are_copied_hashed_and_embedded(monkeypatch, tmp_path) -> None:
     fig.savefig(figure, metadata={"Software": None})
     plt.close(fig)
 
-    @register("seed000.figure", source="s", statement="t", kinds=("tdoa",))
-    def with_figure(case):
-        return [result(case, claim="seed000.figure", figures=(str(figure), "/no/such/file.png"))]
+    @fakes.register("seed000.figure", source="s", statement="t", kinds=("tdoa",))
+    def with_figure(case, ctx):
+        return [result(figures=(str(figure), "/no/such/file.png"))]
 
     files = _report(tmp_path, "out", seed=0)
     (record,) = json.loads(files["report.json"])["claims"]
@@ -191,15 +184,14 @@ def test_figures_are_copied_hashed_and_embedded(monkeypatch, tmp_path) -> None:
     assert "made-by-claim" not in files["report.json"].decode()
 
 
-def test_certificates_are_copied_and_checked(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
+def test_certificates_are_copied_and_checked(fakes, tmp_path) -> None:
     certificate = tmp_path / "claim-output" / "cert.json"
     certificate.parent.mkdir()
     certificate.write_text('{"format": "trackcert-certificate/1"}')
 
-    @register("seed000.cert", source="s", statement="t", kinds=("tdoa",))
-    def with_certificate(case):
-        return [result(case, claim="seed000.cert", evidence={"certificate": str(certificate)})]
+    @fakes.register("seed000.cert", source="s", statement="t", kinds=("tdoa",))
+    def with_certificate(case, ctx):
+        return [result(evidence={"certificate": str(certificate)})]
 
     seen = []
 
@@ -215,17 +207,16 @@ def test_certificates_are_copied_and_checked(monkeypatch, tmp_path) -> None:
     assert "invalid" in files["index.html"].decode()
 
 
-def test_certificate_documents_are_written_and_checked(monkeypatch, tmp_path) -> None:
+def test_certificate_documents_are_written_and_checked(fakes, tmp_path) -> None:
     """A certificate carried in the evidence becomes a file that proofs_check accepts."""
     from theory.tdoa.observability.certificates import generic_rank_certificates
 
-    register = fake_registry(monkeypatch)
     (document, *_) = generic_rank_certificates(load_case(write_case(tmp_path, "case-a")).spec)
 
-    @register("seed000.doc", source="s", statement="t", kinds=("tdoa",))
-    def with_document(case):
+    @fakes.register("seed000.doc", source="s", statement="t", kinds=("tdoa",))
+    def with_document(case, ctx):
         evidence = {"certificate_document": document, "rank": 1}
-        return [result(case, claim="seed000.doc", evidence=evidence)]
+        return [result(evidence=evidence)]
 
     files = _report(tmp_path, "out", seed=0)
     (record,) = json.loads(files["report.json"])["claims"]
@@ -238,18 +229,17 @@ def test_certificate_documents_are_written_and_checked(monkeypatch, tmp_path) ->
 
 
 def test_certificate_documents_are_checked_once_where_their_claim_ran(
-    monkeypatch, tmp_path
+    fakes, monkeypatch, tmp_path
 ) -> None:
     """The task's verdict (on the same bytes) is the report's: the checker does not run again."""
     from theory.tdoa.observability.certificates import generic_rank_certificates
 
-    register = fake_registry(monkeypatch)
     case = load_case(write_case(tmp_path, "case-a"))
     (document, *_) = generic_rank_certificates(case.spec)
 
-    @register("seed000.doc", source="s", statement="t", kinds=("tdoa",))
-    def with_document(case):
-        return [result(case, claim="seed000.doc", evidence={"certificate_document": document})]
+    @fakes.register("seed000.doc", source="s", statement="t", kinds=("tdoa",))
+    def with_document(case, ctx):
+        return [result(evidence={"certificate_document": document})]
 
     run = run_claims([case], seed=0)
     ((digest, verdict),) = run.certificate_checks.items()
@@ -258,7 +248,7 @@ def test_certificate_documents_are_checked_once_where_their_claim_ran(
     def never(relative: Path, out_dir: Path) -> dict:
         raise AssertionError("checked twice")
 
-    monkeypatch.setattr("theory.report.artifacts.check_with_cli", never)
+    monkeypatch.setattr("theory.report.tasks.check_with_cli", never)
     write_report(run, tmp_path / "out")
     (record,) = json.loads((tmp_path / "out" / "report.json").read_text())["claims"]
     ((entry),) = record["certificates"]
@@ -281,8 +271,7 @@ def test_cli_checker_never_validates_a_bogus_certificate(tmp_path) -> None:
     assert verdict["command"] == "python -m proofs_check bogus.json --json"
 
 
-def test_unwritable_output_is_bad_input(monkeypatch, tmp_path) -> None:
-    fake_registry(monkeypatch)
+def test_unwritable_output_is_bad_input(fakes, tmp_path) -> None:
     blocker = tmp_path / "file"
     blocker.write_text("")
     with pytest.raises(CaseError, match="-o"):

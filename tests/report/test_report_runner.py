@@ -4,17 +4,18 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from report_fakes import fake_registry, register_standard_fakes, result, write_case
+from report_fakes import register_standard_fakes, result, write_case
 
-from theory.core.claims import NotApplicable, all_claims, applicable_results
+from theory.core.claims import NotApplicable
 from theory.core.errors import CaseError
 from theory.kinds import load_case
-from theory.report.runner import MODEL_CASE, derive_seed, paper_of, run_claims, select_claims
+from theory.registry import all_claims
+from theory.report.runner import run_claims, select_claims
+from theory.report.tasks import MODEL_CASE, derive_seed, paper_of
 
 
-def test_every_claim_runs_on_every_case_of_its_kind(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_every_claim_runs_on_every_case_of_its_kind(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
     cases = [load_case(write_case(tmp_path, "a")), load_case(write_case(tmp_path, "b"))]
     run = run_claims(cases, seed=7)
     pairs = [(r.id, r.case) for r in run.records]
@@ -29,9 +30,8 @@ def test_every_claim_runs_on_every_case_of_its_kind(monkeypatch, tmp_path) -> No
     assert run.all_expectations_met
 
 
-def test_a_crashing_claim_never_stops_the_report(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register, crash=True)
+def test_a_crashing_claim_never_stops_the_report(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes, crash=True)
     run = run_claims([load_case(write_case(tmp_path))], seed=0)
     crashed = [r for r in run.records if r.id == "seed001.fake.observable"]
     assert len(crashed) == 1
@@ -57,37 +57,32 @@ def test_a_crashing_claim_never_stops_the_report(monkeypatch, tmp_path) -> None:
         (None, "returned a NoneType"),
     ],
 )
-def test_malformed_answers_become_inconclusive(monkeypatch, returned, message) -> None:
-    register = fake_registry(monkeypatch)
-    register("seed000.bad", source="s", statement="t")(lambda case: returned)
+def test_malformed_answers_become_inconclusive(fakes, returned, message) -> None:
+    fakes.register("seed000.bad", source="s", statement="t")(lambda case, ctx: returned)
     (record,) = run_claims([], seed=0).records
     assert record.status == "inconclusive" and message in record.message
 
 
-def test_evidence_without_json_form_is_inconclusive(monkeypatch) -> None:
-    register = fake_registry(monkeypatch)
-
-    @register("seed000.opaque", source="s", statement="t")
-    def opaque(case):
-        return [result(case, claim="seed000.opaque", evidence={"solver": object()})]
+def test_evidence_without_json_form_is_inconclusive(fakes) -> None:
+    @fakes.register("seed000.opaque", source="s", statement="t")
+    def opaque(case, ctx):
+        return [result(evidence={"solver": object()})]
 
     (record,) = run_claims([], seed=0).records
     assert record.status == "inconclusive"
     assert "evidence.solver: a object has no JSON form" in record.message
 
 
-def test_an_empty_answer_means_not_applicable(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register("seed000.never", source="s", statement="t", kinds=("tdoa",))(lambda case: [])
+def test_an_empty_answer_means_not_applicable(fakes, tmp_path) -> None:
+    never = fakes.register("seed000.never", source="s", statement="t", kinds=("tdoa",))
+    never(lambda case, ctx: [])
     run = run_claims([load_case(write_case(tmp_path))], seed=0)
     assert run.records == () and run.not_applicable == (("seed000.never", "four-path", ""),)
 
 
-def test_not_applicable_carries_its_reason(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-
-    @register("seed000.lemma", source="s", statement="if H then P", kinds=("tdoa",))
-    def lemma(case):
+def test_not_applicable_carries_its_reason(fakes, tmp_path) -> None:
+    @fakes.register("seed000.lemma", source="s", statement="if H then P", kinds=("tdoa",))
+    def lemma(case, ctx):
         raise NotApplicable("hypothesis H fails on this case")
 
     run = run_claims([load_case(write_case(tmp_path))], seed=0, seconds=5.0)
@@ -95,20 +90,19 @@ def test_not_applicable_carries_its_reason(monkeypatch, tmp_path) -> None:
     assert run.not_applicable == (
         ("seed000.lemma", "four-path", "hypothesis H fails on this case"),
     )
-    assert applicable_results(all_claims()[0], None) == []
+    assert all_claims()[0].results(None) == []
 
 
-def test_claims_of_other_kinds_do_not_run(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
+def test_claims_of_other_kinds_do_not_run(fakes, tmp_path) -> None:
     calls = []
-    register("seed000.dkf", source="s", statement="t", kinds=("dkf",))(calls.append)
+    dkf = fakes.register("seed000.dkf", source="s", statement="t", kinds=("dkf",))
+    dkf(lambda case, ctx: calls.append(case))
     run = run_claims([load_case(write_case(tmp_path))], seed=0)
     assert calls == [] and run.records == ()
 
 
-def test_seeds_are_derived_per_claim_and_case(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_seeds_are_derived_per_claim_and_case(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
     cases = [load_case(write_case(tmp_path, "a")), load_case(write_case(tmp_path, "b"))]
     first, again, other = (run_claims(cases, seed=s).records for s in (3, 3, 4))
     seeded = [r for r in first if r.id == "seed003.fake.random"]
@@ -121,16 +115,14 @@ def test_seeds_are_derived_per_claim_and_case(monkeypatch, tmp_path) -> None:
     assert [r.seed for r in first if r.id != "seed003.fake.random"] == [None, None, None]
 
 
-def test_duplicate_case_names_are_refused(monkeypatch, tmp_path) -> None:
-    fake_registry(monkeypatch)
+def test_duplicate_case_names_are_refused(fakes, tmp_path) -> None:
     case = load_case(write_case(tmp_path))
     with pytest.raises(CaseError, match="distinct case names"):
         run_claims([case, case])
 
 
-def test_progress_hook_sees_every_run(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_progress_hook_sees_every_run(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
     seen = []
     run_claims([load_case(write_case(tmp_path))], progress=lambda d, k: seen.append((d, k)))
     assert seen == [
@@ -140,9 +132,8 @@ def test_progress_hook_sees_every_run(monkeypatch, tmp_path) -> None:
     ]
 
 
-def test_select_claims_by_pattern(monkeypatch) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
+def test_select_claims_by_pattern(fakes) -> None:
+    register_standard_fakes(fakes)
     ids = [c.id for c in select_claims(all_claims(), ["seed00[01].*"])]
     assert ids == ["seed000.fake.model", "seed001.fake.observable"]
     assert len(select_claims(all_claims(), [])) == 3
@@ -151,20 +142,20 @@ def test_select_claims_by_pattern(monkeypatch) -> None:
 def test_paper_of() -> None:
     assert paper_of("seed002.eq3.1", "") == "002"
     assert paper_of("network.metropolis", "see seed 003, eq. (4)") == "003"
-    assert paper_of("design.rule", "DESIGN.md") == "other"
+    assert paper_of("design.rule", "docs/topology.md") == "other"
 
 
-def test_claims_that_draw_get_their_own_figure_folder(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
+def test_claims_that_draw_get_their_own_figure_folder(fakes, tmp_path) -> None:
     seen = []
 
-    @register("seed002.fake.draws", source="s", statement="t", kinds=("tdoa",))
-    def draws(case, *, figure_dir=None):
-        seen.append(figure_dir)
-        if figure_dir is None:
-            return [result(case, claim="seed002.fake.draws")]
-        (figure_dir / "plot.png").write_bytes(b"png")
-        return [result(case, claim="seed002.fake.draws", figures=(str(figure_dir / "plot.png"),))]
+    @fakes.register("seed002.fake.draws", source="s", statement="t", kinds=("tdoa",))
+    def draws(case, ctx):
+        folder = ctx.figure_folder()
+        seen.append(folder)
+        if folder is None:
+            return [result()]
+        (folder / "plot.png").write_bytes(b"png")
+        return [result(figures=(str(folder / "plot.png"),))]
 
     case = load_case(write_case(tmp_path, "a b"))
     run_claims([case], seed=0)

@@ -10,13 +10,13 @@ import json
 from hypothesis import given
 from hypothesis import strategies as st
 
-from theory.core.claims import all_claims
 from theory.kinds import load_case
-from theory.report.runner import run_claims
-from theory.report.schedule import (
+from theory.registry import all_claims
+from theory.report.runner import (
     BATCH_SECONDS,
     COSTS_FORMAT,
     SMALL_SECONDS,
+    TIMINGS_FORMAT,
     UNKNOWN_SECONDS,
     Estimates,
     batches,
@@ -24,9 +24,9 @@ from theory.report.schedule import (
     costs_document,
     load_estimates,
     longest_first,
+    run_claims,
 )
 from theory.report.tasks import CheckTask, plan_tasks
-from theory.report.timings import FORMAT as TIMINGS_FORMAT
 
 
 @functools.cache
@@ -121,7 +121,7 @@ def test_costs_document_round_trips_through_the_bundled_format(tmp_path, monkeyp
     assert document["format"] == COSTS_FORMAT and document["source"] == "a test"
     path = tmp_path / "check_costs.json"
     path.write_text(json.dumps(document))
-    monkeypatch.setattr("theory.report.schedule.bundled_costs_path", lambda: path)
+    monkeypatch.setattr("theory.report.runner.bundled_costs_path", lambda: path)
     estimates = load_estimates()
     assert estimates.check("seed000.eq4.20", "-") == 0.61
     assert estimates.check("case.expect.tdoa", "fig43-case-d") == 0.02

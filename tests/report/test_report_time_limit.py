@@ -9,13 +9,13 @@ import threading
 import time
 
 import pytest
-from report_fakes import fake_registry, register_standard_fakes, result, write_case
+from report_fakes import register_standard_fakes, result, write_case
 from typer.testing import CliRunner
 
 from theory.cli import app
 from theory.kinds import load_case
 from theory.report.runner import run_claims
-from theory.report.time_limit import TimeLimitExceeded, clock_name, enforceable, time_limit
+from theory.report.tasks import TimeLimitExceeded, clock_name, enforceable, time_limit
 
 pytestmark = pytest.mark.skipif(not enforceable(), reason="needs PyThreadState_SetAsyncExc")
 runner = CliRunner()
@@ -140,17 +140,16 @@ def small(x):
 """
 
 
-def _register_slow(register) -> None:
-    @register("seed002.fake.slow", source="seed 002 §9", statement="slow", kinds=("tdoa",))
-    def slow(case):
+def _register_slow(fakes) -> None:
+    @fakes.register("seed002.fake.slow", source="seed 002 §9", statement="slow", kinds=("tdoa",))
+    def slow(case, ctx):
         _spin(5.0)
-        return [result(case, claim="seed002.fake.slow")]
+        return [result()]
 
 
-def test_a_slow_check_is_inconclusive_and_the_report_goes_on(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
-    _register_slow(register)
+def test_a_slow_check_is_inconclusive_and_the_report_goes_on(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
+    _register_slow(fakes)
     run = run_claims([load_case(write_case(tmp_path))], seed=0, seconds=0.2)
     statuses = {r.id: r.status for r in run.records}
     assert statuses == {
@@ -165,10 +164,9 @@ def test_a_slow_check_is_inconclusive_and_the_report_goes_on(monkeypatch, tmp_pa
     assert run.all_expectations_met and run.time_limit == 0.2
 
 
-def test_cli_time_limit_is_recorded(monkeypatch, tmp_path) -> None:
-    register = fake_registry(monkeypatch)
-    register_standard_fakes(register)
-    _register_slow(register)
+def test_cli_time_limit_is_recorded(fakes, tmp_path) -> None:
+    register_standard_fakes(fakes)
+    _register_slow(fakes)
     out = tmp_path / "out"
     done = runner.invoke(
         app,

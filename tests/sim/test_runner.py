@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from theory.sim.runner import monte_carlo, run_seeds
+from theory.sim.simulate import monte_carlo, run_seeds
 
 
 @dataclass(frozen=True)
@@ -53,10 +53,10 @@ def test_progress_counts_finished_runs_and_bad_counts_raise() -> None:
 
 
 def test_the_engine_imports_no_model_package() -> None:
-    """``theory.sim.{runner,outputs,figures}`` hold no model: importing them loads none of the
-    domain packages."""
+    """``theory.sim.{simulate,outputs}`` hold no model: importing them loads none of the domain
+    packages."""
     code = (
-        "import sys, theory.sim.runner, theory.sim.outputs, theory.sim.figures\n"
+        "import sys, theory.sim.simulate, theory.sim.outputs\n"
         "print(sorted(m for m in sys.modules if m.split('.')[:2] in "
         "[['theory', p] for p in ('tdoa', 'consensus', 'pursuit', 'particle')]))"
     )

@@ -8,8 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from theory.core.errors import CaseError
-from theory.sweep.grid import check_size, grid_points, grid_size, parse_param
-from theory.sweep.links import parse_link
+from theory.sweep.grid import check_size, grid_points, grid_size, parse_link, parse_param
 from theory.sweep.run import sweep_case
 
 SWEPT = (parse_param("w=0.2,0.25,0.3"), parse_param("seed=0:3"))

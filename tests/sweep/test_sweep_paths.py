@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from theory.core.case_file import resolve_case_path
 from theory.core.errors import CaseError
-from theory.sweep.paths import apply_values, resolve_target
+from theory.sweep.grid import apply_values, resolve_target
 
 
 def data(name: str) -> dict:

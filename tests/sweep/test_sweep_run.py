@@ -8,13 +8,11 @@ import inspect
 import json
 
 import pytest
-from theory.core.discovery import kind_index
 
-from theory.core.case_file import kind_spec
 from theory.core.errors import CaseError
-from theory.sweep.kinds import ANALYSIS_MODULES, agreement, analysis_for, point_modules
+from theory.kinds import KINDS, SIMULATED, simulator
 from theory.sweep.outputs import write_sweep
-from theory.sweep.points import Row
+from theory.sweep.points import ANALYSIS_MODULES, Row, agreement, analysis_for, point_modules
 from theory.sweep.run import Sweep, sweep_case
 
 PNG = b"\x89PNG\r\n\x1a\n"
@@ -207,17 +205,17 @@ def test_rows_do_not_depend_on_the_batching(monkeypatch) -> None:
     assert [r.point for r in many.rows] == list(range(8))
 
 
-@pytest.mark.parametrize("kind", sorted(kind_index()))
+@pytest.mark.parametrize("kind", sorted(KINDS))
 def test_a_points_modules_are_the_ones_its_analysis_and_simulator_import(kind: str) -> None:
     """The engine's preload for a sweep (every name importable; the analysis module is the one
-    its judgement function imports, the simulator's the one the kind names)."""
+    its judgement function imports, the simulator's the one the kind's simulator is in)."""
     modules = point_modules(kind)
     for module in modules:
         importlib.import_module(module)
-    assert modules[:2] == ("theory.sweep.points", kind_index()[kind])
+    assert modules[:2] == ("theory.sweep.points", KINDS[kind].parse.__module__)
     analysis = analysis_for(kind)
     if analysis is not None:
         assert f"from {ANALYSIS_MODULES[kind]} import" in inspect.getsource(analysis)
         assert ANALYSIS_MODULES[kind] in modules
-    simulate = kind_spec(kind).simulate
-    assert (simulate is None) or simulate.partition(":")[0] in modules
+    if kind in SIMULATED:
+        assert simulator(kind).__module__ in modules

@@ -18,7 +18,7 @@ from hypothesis import given
 from theory.core.network import metropolis_weights
 from theory.kinds import parse_case
 from theory.registry import properties_for
-from theory.sim.runner import monte_carlo
+from theory.sim.simulate import monte_carlo
 from theory.tdoa.estimation.averaged import (
     BURN_IN,
     HORIZON,

@@ -11,7 +11,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from theory.kinds import load_case
-from theory.sim.runner import monte_carlo
+from theory.sim.simulate import monte_carlo
 from theory.tdoa.estimation.scenario import run_tdoa_scenario
 from theory.tdoa.estimation.simulation import summarize_runs
 from theory.tdoa.geometry.crb import crb_trace, optimal_crb_trace, platonic_solids, tdoa_fisher

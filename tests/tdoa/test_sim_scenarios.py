@@ -14,7 +14,7 @@ from typer.testing import CliRunner
 from theory.cli import app
 from theory.kinds import load_case
 from theory.registry import get_claim
-from theory.sim.runner import monte_carlo
+from theory.sim.simulate import monte_carlo
 from theory.tdoa.estimation.scenario import TdoaRun, run_tdoa_scenario, run_tdoa_scenarios
 from theory.tdoa.estimation.simulation import summarize_runs
 

@@ -29,7 +29,7 @@ class CommandEntry(NamedTuple):
 
 
 COMMANDS: dict[str, CommandEntry] = {
-    "cases": CommandEntry("theory.cli.cases", "List the bundled cases (name, kind, source)."),
+    "cases": CommandEntry("theory.cli.report", "List the bundled cases (name, kind, source)."),
     "certify": CommandEntry(
         "theory.cli.certify",
         "Write every certificate the case supports (a bundle), re-checked exactly.",
@@ -47,7 +47,7 @@ COMMANDS: dict[str, CommandEntry] = {
         "Run hypothesis against a claim; print the shrunk counterexample as a case file.",
     ),
     "generic": CommandEntry(
-        "theory.cli.generic",
+        "theory.cli.topology",
         "Enumerate every minor of O = [H; HA; …] for one agent and print the derivation.",
     ),
     "iss": CommandEntry(

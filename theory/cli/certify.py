@@ -1,6 +1,6 @@
-"""``trackcert certify CASE -o FILE`` and ``trackcert check FILE`` (DESIGN.md, *CLI*).
+"""``trackcert certify CASE -o FILE`` and ``trackcert check FILE`` (docs/certificates.md).
 
-``certify`` is a shell over :func:`theory.certify.certificate_bundle` (exit 0 written, 1 the
+``certify`` is a shell over :func:`theory.registry.certificate_bundle` (exit 0 written, 1 the
 property is decided false, 3 no certificate could be made, 2 bad input, 4 the file could not be
 written: it is then left as it was, :func:`theory.core.atomic_output.write_file`); ``check``
 over ``proofs_check``'s own entry point (0 valid, 1 invalid, 2 malformed).
@@ -42,7 +42,7 @@ def register(app: typer.Typer) -> None:
         if output is not None:
             check_file_output(output, OUTPUT)
         loaded = load_case(case)
-        from theory.certify import certificate_bundle  # cvxpy: imported on use
+        from theory.registry import certificate_bundle  # the domains: imported on use
 
         document = certificate_bundle(loaded, seed=seed)
         text = json.dumps(document, indent=1, ensure_ascii=False) + "\n"

@@ -18,8 +18,8 @@ from theory.cli.common import (
     workers_option,
 )
 from theory.core.errors import CaseError
-from theory.core.limits import check_count
 from theory.core.parallel import default_workers, engine
+from theory.core.validation import check_count
 from theory.core.verdicts import exit_code
 from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, falsify_each
 from theory.registry import all_properties, properties_for

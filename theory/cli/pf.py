@@ -29,7 +29,7 @@ from theory.cli.common import (
 )
 from theory.core.case_file import Case
 from theory.core.errors import CaseError
-from theory.core.limits import check_count
+from theory.core.validation import check_count
 from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
 

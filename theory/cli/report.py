@@ -1,7 +1,8 @@
-"""``trackcert report [CASES…] -o DIR``: every registered check on every case, as a report.
+"""``trackcert report [CASES…] -o DIR``: every registered check on every case, as a report; and
+``trackcert cases``, the bundled cases it runs on by default.
 
-A shell over :func:`theory.report.build.build_report`; the exit code is the expectations' verdict
-(:func:`theory.core.verdicts.command_verdict`: the report decides no property of its own).
+A shell over :func:`theory.report.render.build_report`; the exit code is the expectations'
+verdict (:func:`theory.core.verdicts.command_verdict`: the report decides no property of its own).
 """
 
 from __future__ import annotations
@@ -16,31 +17,59 @@ from rich.table import Table
 from theory.cli.common import (
     check_folder_output,
     console,
+    print_json,
     progress_bar,
     reports_errors,
     scheduler_option,
     workers_option,
 )
 from theory.core.case_file import bundled_cases, resolve_case_path
+from theory.core.jsonable import dumps
 from theory.core.parallel import engine
 from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
-from theory.report.build import MARKER, build_report, check_count, choose_claims
-from theory.report.canonical import dumps
-from theory.report.runner import RunResult
+from theory.report.render import MARKER, build_report, check_count, choose_claims
+from theory.report.runner import RunResult, slowest
 from theory.report.tasks import worker_modules
-from theory.report.timings import slowest
 
 __all__ = ["DEFAULT_TIME_LIMIT", "register"]
 
 DEFAULT_TIME_LIMIT = 300.0
 """CPU seconds one check (a claim on a case) may use by default: the slowest bundled one uses about
 40 s, so only a runaway check meets it, however loaded the machine
-(:mod:`theory.report.time_limit`)."""
+(:class:`theory.report.tasks.time_limit`)."""
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``report`` command to ``app``."""
+    """Add the ``report`` and ``cases`` commands to ``app``."""
+
+    @app.command("cases")
+    @reports_errors
+    def cases(
+        kind: str = typer.Option(None, "--kind", help="Only cases of this kind."),
+        as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+        names: bool = typer.Option(False, "--names", help="Print only the names, one a line."),
+    ) -> None:
+        """List the bundled cases (name, kind, source)."""
+        rows = []
+        for name, path in bundled_cases().items():
+            case = load_case(path)
+            if kind is None or case.kind == kind:
+                rows.append(
+                    {"name": name, "kind": case.kind, "source": case.source, "path": str(path)}
+                )
+        if names:
+            console.print("\n".join(row["name"] for row in rows), markup=False, highlight=False)
+            return
+        if as_json:
+            print_json({"cases": rows})
+            return
+        table = Table(title="bundled cases")
+        for column in ("name", "kind", "source"):
+            table.add_column(column)
+        for row in rows:
+            table.add_row(row["name"], row["kind"], row["source"])
+        console.print(table)
 
     @app.command("report")
     @reports_errors

@@ -1,4 +1,4 @@
-"""``trackcert simulate CASE``: closed-loop simulation, data files and figures (DESIGN.md).
+"""``trackcert simulate CASE``: closed-loop simulation, data files and figures (docs/simulation.md).
 
 A shell over :func:`theory.sim.simulate.simulate_case` with the case kind's simulator
 (:func:`theory.kinds.simulator_for`: ``kind: tdoa-sim`` in
@@ -29,7 +29,7 @@ from theory.cli.common import (
     workers_option,
 )
 from theory.core.errors import CaseError
-from theory.core.limits import check_count
+from theory.core.validation import check_count
 from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
 

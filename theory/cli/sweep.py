@@ -27,7 +27,7 @@ from theory.cli.common import (
     scheduler_option,
     workers_option,
 )
-from theory.core.limits import check_count
+from theory.core.validation import check_count
 
 __all__ = ["register"]
 

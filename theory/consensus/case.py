@@ -26,10 +26,11 @@ import numpy as np
 
 from theory.core.case_file import KindSpec
 from theory.core.errors import CaseError
-from theory.core.limits import check_count, check_length
 from theory.core.tolerances import WEIGHT_SUM_TOL
 from theory.core.validation import (
+    check_count,
     check_keys,
+    check_length,
     finite_matrix,
     one_of,
     positive_definite,

@@ -44,8 +44,7 @@ from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, status_of
 from theory.core.tolerances import CONVERGED_TOL, GROWTH
 from theory.core.verdicts import all_hold
-from theory.sim.figures import save_figure
-from theory.sim.outputs import write_agents_csv, write_runs_npz
+from theory.sim.outputs import save_figure, write_agents_csv, write_runs_npz
 from theory.sim.simulate import Finished, Simulator
 
 __all__ = [

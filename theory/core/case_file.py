@@ -38,7 +38,7 @@ class KindSpec:
 
     ``parse(block)`` validates the kind's block and returns its spec; ``check_expect(spec,
     expect)`` validates expected values against the spec; ``expect_rules`` maps an expect key to
-    its comparison rule of :data:`theory.core.expectations.RULES` (default ``equal``).
+    its :class:`~theory.core.expectations.Rule` (default ``equal``).
     """
 
     name: str

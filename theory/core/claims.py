@@ -199,10 +199,13 @@ class Claim:
             When the check returns something other than a list of :class:`ClaimResult`.
         """
         results = self.check(case, Context() if ctx is None else ctx)
-        if not isinstance(results, list | tuple) or not all(
-            isinstance(r, ClaimResult) for r in results
-        ):
-            raise TypeError(f"{self.id}: the check must return a list of ClaimResult")
+        if not isinstance(results, list | tuple):
+            returned = type(results).__name__
+            raise TypeError(f"{self.id}: the check returned a {returned}, not a list of results")
+        for result in results:
+            if not isinstance(result, ClaimResult):
+                returned = type(result).__name__
+                raise TypeError(f"{self.id}: the check returned a {returned}, not a ClaimResult")
         name = MODEL_CASE if case is None else case.name
         return [replace(r, claim=self.id, case=name) for r in results]
 

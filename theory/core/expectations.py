@@ -1,29 +1,25 @@
-"""Expectations: a case's ``expect`` block judged against what the analyses observed.
-
-One mechanism for every command and the report (see ``docs/report.md``):
+"""Expectations: a case's ``expect`` block judged against what the analyses observed — one
+mechanism for every command and the report (docs/report.md).
 
 1. **Observing.** Every case kind but ``pf`` has one observer, ``observe(case, ctx) ->
-   Observed``, given to its ``case.expect.<kind>`` claim (:func:`expectation_claim`) in the
-   domain's registry: it runs the analysis its command runs and returns the value of every
-   expect key it decides (``kind: pf`` has none: its claims observe, see 2). A claim result
-   that observes expect keys puts them in its evidence under :data:`EXPECTATIONS_KEY`
-   (``{"observable": [True, False]}``) and the keys it could not decide under
+   Observed``, given to its ``case.expect.<kind>`` claim (:func:`expectation_claim`): it runs
+   the analysis its command runs and returns the value of every expect key it decides (``pf``
+   has none: its claims observe). A claim result that observes expect keys puts them in its
+   evidence under :data:`EXPECTATIONS_KEY` and the keys it could not decide under
    :data:`UNDECIDED_KEY`.
-2. **Gathering.** :func:`observations_from` turns one observer's or one claim result's values
-   into observations ``(source, values, status)``: listed undecided keys are ``inconclusive``,
-   the rest take the result's status (``verified`` for an observer).
-3. **Judging.** :func:`evaluate` gives each expected key one verdict of :data:`VERDICTS`:
-
-   - ``met``: at least one conclusive observation, and every observation matches;
-   - ``unmet``: some conclusive observation does not match (the source and value are listed);
-   - ``inconclusive``: the key was observed only inconclusively;
-   - ``unchecked``: nothing observed the key.
+2. **Gathering.** :func:`observations_from` turns one observer's or claim result's values into
+   observations ``(source, values, status)``: undecided keys are ``inconclusive``, the rest take
+   the result's status (``verified`` for an observer).
+3. **Judging.** :func:`evaluate` gives each expected key one :class:`ExpectationVerdict`:
+   ``met`` (a conclusive observation, and every observation matches), ``unmet`` (a conclusive
+   observation does not match), ``inconclusive`` (observed only inconclusively) or
+   ``unchecked`` (nothing observed it).
 
 Values match by type (:func:`matches`): booleans, integers, strings and ``None`` exactly; an
 expected float matches an observed number within half a unit of its last printed digit
-(``0.975`` matches ``[0.9745, 0.9755]``), which is how a case states the digits a paper printed;
-lists and mappings element by element. A kind may give a key another rule (:data:`RULES`):
-``at_most`` (the observed number is at most the expected one) or ``at_least``.
+(``0.975`` matches ``[0.9745, 0.9755]``: how a case states the digits a paper printed); lists and
+mappings element by element. A kind may give a key another :class:`Rule`: ``at_most`` (the
+observed number is at most the expected one) or ``at_least``.
 """
 
 from __future__ import annotations
@@ -31,6 +27,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from decimal import Decimal
+from enum import StrEnum
 from typing import Any
 
 from theory.core.claims import Claim, ClaimResult, status_of
@@ -38,12 +35,12 @@ from theory.core.verdicts import expectations_verdict
 
 __all__ = [
     "EXPECTATIONS_KEY",
-    "RULES",
     "UNDECIDED_KEY",
-    "VERDICTS",
     "Expectation",
+    "ExpectationVerdict",
     "Observation",
     "Observed",
+    "Rule",
     "evaluate",
     "expectation_claim",
     "judge",
@@ -57,10 +54,24 @@ EXPECTATIONS_KEY = "expectations"
 UNDECIDED_KEY = "undecided_expectations"
 """Evidence key listing the expect keys whose reported value the claim could not decide."""
 
-VERDICTS = ("met", "unmet", "inconclusive", "unchecked")
 
-RULES = ("equal", "at_most", "at_least")
-"""How an expected value is compared: :func:`matches`, or as an upper / lower bound."""
+
+class ExpectationVerdict(StrEnum):
+    """The verdict on one expected key (module docstring, 3)."""
+
+    MET = "met"
+    UNMET = "unmet"
+    INCONCLUSIVE = "inconclusive"
+    UNCHECKED = "unchecked"
+
+
+class Rule(StrEnum):
+    """How an expected value is compared: :func:`matches`, or as an upper / lower bound."""
+
+    EQUAL = "equal"
+    AT_MOST = "at_most"
+    AT_LEAST = "at_least"
+
 
 Source = tuple[str, Mapping[str, Any], str]
 """One observation set: (claim id or observer, values by expect key, status)."""
@@ -68,33 +79,16 @@ Source = tuple[str, Mapping[str, Any], str]
 
 @dataclass(frozen=True)
 class Observed:
-    """What one analysis found for the expect keys of one case (an observer's answer).
-
-    Attributes
-    ----------
-    values : dict
-        Expect key → observed value (plain JSON data).
-    undecided : frozenset of str
-        Keys whose value the analysis could not decide (a margin inside tolerance, a rank not
-        computed); they are judged ``inconclusive``, never ``met`` or ``unmet``.
-    """
+    """What one analysis found for the expect keys of one case: expect key → observed value
+    (plain JSON data), and the keys it could not decide (a margin inside tolerance, a rank not
+    computed), judged ``inconclusive``, never ``met`` or ``unmet``."""
 
     values: dict[str, Any]
     undecided: frozenset[str] = frozenset()
 
     def evidence(self, keys: Iterable[str] | None = None) -> dict[str, Any]:
-        """The evidence entries of a claim reporting these observations.
-
-        Parameters
-        ----------
-        keys : iterable of str, optional
-            Only these keys (default: all).
-
-        Returns
-        -------
-        dict
-            ``{EXPECTATIONS_KEY: values, UNDECIDED_KEY: sorted undecided keys}``.
-        """
+        """``{EXPECTATIONS_KEY: values, UNDECIDED_KEY: sorted undecided keys}`` of ``keys``
+        (default: all): the evidence entries of a claim reporting these observations."""
         chosen = set(self.values) if keys is None else set(keys) & set(self.values)
         return {
             EXPECTATIONS_KEY: {k: v for k, v in self.values.items() if k in chosen},
@@ -104,17 +98,8 @@ class Observed:
 
 @dataclass(frozen=True)
 class Observation:
-    """One source's value for one expected key (``status`` as in :data:`Source`).
-
-    Attributes
-    ----------
-    claim : str
-        The claim id (or observer) that reported it.
-    value : object
-        The observed value.
-    status : str
-        ``inconclusive`` when undecided; otherwise the reporting result's status.
-    """
+    """One source's (claim id or observer) value for one expected key, with its status:
+    ``inconclusive`` when undecided, else the reporting result's status."""
 
     claim: str
     value: Any
@@ -123,33 +108,20 @@ class Observation:
 
 @dataclass(frozen=True)
 class Expectation:
-    """The verdict on one key of one case's ``expect`` block.
-
-    Attributes
-    ----------
-    case, key : str
-        The case and the ``expect`` key.
-    expected : object
-        The value the case file states.
-    observations : tuple of Observation
-        What each source that reports this key found.
-    verdict : str
-        One of :data:`VERDICTS`: ``met``, ``unmet``, ``inconclusive`` or ``unchecked``.
-    rule : str
-        How values are compared, one of :data:`RULES`.
-    """
+    """The verdict on one key of one case's ``expect`` block: the value the case states, what
+    each source reporting the key found, and the :class:`Rule` the values were compared by."""
 
     case: str
     key: str
     expected: Any
     observations: tuple[Observation, ...]
-    verdict: str
-    rule: str = "equal"
+    verdict: ExpectationVerdict
+    rule: Rule = Rule.EQUAL
 
     @property
     def met(self) -> bool:
         """Whether the verdict is ``met``."""
-        return self.verdict == "met"
+        return self.verdict == ExpectationVerdict.MET
 
     @property
     def observed(self) -> Any:
@@ -163,15 +135,9 @@ class Expectation:
         return f"{self.key}: expected {self.expected!r}, got {self.observed!r} ({self.verdict})"
 
     def to_json(self) -> dict[str, Any]:
-        """The one verdict record, in ``report.json`` and in every command's ``--json``.
-
-        Returns
-        -------
-        dict
-            ``case``, ``key``, ``expected``, ``got`` (:attr:`observed`), ``met``, ``verdict``,
-            ``observations`` (each ``claim``, ``value``, ``status``, ``matches``) and, for a
-            bound, ``rule``.
-        """
+        """The one verdict record of ``report.json`` and every command's ``--json``: ``case``,
+        ``key``, ``expected``, ``got`` (:attr:`observed`), ``met``, ``verdict``, ``observations``
+        (each ``claim``, ``value``, ``status``, ``matches``) and, for a bound, ``rule``."""
         out = {
             "case": self.case,
             "key": self.key,
@@ -189,29 +155,15 @@ class Expectation:
                 for o in self.observations
             ],
         }
-        if self.rule != "equal":
+        if self.rule != Rule.EQUAL:
             out["rule"] = self.rule
         return out
 
 
 def observations_from(source: str, evidence: Mapping[str, Any], status: str) -> list[Source]:
-    """The observation sets of one claim result (or observer) for :func:`evaluate`.
-
-    Parameters
-    ----------
-    source : str
-        Claim id or observer name.
-    evidence : mapping
-        The result's evidence; only :data:`EXPECTATIONS_KEY` and :data:`UNDECIDED_KEY` are read.
-    status : str
-        The result's status, given to the decided keys.
-
-    Returns
-    -------
-    list of Source
-        None when the evidence reports no expect keys; the decided keys with ``status`` and the
-        undecided ones with ``inconclusive`` otherwise.
-    """
+    """The observation sets of one claim result (or observer ``source``) for :func:`evaluate`:
+    the decided keys of its evidence with ``status``, the undecided ones ``inconclusive`` (none
+    when the evidence reports no expect keys)."""
     values = evidence.get(EXPECTATIONS_KEY)
     if not isinstance(values, Mapping):
         return []
@@ -231,25 +183,9 @@ def evaluate(
     observations: Iterable[Source],
     rules: Mapping[str, str] | None = None,
 ) -> list[Expectation]:
-    """Verdicts for every key of ``expect``.
-
-    Parameters
-    ----------
-    case : str
-        Case name.
-    expect : mapping
-        The case's ``expect`` block.
-    observations : iterable of (source, values mapping, status)
-        What each claim result or observer reported (:func:`observations_from`).
-    rules : mapping, optional
-        Expect key → rule of :data:`RULES` (default ``equal``), e.g. the kind's
-        ``expect_rules``.
-
-    Returns
-    -------
-    list of Expectation
-        One per key of ``expect``, in the block's order.
-    """
+    """One :class:`Expectation` per key of the case's ``expect`` block, in its order, from what
+    each claim result or observer reported (:func:`observations_from`); ``rules`` maps an expect
+    key to its :class:`Rule` (default ``equal``), e.g. the kind's ``expect_rules``."""
     seen = list(observations)
     rules = rules or {}
     verdicts = []
@@ -259,32 +195,16 @@ def evaluate(
             for claim, values, status in seen
             if key in values
         )
-        rule = rules.get(key, "equal")
+        rule = Rule(rules.get(key, Rule.EQUAL))
         verdict = _verdict(expected, found, rule)
         verdicts.append(Expectation(case, key, expected, found, verdict, rule))
     return verdicts
 
 
 def judge(case: Any, observed: Observed, *, source: str) -> list[Expectation]:
-    """The verdicts on the keys of ``case``'s ``expect`` block that one observer answers.
-
-    Keys the observer does not report are left to the analyses that do (the report judges
-    every key against every claim's observations, :func:`evaluate`): ``trackcert iss`` does not
-    vouch for ``simulation_bounded``, nor ``trackcert simulate`` for ``iss``.
-
-    Parameters
-    ----------
-    case : Case
-        A loaded case (its ``name``, ``kind`` and ``expect`` are used).
-    observed : Observed
-        What the kind's observer found.
-    source : str
-        Named as the observations' source (e.g. ``trackcert topology``).
-
-    Returns
-    -------
-    list of Expectation
-    """
+    """The verdicts on the keys of ``case``'s ``expect`` block that one observer (named
+    ``source``) answers; the others are left to the analyses that do (``trackcert iss`` does not
+    vouch for ``simulation_bounded``, nor ``trackcert simulate`` for ``iss``)."""
     found = observations_from(source, observed.evidence(), "verified")
     answered = {k: v for k, v in case.expect.items() if k in observed.values}
     return evaluate(case.name, answered, found, case.expect_rules)
@@ -328,38 +248,22 @@ def expectation_claim(
     )
 
 
-def _verdict(expected: Any, found: tuple[Observation, ...], rule: str) -> str:
+def _verdict(expected: Any, found: tuple[Observation, ...], rule: Rule) -> ExpectationVerdict:
     if not found:
-        return "unchecked"
+        return ExpectationVerdict.UNCHECKED
     if any(not matches(expected, o.value, rule) for o in found if o.status != "inconclusive"):
-        return "unmet"
+        return ExpectationVerdict.UNMET
     if all(o.status == "inconclusive" for o in found):
-        return "inconclusive"
-    return "met"
+        return ExpectationVerdict.INCONCLUSIVE
+    return ExpectationVerdict.MET
 
 
-def matches(expected: Any, observed: Any, rule: str = "equal") -> bool:
-    """Whether ``observed`` agrees with ``expected`` (rules in the module docstring).
-
-    Parameters
-    ----------
-    expected : object
-        A value of a case's ``expect`` block (plain YAML data).
-    observed : object
-        The value a claim reported (plain JSON data).
-    rule : str
-        One of :data:`RULES`.
-
-    Returns
-    -------
-    bool
-
-    Raises
-    ------
-    ValueError
-        For an unknown ``rule``.
-    """
-    if rule != "equal":
+def matches(expected: Any, observed: Any, rule: str = Rule.EQUAL) -> bool:
+    """Whether ``observed`` (plain JSON) agrees with ``expected`` (plain YAML) by ``rule`` (module
+    docstring); ``ValueError`` for an unknown rule."""
+    if rule not in _RULES:
+        raise ValueError(f"rule {rule!r} is not one of {[r.value for r in Rule]}")
+    if rule != Rule.EQUAL:
         return _bound(expected, observed, rule)
     if isinstance(expected, bool) or isinstance(observed, bool):
         return isinstance(expected, bool) and isinstance(observed, bool) and expected == observed
@@ -378,15 +282,15 @@ def matches(expected: Any, observed: Any, rule: str = "equal") -> bool:
     return type(expected) is type(observed) and expected == observed
 
 
+_RULES = frozenset(Rule)
+
 _BOUNDS: dict[str, Callable[[float, float], bool]] = {
-    "at_most": lambda bound, value: value <= bound,
-    "at_least": lambda bound, value: value >= bound,
+    Rule.AT_MOST: lambda bound, value: value <= bound,
+    Rule.AT_LEAST: lambda bound, value: value >= bound,
 }
 
 
 def _bound(expected: Any, observed: Any, rule: str) -> bool:
-    if rule not in _BOUNDS:
-        raise ValueError(f"rule {rule!r} is not one of {RULES}")
     numbers = all(
         isinstance(x, int | float) and not isinstance(x, bool) for x in (expected, observed)
     )

@@ -1,10 +1,12 @@
-"""Plain JSON data from what the library returns (numpy, sympy, rationals, dataclasses).
+"""Plain JSON data from what the library returns (numpy, sympy, rationals, dataclasses), and its
+canonical text.
 
-One conversion for the commands' ``--json`` output, the files they write and the report
-(:mod:`theory.report.canonical` rounds floats for reproducible bytes): one rule per type, and
-values with no faithful plain form refused (:class:`TypeError` naming where in the data they sit)
-instead of being written as a ``repr`` that could carry a memory address. sympy is never
-imported here: a value can only be a sympy object if sympy is already loaded.
+One conversion, :func:`plain`, for the commands' ``--json`` output, the files they write and the
+report: one rule per type, and a value with no faithful plain form refused (a :class:`TypeError`
+naming where it sits) rather than written as a ``repr`` that could carry a memory address. sympy
+is never imported here: a value can only be a sympy object if sympy is already loaded.
+:func:`canonical` rounds floats to :data:`FLOAT_DIGITS` and :func:`dumps` writes sorted keys with a
+fixed layout, so the same data gives the same bytes (the report's reproducibility).
 """
 
 from __future__ import annotations
@@ -20,7 +22,10 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["plain"]
+__all__ = ["FLOAT_DIGITS", "canonical", "dumps", "layout", "plain"]
+
+FLOAT_DIGITS = 12
+"""Significant digits of the report's floats (exact values travel as rational strings)."""
 
 
 def plain(value: Any, *, digits: int | None = None, where: str = "$") -> Any:
@@ -72,6 +77,35 @@ def plain(value: Any, *, digits: int | None = None, where: str = "$") -> Any:
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return plain(dataclasses.asdict(value), digits=digits, where=where)
     return _container(value, digits, where)
+
+
+def canonical(value: Any, where: str = "$") -> Any:
+    """:func:`plain` with floats rounded to :data:`FLOAT_DIGITS` significant digits."""
+    return plain(value, digits=FLOAT_DIGITS, where=where)
+
+
+def dumps(value: Any, *, width: int = 100) -> str:
+    """The canonical text of ``value``: :func:`layout` of :func:`canonical`, newline at the end."""
+    return layout(canonical(value), width=width) + "\n"
+
+
+def layout(data: Any, *, width: int = 100, indent: int = 0) -> str:
+    """Deterministic JSON text of plain ``data``, sorted keys: a container whose one-line form
+    fits in ``width`` (from ``indent``) stays on one line (a matrix prints a row a line), larger
+    ones are expanded with a 2-space indent."""
+    flat = json.dumps(data, sort_keys=True, ensure_ascii=False)
+    if not isinstance(data, dict | list) or not data or indent + len(flat) <= width:
+        return flat
+    pad = " " * (indent + 2)
+    if isinstance(data, dict):
+        items = [
+            f"{pad}{json.dumps(k, ensure_ascii=False)}: "
+            + layout(data[k], width=width, indent=indent + 2).lstrip()
+            for k in sorted(data)
+        ]
+        return "{\n" + ",\n".join(items) + "\n" + " " * indent + "}"
+    items = [pad + layout(v, width=width, indent=indent + 2).lstrip() for v in data]
+    return "[\n" + ",\n".join(items) + "\n" + " " * indent + "]"
 
 
 def _container(value: Any, digits: int | None, where: str) -> Any:

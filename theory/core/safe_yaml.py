@@ -30,7 +30,7 @@ from typing import Any
 import yaml
 
 from theory.core.errors import CaseError
-from theory.core.limits import LIMITS, limit
+from theory.core.validation import LIMITS, limit
 
 __all__ = ["decode_text", "load_yaml", "read_case_bytes"]
 

@@ -1,30 +1,45 @@
-"""Validation of plain data from case files, in one place (STYLE.md, *Adopt* 5).
+"""Validation of case data, in one place: the limits on the work an input may ask for, and the
+field checks that turn raw values into clean data or a :class:`~theory.core.errors.CaseError`.
 
-Each function takes the raw value and its dotted ``field`` name and either returns clean data
-(numpy arrays of ``float``, plain Python scalars) or raises :class:`~theory.core.errors.CaseError`
-naming the field, the expected form and what was found.
+A request above a limit is refused *before* anything is allocated (exit 2), naming the field, the
+limit and how to raise it. A limit ``name`` is read from ``TRACKCERT_MAX_<NAME>`` when set (a
+positive integer), else its default (:data:`LIMITS`, documented in ``docs/cli.md``, *Limits*).
+The defaults are far above every bundled case and far below what exhausts a workstation: they
+refuse a runaway request in well under a second, not honest ones.
+
+Each check takes the raw value and its dotted ``field`` name and returns clean data (numpy arrays
+of ``float``, plain Python scalars) or raises a :class:`~theory.core.errors.CaseError` naming the
+field, the expected form and what was found.
 """
 
 from __future__ import annotations
 
 import math
+import os
 import sys
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from theory.core.errors import CaseError
-from theory.core.limits import LIMITS, limit
+from theory.core.errors import ENVIRONMENT, CaseError
 from theory.core.tolerances import COINCIDENCE_TOL, WEIGHT_SUM_TOL
 
 __all__ = [
+    "LIMITS",
+    "Limit",
     "bounded_coordinates",
+    "check_count",
+    "check_estimate",
     "check_keys",
+    "check_length",
     "distinct_points",
     "finite_array",
     "finite_matrix",
     "finite_number",
     "finite_vector",
+    "limit",
     "one_of",
     "positive_definite",
     "positive_int",
@@ -34,55 +49,157 @@ __all__ = [
 ]
 
 
+@dataclass(frozen=True)
+class Limit:
+    """One named limit: its default, the ``unit`` it counts and what it ``bounds``."""
+
+    name: str
+    default: int
+    unit: str
+    bounds: str
+
+    @property
+    def env(self) -> str:
+        """The environment variable overriding the default, ``TRACKCERT_MAX_<NAME>``."""
+        return f"TRACKCERT_MAX_{self.name.upper()}"
+
+    def value(self) -> int:
+        """The limit in force: the environment's positive integer if set, else the default."""
+        raw = os.environ.get(self.env)
+        if raw is None or not raw.strip():
+            return self.default
+        text = raw.strip().replace("_", "")
+        if not text.isdigit() or len(text) > 30 or int(text) < 1:
+            raise CaseError(self.env, "a positive integer", raw, file=ENVIRONMENT)
+        return int(text)
+
+    def hint(self) -> str:
+        """How to raise the limit, for error messages."""
+        return f"Raise the limit with the environment variable {self.env}=N (docs/cli.md, Limits)."
+
+
+LIMITS: dict[str, Limit] = {
+    entry.name: entry
+    for entry in (
+        Limit("case_bytes", 1 << 20, "bytes", "the size of a case file (read no further)"),
+        Limit(
+            "yaml_depth",
+            32,
+            "levels",
+            "the nesting depth of a case file's YAML (no RecursionError)",
+        ),
+        Limit(
+            "yaml_nodes",
+            1_000_000,
+            "nodes",
+            "the YAML nodes of a case file, counted with every alias expanded (alias bombs)",
+        ),
+        Limit("agents", 1_000, "agents", "agents or nodes of a tdoa, tdoa-sim, dkf or pf case"),
+        Limit("trackers", 1_000, "trackers", "trackers of a pursuit case"),
+        Limit(
+            "particles", 1_000_000, "particles", "particles of each particle filter (pf.particles)"
+        ),
+        Limit("runs", 100_000, "runs", "Monte Carlo runs (pf.runs, --runs)"),
+        Limit(
+            "steps",
+            1_000_000,
+            "steps",
+            "time steps: pings, target moves, 0.1 s steps, trajectory samples (steps, --steps)",
+        ),
+        Limit(
+            "examples", 1_000_000, "examples", "the search budget of trackcert falsify (--examples)"
+        ),
+        Limit(
+            "dkf_dimension",
+            256,
+            "rows",
+            "N·n, the size of a dkf case's stacked error system (the LMIs' and operators' "
+            "matrices)",
+        ),
+        Limit(
+            "exponent",
+            100,
+            "decades",
+            "the range of every number in a case: 0 or a magnitude between 10^-e and 10^e, so "
+            "that the square or product of any two stays a normal float (no overflow to inf, no "
+            "underflow to 0)",
+        ),
+        Limit(
+            "coordinate",
+            10**9,
+            "m",
+            "the magnitude of a position coordinate (agents, nodes, target), so that squared "
+            "distances and Jacobians stay finite and meaningful in floating point",
+        ),
+        Limit(
+            "memory_bytes",
+            2 << 30,
+            "bytes",
+            "the estimated memory of the largest arrays a case asks for (each kind states its "
+            "estimate)",
+        ),
+        Limit(
+            "work",
+            10**11,
+            "elementary updates",
+            "the estimated work of a run: runs × steps × (particles or agents) per filter",
+        ),
+    )
+}
+"""Name → :class:`Limit` (the table of ``docs/cli.md``, *Limits*)."""
+
+
+def limit(name: str) -> int:
+    """The value in force of the limit ``name`` (environment or default)."""
+    return LIMITS[name].value()
+
+
+def check_count(name: str, value: int, field: str, *, file: str | None = None) -> int:
+    """``value``, refused (naming ``field``, the limit and how to raise it) above limit ``name``;
+    ``file`` names where a request that is not a case field came from (``<command line>``)."""
+    entry = LIMITS[name]
+    bound = entry.value()
+    if value > bound:
+        where = {} if file is None else {"file": file}
+        raise CaseError(
+            field,
+            f"at most {bound:,} {entry.unit} (limit '{name}': {entry.bounds})",
+            value,
+            hint=entry.hint(),
+            **where,
+        )
+    return value
+
+
+def check_length(raw: Any, name: str, field: str) -> None:
+    """Refuse a list longer than the limit ``name`` before its entries are read."""
+    if isinstance(raw, list | tuple):
+        check_count(name, len(raw), field)
+
+
+def check_estimate(name: str, estimate: float, field: str, what: str) -> None:
+    """Refuse an estimated memory or work (``what``: its formula) above the limit ``name``."""
+    entry = LIMITS[name]
+    bound = entry.value()
+    if estimate > bound:
+        raise CaseError(
+            field,
+            f"a case within the limit '{name}' of {bound:.3g} {entry.unit}",
+            f"an estimated {estimate:.3g} {entry.unit} ({what})",
+            hint=entry.hint(),
+        )
+
+
 def require(block: Mapping, key: str, prefix: str) -> object:
-    """Return ``block[key]`` or raise naming the missing field ``prefix.key``.
-
-    Parameters
-    ----------
-    block : Mapping
-        The parsed block that should hold ``key``.
-    key : str
-        The required field.
-    prefix : str
-        Dotted name of ``block`` (empty at the top level, when the field is named ``key``).
-
-    Returns
-    -------
-    object
-        ``block[key]``, unchecked.
-
-    Raises
-    ------
-    CaseError
-        If ``key`` is not in ``block``.
-    """
+    """``block[key]``, or a :class:`CaseError` naming the missing field ``prefix.key``."""
     if key not in block:
         raise CaseError(_join(prefix, key), "a value (the field is required)", "nothing")
     return block[key]
 
 
 def check_keys(block: object, allowed: Sequence[str], prefix: str) -> Mapping:
-    """Ensure ``block`` is a mapping whose keys are all in ``allowed``.
-
-    Parameters
-    ----------
-    block : object
-        The raw value of the block.
-    allowed : Sequence of str
-        The known field names; any other key is refused rather than ignored.
-    prefix : str
-        Dotted name of ``block`` in error messages (empty at the top level).
-
-    Returns
-    -------
-    Mapping
-        ``block`` itself.
-
-    Raises
-    ------
-    CaseError
-        If ``block`` is not a mapping, or naming the first unknown field (sorted) otherwise.
-    """
+    """``block`` if it is a mapping whose keys are all in ``allowed`` (unknown fields are refused,
+    never ignored)."""
     if not isinstance(block, Mapping):
         raise CaseError(prefix or "<top level>", "a mapping of fields", block)
     unknown = sorted(str(k) for k in block if k not in allowed)
@@ -97,53 +214,15 @@ def check_keys(block: object, allowed: Sequence[str], prefix: str) -> Mapping:
 
 
 def one_of(value: object, choices: Sequence[str], field: str) -> str:
-    """Return ``value`` if it is one of ``choices``.
-
-    Parameters
-    ----------
-    value : object
-        The raw value.
-    choices : Sequence of str
-        The accepted strings.
-    field : str
-        Dotted field name for messages.
-
-    Returns
-    -------
-    str
-        ``value``.
-
-    Raises
-    ------
-    CaseError
-        If ``value`` is not a string among ``choices``.
-    """
+    """``value`` if it is a string among ``choices``."""
     if not isinstance(value, str) or value not in choices:
         raise CaseError(field, f"one of {list(choices)}", value)
     return value
 
 
 def finite_number(value: object, field: str) -> float:
-    """``value`` as a finite float (an ``int`` or ``float``; ``bool`` is refused).
-
-    Parameters
-    ----------
-    value : object
-        The raw value.
-    field : str
-        Dotted field name for messages.
-
-    Returns
-    -------
-    float
-
-    Raises
-    ------
-    CaseError
-        If ``value`` is not a number, is NaN or infinite, is an integer beyond the range of a
-        float (no ``OverflowError``), or is neither 0 nor of a magnitude within the ``exponent``
-        limit (:mod:`theory.core.limits`).
-    """
+    """``value`` (an ``int`` or ``float``, not ``bool``) as a finite float, 0 or of a magnitude
+    within the ``exponent`` limit."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise CaseError(field, "a number", value)
     problem = _number_problem(value, limit("exponent"))
@@ -153,26 +232,7 @@ def finite_number(value: object, field: str) -> float:
 
 
 def positive_number(value: object, field: str, *, allow_zero: bool = False) -> float:
-    """``value`` as a finite real number > 0 (or ≥ 0 with ``allow_zero``).
-
-    Parameters
-    ----------
-    value : object
-        The raw value; an ``int`` or ``float`` (``bool`` is refused).
-    field : str
-        Dotted field name for messages.
-    allow_zero : bool
-        Accept 0 as well (the bound becomes ≥ 0).
-
-    Returns
-    -------
-    float
-
-    Raises
-    ------
-    CaseError
-        If ``value`` is not a number, or is not finite, or is out of bounds.
-    """
+    """``value`` as a finite float > 0 (≥ 0 with ``allow_zero``)."""
     number = finite_number(value, field)
     if number < 0 or (number == 0 and not allow_zero):
         bound = "≥ 0" if allow_zero else "> 0"
@@ -181,27 +241,7 @@ def positive_number(value: object, field: str, *, allow_zero: bool = False) -> f
 
 
 def positive_int(value: object, field: str, *, minimum: int = 1) -> int:
-    """``value`` as an integer ≥ ``minimum``.
-
-    Parameters
-    ----------
-    value : object
-        The raw value; an ``int`` (``bool`` is refused).
-    field : str
-        Dotted field name for messages.
-    minimum : int
-        The least accepted value.
-
-    Returns
-    -------
-    int
-        ``value``.
-
-    Raises
-    ------
-    CaseError
-        If ``value`` is not an integer or is below ``minimum``.
-    """
+    """``value`` as an integer ≥ ``minimum`` (``bool`` refused)."""
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
         raise CaseError(field, f"an integer ≥ {minimum}", value)
     return value
@@ -215,30 +255,8 @@ def finite_matrix(
     cols: int | None = None,
     allow_empty_rows: bool = False,
 ) -> np.ndarray:
-    """``value`` as a 2-D array of finite reals.
-
-    Parameters
-    ----------
-    value : object
-        The raw value: a list of equal-length rows of numbers.
-    field : str
-        Dotted field name for messages.
-    rows : int, optional
-        Required number of rows; any when not given.
-    cols : int, optional
-        Required number of columns; any when not given.
-    allow_empty_rows : bool
-        Accept ``[]`` as a ``0 × cols`` matrix (only when ``cols`` is given).
-
-    Returns
-    -------
-    ndarray of float, shape (rows, cols)
-
-    Raises
-    ------
-    CaseError
-        If ``value`` is not a matrix of finite numbers, or has the wrong shape.
-    """
+    """``value`` (equal-length rows of numbers) as a 2-D float array, of ``rows`` × ``cols`` when
+    given; ``allow_empty_rows`` reads ``[]`` as a 0 × ``cols`` matrix."""
     array = _numeric_array(value, field, "a matrix (list of equal-length rows of numbers)")
     if array.ndim == 1 and array.size == 0 and allow_empty_rows and cols is not None:
         array = array.reshape(0, cols)
@@ -255,30 +273,8 @@ def finite_matrix(
 
 
 def finite_array(value: object, field: str, expected: str, *, ndims: tuple[int, ...]) -> np.ndarray:
-    """``value`` as a rectangular array of finite reals with a number of axes in ``ndims``.
-
-    Parameters
-    ----------
-    value : object
-        The raw value: nested lists of numbers.
-    field : str
-        Dotted field name for messages.
-    expected : str
-        What a valid value looks like, as said in messages.
-    ndims : tuple of int
-        The accepted numbers of axes.
-
-    Returns
-    -------
-    ndarray of float
-        Non-empty, with ``ndim`` in ``ndims``.
-
-    Raises
-    ------
-    CaseError
-        If ``value`` is not a rectangular array of finite numbers, is empty, or has a number of
-        axes not in ``ndims``.
-    """
+    """``value`` as a non-empty rectangular float array with ``ndim`` in ``ndims`` (``expected``
+    says what a valid value looks like)."""
     array = _numeric_array(value, field, expected)
     if array.ndim not in ndims or array.size == 0:
         raise CaseError(field, expected, value)
@@ -286,26 +282,7 @@ def finite_array(value: object, field: str, expected: str, *, ndims: tuple[int, 
 
 
 def finite_vector(value: object, field: str, *, length: int | None = None) -> np.ndarray:
-    """``value`` as a 1-D array of finite reals, of ``length`` if given.
-
-    Parameters
-    ----------
-    value : object
-        The raw value: a list of numbers.
-    field : str
-        Dotted field name for messages.
-    length : int, optional
-        Required number of entries; any when not given.
-
-    Returns
-    -------
-    ndarray of float, shape (length,)
-
-    Raises
-    ------
-    CaseError
-        If ``value`` is not a list of finite numbers, or has the wrong length.
-    """
+    """``value`` as a 1-D float array, of ``length`` entries when given."""
     array = _numeric_array(value, field, "a list of numbers")
     if array.ndim != 1:
         raise CaseError(field, "a list of numbers", value)
@@ -368,29 +345,8 @@ def row_stochastic(
 
 
 def bounded_coordinates(points: np.ndarray, field: str) -> np.ndarray:
-    """Refuse a coordinate beyond the ``coordinate`` limit (:mod:`theory.core.limits`).
-
-    Squared distances, Jacobians and Gram matrices of the geometry must stay finite and
-    meaningful in floating point; a point at ``1e308`` would overflow them and make every other
-    point look coincident. The first offending entry is named by its 1-based index (the agent).
-
-    Parameters
-    ----------
-    points : ndarray
-        Coordinates (any shape; indices in messages follow it).
-    field : str
-        Dotted field name for messages.
-
-    Returns
-    -------
-    ndarray
-        ``points`` itself.
-
-    Raises
-    ------
-    CaseError
-        Naming the entry, the limit and how to raise it.
-    """
+    """``points``, refused at the first coordinate (named by 1-based index) beyond the
+    ``coordinate`` limit: squared distances and Jacobians must stay finite in floating point."""
     bound = limit("coordinate")
     beyond = np.argwhere(np.abs(points) > bound)
     if beyond.size:
@@ -408,34 +364,11 @@ def bounded_coordinates(points: np.ndarray, field: str) -> np.ndarray:
 def distinct_points(
     points: np.ndarray, field: str, *, noun: str = "agent", where: str = "", why: str = ""
 ) -> np.ndarray:
-    """Refuse two of ``points`` that coincide (seed 000 eq. (4.3): TDOA needs distinct receivers).
+    """``points``, refused when two coincide (seed 000 eq. (4.3): TDOA needs distinct receivers).
 
     Two points are one when their distance is at most ``coincidence_tol`` times their own
-    magnitude (at least 1 m): the resolution of those two coordinates, so a far-away point does
-    not make the others look coincident. The later point of the first coincident pair is named.
-
-    Parameters
-    ----------
-    points : ndarray, shape (N, dim)
-        Positions.
-    field : str
-        Dotted field name of the list of positions.
-    noun : str
-        What a point is, in messages (``agent``, ``node``).
-    where : str
-        Appended to the message, e.g. ``" at step 3"``.
-    why : str
-        Appended to the message: why coincident points are refused.
-
-    Returns
-    -------
-    ndarray
-        ``points`` itself.
-
-    Raises
-    ------
-    CaseError
-        Naming the later point of the first coincident pair and the earlier one.
+    magnitude (at least 1 m), so a far-away point does not make the others look coincident. The
+    message names the later point of the first pair (a ``noun``), ``where`` and ``why``.
     """
     gaps = np.linalg.norm(points[:, None] - points[None], axis=-1)
     size = np.maximum(1.0, np.abs(points).max(axis=1))
@@ -452,28 +385,8 @@ def distinct_points(
 
 
 def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12) -> np.ndarray:
-    """Check that ``matrix`` is symmetric positive definite.
-
-    Parameters
-    ----------
-    matrix : ndarray
-        Candidate matrix ``M``.
-    field : str
-        Dotted field name for messages.
-    rel_tol : float
-        Relative tolerance, scale-aware: λ_min must exceed ``rel_tol · max|m_ij|`` (the scale
-        ``max|m_ij|`` is taken as at least 1); symmetry is checked to ``10³`` times that.
-
-    Returns
-    -------
-    ndarray
-        ``matrix`` itself.
-
-    Raises
-    ------
-    CaseError
-        If ``matrix`` is not square, not symmetric or not positive definite.
-    """
+    """``matrix`` if symmetric positive definite: λ_min > ``rel_tol`` · max|m_ij| (scale at
+    least 1), symmetry to 10³ times that."""
     n = matrix.shape[0]
     if matrix.shape != (n, n):
         raise CaseError(field, "a square matrix", f"shape {matrix.shape}")
@@ -499,11 +412,8 @@ def _numeric_array(value: object, field: str, expected: str) -> np.ndarray:
 
 
 def _check_leaves(value: object, field: str, expected: str) -> None:
-    """Refuse the first entry (depth first, named by its 1-based index) that is no finite number.
-
-    Iterative, so it neither recurses nor converts anything before the whole value is known
-    to be nested lists of finite numbers.
-    """
+    """Refuse the first entry (depth first, by 1-based index) that is no usable number; iterative,
+    so it neither recurses nor converts anything before the whole value is checked."""
     stack: list[tuple[object, str]] = [(value, field)]
     decades = limit("exponent")
     while stack:

@@ -45,11 +45,13 @@ import numpy as np
 
 from theory.core.case_file import KindSpec
 from theory.core.errors import CaseError
-from theory.core.limits import check_count, check_estimate, check_length
 from theory.core.network import adjacency_from_edges
 from theory.core.validation import (
     bounded_coordinates,
+    check_count,
+    check_estimate,
     check_keys,
+    check_length,
     distinct_points,
     finite_matrix,
     finite_number,
@@ -260,7 +262,7 @@ def parse_pf(block: Mapping[str, Any]) -> PfSpec:
 
 
 def check_pf_work(config: PfConfig, filters: int, steps: int, runs: int, field: str) -> None:
-    """Refuse a pf run whose memory or work would exceed :mod:`theory.core.limits`, naming
+    """Refuse a pf run whose memory or work would exceed :mod:`theory.core.validation`, naming
     ``field`` (``pf.particles`` when the particles take most memory).
 
     Each filter keeps, per particle, a position, a heading and a weight (seed 002 §3.2.1) plus

@@ -40,7 +40,7 @@ from theory.core.tolerances import PF_TOLERANCES
 from theory.particle.case import PARAM_NAMES, PF, Model, PfConfig, PfSpec
 from theory.particle.dcrw import sample_dcrw_path, weibull_logpdf, wrapped_cauchy_logpdf
 from theory.particle.filter import PfRun, build_motion, run_filter, simulate_measurements
-from theory.sim.figures import new_figure, save_figure
+from theory.sim.outputs import new_figure, save_figure
 
 __all__ = [
     "DEFAULT_TOLERANCES",

@@ -47,10 +47,10 @@ import numpy as np
 
 from theory.core.case_file import KindSpec
 from theory.core.errors import CaseError
-from theory.core.limits import check_length
 from theory.core.network import adjacency_from_edges, uniform_weights
 from theory.core.validation import (
     check_keys,
+    check_length,
     finite_matrix,
     finite_number,
     finite_vector,

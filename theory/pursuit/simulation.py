@@ -303,10 +303,10 @@ def write_pursuit_data(runs: Sequence[DecRun], summary: dict[str, Any], folder: 
 def write_pursuit_figures(runs: Sequence[DecRun], folder: Path) -> list[Path]:
     """``trajectories.png`` (run 0), ``errors.png`` and ``coordination.png`` in ``folder``.
 
-    Drawn without pyplot and with fixed margins (:func:`theory.sim.figures.new_figure`): the
+    Drawn without pyplot and with fixed margins (:func:`theory.sim.outputs.new_figure`): the
     automatic layout would draw every tick label twice.
     """
-    from theory.sim.figures import save_figure
+    from theory.sim.outputs import save_figure
 
     drawn = (
         (_trajectory_figure(runs[0]), "trajectories.png"),
@@ -322,7 +322,7 @@ _STACKED = {"left": 0.12, "right": 0.97, "bottom": 0.09, "top": 0.98, "hspace": 
 
 def _trajectory_figure(run: DecRun) -> Any:
     """The target's and the trackers' paths in the horizontal plane."""
-    from theory.sim.figures import new_figure
+    from theory.sim.outputs import new_figure
 
     margins = {"left": 0.13, "right": 0.97, "bottom": 0.09, "top": 0.98}
     fig, ax = new_figure(figsize=(6, 6), margins=margins)
@@ -338,7 +338,7 @@ def _trajectory_figure(run: DecRun) -> Any:
 
 def _error_figure(runs: Sequence[DecRun]) -> Any:
     """Pursuit and localization errors per tracker (means over runs), log scale."""
-    from theory.sim.figures import new_figure
+    from theory.sim.outputs import new_figure
 
     fig, axes = new_figure(2, 1, figsize=(7, 6), sharex=True, margins=_STACKED)
     times = runs[0].times
@@ -367,7 +367,7 @@ def _plain_log_axis(ax: Any) -> None:
 
 def _coordination_figure(run: DecRun) -> Any:
     """γ^[i] about their mean and γ̇^[i] (run 0)."""
-    from theory.sim.figures import new_figure
+    from theory.sim.outputs import new_figure
 
     fig, axes = new_figure(2, 1, figsize=(7, 6), sharex=True, margins=_STACKED)
     axes[0].plot(run.times, run.gammas - run.gammas.mean(axis=1, keepdims=True), lw=1)
@@ -508,7 +508,7 @@ SIMULATION_SEED = 0
 
 def default_run(case: Case) -> DecRun:
     """The run ``trackcert simulate CASE`` makes by default (one run, root seed 0, 450 s)."""
-    from theory.sim.runner import run_seeds
+    from theory.sim.simulate import run_seeds
 
     (sequence,) = run_seeds(SIMULATION_SEED, 1)
     rng = np.random.default_rng(sequence)
@@ -574,7 +574,7 @@ def _figure(times: np.ndarray, along: IssMargin, folder: Path) -> str:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from theory.sim.figures import save_figure
+    from theory.sim.outputs import save_figure
 
     fig, ax = plt.subplots(figsize=(7, 4))
     ax.semilogy(times[: len(along.mu)], along.mu, lw=1, label="‖μ(t)‖ (simulated)")

@@ -1,35 +1,95 @@
-"""Write a report folder: ``report.json``, ``report.md`` and a self-contained ``index.html``.
+"""Write a report folder — ``report.json``, ``report.md``, a self-contained ``index.html``, the
+claims' figures and certificates, ``timings.json`` — and ``trackcert report`` as one library call.
 
-All three are rendered from one document (:func:`theory.report.document.build_document`) with
-jinja2 templates in ``theory/report/templates/``. The HTML has its CSS inline and its figures
-embedded as data URIs (the files are also in ``figures/``). Nothing in any of the files depends
-on the time of the run: the same inputs and seed give the same bytes.
+:func:`build_report` runs the claims (:func:`theory.report.runner.run_claims`) with figures drawn
+in a temporary folder, then writes everything into a staging folder that replaces the report
+folder whole (:func:`theory.core.atomic_output.replaced_folder`): a failure or a signal leaves the
+old report as it was.
+
+Files the claims produce are copied in: figures from :attr:`ClaimResult.figures`, certificates
+given as paths in the evidence (``certificate``: one, ``certificates``: a list) or as the
+document itself (``certificate_document``). Each goes to ``DIR/figures/<claim>/<case>/`` or
+``DIR/certificates/<claim>/<case>/`` with its SHA-256 (so the figures' data is part of the
+reproducible ``report.json``), the evidence names the copy, and every certificate is re-verified
+by the independent checker (:func:`theory.report.tasks.check_with_cli`, reusing the verdict given
+where its claim ran). The three files are rendered from one document
+(:func:`theory.report.document.build_document`) with the jinja2 templates of
+``theory/report/templates/``; the HTML has its CSS inline and its figures as data URIs, and
+renders ``docs/errata.md`` through a small Markdown subset whose input is escaped first.
 """
 
 from __future__ import annotations
 
 import base64
+import hashlib
+import html
 import json
 import os
 import re
+import shutil
+import tempfile
+import time
 from collections import Counter
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 import jinja2
 from markupsafe import Markup
 
-from theory.core.claims import Status
-from theory.core.errors import CaseError
-from theory.report.artifacts import CertificateChecker, collect, prechecked
-from theory.report.canonical import dumps, layout
-from theory.report.document import build_document
-from theory.report.environment import environment
-from theory.report.errata import default_errata_path, parse_errata
-from theory.report.markup import markdown_to_html
-from theory.report.runner import RunResult
+from theory.core.atomic_output import check_replaceable, recover, replaced_folder
+from theory.core.case_file import Case
+from theory.core.claims import DOCUMENT_KEY, Claim, Status
+from theory.core.errors import COMMAND_LINE, CaseError
+from theory.core.jsonable import dumps, layout
+from theory.core.parallel import TaskRunner
+from theory.registry import all_claims
+from theory.report.document import (
+    Artifacts,
+    ErratumEntry,
+    build_document,
+    default_errata_path,
+    environment,
+    parse_errata,
+)
+from theory.report.runner import (
+    ProgressHook,
+    RunResult,
+    load_estimates,
+    run_claims,
+    select_claims,
+    timings_document,
+    write_timings,
+)
+from theory.report.tasks import (
+    CertificateChecker,
+    Record,
+    certificate_bytes,
+    check_with_cli,
+    document_name,
+    prechecked,
+    slug,
+)
 
-__all__ = ["EVIDENCE_LIMIT", "render_html", "render_markdown", "write_report"]
+__all__ = [
+    "CERTIFICATE_KEYS",
+    "EVIDENCE_LIMIT",
+    "MARKER",
+    "build_report",
+    "check_count",
+    "choose_claims",
+    "collect",
+    "markdown_to_html",
+    "render_html",
+    "render_markdown",
+    "write_report",
+]
+
+MARKER = "report.json"
+"""The file every report folder has: a folder without it is not replaced (unless empty)."""
+
+CERTIFICATE_KEYS = ("certificate", "certificates")
+"""Evidence keys whose values are certificate paths (a string, or a list of strings)."""
 
 EVIDENCE_LIMIT = 20_000
 """Characters of a result's evidence shown in HTML/Markdown (``report.json`` has all of it)."""
@@ -39,6 +99,106 @@ _IMAGE_TYPES = {".png": "image/png", ".svg": "image/svg+xml", ".jpg": "image/jpe
                 ".jpeg": "image/jpeg", ".gif": "image/gif"}  # fmt: skip
 
 
+def choose_claims(patterns: Sequence[str] = ()) -> list[Claim]:
+    """The registered claims matching ``patterns`` (``--only``; none: all), refusing patterns
+    that match nothing (the hint lists the registered ids)."""
+    registered = all_claims()
+    claims = select_claims(registered, patterns)
+    if patterns and not claims:
+        known = "Registered claims: " + ", ".join(c.id for c in registered)
+        raise CaseError(
+            "--only",
+            "a pattern matching a registered claim id",
+            list(patterns),
+            file=COMMAND_LINE,
+            hint=known,
+        )
+    return claims
+
+
+def check_count(cases: Sequence[Case], claims: Sequence[Claim]) -> int:
+    """How many checks :func:`build_report` runs: each model claim once, each claim per case."""
+    return sum(1 for c in claims if not c.kinds) + sum(
+        1 for case in cases for c in claims if case.kind in c.kinds
+    )
+
+
+def build_report(
+    cases: Sequence[Case],
+    out_dir: Path,
+    *,
+    claims: Sequence[Claim] | None = None,
+    seed: int = 0,
+    seconds: float | None = None,
+    errata_path: Path | None = None,
+    progress: ProgressHook | None = None,
+    runner: TaskRunner | None = None,
+) -> tuple[RunResult, dict[str, Any]]:
+    """Run every claim on every case; write ``index.html``, ``report.md``, ``report.json`` and
+    ``timings.json`` into ``out_dir``, replaced whole.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+        The cases (distinct names).
+    out_dir : Path
+        The report folder.
+    claims : sequence of Claim, optional
+        Default: every registered claim.
+    seed : int
+        Seed of every randomized check (:func:`theory.report.tasks.derive_seed`).
+    seconds : float, optional
+        CPU-time limit of each check (``None``: none).
+    errata_path : Path, optional
+        The errata document (default ``docs/errata.md``).
+    progress : callable, optional
+        :data:`~theory.report.runner.ProgressHook`, as checks complete.
+    runner : TaskRunner, optional
+        An open engine to run the checks on (default: serially in this process).
+
+    Returns
+    -------
+    (RunResult, dict)
+        What the claims returned, and the ``report.json`` document.
+
+    Raises
+    ------
+    CaseError
+        If ``errata_path`` is not a readable file, ``out_dir`` is not a report folder
+        (:func:`theory.core.atomic_output.replaceable_problem`) or the engine's scheduler cannot
+        be reached.
+    OutputError
+        If writing fails (the folder is left as it was).
+    """
+    if errata_path is not None and not Path(errata_path).is_file():
+        raise CaseError("--errata", "a readable Markdown file", str(errata_path), file=COMMAND_LINE)
+    recover(out_dir)  # a report killed while swapping folders: its old folder comes back first
+    check_replaceable(out_dir, MARKER)
+    with tempfile.TemporaryDirectory(prefix="trackcert-figures-") as figures:
+        started = time.perf_counter()
+        run = run_claims(
+            cases,
+            seed=seed,
+            claims=claims,
+            progress=progress,
+            seconds=seconds,
+            figure_dir=Path(figures),
+            runner=runner,
+            estimates=load_estimates(Path(out_dir)),
+        )
+        wall = time.perf_counter() - started
+        timings = timings_document(
+            run,
+            wall_seconds=wall,
+            workers=1 if runner is None else runner.size,
+            scheduler=None if runner is None else runner.scheduler,
+        )
+        with replaced_folder(out_dir, MARKER) as staging:
+            document = write_report(run, staging, errata_path=errata_path)
+            write_timings(timings, staging)
+    return run, document
+
+
 def write_report(
     run: RunResult,
     out_dir: str | Path,
@@ -46,30 +206,13 @@ def write_report(
     errata_path: str | Path | None = None,
     checker: CertificateChecker | None = None,
 ) -> dict[str, Any]:
-    """Write ``out_dir/report.json``, ``report.md``, ``index.html`` (and the claims' files).
+    """Write ``out_dir/report.json``, ``report.md``, ``index.html`` and the claims' files; return
+    the ``report.json`` document.
 
-    Parameters
-    ----------
-    run : RunResult
-        From :func:`theory.report.runner.run_claims`.
-    out_dir : str or Path
-        The report folder; created if needed; other files in it are left alone.
-    errata_path : str or Path, optional
-        The errata document; defaults to :func:`theory.report.errata.default_errata_path`.
-    checker : callable, optional
-        Certificate checker (default: the verdicts the checks' tasks gave,
-        :attr:`RunResult.certificate_checks`, and ``python -m proofs_check FILE --json`` on any
-        other certificate).
-
-    Returns
-    -------
-    dict
-        The document written to ``report.json``.
-
-    Raises
-    ------
-    CaseError
-        If ``out_dir`` cannot be a folder or ``errata_path`` cannot be read.
+    ``out_dir`` is created if needed (other files in it are left alone); ``errata_path``
+    defaults to :func:`theory.report.document.default_errata_path`; ``checker`` defaults to the
+    verdicts the checks' tasks gave, else ``python -m proofs_check FILE --json``. Raises
+    :class:`CaseError` if ``out_dir`` cannot be a folder or the errata cannot be read.
     """
     out = Path(out_dir)
     errata = _read_errata(errata_path)
@@ -95,7 +238,7 @@ def write_report(
     return document
 
 
-def _read_errata(errata_path: str | Path | None):
+def _read_errata(errata_path: str | Path | None) -> list[ErratumEntry] | None:
     path = default_errata_path() if errata_path is None else Path(errata_path)
     if path is None:
         return None
@@ -107,20 +250,83 @@ def _read_errata(errata_path: str | Path | None):
         ) from None
 
 
+# ---------------------------------------------------------------------------------- artifacts
+def collect(
+    records: tuple[Record, ...], out_dir: Path, *, checker: CertificateChecker | None = None
+) -> list[Artifacts]:
+    """Copy every record's figures and certificates into ``out_dir`` and check the certificates
+    (``checker`` defaults to :func:`~theory.report.tasks.check_with_cli`); each record's evidence
+    names the copies, relative to ``out_dir``."""
+    checker = check_with_cli if checker is None else checker
+    taken: set[str] = set()
+    collected = []
+    for record in records:
+        figures = tuple(_copy(Path(f), "figures", record, out_dir, taken) for f in record.figures)
+        evidence = dict(record.evidence)
+        certificates: list[dict[str, Any]] = []
+        document = evidence.pop(DOCUMENT_KEY, None)
+        for key in CERTIFICATE_KEYS:
+            paths = _certificate_paths(evidence.get(key))
+            if paths is None:
+                continue
+            copies = [_copy(Path(p), "certificates", record, out_dir, taken) for p in paths]
+            for copy in copies:
+                if copy["sha256"] is not None:
+                    copy["check"] = checker(Path(copy["path"]), out_dir)
+            certificates.extend(copies)
+            relative = [c["path"] for c in copies]
+            evidence[key] = relative[0] if isinstance(evidence[key], str) else relative
+        if isinstance(document, dict):
+            written = _write(document, record, out_dir, taken)
+            written["check"] = checker(Path(written["path"]), out_dir)
+            certificates.append(written)
+            evidence["certificate"] = written["path"]
+        collected.append(Artifacts(record.with_evidence(evidence), figures, tuple(certificates)))
+    return collected
+
+
+def _certificate_paths(value: object) -> list[str] | None:
+    if isinstance(value, str):
+        return [value]
+    if isinstance(value, list) and all(isinstance(v, str) for v in value):
+        return list(value)
+    return None
+
+
+def _copy(source: Path, folder: str, record: Record, out_dir: Path, taken: set[str]) -> dict:
+    """Copy ``source`` under ``out_dir/folder/<claim>/<case>/`` with a name not used before."""
+    name = _reserve(folder, record, slug(source.name), taken)
+    if not source.is_file():
+        return {"path": name, "sha256": None, "error": f"the claim's file {source.name} is missing"}
+    target = out_dir / name
+    target.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(source, target)
+    return {"path": name, "sha256": hashlib.sha256(target.read_bytes()).hexdigest()}
+
+
+def _write(document: dict, record: Record, out_dir: Path, taken: set[str]) -> dict:
+    """Write a certificate ``document`` as ``DIR/certificates/<claim>/<case>/<kind>.json``."""
+    path = _reserve("certificates", record, document_name(document), taken)
+    target = out_dir / path
+    target.parent.mkdir(parents=True, exist_ok=True)
+    content = certificate_bytes(document)
+    target.write_bytes(content)
+    return {"path": path, "sha256": hashlib.sha256(content).hexdigest()}
+
+
+def _reserve(folder: str, record: Record, name: str, taken: set[str]) -> str:
+    """``folder/<claim>/<case>/name``, prefixed ``2-``, ``3-`` … until unused; marks it used."""
+    base = f"{folder}/{slug(record.id)}/{slug(record.case)}"
+    path, index = f"{base}/{name}", 2
+    while path in taken:
+        path, index = f"{base}/{index}-{name}", index + 1
+    taken.add(path)
+    return path
+
+
+# -------------------------------------------------------------------------------- renderings
 def render_html(document: dict[str, Any], out_dir: Path) -> str:
-    """The self-contained ``index.html`` for ``document``.
-
-    Parameters
-    ----------
-    document : dict
-        The ``report.json`` document.
-    out_dir : Path
-        The report folder, where the figures to embed were copied.
-
-    Returns
-    -------
-    str
-    """
+    """The self-contained ``index.html`` of ``document`` (figures embedded from ``out_dir``)."""
     env = _environment(autoescape=True)
     env.filters["datauri"] = lambda path: _data_uri(out_dir / path)
     env.filters["md"] = lambda text: Markup(markdown_to_html(text))
@@ -128,17 +334,7 @@ def render_html(document: dict[str, Any], out_dir: Path) -> str:
 
 
 def render_markdown(document: dict[str, Any]) -> str:
-    """``report.md`` for ``document``.
-
-    Parameters
-    ----------
-    document : dict
-        The ``report.json`` document.
-
-    Returns
-    -------
-    str
-    """
+    """``report.md`` of ``document``."""
     env = _environment(autoescape=False)
     env.filters["cell"] = lambda text: str(text).replace("|", "\\|").replace("\n", " ")
     return env.get_template("report.md.j2").render(doc=document, **_views(document))
@@ -237,3 +433,69 @@ def _data_uri(path: Path) -> str:
     if kind is None or not path.is_file():
         return ""
     return f"data:{kind};base64," + base64.b64encode(path.read_bytes()).decode("ascii")
+
+
+# ------------------------------------------------------------------------- Markdown subset
+_LIST_ITEM = re.compile(r"^\s*(?:[-*]|\d+\.)\s+")
+_INLINE = (
+    (re.compile(r"\*\*(.+?)\*\*"), r"<strong>\1</strong>"),
+    (re.compile(r"(?<![\w*])\*(?!\s)(.+?)(?<!\s)\*(?![\w*])"), r"<em>\1</em>"),
+    (re.compile(r"\[([^\]]+)\]\(((?:https?://|#|\.{0,2}/)?[^)\s]*)\)"), r'<a href="\2">\1</a>'),
+)
+
+
+def markdown_to_html(text: str) -> str:
+    """HTML of a safe Markdown subset: paragraphs, ``-``/``*``/``1.`` lists, fenced code,
+    headings, inline code, bold, italics and links; everything else is escaped text, so no markup
+    in a document can inject HTML into the report."""
+    out: list[str] = []
+    lines = text.splitlines()
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        if line.startswith("```"):
+            end = next((j for j in range(i + 1, len(lines)) if lines[j].startswith("```")), None)
+            end = len(lines) if end is None else end
+            out.append(f"<pre>{html.escape(chr(10).join(lines[i + 1 : end]))}</pre>")
+            i = end + 1
+        elif heading := re.match(r"^(#{1,6})\s+(.*)", line):
+            level = min(len(heading.group(1)) + 2, 6)
+            out.append(f"<h{level}>{_inline(heading.group(2))}</h{level}>")
+            i += 1
+        elif _LIST_ITEM.match(line):
+            items, i = _block(lines, i, lambda s: bool(_LIST_ITEM.match(s)))
+            out.append("<ul>" + "".join(f"<li>{_inline(item)}</li>" for item in items) + "</ul>")
+        elif line.strip():
+            paragraph, i = _block(lines, i, lambda s: False)
+            out.append(f"<p>{_inline(' '.join(paragraph))}</p>")
+        else:
+            i += 1
+    return "\n".join(out)
+
+
+def _block(lines: list[str], start: int, starts_item) -> tuple[list[str], int]:
+    """Items (or one paragraph) from ``start`` until a blank line, heading or fence."""
+    items: list[str] = []
+    i = start
+    while i < len(lines) and lines[i].strip() and not re.match(r"^(#{1,6}\s|```)", lines[i]):
+        line = lines[i]
+        if starts_item(line) or not items:
+            items.append(_LIST_ITEM.sub("", line, count=1).strip())
+        else:
+            items[-1] += " " + line.strip()
+        i += 1
+    return items, i
+
+
+def _inline(text: str) -> str:
+    parts = re.split(r"(`[^`]+`)", text)
+    rendered = []
+    for part in parts:
+        if part.startswith("`") and part.endswith("`") and len(part) > 1:
+            rendered.append(f"<code>{html.escape(part[1:-1])}</code>")
+            continue
+        escaped = html.escape(part, quote=False)
+        for pattern, replacement in _INLINE:
+            escaped = pattern.sub(replacement, escaped)
+        rendered.append(escaped)
+    return "".join(rendered)

@@ -1,88 +1,109 @@
-"""Run every registered claim on every case, as tasks on the engine, never letting one check stop
-the others.
+"""Run every claim on every case as tasks on the engine, in an order that finishes early, and
+account for the time each check took.
 
-:func:`run_claims` is the report's engine: for each case it runs the claims registered for the
-case's kind, and it runs the model claims (``kinds=()``) once, on no case (case ``"-"``). The checks
-run as tasks (:mod:`theory.report.tasks`) on a :class:`~theory.core.parallel.TaskRunner`: serially
-in this process by default, on Dask workers when the caller opens an engine with more. Every
-exception a check raises, every malformed answer it returns, and every task the engine loses
-becomes a :class:`Record` with status ``inconclusive``, method ``"none"`` and the error in its
-message and evidence, so the report always completes. Each check's
-:class:`~theory.core.claims.Context` carries a seed derived from the report's seed, its id and the
-case name (:func:`derive_seed`), so reruns are identical whatever the number of workers or the
-order in which they finish; claims registered with ``shares_work`` share one
-:class:`~theory.core.claims.RunCache` per case; with a figure folder, a check draws into a fresh
-sub-folder ``<claim>/<case>`` (returning the paths in ``figures``), and the figures travel back
-from the worker as bytes and are written under the caller's folder. With a time
-limit (:mod:`theory.report.time_limit`), a check still running when it expires becomes an
-``inconclusive`` record saying so, and the report goes on with the next one.
+:func:`run_claims` runs the claims of each case's kind on it, and the model claims (``kinds=()``)
+once on no case (``"-"``), as :mod:`theory.report.tasks` on a
+:class:`~theory.core.parallel.TaskRunner` (serially in this process by default). Every check's
+seed derives from the report's seed, its id and its case, and the records are sorted afterwards,
+so the result is the same whatever the workers and the order they finish in. A lost task becomes
+``inconclusive`` records; drawn figures travel back as bytes and are written under the caller's
+figure folder.
+
+**Schedule.** A few checks cost tens of seconds and most cost milliseconds; handed out in report
+order, a long task that comes late keeps one worker busy while the others idle (5–9 s later on
+two cores, docs/parallel.md). So tasks are submitted longest first (Graham's LPT rule, within 4/3
+of the best makespan) by *estimated* CPU seconds: the previous run's ``timings.json`` in the same
+folder, else the bundled ``check_costs.json`` (``python -m benchmarks.bench_report
+--write-costs``), else the claim's mean over the cases it was measured on, else
+:data:`UNKNOWN_SECONDS`. Short checks of one claim travel in one batch (:func:`batches`) so one
+worker pays their first-run cost. A missing or malformed estimate only makes the order worse.
+
+**Timings.** Wall times differ between runs, so they stay out of ``report.json`` and go to
+``timings.json`` (:func:`timings_document`): ``{"format", "workers", "scheduler",
+"wall_seconds", "cpu_seconds", "parent_peak_rss", "worker_peak_rss", "checks": [{"id", "case",
+"wall_seconds", "cpu_seconds", "worker", "started_seconds"}, …]}`` in check order
+(``started_seconds`` after the run began, ``null`` for a lost task).
 """
 
 from __future__ import annotations
 
 import fnmatch
+import json
+import resource
 import time
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from statistics import fmean
 from typing import Any
 
 from theory.core.case_file import Case
 from theory.core.claims import Claim
 from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, evaluate, observations_from
+from theory.core.jsonable import canonical
 from theory.core.parallel import Outcome, TaskRunner, engine
-from theory.core.verdicts import expectations_verdict
+from theory.core.verdicts import Verdict, expectations_verdict
 from theory.registry import all_claims
-from theory.report.canonical import canonical
-from theory.report.records import MODEL_CASE, RESULT_FIELDS, Record, derive_seed, paper_of, slug
-from theory.report.schedule import Batch, Estimates, batches
 from theory.report.tasks import (
+    MODEL_CASE,
     CheckOutput,
+    CheckTask,
+    Record,
     TaskOutput,
     failed_task,
     plan_tasks,
+    process_name,
     run_batch,
 )
 
 __all__ = [
-    "MODEL_CASE",
-    "RESULT_FIELDS",
+    "BATCH_SECONDS",
+    "COSTS_FORMAT",
+    "SMALL_SECONDS",
+    "TIMINGS_FORMAT",
+    "UNKNOWN_SECONDS",
+    "Batch",
+    "Estimates",
     "ProgressHook",
-    "Record",
     "RunResult",
     "Timing",
-    "derive_seed",
-    "paper_of",
+    "batches",
+    "bundled_costs_path",
+    "costs_document",
+    "load_estimates",
+    "longest_first",
     "run_claims",
     "select_claims",
-    "slug",
+    "slowest",
+    "timings_document",
+    "write_timings",
 ]
 
 ProgressHook = Callable[[int, str], None]
-"""``progress(done, label)``: ``done`` checks finished so far, ``label`` the last one's
-``"claim on case"`` (called as each task completes)."""
+"""``progress(done, label)``: checks finished so far and the last one's ``"claim on case"``."""
+
+TIMINGS_FORMAT = "trackcert-timings/1"
+COSTS_FORMAT = "trackcert-check-costs/1"
+
+UNKNOWN_SECONDS = 0.05
+"""Estimate of a check nothing is known about (a new claim): about the median check."""
+
+SMALL_SECONDS = 0.3
+"""A one-claim task estimated under this many seconds is batched with others of its claim."""
+
+BATCH_SECONDS = 1.0
+"""The most a batch of short tasks is estimated to take (so the workers finish together)."""
+
+Batch = tuple[CheckTask, ...]
+"""Tasks run one after the other as one engine task (:func:`theory.report.tasks.run_batch`)."""
 
 
 @dataclass(frozen=True)
 class Timing:
-    """How long one check took, and where it ran.
-
-    Attributes
-    ----------
-    claim, case : str
-        The check.
-    wall_seconds, cpu_seconds : float
-        Wall time, and CPU time of the process that ran it.
-    worker : str
-        ``host:pid`` of that process (``""`` when its task was lost).
-    peak_rss : int
-        Peak resident memory of that process when the task ended, bytes.
-    started : float or None
-        When it began, in seconds after the run began (clocks of the report's machine and the
-        worker's; ``None`` when its task was lost).
-    """
+    """One check's wall and CPU seconds, the ``host:pid`` that ran it (``""``: lost), that
+    process's peak memory (bytes) and when it began after the run began (``None``: lost)."""
 
     claim: str
     case: str
@@ -97,32 +118,12 @@ class Timing:
 class RunResult:
     """Everything the claims returned, ready to be rendered.
 
-    Attributes
-    ----------
-    records : tuple of Record
-        Sorted by paper, claim id, case order.
-    expectations : tuple of Expectation
-        One per key of every case's ``expect`` block.
-    not_applicable : tuple of (claim id, case name, reason)
-        Claims that returned no result for a case (they do not apply to it); ``reason`` is the
-        message of the :class:`~theory.core.claims.NotApplicable` the check raised, or ``""`` when
-        it
-        returned an empty list.
-    cases : tuple of Case
-        The cases, in the order given.
-    claims : tuple of Claim
-        The claims that were run, sorted by id.
-    seed : int
-        The report's seed.
-    time_limit : float or None
-        Seconds allowed to each check (``None``: no limit).
-    timings : tuple of Timing
-        Wall and CPU time of each check, in check order (not part of ``report.json``: they differ
-        from run to run; :mod:`theory.report.timings` writes them to ``timings.json``).
-    certificate_checks : dict of str to dict
-        The independent checker's verdicts on the certificate documents, given where their
-        claims ran, by the SHA-256 of the bytes checked (see
-        :func:`theory.report.artifacts.prechecked`).
+    ``records`` are sorted by paper, claim id and case order; ``expectations`` has one entry per
+    key of every case's ``expect`` block; ``not_applicable`` lists (claim, case, reason) of the
+    claims that returned no result (the reason of their
+    :class:`~theory.core.claims.NotApplicable`, or ``""``); ``claims`` are the claims run, by id;
+    ``timings`` go to ``timings.json`` only; ``certificate_checks`` are the checker's verdicts on
+    certificate documents, by SHA-256 of the bytes checked.
     """
 
     records: tuple[Record, ...]
@@ -137,30 +138,17 @@ class RunResult:
 
     @property
     def all_expectations_met(self) -> bool:
-        """Whether every expectation of every case is met (the report's exit code 0)."""
+        """Whether every expectation of every case is met."""
         return all(e.verdict == "met" for e in self.expectations)
 
     @property
-    def verdict(self) -> bool | None:
-        """The expectations' verdict: False if one is unmet, True if all are met, else None
-        (:func:`theory.core.verdicts.expectations_verdict`; the report's exit code)."""
+    def verdict(self) -> Verdict:
+        """The expectations' verdict (:func:`theory.core.verdicts.expectations_verdict`)."""
         return expectations_verdict(self.expectations)
 
 
 def select_claims(claims: Sequence[Claim], patterns: Sequence[str]) -> list[Claim]:
-    """The claims whose id matches one of ``patterns``.
-
-    Parameters
-    ----------
-    claims : sequence of Claim
-        Candidates.
-    patterns : sequence of str
-        Shell-style patterns (``seed000.*``); none given selects every claim.
-
-    Returns
-    -------
-    list of Claim
-    """
+    """The claims whose id matches one of the shell-style ``patterns`` (none: all of them)."""
     if not patterns:
         return list(claims)
     return [c for c in claims if any(fnmatch.fnmatchcase(c.id, p) for p in patterns)]
@@ -182,29 +170,28 @@ def run_claims(
     Parameters
     ----------
     cases : sequence of Case
-        Validated cases (their names must be distinct).
+        Validated cases with distinct names.
     seed : int
-        The report's seed; each claim accepting ``seed`` gets :func:`derive_seed` of it.
+        The report's seed (each check's derives from it).
     claims : sequence of Claim, optional
-        Defaults to every registered claim (:func:`theory.registry.all_claims`); workers
-        look each one up by id in their own registry.
+        Default: every registered claim (:func:`theory.registry.all_claims`); a task looks each
+        one up by id in its own process's registry.
     progress : callable, optional
-        ``progress(done, label)`` as each task completes (:data:`ProgressHook`).
+        :data:`ProgressHook`, called as each task completes.
     seconds : float, optional
-        Time limit of each check (one claim on one case); ``None``: none.
+        CPU-time limit of each check (``None``: none).
     figure_dir : Path, optional
-        Folder under which claims accepting ``figure_dir`` draw (``None``: no figures).
+        Folder under which drawing checks put their figures (``None``: no figures).
     runner : TaskRunner, optional
         An open engine (:func:`theory.core.parallel.engine`); default: this process, serially.
     estimates : Estimates, optional
-        Estimated costs of the checks: the tasks are handed to the engine longest first, the
-        short ones of a claim together (:func:`theory.report.schedule.batches`); default: one
-        by one in report order.
+        Estimated costs: tasks are handed out longest first, short ones of a claim together
+        (:func:`batches`); default: one by one in report order.
 
     Returns
     -------
     RunResult
-        Identical (records, order, seeds) whatever the runner and the estimates.
+        The same records, order and seeds whatever the runner and the estimates.
     """
     claims = sorted(all_claims() if claims is None else claims, key=lambda c: c.id)
     _check_distinct_names(cases)
@@ -239,8 +226,7 @@ def _collect(
     figure_dir: Path | None,
     began: float,
 ) -> tuple[list[tuple[int, Record]], list[tuple[str, str, str]], list[Timing]]:
-    """Records (with their case's position), not-applicable pairs and timings (started
-    ``began`` = ``time.time()`` when the run began), in check order."""
+    """Records (with their case's position), not-applicable triples and timings, in check order."""
     by_check = {(o.claim, o.case): (o, out) for out in outputs for o in out.checks}
     order = {MODEL_CASE: -1} | {case.name: i for i, case in enumerate(cases)}
     rows: list[tuple[int, Record]] = []
@@ -343,3 +329,183 @@ def _expectations(cases: Sequence[Case], records: Sequence[Record]) -> tuple[Exp
         rules = case.expect_rules
         verdicts.extend(evaluate(case.name, canonical(case.expect), observations, rules))
     return tuple(verdicts)
+
+
+# ---------------------------------------------------------------------------------- schedule
+@dataclass(frozen=True)
+class Estimates:
+    """Estimated CPU seconds of checks by ``(claim id, case name)``, and each measured claim's
+    mean over its cases (for a case it was not measured on)."""
+
+    seconds: Mapping[tuple[str, str], float] = field(default_factory=dict)
+    claim_means: Mapping[str, float] = field(default_factory=dict)
+
+    @classmethod
+    def of(cls, measured: Mapping[tuple[str, str], float]) -> Estimates:
+        """Estimates from measured costs."""
+        by_claim: dict[str, list[float]] = {}
+        for (claim, _), seconds in measured.items():
+            by_claim.setdefault(claim, []).append(seconds)
+        return cls(dict(measured), {c: fmean(v) for c, v in by_claim.items()})
+
+    def check(self, claim: str, case: str) -> float:
+        """The estimated cost of ``claim`` on ``case``."""
+        known = self.seconds.get((claim, case))
+        if known is not None:
+            return known
+        return self.claim_means.get(claim, UNKNOWN_SECONDS)
+
+    def task(self, task: CheckTask) -> float:
+        """The estimated cost of a task: the sum over its checks."""
+        return sum(self.check(claim, task.case_name) for claim in task.claims)
+
+
+def batches(tasks: Sequence[CheckTask], estimates: Estimates) -> list[Batch]:
+    """Every task once, in batches sorted by :func:`longest_first`: each task alone, but for a
+    claim's short ones (under :data:`SMALL_SECONDS`), which travel together in report order up to
+    :data:`BATCH_SECONDS` a batch.
+
+    A claim's short checks cost more the first time a process runs them (imports inside
+    functions, caches, solver set-up: +37 % on the checks under 0.05 s with two workers,
+    docs/parallel.md); batched, one worker pays that once, and the engine handles a few dozen
+    tasks instead of hundreds.
+    """
+    grouped: list[list[CheckTask]] = []
+    filling: dict[str, int] = {}  # claim id → its batch still being filled
+    for task in tasks:
+        cost = estimates.task(task)
+        if len(task.claims) > 1 or cost >= SMALL_SECONDS:
+            grouped.append([task])
+            continue
+        claim = task.claims[0]
+        open_batch = filling.get(claim)
+        if open_batch is not None and _cost(grouped[open_batch], estimates) + cost <= BATCH_SECONDS:
+            grouped[open_batch].append(task)
+        else:
+            filling[claim] = len(grouped)
+            grouped.append([task])
+    return longest_first([tuple(batch) for batch in grouped], estimates)
+
+
+def longest_first(items: Sequence[Batch], estimates: Estimates) -> list[Batch]:
+    """``items`` by decreasing estimated cost (ties keep their order)."""
+    return sorted(items, key=lambda batch: -_cost(batch, estimates))
+
+
+def _cost(batch: Sequence[CheckTask], estimates: Estimates) -> float:
+    return sum(estimates.task(task) for task in batch)
+
+
+def bundled_costs_path() -> Path:
+    """The reference costs shipped with trackcert (``check_costs.json`` beside this module)."""
+    return Path(__file__).with_name("check_costs.json")
+
+
+def load_estimates(out_dir: Path | None = None) -> Estimates:
+    """The bundled costs, overridden by the previous run's ``out_dir/timings.json`` (empty where
+    neither can be read: every task is then estimated alike and report order is kept)."""
+    measured = _costs(_read(bundled_costs_path()))
+    if out_dir is not None:
+        measured.update(_timings(_read(Path(out_dir) / "timings.json")))
+    return Estimates.of(measured)
+
+
+def costs_document(timings: Mapping[str, Any], source: str) -> dict[str, Any]:
+    """The ``check_costs.json`` document ``{"format", "source", "seconds": {"claim on case":
+    CPU seconds}}`` of a ``timings.json`` document (best from ``--workers 1``); ``source`` says
+    what was measured, where and when."""
+    seconds = _timings(timings)
+    return {
+        "format": COSTS_FORMAT,
+        "source": source,
+        "seconds": {f"{claim} on {case}": round(s, 3) for (claim, case), s in seconds.items()},
+    }
+
+
+def _read(path: Path) -> Any:
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, ValueError):
+        return None
+
+
+def _costs(document: Any) -> dict[tuple[str, str], float]:
+    """The costs of a ``check_costs.json`` document (nothing if it is not one)."""
+    entries = _part(document, COSTS_FORMAT, "seconds", dict)
+    pairs = ((key.partition(" on "), value) for key, value in entries.items())
+    return _valid((claim, case, value) for (claim, _, case), value in pairs)
+
+
+def _timings(document: Any) -> dict[tuple[str, str], float]:
+    """The checks' CPU seconds of a ``timings.json`` document (nothing if it is not one)."""
+    rows = (c for c in _part(document, TIMINGS_FORMAT, "checks", list) if isinstance(c, dict))
+    return _valid((c.get("id"), c.get("case"), c.get("cpu_seconds")) for c in rows)
+
+
+def _part(document: Any, tag: str, key: str, kind: type) -> Any:
+    """``document[key]`` if ``document`` is of format ``tag`` and that is a ``kind``, else an
+    empty ``kind``."""
+    if isinstance(document, dict) and document.get("format") == tag:
+        part = document.get(key)
+        if isinstance(part, kind):
+            return part
+    return kind()
+
+
+def _valid(rows: Iterable[tuple[Any, Any, Any]]) -> dict[tuple[str, str], float]:
+    """The rows naming a claim and a case with a finite non-negative cost."""
+    return {
+        (claim, case): float(value)
+        for claim, case, value in rows
+        if isinstance(claim, str)
+        and isinstance(case, str)
+        and claim
+        and case
+        and isinstance(value, int | float)
+        and not isinstance(value, bool)
+        and 0 <= value < float("inf")
+    }
+
+
+# ----------------------------------------------------------------------------------- timings
+def slowest(timings: Sequence[Timing], count: int = 10) -> list[Timing]:
+    """The ``count`` checks of longest wall time, slowest first (ties: report order)."""
+    return sorted(timings, key=lambda t: -t.wall_seconds)[:count]
+
+
+def timings_document(
+    run: RunResult, *, wall_seconds: float, workers: int, scheduler: str | None
+) -> dict[str, Any]:
+    """The ``timings.json`` document of ``run`` (module docstring): the whole run's wall seconds,
+    the local workers used (1: serial) and the scheduler's address, if one was used."""
+    workers_rss: dict[str, int] = {}
+    for t in run.timings:
+        if t.worker and t.worker != process_name():
+            workers_rss[t.worker] = max(workers_rss.get(t.worker, 0), t.peak_rss)
+    return {
+        "format": TIMINGS_FORMAT,
+        "workers": workers,
+        "scheduler": scheduler,
+        "wall_seconds": round(wall_seconds, 3),
+        "cpu_seconds": round(sum(t.cpu_seconds for t in run.timings), 3),
+        "parent_peak_rss": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
+        "worker_peak_rss": dict(sorted(workers_rss.items())),
+        "checks": [
+            {
+                "id": t.claim,
+                "case": t.case,
+                "wall_seconds": round(t.wall_seconds, 4),
+                "cpu_seconds": round(t.cpu_seconds, 4),
+                "worker": t.worker,
+                "started_seconds": None if t.started is None else round(t.started, 3),
+            }
+            for t in run.timings
+        ],
+    }
+
+
+def write_timings(document: dict[str, Any], out_dir: Path) -> Path:
+    """Write ``document`` as ``out_dir/timings.json``."""
+    path = Path(out_dir) / "timings.json"
+    path.write_text(json.dumps(document, indent=1) + "\n", encoding="utf-8")
+    return path

@@ -1,5 +1,4 @@
 """The closed-loop simulation engine: Monte Carlo over seeds, data files and figures.
 
-It holds no model: every system's dynamics, measurements and filters live in its domain package
-(:mod:`theory.tdoa`, :mod:`theory.consensus`, :mod:`theory.pursuit`, :mod:`theory.particle`).
+It holds no model: every system's dynamics, measurements and filters live in its domain package.
 """

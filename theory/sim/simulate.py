@@ -1,32 +1,44 @@
-"""Closed-loop simulation of a case: the kind's simulator run over seeds (``trackcert simulate``).
+"""Closed-loop simulation of a case (``trackcert simulate``): Monte Carlo of the kind's simulator
+on the task engine, deterministic by seed, its expectations judged and its files written whole.
 
-A kind that ``trackcert simulate`` runs has a simulator (:func:`theory.kinds.simulator_for`):
-``simulator(case, steps) -> Simulator`` says what one run is (a picklable
-``run(spec, rng)``), which fields the record gets, and how the runs are summarised, written and
-observed (:class:`Finished`). :func:`simulate_case` runs it on the engine
-(:func:`theory.sim.runner.monte_carlo`: run ``i`` seeded by child ``i`` of
-``SeedSequence(seed)``), judges the case's ``expect`` block with
+A simulated kind has a simulator (:func:`theory.kinds.simulator_for`): ``simulator(case, steps)
+-> Simulator`` says what one run is (a picklable ``run(spec, rng)``), which fields the record gets
+and how the runs are summarised, written and observed (:class:`Finished`). :func:`monte_carlo`
+runs ``run`` ``runs`` times on the engine (:mod:`theory.core.parallel`), run ``i`` seeded by child
+``i`` of ``SeedSequence(seed)``, so nothing depends on the number of workers nor on the order they
+finish; it knows no model. :func:`simulate_case` judges the case's ``expect`` block with
 :mod:`theory.core.expectations` when the simulator observes it, and writes the files and
 ``summary.json`` into a staging folder that replaces the output folder whole
-(:func:`theory.core.atomic_output.replaced_folder`): a failure or a signal leaves the old folder as
-it was.
+(:func:`theory.core.atomic_output.replaced_folder`).
 """
 
 from __future__ import annotations
 
+import functools
 import json
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from theory.core.atomic_output import check_replaceable, replaced_folder
 from theory.core.case_file import Case
 from theory.core.expectations import Expectation, Observed, judge
 from theory.core.jsonable import plain
+from theory.core.parallel import TaskRunner, default_workers, engine
 from theory.core.verdicts import Verdict, expectations_verdict
 
-__all__ = ["MARKER", "Finished", "Simulation", "Simulator", "simulate_case"]
+__all__ = [
+    "MARKER",
+    "Finished",
+    "Simulation",
+    "Simulator",
+    "monte_carlo",
+    "run_seeds",
+    "simulate_case",
+]
 
 MARKER = "summary.json"
 """The file every simulation folder has: a folder without it is not replaced (unless empty)."""
@@ -35,19 +47,47 @@ SOURCE = "trackcert simulate"
 """The observations' source in the command's verdict records."""
 
 
+def run_seeds(seed: int, runs: int) -> list[np.random.SeedSequence]:
+    """The seed sequences of runs ``0 … runs−1``: the children of ``SeedSequence(seed)``."""
+    return np.random.SeedSequence(seed).spawn(runs)
+
+
+def _one(simulate: Callable, spec: Any, sequence: np.random.SeedSequence) -> Any:
+    return simulate(spec, np.random.default_rng(sequence))
+
+
+def monte_carlo(
+    spec: Any,
+    *,
+    simulate: Callable[[Any, np.random.Generator], Any],
+    runs: int = 1,
+    seed: int = 0,
+    workers: int | None = None,
+    runner: TaskRunner | None = None,
+    progress: Callable[[int], None] | None = None,
+) -> list[Any]:
+    """``simulate(spec, rng)`` ``runs`` times as tasks on the engine, in run order.
+
+    ``simulate`` is a picklable module-level function (or a ``functools.partial`` of one); run
+    ``i`` draws from child ``i`` of ``SeedSequence(seed)``. It runs on ``runner`` if given, else on
+    ``workers`` local processes (default all cores; 1: this process); ``progress`` is called with
+    the number of runs finished. ``ValueError`` if ``runs < 1``.
+    """
+    if runs < 1:
+        raise ValueError(f"runs must be ≥ 1, got {runs}")
+    task = functools.partial(_one, simulate, spec)
+    sequences = run_seeds(seed, runs)
+    if runner is not None:
+        return runner.map(task, sequences, progress=progress)
+    with engine(min(default_workers() if workers is None else workers, runs)) as local:
+        return local.map(task, sequences, progress=progress)
+
+
 @dataclass(frozen=True)
 class Finished:
-    """What a simulator makes of its runs.
-
-    Attributes
-    ----------
-    summary : dict
-        Record fields (per-agent ``agents`` rows, tolerances, …).
-    files : list of Path
-        Data and figure files written.
-    observed : Observed or None
-        The expect keys the runs decide (``None``: the kind's keys are not about simulation).
-    """
+    """What a simulator makes of its runs: the record's ``summary`` fields (per-agent
+    ``agents`` rows, tolerances, …), the ``files`` written, and the expect keys the runs decide
+    (``None``: the kind's keys are not about simulation)."""
 
     summary: dict[str, Any]
     files: list[Path]
@@ -56,19 +96,9 @@ class Finished:
 
 @dataclass(frozen=True)
 class Simulator:
-    """One kind's simulation, ready for the engine.
-
-    Attributes
-    ----------
-    spec : object
-        What each run receives (the case's spec, steps overridden).
-    run : callable
-        ``run(spec, rng) -> run record``, picklable (module level or a ``functools.partial``).
-    fields : dict
-        Record fields naming the settings (filter, steps, …).
-    finish : callable
-        ``finish(case, spec, runs, folder, figures) -> Finished``.
-    """
+    """One kind's simulation, ready for the engine: the ``spec`` each run receives, the picklable
+    ``run(spec, rng)``, the record ``fields`` naming the settings, and ``finish(case, spec, runs,
+    folder, figures) -> Finished``."""
 
     spec: Any
     run: Callable[[Any, Any], Any]
@@ -78,22 +108,9 @@ class Simulator:
 
 @dataclass(frozen=True)
 class Simulation:
-    """The record of one ``trackcert simulate`` call (also written as ``summary.json``).
-
-    Attributes
-    ----------
-    case : Case
-        The case simulated.
-    runs, seed, workers : int
-        Monte Carlo runs, root seed and the worker processes used.
-    fields : dict
-        The simulator's settings.
-    finished : Finished
-        Summary, files and observations.
-    expectations : tuple of Expectation
-        The case's ``expect`` block judged against ``finished.observed`` (empty when not
-        observed).
-    """
+    """The record of one ``trackcert simulate`` call (written as ``summary.json``): the case, the
+    Monte Carlo runs, root seed and workers used, the simulator's settings, what it finished with,
+    and the case's ``expect`` block judged against its observations."""
 
     case: Case
     runs: int
@@ -109,12 +126,8 @@ class Simulation:
         return expectations_verdict(self.expectations)
 
     def to_json(self) -> dict[str, Any]:
-        """The ``summary.json`` record: case, settings, summary, expectations, files.
-
-        ``expectations`` maps each key to its verdict record
-        (:meth:`theory.core.expectations.Expectation.to_json`: ``expected``, ``got``, ``met``,
-        ``verdict``, …).
-        """
+        """The ``summary.json`` record: case, settings, summary, each expectation's verdict record
+        by key, files."""
         case = self.case
         return {
             "case": case.name,
@@ -149,7 +162,7 @@ def simulate_case(
     case : Case
         The case.
     simulator : Simulator
-        From :func:`theory.kinds.simulator_for` (or an interim one).
+        From :func:`theory.kinds.simulator_for`.
     folder : Path
         Where data, figures and ``summary.json`` go: created, or replaced whole if it is an
         earlier simulation's (or empty).
@@ -169,14 +182,10 @@ def simulate_case(
     Raises
     ------
     CaseError
-        If ``folder`` holds files but no ``summary.json``
-        (:func:`theory.core.atomic_output.replaceable_problem`).
+        If ``folder`` holds files but no ``summary.json``.
     OutputError
         If writing fails (the folder is left as it was).
     """
-    from theory.core.parallel import engine
-    from theory.sim.runner import monte_carlo
-
     check_replaceable(folder, MARKER)
     with engine(min(workers, runs), scheduler) as runner:
         results = monte_carlo(

@@ -1,88 +1,107 @@
-"""Parameter specs of ``trackcert sweep --param PATH=SPEC`` and the grid they span.
+"""The grid of ``trackcert sweep``: ``--param PATH=SPEC`` and ``--link PATH=EXPR`` parsed, the
+points they span, and where each path lands in the case's data (docs/sweep.md).
 
-A spec is one of (``docs/sweep.md``):
+A spec is ``a:b`` (the integers ``a … b−1``, half-open like ``range``: ``seed=0:50`` is 50
+seeds), ``a:b:linN`` (``N ≥ 2`` evenly spaced numbers, both ends included, ``numpy.linspace``),
+``a:b:logN`` (``N ≥ 2`` log-spaced, ``0 < a, b``, ``numpy.geomspace``), ``v1,v2,…`` (a list, in
+the order written) or ``v`` (one value). A number written as an integer stays an integer. Several
+specs make the cartesian product, the first ``--param`` varying slowest, so the grid's order is
+deterministic.
 
-* ``a:b`` — the integers ``a, a+1, …, b−1`` (half-open, like Python's ``range``; ``seed=0:50``
-  is the 50 seeds 0…49);
-* ``a:b:linN`` — ``N ≥ 2`` evenly spaced numbers from ``a`` to ``b``, both included
-  (``numpy.linspace``);
-* ``a:b:logN`` — ``N ≥ 2`` log-spaced numbers from ``a`` to ``b``, both included, ``0 < a, b``
-  (``numpy.geomspace``; ``k_gamma=1:400:log20``);
-* ``v1,v2,…`` — an explicit list (``w=0.2,0.24,0.25``), kept in the order written;
-* ``v`` — one value.
+A link sets a field that cannot be swept alone from one swept parameter, adding no dimension: a
+row of an explicit consensus matrix ``W`` must stay row-stochastic (seed 000 eq. (5.3)), so
+Example 1's self-weight sweep needs ``--param W.0.0=0.2:0.3:lin11 --link 'W.0.1=1-W.0.0'``.
+``EXPR`` is affine in one ``--param`` path: ``SOURCE``, ``-SOURCE``, ``B*SOURCE``, ``A+SOURCE``,
+``A-SOURCE``, ``A+B*SOURCE`` or ``A-B*SOURCE`` (``A``, ``B`` numbers; spaces ignored); nothing
+else is evaluated.
 
-A number written as an integer (``5``, ``-3``) stays an integer; anything else is a float.
-Several specs make the cartesian product, the first ``--param`` varying slowest (nested loops
-in the order written), so the grid's order is deterministic. A linked parameter
-(``--link PATH=EXPR``, :mod:`theory.sweep.links`) adds no dimension: at each point its value is
-an affine function of one swept parameter's.
+A path names a numeric field by its keys and 0-based list indices, separated by dots
+(``k_gamma``, ``trackers.0.r_x``, ``W.0.1``), looked up first inside the kind's block, then from
+the top of the file. ``seed``, when the case has no such field, is the simulation's root seed (as
+``trackcert simulate --seed``). A path that does not exist or holds no number is refused up front
+(exit 2), listing the fields that exist where the lookup stopped.
 """
 
 from __future__ import annotations
 
+import copy
 import itertools
 import math
 import re
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from enum import StrEnum
+from typing import Any
 
 import numpy as np
 
-from theory.core.errors import CaseError
+from theory.core.errors import COMMAND_LINE, CaseError
 
 __all__ = [
     "MAX_POINTS",
-    "SCALES",
+    "SEED",
     "Param",
+    "Scale",
+    "Target",
+    "apply_values",
     "check_size",
     "grid_points",
     "grid_size",
+    "parse_link",
     "parse_param",
     "parse_spec",
+    "resolve_target",
 ]
 
 MAX_POINTS = 100_000
 """Points a sweep refuses to exceed unless ``--max-points`` raises it."""
 
-SCALES = ("range", "lin", "log", "list", "value", "link")
-"""How a spec spaces its values (``log`` sweeps are drawn on a log axis)."""
+SEED = "seed"
+"""The path that, when the case has no such field, sets the simulation's root seed."""
 
-FIELD = "--param"
-EXPECTED = (
+
+class Scale(StrEnum):
+    """How a parameter's values are spaced (``log`` sweeps are drawn on a log axis)."""
+
+    RANGE = "range"
+    LIN = "lin"
+    LOG = "log"
+    LIST = "list"
+    VALUE = "value"
+    LINK = "link"
+
+
+# (Written FROM:TO rather than a:b: rich renders ``:b:`` in a message as an emoji.)
+PARAM_EXPECTED = (
     "PATH=SPEC with SPEC one of FROM:TO (integers FROM…TO−1), FROM:TO:linN, FROM:TO:logN "
     "(N ≥ 2 points, ends included), v1,v2,… or a single number"
 )
-"""(Written FROM:TO rather than a:b: rich renders ``:b:`` in a message as an emoji.)"""
+LINK_EXPECTED = (
+    "PATH=EXPR with EXPR one of SOURCE, -SOURCE, B*SOURCE, A+SOURCE, A-SOURCE, A+B*SOURCE, "
+    "A-B*SOURCE (A, B numbers; SOURCE the path of a --param)"
+)
 
 _SPACED = re.compile(r"^(?P<kind>lin|log)(?P<count>\d+)$")
 _INTEGER = re.compile(r"^[+-]?\d+$")
+_NUMBER = r"(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
+_EXPR = re.compile(
+    rf"(?:(?P<offset>-?{_NUMBER})(?P<sign>[+-])|(?P<negate>-))?"
+    rf"(?:(?P<factor>{_NUMBER})\*)?(?P<source>[A-Za-z_][\w.]*)"
+)
 
 Number = int | float
+Key = str | int
 
 
 @dataclass(frozen=True)
 class Param:
-    """One swept parameter.
-
-    Attributes
-    ----------
-    path : str
-        The dotted path of the case field (``k_gamma``, ``W.0.1``) or ``seed``.
-    spec : str
-        The spec as written.
-    scale : str
-        One of :data:`SCALES`.
-    values : tuple of int or float
-        The values, in sweep order (of a link: its value at each value of its source).
-    source : str or None
-        A link's source: the path of the swept parameter it follows (``None``: swept itself).
-    offset, factor : int or float
-        A link's value is ``offset + factor · source``.
-    """
+    """One swept parameter: its dotted ``path`` (or ``seed``), the ``spec`` as written, its
+    ``scale`` and ``values`` in sweep order. A link also has its ``source`` (the swept path it
+    follows) and takes ``offset + factor · source`` (its ``values``: at each source value)."""
 
     path: str
     spec: str
-    scale: str
+    scale: Scale
     values: tuple[Number, ...]
     source: str | None = None
     offset: Number = 0
@@ -105,8 +124,9 @@ class Param:
         return out
 
 
-def _bad(given: str, why: str = "") -> CaseError:
-    return CaseError(FIELD, EXPECTED, given, file="<command line>", hint=why)
+def _bad(given: str, why: str = "", *, field: str = "--param") -> CaseError:
+    expected = LINK_EXPECTED if field == "--link" else PARAM_EXPECTED
+    return CaseError(field, expected, given, file=COMMAND_LINE, hint=why)
 
 
 def _number(text: str, given: str) -> Number:
@@ -122,34 +142,16 @@ def _number(text: str, given: str) -> Number:
     return value
 
 
-def parse_spec(spec: str, given: str | None = None) -> tuple[str, tuple[Number, ...]]:
-    """The scale and the values of one spec (module docstring).
-
-    Parameters
-    ----------
-    spec : str
-        E.g. ``1:400:log20``, ``0:50``, ``0.2,0.24``, ``5``.
-    given : str, optional
-        The whole ``--param`` text, named in errors (default ``spec``).
-
-    Returns
-    -------
-    (str, tuple)
-        The scale (:data:`SCALES`) and the values.
-
-    Raises
-    ------
-    CaseError
-        Field ``--param``: the expected forms and what was given.
-    """
+def parse_spec(spec: str, given: str | None = None) -> tuple[Scale, tuple[Number, ...]]:
+    """The scale and the values of one spec (``given``: the whole ``--param`` text, for errors)."""
     given = spec if given is None else given
     parts = spec.split(":")
     if len(parts) == 1:
         items = spec.split(",")
         values = tuple(_number(item, given) for item in items)
-        return ("value" if len(items) == 1 else "list"), values
+        return (Scale.VALUE if len(items) == 1 else Scale.LIST), values
     if len(parts) == 2:
-        return "range", _integer_range(parts, given)
+        return Scale.RANGE, _integer_range(parts, given)
     if len(parts) == 3:
         return _spaced(parts, given)
     raise _bad(given, "at most two ':'")
@@ -164,7 +166,7 @@ def _integer_range(parts: Sequence[str], given: str) -> tuple[int, ...]:
     return tuple(range(start, stop))
 
 
-def _spaced(parts: Sequence[str], given: str) -> tuple[str, tuple[float, ...]]:
+def _spaced(parts: Sequence[str], given: str) -> tuple[Scale, tuple[float, ...]]:
     match = _SPACED.match(parts[2].strip())
     if match is None:
         raise _bad(given, f"the third part {parts[2]!r} is not linN or logN")
@@ -181,26 +183,11 @@ def _spaced(parts: Sequence[str], given: str) -> tuple[str, tuple[float, ...]]:
     else:
         values = np.linspace(start, stop, count)
     values[0], values[-1] = start, stop  # the ends exactly as written
-    return kind, tuple(float(v) for v in values)
+    return Scale(kind), tuple(float(v) for v in values)
 
 
 def parse_param(text: str) -> Param:
-    """One ``--param PATH=SPEC`` argument.
-
-    Parameters
-    ----------
-    text : str
-        E.g. ``k_gamma=1:400:log20``.
-
-    Returns
-    -------
-    Param
-
-    Raises
-    ------
-    CaseError
-        Field ``--param`` when there is no ``=``, the path is empty or the spec is malformed.
-    """
+    """One ``--param PATH=SPEC`` argument (e.g. ``k_gamma=1:400:log20``)."""
     path, sep, spec = text.partition("=")
     path, spec = path.strip(), spec.strip()
     if not sep or not path or not spec:
@@ -211,39 +198,43 @@ def parse_param(text: str) -> Param:
     return Param(path, spec, scale, values)
 
 
+def parse_link(text: str, params: Sequence[Param]) -> Param:
+    """One ``--link PATH=EXPR`` argument (e.g. ``W.0.1=1-W.0.0``) following one of the swept
+    ``params``: a :class:`Param` of scale ``link``."""
+    path, sep, expr = text.partition("=")
+    path, expr = path.strip(), "".join(expr.split())
+    if not sep or not path or not expr or any(not part for part in path.split(".")):
+        raise _bad(text, "write PATH=EXPR, e.g. W.0.1=1-W.0.0", field="--link")
+    match = _EXPR.fullmatch(expr)
+    if match is None:
+        why = f"{expr!r} is not an affine expression of one --param path"
+        raise _bad(text, why, field="--link")
+    swept = {p.path: p for p in params if p.source is None}
+    source = swept.get(match["source"])
+    if source is None:
+        why = f"{match['source']!r} is not swept; --param paths: {', '.join(swept)}"
+        raise _bad(text, why, field="--link")
+    sign = -1 if match["sign"] == "-" or match["negate"] else 1
+    offset, factor = _link_number(match["offset"], 0), sign * _link_number(match["factor"], 1)
+    values = tuple(offset + factor * v for v in source.values)
+    return Param(path, expr, Scale.LINK, values, source.path, offset, factor)
+
+
+def _link_number(text: str | None, default: Number) -> Number:
+    if text is None:
+        return default
+    value = float(text)
+    return int(value) if re.fullmatch(r"-?\d+", text) else value
+
+
 def grid_size(params: Sequence[Param]) -> int:
-    """The number of points of the product of ``params`` (1 for none; links add none).
-
-    Parameters
-    ----------
-    params : sequence of Param
-
-    Returns
-    -------
-    int
-    """
+    """The number of points of the product of ``params`` (1 for none; links add none)."""
     return math.prod(len(p.values) for p in params if p.source is None)
 
 
 def check_size(params: Sequence[Param], max_points: int = MAX_POINTS) -> int:
-    """The grid's size, refused above ``max_points`` (before anything is expanded).
-
-    Parameters
-    ----------
-    params : sequence of Param
-        At least one, with distinct paths.
-    max_points : int
-        The limit (``--max-points``).
-
-    Returns
-    -------
-    int
-
-    Raises
-    ------
-    CaseError
-        No parameter, a path given twice, a limit below 1, or more points than the limit.
-    """
+    """The grid's size, refused (before anything is expanded) with no parameter, a path given
+    twice, a limit below 1 or more points than ``max_points``."""
     if not params:
         raise _bad("nothing", "give at least one --param")
     paths = [p.path for p in params]
@@ -251,32 +242,121 @@ def check_size(params: Sequence[Param], max_points: int = MAX_POINTS) -> int:
     if repeated:
         raise _bad(", ".join(repeated), "each path may be set by one --param or --link only")
     if max_points < 1:
-        raise CaseError("--max-points", "an integer ≥ 1", max_points, file="<command line>")
+        raise CaseError("--max-points", "an integer ≥ 1", max_points, file=COMMAND_LINE)
     size = grid_size(params)
     if size > max_points:
         raise CaseError(
             "--param",
             f"at most {max_points} points (--max-points raises the limit)",
             f"{size} points ({' × '.join(str(len(p.values)) for p in params if not p.source)})",
-            file="<command line>",
+            file=COMMAND_LINE,
         )
     return size
 
 
 def grid_points(params: Sequence[Param]) -> Iterator[tuple[Number, ...]]:
-    """The points of the grid: one value per parameter, the first parameter varying slowest.
-
-    Parameters
-    ----------
-    params : sequence of Param
-        Swept parameters, and links whose sources are among them.
-
-    Yields
-    ------
-    tuple
-        The values, in ``params`` order (a link's from its source's value at the point).
-    """
+    """The grid's points, one value per parameter in ``params`` order (a link's from its source),
+    the first swept parameter varying slowest."""
     swept = [p for p in params if p.source is None]
     for point in itertools.product(*(p.values for p in swept)):
         at = dict(zip((p.path for p in swept), point, strict=True))
         yield tuple(at[p.path] if p.source is None else p.linked(at[p.source]) for p in params)
+
+
+# --------------------------------------------------------------------------------- the paths
+@dataclass(frozen=True)
+class Target:
+    """Where one swept ``path`` lands: its ``keys`` from the top of the case data (``None``: the
+    simulation seed)."""
+
+    path: str
+    keys: tuple[Key, ...] | None
+
+    @property
+    def is_seed(self) -> bool:
+        """Whether this path sets the simulation's root seed rather than a case field."""
+        return self.keys is None
+
+
+def _step(node: Any, part: str) -> tuple[bool, Any, Key]:
+    if isinstance(node, Mapping):
+        return part in node, node.get(part), part
+    if isinstance(node, list) and part.isdigit() and int(part) < len(node):
+        return True, node[int(part)], int(part)
+    return False, None, part
+
+
+def _walk(data: Any, parts: Sequence[str]) -> tuple[tuple[Key, ...], Any, int]:
+    """Follow ``parts``: (keys followed, the node reached, how many parts matched)."""
+    node, keys = data, []
+    for depth, part in enumerate(parts):
+        found, child, key = _step(node, part)
+        if not found:
+            return tuple(keys), node, depth
+        node = child
+        keys.append(key)
+    return tuple(keys), node, len(parts)
+
+
+def _fields(node: Any) -> str:
+    if isinstance(node, Mapping):
+        return ", ".join(str(k) for k in node) or "none"
+    if isinstance(node, list):
+        return f"indices 0…{len(node) - 1}" if node else "none (an empty list)"
+    return f"none ({type(node).__name__} {node!r} has no fields)"
+
+
+def resolve_target(data: Mapping[str, Any], kind: str, path: str, *, file: str) -> Target:
+    """Where ``path`` lands in a case's data of ``kind`` (its block searched first); a path that
+    does not exist or holds no number is a :class:`CaseError` of field ``--param PATH`` in
+    ``file``."""
+    parts = path.split(".")
+    block = data.get(kind)
+    tries = [((kind,), block)] if isinstance(block, Mapping) else []
+    tries.append(((), data))
+    best: tuple[tuple[Key, ...], Any, int] | None = None
+    for prefix, root in tries:
+        keys, node, matched = _walk(root, parts)
+        if matched == len(parts):
+            return _numeric(Target(path, prefix + keys), node, file)
+        if best is None or matched > best[2]:
+            best = (prefix + keys, node, matched)
+    if path == SEED:
+        return Target(path, None)
+    keys, node, matched = best  # type: ignore[misc]
+    where = ".".join(str(k) for k in keys) or "the top of the case"
+    raise CaseError(
+        f"--param {path}",
+        "a dotted path to a numeric field of the case (list indices from 0)",
+        f"no '{parts[matched]}' in {where}",
+        file=file,
+        hint=f"fields there: {_fields(node)}",
+    )
+
+
+def _numeric(target: Target, value: Any, file: str) -> Target:
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return target
+    raise CaseError(
+        f"--param {target.path}",
+        "a numeric field (an integer or a float)",
+        value,
+        file=file,
+        hint=f"{'.'.join(str(k) for k in target.keys or ())} holds no number; fields there: "
+        f"{_fields(value)}",
+    )
+
+
+def apply_values(
+    data: Mapping[str, Any], targets: Sequence[Target], values: Sequence[Any]
+) -> dict[str, Any]:
+    """A copy of ``data`` with each target's field set to its value (the seed target skipped)."""
+    out = copy.deepcopy(dict(data))
+    for target, value in zip(targets, values, strict=True):
+        if target.keys is None:
+            continue
+        node: Any = out
+        for key in target.keys[:-1]:
+            node = node[key]
+        node[target.keys[-1]] = value
+    return out

@@ -29,16 +29,30 @@ from typing import Any
 import yaml
 
 from theory.core.case_file import resolve_case_path
-from theory.core.errors import CaseError
+from theory.core.errors import COMMAND_LINE, CaseError
 from theory.core.jsonable import plain
 from theory.core.parallel import engine
 from theory.core.verdicts import Verdict, exit_code
 from theory.kinds import SIMULATED, load_case
-from theory.sweep.grid import MAX_POINTS, Param, check_size, grid_points, parse_param
-from theory.sweep.kinds import analysis_for, point_modules
-from theory.sweep.links import parse_link
-from theory.sweep.paths import Target, resolve_target
-from theory.sweep.points import INVALID, Row, SweepSetup, evaluate_batch
+from theory.sweep.grid import (
+    MAX_POINTS,
+    Param,
+    Target,
+    check_size,
+    grid_points,
+    parse_link,
+    parse_param,
+    resolve_target,
+)
+from theory.sweep.points import (
+    Agreement,
+    PointStatus,
+    Row,
+    SweepSetup,
+    analysis_for,
+    evaluate_batch,
+    point_modules,
+)
 
 __all__ = ["TASKS_PER_WORKER", "Sweep", "sweep_case"]
 
@@ -49,22 +63,10 @@ per-task overhead (a few ms) stays small against a batch of points."""
 
 @dataclass(frozen=True)
 class Sweep:
-    """The result of :func:`sweep_case`.
-
-    Attributes
-    ----------
-    case : str
-        The case's name.
-    kind, file : str
-        Its kind and file.
-    params : tuple of Param
-        The swept parameters, in ``--param`` order.
-    settings : dict
-        ``steps``, ``simulate``, ``runs_per_point``, ``seed`` (the simulation's root seed,
-        ``None`` when swept), ``seed_swept``, ``max_points``.
-    rows : tuple of Row
-        One per point, in grid order.
-    """
+    """The result of :func:`sweep_case`: the case's name, kind and file, the swept parameters in
+    ``--param`` order (then the links), the ``settings`` (``steps``, ``simulate``,
+    ``runs_per_point``, ``seed`` — ``None`` when swept —, ``seed_swept``, ``max_points``) and one
+    row per point, in grid order."""
 
     case: str
     kind: str
@@ -76,10 +78,11 @@ class Sweep:
     @property
     def verdict(self) -> Verdict:
         """False if a point disagrees, None if one is inconclusive, else True (module docstring)."""
-        valid = [r for r in self.rows if r.status != INVALID]
-        if any(r.agreement == "disagree" for r in valid):
+        valid = [r for r in self.rows if r.status != PointStatus.INVALID]
+        if any(r.agreement == Agreement.DISAGREE for r in valid):
             return False
-        if any(r.status == "inconclusive" or r.agreement == "inconclusive" for r in valid):
+        undecided = (PointStatus.INCONCLUSIVE, Agreement.INCONCLUSIVE)
+        if any(r.status in undecided or r.agreement in undecided for r in valid):
             return None
         return True
 
@@ -135,14 +138,16 @@ class Sweep:
             "points": len(self.rows),
             "status": dict(sorted(Counter(r.status for r in self.rows).items())),
             "agreement": dict(sorted(Counter(r.agreement for r in self.rows).items())),
-            "disagreeing_points": [r.point for r in self.rows if r.agreement == "disagree"],
+            "disagreeing_points": [
+                r.point for r in self.rows if r.agreement == Agreement.DISAGREE
+            ],
             "verdict": self.verdict,
             "exit_code": self.exit_code,
         }
 
     def to_json(self) -> dict[str, Any]:
         """The ``sweep.json`` record: case, params, settings, tolerances, summary, rows."""
-        valid = [r for r in self.rows if r.status != INVALID]
+        valid = [r for r in self.rows if r.status != PointStatus.INVALID]
         return plain(
             {
                 "case": self.case,
@@ -163,7 +168,7 @@ def _targets(data: Any, kind: str, params: Sequence[Param], file: str) -> tuple[
     for target, param in zip(targets, params, strict=True):
         if target.is_seed and not all(isinstance(v, int) and v >= 0 for v in param.values):
             raise CaseError(
-                "--param seed", "integers ≥ 0 (e.g. seed=0:50)", param.spec, file="<command line>"
+                "--param seed", "integers ≥ 0 (e.g. seed=0:50)", param.spec, file=COMMAND_LINE
             )
     return targets
 
@@ -185,7 +190,7 @@ def sweep_case(
     max_points: int = MAX_POINTS,
     progress: Callable[[int, int], None] | None = None,
 ) -> Sweep:
-    """Sweep ``case`` over the grid of ``params`` (``trackcert sweep``).
+    """Sweep ``case`` (a file or bundled name) over the grid of ``params`` (``trackcert sweep``).
 
     Parameters
     ----------
@@ -194,8 +199,8 @@ def sweep_case(
     params : sequence of str or Param
         ``PATH=SPEC`` texts (:func:`theory.sweep.grid.parse_param`) or parsed parameters.
     links : sequence of str
-        ``PATH=EXPR`` texts (:func:`theory.sweep.links.parse_link`): fields set at each point
-        from a swept parameter's value (they follow the parameters in rows and columns).
+        ``PATH=EXPR`` texts (:func:`theory.sweep.grid.parse_link`): fields set at each point from
+        a swept parameter's value (they follow the parameters in rows and columns).
     steps : int, optional
         Simulation steps per point (default: the kind's).
     simulate : bool
@@ -208,10 +213,6 @@ def sweep_case(
         The largest grid accepted (:data:`theory.sweep.grid.MAX_POINTS`).
     progress : callable, optional
         ``progress(done, total)`` in points, as tasks finish.
-
-    Returns
-    -------
-    Sweep
 
     Raises
     ------
@@ -230,7 +231,7 @@ def sweep_case(
     points = list(enumerate(grid_points(parsed)))
     rows = _run(setup, points, workers, scheduler, progress)
     sweep = Sweep(loaded.name, loaded.kind, loaded.file, parsed, _settings(setup, max_points), rows)
-    if all(r.status == INVALID for r in rows):
+    if all(r.status == PointStatus.INVALID for r in rows):
         raise CaseError(
             "--param",
             "a grid with at least one point the case loader accepts",
@@ -243,13 +244,13 @@ def sweep_case(
 
 def _check_settings(kind: str, steps: int | None, simulate: bool) -> None:
     if steps is not None and steps < 1:
-        raise CaseError("--steps", "an integer ≥ 1", steps, file="<command line>")
+        raise CaseError("--steps", "an integer ≥ 1", steps, file=COMMAND_LINE)
     if not simulate and analysis_for(kind) is None:
         raise CaseError(
             "--no-simulate",
             "a kind with an analysis verdict (pursuit, dkf, tdoa, pf)",
             f"kind {kind}, judged by its simulation",
-            file="<command line>",
+            file=COMMAND_LINE,
         )
 
 

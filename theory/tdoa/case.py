@@ -56,7 +56,6 @@ import numpy as np
 
 from theory.core.case_file import Case, KindSpec
 from theory.core.errors import CaseError
-from theory.core.limits import check_count, check_estimate, check_length
 from theory.core.network import (
     adjacency_from_edges,
     adjacency_from_range,
@@ -68,7 +67,10 @@ from theory.core.observability import RANK_TOL
 from theory.core.tolerances import COINCIDENCE_TOL, INCONCLUSIVE_FACTOR, PERIOD_TOL
 from theory.core.validation import (
     bounded_coordinates,
+    check_count,
+    check_estimate,
     check_keys,
+    check_length,
     distinct_points,
     finite_array,
     finite_matrix,
@@ -218,7 +220,7 @@ def parse_tdoa(block: Mapping[str, Any]) -> TdoaSpec:
 
 
 def _check_sizes(raw_agents: object, raw_target: object) -> None:
-    """Refuse too many agents or steps before any entry is read (:mod:`theory.core.limits`)."""
+    """Refuse too many agents or steps before any entry is read (:mod:`theory.core.validation`)."""
     nested = isinstance(raw_agents, list) and raw_agents and isinstance(raw_agents[0], list)
     if nested and raw_agents[0] and isinstance(raw_agents[0][0], list):
         check_length(raw_agents, "steps", "tdoa.agents")
@@ -547,7 +549,7 @@ def _member(vocabulary: type[E], value: object, field: str, allowed: tuple[str, 
 
 
 def check_sim_work(n: int, steps: int, rounds: int, substeps: int, field: str) -> None:
-    """Refuse a run whose memory or work exceeds :mod:`theory.core.limits`, naming ``field``.
+    """Refuse a run whose memory or work exceeds :mod:`theory.core.validation`, naming ``field``.
 
     Per agent and ping: a 6-state estimate, its 6 × 6 covariance and the 9-state kinematics
     (51 floats, 408 B); per ping: one N × N exchange per round and one RK4 step per substep.

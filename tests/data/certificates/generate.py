@@ -16,7 +16,6 @@ from pathlib import Path
 
 import numpy as np
 
-from theory.certify import case_certificates
 from theory.consensus.certificates import (
     exact_gain_certificate,
     mjls_stability_certificate,
@@ -28,6 +27,7 @@ from theory.core.certificate_format import bundle
 from theory.core.exact import dyadic_matrix, fraction_strings, rational_matrix
 from theory.kinds import load_case
 from theory.pursuit.certificates import iss_certificate
+from theory.registry import case_certificates
 from theory.tdoa.estimation.stability import (
     covariance_bound_certificate,
     ekf_covariance_bound_certificate,

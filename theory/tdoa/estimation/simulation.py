@@ -149,13 +149,13 @@ def write_figures(runs: Sequence[TdoaRun], folder: Path) -> list[Path]:
 
 
 def _drawing() -> tuple[Any, Any]:
-    """pyplot on the Agg backend and :func:`theory.sim.figures.save_figure` (imported to draw)."""
+    """pyplot on the Agg backend and :func:`theory.sim.outputs.save_figure` (imported to draw)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from theory.sim.figures import save_figure
+    from theory.sim.outputs import save_figure
 
     return plt, save_figure
 
@@ -213,7 +213,7 @@ def tdoa_simulator(case: Case, steps: int | None = None) -> Simulator:
 
 def observe_tdoa_sim(case: Case, ctx: Context) -> Observed:
     """The observer of ``kind: tdoa-sim``: one run with seed 0, as ``trackcert simulate`` runs."""
-    from theory.sim.runner import monte_carlo
+    from theory.sim.simulate import monte_carlo
 
     simulator = tdoa_simulator(case)
     results = monte_carlo(simulator.spec, runs=1, seed=0, workers=1, simulate=simulator.run)
