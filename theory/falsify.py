@@ -33,21 +33,8 @@ DEFAULT_EXAMPLES = 200
 
 @dataclass(frozen=True)
 class FalsifyResult:
-    """Outcome of :func:`falsify`: ``counterexample`` is ``None`` when none was found.
-
-    Attributes
-    ----------
-    property : Property
-        The property searched.
-    examples : int
-        The example budget (hypothesis's ``max_examples``).
-    seed : int
-        Seed of the search (the same seed gives the same result).
-    counterexample : object or None
-        The shrunk example on which the property fails.
-    case : dict or None
-        A case file (plain data) reproducing ``counterexample``.
-    """
+    """Outcome of :func:`falsify` with ``examples`` and ``seed``: the shrunk ``counterexample``
+    and a ``case`` file (plain data) reproducing it, both ``None`` when none was found."""
 
     property: Property
     examples: int
@@ -62,22 +49,7 @@ class FalsifyResult:
 
 
 def falsify(prop: Property, *, examples: int = DEFAULT_EXAMPLES, seed: int = 0) -> FalsifyResult:
-    """Search ``examples`` examples (deterministically from ``seed``) for a counterexample.
-
-    Parameters
-    ----------
-    prop : Property
-        The property to falsify.
-    examples : int
-        Hypothesis's ``max_examples`` budget.
-    seed : int
-        Seed of the search (the same seed gives the same result).
-
-    Returns
-    -------
-    FalsifyResult
-        With the shrunk counterexample and its case file, or none.
-    """
+    """Search ``examples`` examples (deterministically from ``seed``) for a counterexample."""
     config = settings(
         max_examples=examples,
         database=None,
@@ -108,22 +80,6 @@ def falsify_each(
 
     Each search is deterministic given its seed (hypothesis draws from ``random.Random(seed)``),
     so the results are the same whatever the runner. A worker looks its property up by id.
-
-    Parameters
-    ----------
-    props : sequence of Property
-        Registered properties.
-    examples : int
-        Budget of each search.
-    seed : int
-        Seed of each search.
-    runner : TaskRunner, optional
-        An open engine (:func:`theory.core.parallel.engine`); default: this process, serially.
-
-    Returns
-    -------
-    list of FalsifyResult
-        In the order of ``props``.
     """
     task = partial(_search, examples=examples, seed=seed)
     ids = [p.id for p in props]

@@ -112,13 +112,8 @@ def simulator(kind: str) -> Callable[[Case, int | None], Any]:
 
 
 def simulator_for(case: Case, steps: int | None = None) -> Simulator:
-    """The simulator of ``case``'s kind, ``steps`` overriding the case's number of steps.
-
-    Raises
-    ------
-    CaseError
-        If ``trackcert simulate`` does not run the case's kind.
-    """
+    """The simulator of ``case``'s kind, ``steps`` overriding the case's number of steps (a kind
+    ``trackcert simulate`` does not run is a :class:`CaseError`)."""
     if case.kind not in SIMULATED:
         raise CaseError("kind", "a kind trackcert simulate runs", case.kind, file=case.file)
     return simulator(case.kind)(case, steps)

@@ -139,12 +139,8 @@ def case_certificates(case: Case, *, seed: int = 0) -> list[dict[str, Any]]:
     """All certificates ``case`` supports, each accepted by ``proofs_check`` (``seed``: of any
     random evaluation point).
 
-    Raises
-    ------
-    InconclusiveError
-        If the case's kind has no certificate kinds, or none could be made (giving every reason).
-    PropertyFails
-        If the property to certify is decided false for this case.
+    Raises :class:`InconclusiveError` if the kind has no certificate kinds or none could be made
+    (giving every reason), :class:`PropertyFails` if the property is decided false.
     """
     known = certifiers()
     if case.kind not in known:

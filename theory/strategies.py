@@ -3,7 +3,7 @@
 The TDOA scenes, networks and weights live in :mod:`theory.tdoa.strategies` and are re-exported
 here, so ``from theory.strategies import tdoa_scenes`` keeps working.
 
-Users import these in their own property tests (STYLE.md, *Adopt* 11)::
+Users import these in their own property tests (docs/property-based.md)::
 
     from hypothesis import given
     from theory.strategies import tdoa_scenes

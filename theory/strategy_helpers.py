@@ -2,7 +2,7 @@
 
 :mod:`theory.strategies` (systems, consensus problems, pursuit) and :mod:`theory.tdoa.strategies`
 (networks, weights, TDOA scenes) draw their randomness and check their bounds with these, so an
-impossible request is refused the same way everywhere (STYLE.md, *Adopt* 11).
+impossible request is refused the same way everywhere (``InvalidArgument`` naming the value).
 """
 
 from __future__ import annotations
@@ -26,22 +26,7 @@ __all__ = [
 
 
 def check_range(name_low: str, low: int, name_high: str, high: int, floor: int) -> None:
-    """Refuse a size range ``[low, high]`` with ``low < floor`` or ``high < low``.
-
-    Parameters
-    ----------
-    name_low, name_high : str
-        The keyword names of the bounds (quoted in the message).
-    low, high : int
-        The bounds asked for.
-    floor : int
-        The smallest allowed ``low``.
-
-    Raises
-    ------
-    hypothesis.errors.InvalidArgument
-        Naming the offending bound and its value.
-    """
+    """Refuse a size range ``[low, high]`` with ``low < floor`` or ``high < low``."""
     if low < floor:
         raise InvalidArgument(f"{name_low}={low} must be at least {floor}")
     if high < low:
@@ -54,19 +39,7 @@ def generators() -> st.SearchStrategy[np.random.Generator]:
 
 
 def orthonormal_matrix(rng: np.random.Generator, n: int) -> np.ndarray:
-    """A random ``n × n`` orthogonal matrix (QR of a Gaussian matrix, signs fixed: Haar).
-
-    Parameters
-    ----------
-    rng : numpy.random.Generator
-        Source of randomness.
-    n : int
-        Size.
-
-    Returns
-    -------
-    ndarray, shape (n, n)
-    """
+    """A random ``n × n`` orthogonal matrix (QR of a Gaussian matrix, signs fixed: Haar)."""
     q, r = np.linalg.qr(rng.standard_normal((n, n)))
     return q * np.sign(np.diag(r))
 
@@ -74,25 +47,8 @@ def orthonormal_matrix(rng: np.random.Generator, n: int) -> np.ndarray:
 def boundary_values(
     threshold: Fraction, *, min_exponent: int = 1, max_exponent: int = 17
 ) -> st.SearchStrategy[float]:
-    """Floats ``t (1 ± 10^{-k})`` for ``k`` in ``[min_exponent, max_exponent]``, and ``t`` itself.
-
-    Parameters
-    ----------
-    threshold : Fraction
-        The threshold ``t > 0``.
-    min_exponent, max_exponent : int
-        Bounds on ``k`` (``1 ≤ min_exponent ≤ max_exponent``); ``k = 17`` is below float
-        resolution, so such draws land on or next to ``t``.
-
-    Returns
-    -------
-    SearchStrategy of float
-
-    Raises
-    ------
-    InvalidArgument
-        For a non-positive threshold or impossible bounds.
-    """
+    """Floats ``t (1 ± 10^{-k})`` for ``k`` in ``[min_exponent, max_exponent]``, and ``t``
+    itself (``k = 17`` is below float resolution: such draws land on or next to ``t``)."""
     if not threshold > 0:
         raise InvalidArgument(f"threshold={threshold} must be positive")
     check_range("min_exponent", min_exponent, "max_exponent", max_exponent, 1)
@@ -103,37 +59,18 @@ def boundary_values(
 
 def case_floats(low: float, high: float) -> st.SearchStrategy[float]:
     """Floats in ``[low, high]`` that a case file accepts: a draw smaller in magnitude than
-    ``10^-e`` (the ``exponent`` limit of :mod:`theory.core.limits`) becomes ``0.0``.
+    ``10^-e`` (the ``exponent`` limit of :mod:`theory.core.validation`) becomes ``0.0``.
 
     Hypothesis likes tiny floats such as ``5e-152``; a case field refuses them (their products
     underflow), and for every generated quantity they mean 0.
-
-    Parameters
-    ----------
-    low, high : float
-        Bounds (``low ≤ high``).
-
-    Returns
-    -------
-    SearchStrategy of float
     """
     return st.floats(low, high).map(lambda x: float(flush_tiny(np.float64(x))))
 
 
 def flush_tiny(values: np.ndarray) -> np.ndarray:
     """``values`` with every entry smaller in magnitude than ``10^-e`` (the ``exponent`` limit of
-    :mod:`theory.core.limits`) set to 0, so that computed entries (a rotated gain matrix) are
+    :mod:`theory.core.validation`) set to 0, so that computed entries (a rotated gain matrix) are
     accepted by a case file.
-
-    Parameters
-    ----------
-    values : ndarray
-        Numbers.
-
-    Returns
-    -------
-    ndarray
-        A copy with the tiny entries zeroed.
     """
     smallest = 10.0 ** -limit("exponent")
     return np.where(np.abs(values) < smallest, 0.0, values)

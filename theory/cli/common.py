@@ -162,13 +162,6 @@ def _fail(message: str, code: int) -> NoReturn:
 def print_exit_rule(property_verdict: bool | None, expectations: Sequence[Any]) -> None:
     """Say, when they differ, that the case's expectations and not the property decide the exit
     code (:func:`theory.core.verdicts.command_verdict`).
-
-    Parameters
-    ----------
-    property_verdict : bool or None
-        The command's property verdict.
-    expectations : sequence of Expectation
-        The expectations it judged.
     """
     decided = command_verdict(property_verdict, expectations)
     if decided == property_verdict:
@@ -188,24 +181,12 @@ def print_json(data: Any) -> None:
 
 
 def case_argument(help: str = "Case file or bundled case name.") -> Any:
-    """The positional ``CASE`` argument of a command (a ``typer.Argument``).
-
-    Parameters
-    ----------
-    help : str
-        Its help text.
-    """
+    """The positional ``CASE`` argument of a command (a ``typer.Argument``)."""
     return typer.Argument(..., help=help)
 
 
 def json_option(help: str = "Print JSON.") -> Any:
-    """The ``--json`` flag of a command (a ``typer.Option``, default off).
-
-    Parameters
-    ----------
-    help : str
-        Its help text.
-    """
+    """The ``--json`` flag of a command (a ``typer.Option``, default off)."""
     return typer.Option(False, "--json", help=help)
 
 
@@ -217,27 +198,8 @@ def finish(
     show: Callable[[], None],
     verdicts: tuple[bool | None, Sequence[Any]] | None = None,
 ) -> NoReturn:
-    """Print ``data`` as JSON (``as_json``) or call ``show``, then exit with ``code``.
-
-    Parameters
-    ----------
-    data : Any
-        The command's JSON record.
-    code : int
-        Exit code.
-    as_json : bool
-        The ``--json`` flag.
-    show : callable
-        Prints the human-readable form.
-    verdicts : (bool or None, sequence of Expectation), optional
-        The property's verdict and the expectations judged: after ``show``,
-        :func:`print_exit_rule` says when the expectations decided ``code``.
-
-    Raises
-    ------
-    typer.Exit
-        Always, with ``code``.
-    """
+    """Print ``data`` as JSON (``as_json``) or call ``show`` — then, given the property's verdict
+    and the expectations judged, :func:`print_exit_rule` — and exit with ``code``."""
     if as_json:
         print_json(data)
     else:
@@ -255,24 +217,6 @@ def check_folder_output(path: str | Path, option: str, marker: str) -> Path:
     folder is replaced whole (:mod:`theory.core.atomic_output`), so it must be empty or an
     earlier output of the command (it has ``marker``), and neither the current folder nor one
     of its parents.
-
-    Parameters
-    ----------
-    path : str or Path
-        The value of the option.
-    option : str
-        The option, as named in the message (``-o/--output``).
-    marker : str
-        The file every output of the command has (``report.json``).
-
-    Returns
-    -------
-    Path
-
-    Raises
-    ------
-    CaseError
-        Naming ``option`` (file ``<command line>``), what it must be and the path.
     """
     path = Path(path)
     problem = _folder_problem(path) or replaceable_problem(path, marker)
@@ -285,22 +229,6 @@ def check_file_output(path: str | Path, option: str) -> Path:
     """Refuse an output file that cannot be written, before any work is done.
 
     Its folder must exist and be writable, and the file itself must not be a folder.
-
-    Parameters
-    ----------
-    path : str or Path
-        The value of the option.
-    option : str
-        The option, as named in the message (``-o/--output``).
-
-    Returns
-    -------
-    Path
-
-    Raises
-    ------
-    CaseError
-        Naming ``option`` (file ``<command line>``), what it must be and the path.
     """
     path = Path(path)
     problem = _file_problem(path)
@@ -333,13 +261,7 @@ def _file_problem(path: Path) -> str:
 
 
 def workers_option(help: str = "Local worker processes (default: all cores; 1: serial).") -> Any:
-    """The ``--workers N`` option of a command running tasks (:mod:`theory.core.parallel`).
-
-    Parameters
-    ----------
-    help : str
-        Its help text.
-    """
+    """The ``--workers N`` option of a command running tasks (:mod:`theory.core.parallel`)."""
     return typer.Option(None, "--workers", min=1, help=help)
 
 
@@ -373,26 +295,9 @@ def progress_bar(
     ``quiet`` says: plain lines — when the work starts, every :data:`PROGRESS_SECONDS`
     (``$TRACKCERT_PROGRESS_SECONDS``), and when it ends — so a long run is never silent.
 
-    Parameters
-    ----------
-    total : int
-        Number of units (tasks, runs, checks); 0 if not known yet.
-    description : str
-        Shown beside the bar (``checking``, ``simulating NAME``).
-    quiet : bool
-        No bar on a terminal.
-
-    Yields
-    ------
-    callable
-        ``advance(done, label=None, total=None)``: ``done`` units finished so far; ``label``
-        replaces the description (e.g. the check that just finished); ``total`` corrects the
-        number of units once it is known.
-
-    Raises
-    ------
-    CaseError
-        If ``$TRACKCERT_PROGRESS_SECONDS`` is not a number ≥ 0.
+    Yields ``advance(done, label=None, total=None)``: ``label`` replaces the description (e.g.
+    the check that just finished), ``total`` corrects the number of units once known. Raises
+    :class:`CaseError` if ``$TRACKCERT_PROGRESS_SECONDS`` is not a number ≥ 0.
     """
     if not error_console.is_terminal:
         with _progress_lines(total, description, _progress_seconds()) as advance:

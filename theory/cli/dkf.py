@@ -21,13 +21,7 @@ __all__ = ["register"]
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``dkf`` command to ``app``.
-
-    Parameters
-    ----------
-    app : typer.Typer
-        The ``trackcert`` application.
-    """
+    """Add the ``dkf`` command to ``app``."""
 
     @app.command("dkf")
     @reports_errors

@@ -56,13 +56,7 @@ def _print_table(report: Any) -> None:
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``iss`` command to ``app``.
-
-    Parameters
-    ----------
-    app : typer.Typer
-        The ``trackcert`` application.
-    """
+    """Add the ``iss`` command to ``app``."""
 
     @app.command("iss")
     @reports_errors

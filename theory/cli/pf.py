@@ -37,13 +37,7 @@ __all__ = ["register", "run_pf_case"]
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``pf`` command to ``app``.
-
-    Parameters
-    ----------
-    app : typer.Typer
-        The ``trackcert`` application.
-    """
+    """Add the ``pf`` command to ``app``."""
 
     @app.command("pf")
     @reports_errors
@@ -73,26 +67,9 @@ def run_pf_case(
     workers: int | None = None,
     scheduler: str | None = None,
 ) -> int:
-    """Print :func:`theory.particle.report.pf_report` of ``case`` and return the exit code.
-
-    Parameters
-    ----------
-    case : Case
-        A loaded ``kind: pf`` case.
-    runs, seed : int or None
-        Monte Carlo runs and base seed (``None``: the case's own).
-    out : str or None
-        Folder for ``pf.json`` and figures (``None``: write nothing).
-    as_json : bool
-        Print JSON instead of a table.
-    workers, scheduler : int or str, optional
-        Where the Monte Carlo runs go (:func:`theory.core.parallel.engine`).
-
-    Returns
-    -------
-    int
-        The expectations' exit code: 0 all met, 1 one unmet, 3 one inconclusive or unchecked.
-    """
+    """Print :func:`theory.particle.report.pf_report` of ``case`` (``runs``, ``seed``: ``None``
+    for the case's own; ``out``: folder for ``pf.json`` and figures) and return the
+    expectations' exit code."""
     from theory.core.parallel import engine
     from theory.particle.case import check_pf_work
     from theory.particle.report import MARKER, pf_report

@@ -24,6 +24,8 @@ from theory.cli.common import (
     workers_option,
 )
 from theory.core.case_file import bundled_cases, resolve_case_path
+from theory.core.claims import Status
+from theory.core.expectations import ExpectationVerdict
 from theory.core.jsonable import dumps
 from theory.core.parallel import engine
 from theory.core.verdicts import command_verdict, exit_code
@@ -154,7 +156,7 @@ def _run(
 
 def _print_summary(document: dict, out: Path) -> None:
     """One row per claim with its results counted by status (every result is in the files)."""
-    statuses = ("verified", "corrected", "refuted", "inconclusive")
+    statuses = (Status.VERIFIED, Status.CORRECTED, Status.REFUTED, Status.INCONCLUSIVE)
     table = Table(title=f"trackcert report: {document['summary']['results']} results")
     table.add_column("claim", overflow="fold")
     for status in statuses:
@@ -165,7 +167,7 @@ def _print_summary(document: dict, out: Path) -> None:
     for claim, seen in counts.items():
         table.add_row(claim, *(str(seen[s]) if seen[s] else "" for s in statuses))
     console.print(table)
-    unmet = [e for e in document["expectations"] if e["verdict"] != "met"]
+    unmet = [e for e in document["expectations"] if e["verdict"] != ExpectationVerdict.MET]
     for e in unmet:
         console.print(f"{e['verdict']}: {e['case']} expect.{e['key']}", markup=False)
     counts = document["summary"]["expectations"]

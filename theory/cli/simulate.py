@@ -39,13 +39,7 @@ KINDS = ("tdoa-sim", "pursuit", "dkf", "pf")
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``simulate`` command to ``app``.
-
-    Parameters
-    ----------
-    app : typer.Typer
-        The application.
-    """
+    """Add the ``simulate`` command to ``app``."""
 
     @app.command("simulate")
     @reports_errors
@@ -113,18 +107,8 @@ def register(app: typer.Typer) -> None:
 
 
 def check_options(runs: int | None, steps: int | None) -> None:
-    """Refuse ``--runs`` or ``--steps`` before any work (:mod:`theory.core.limits`).
-
-    Parameters
-    ----------
-    runs, steps : int or None
-        The options' values (``None``: not given).
-
-    Raises
-    ------
-    CaseError
-        Naming the option, the limit and how to raise it.
-    """
+    """Refuse ``--runs`` or ``--steps`` above their limits before any work
+    (:mod:`theory.core.validation`)."""
     for name, value in (("runs", runs), ("steps", steps)):
         if value is not None:
             check_count(name, value, f"--{name}", file=COMMAND_LINE)

@@ -58,13 +58,7 @@ def _print_summary(summary: dict, files: list[Path]) -> None:
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``sweep`` command to ``app``.
-
-    Parameters
-    ----------
-    app : typer.Typer
-        The ``trackcert`` application.
-    """
+    """Add the ``sweep`` command to ``app``."""
 
     @app.command("sweep")
     @reports_errors

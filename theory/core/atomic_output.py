@@ -84,13 +84,7 @@ def _stale(target: Path) -> list[tuple[str, Path]]:
 
 
 def recover(target: str | Path) -> None:
-    """Settle what a killed writer of ``target`` left beside it (see the module docstring).
-
-    Parameters
-    ----------
-    target : str or Path
-        The output folder or file.
-    """
+    """Settle what a killed writer of ``target`` left beside it (see the module docstring)."""
     target = Path(target)
     stale = _stale(target)
     asides = [path for role, path in stale if role == "old"]
@@ -109,20 +103,8 @@ def _remove(path: Path) -> None:
 
 
 def replaceable_problem(target: str | Path, marker: str) -> str:
-    """Why ``target`` may not be replaced as a whole by a command writing ``marker``, or ``""``.
-
-    Parameters
-    ----------
-    target : str or Path
-        The output folder.
-    marker : str
-        The file every output of the command has (``report.json``).
-
-    Returns
-    -------
-    str
-        What the folder must be (for a :class:`~theory.core.errors.CaseError`), or ``""``.
-    """
+    """Why ``target`` may not be replaced whole by a command whose outputs hold ``marker`` (what
+    the folder must be, for a :class:`CaseError`), or ``""``."""
     real = Path(target).resolve()
     if real == Path.cwd().resolve() or real in Path.cwd().resolve().parents:
         return "a folder other than the current one or one of its parents (it is replaced whole)"
@@ -137,22 +119,8 @@ def replaceable_problem(target: str | Path, marker: str) -> str:
 
 
 def check_replaceable(target: str | Path, marker: str, option: str = "-o") -> None:
-    """Raise unless ``target`` may be replaced whole (:func:`replaceable_problem`).
-
-    Parameters
-    ----------
-    target : str or Path
-        The output folder.
-    marker : str
-        The file every output of the command has.
-    option : str
-        The option naming the folder, for the message.
-
-    Raises
-    ------
-    CaseError
-        Naming ``option`` in ``<command line>``, what the folder must be and the path.
-    """
+    """A :class:`CaseError` naming ``option`` unless ``target`` may be replaced whole
+    (:func:`replaceable_problem`)."""
     problem = replaceable_problem(target, marker)
     if problem:
         raise CaseError(option, problem, str(target), file=COMMAND_LINE)
@@ -160,29 +128,12 @@ def check_replaceable(target: str | Path, marker: str, option: str = "-o") -> No
 
 @contextmanager
 def replaced_folder(target: str | Path, marker: str) -> Iterator[Path]:
-    """A staging folder to write into; on success it replaces ``target`` whole, else nothing.
+    """A fresh staging folder beside ``target``; on success it replaces ``target`` whole (created
+    with its parents; a symbolic link is followed), else ``target`` is left as it was.
 
-    Parameters
-    ----------
-    target : str or Path
-        The output folder (created with its parents if missing; a symbolic link is followed and
-        the folder it names is replaced).
-    marker : str
-        The file every output of the command has: a folder without it must be empty or new
-        (:func:`replaceable_problem`).
-
-    Yields
-    ------
-    Path
-        The staging folder (empty), beside the target.
-
-    Raises
-    ------
-    CaseError
-        If ``target`` is a folder this command may not replace (:func:`replaceable_problem`).
-    OutputError
-        If writing or swapping fails with an ``OSError`` (the staging folder is removed and
-        ``target`` left as it was).
+    Raises :class:`CaseError` if ``target`` is not the command's to replace
+    (:func:`replaceable_problem`), :class:`OutputError` if writing or swapping fails with an
+    ``OSError`` (the staging folder is removed).
     """
     shown = Path(target)
     check_replaceable(shown, marker)
@@ -230,24 +181,8 @@ def _swap(staging: Path, real: Path) -> None:
 
 
 def write_file(path: str | Path, content: str | bytes) -> Path:
-    """Write ``content`` to ``path`` through a flushed temporary file and one rename.
-
-    Parameters
-    ----------
-    path : str or Path
-        The file (its folder exists).
-    content : str or bytes
-        Text (written as UTF-8) or bytes.
-
-    Returns
-    -------
-    Path
-
-    Raises
-    ------
-    OutputError
-        If writing fails (the temporary file is removed and ``path`` left as it was).
-    """
+    """Write ``content`` (text as UTF-8, or bytes) to ``path`` through a flushed temporary file
+    and one rename; :class:`OutputError` if writing fails (``path`` is left as it was)."""
     path = Path(path)
     data = content.encode("utf-8") if isinstance(content, str) else content
     left = f"{path} is left as it was" if path.exists() else f"{path} was not created"

@@ -82,13 +82,8 @@ class Case:
 
 
 def parse_case(data: object, kinds: Mapping[str, KindSpec], *, file: str = "<data>") -> Case:
-    """Validate a case given as plain data (the parsed YAML) against the known ``kinds``.
-
-    Raises
-    ------
-    CaseError
-        Naming ``file``, the field, the expected form and what was found.
-    """
+    """Validate a case given as plain data (the parsed YAML) against the known ``kinds``; a
+    :class:`CaseError` names ``file``, the field, the expected form and what was found."""
     try:
         return _parse(data, kinds, file)
     except CaseError as error:

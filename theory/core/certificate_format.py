@@ -1,4 +1,4 @@
-"""The certificate envelope shared by every builder (DESIGN.md, *Certificates*).
+"""The certificate envelope shared by every builder (docs/certificates.md, *Format*).
 
 A certificate is ``{"format", "kind", "source", "case"?, "claim", "data", "witness",
 "produced_by"?}`` with every number an exact rational string (``docs/certificates.md``); a bundle
@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 import proofs_check
-from theory.core.claims import DOCUMENT_KEY, ClaimResult, NotApplicable
+from theory.core.claims import DOCUMENT_KEY, ClaimResult, Method, NotApplicable, Status
 from theory.core.errors import InconclusiveError, PropertyFails
 from theory.core.exact import (
     PRECISIONS,
@@ -66,23 +66,8 @@ def envelope(
     source: str = "",
     case: str | None = None,
 ) -> dict[str, Any]:
-    """One certificate: the kind, where its claim comes from, the claim, data and witness.
-
-    Parameters
-    ----------
-    kind : str
-        A kind of :data:`proofs_check.kinds.KINDS`.
-    claim, data, witness : dict
-        Already in exact strings (:func:`strings`).
-    source : str
-        The paper and result, e.g. ``seed 000, Lemma 5.2.2``.
-    case : str, optional
-        Case name recorded in the certificate.
-
-    Returns
-    -------
-    dict
-    """
+    """One certificate of ``kind`` (:data:`proofs_check.kinds.KINDS`): where its claim comes
+    from (``seed 000, Lemma 5.2.2``), the claim, data and witness (in exact strings)."""
     cert: dict[str, Any] = {"format": FORMAT, "kind": kind, "source": source, "claim": claim}
     cert |= {"data": data, "witness": witness}
     if case is not None:
@@ -91,19 +76,7 @@ def envelope(
 
 
 def bundle(certificates: Sequence[dict], *, case: str | None = None) -> dict:
-    """Several certificates in one file (``"kind": "bundle"``), valid iff each one is.
-
-    Parameters
-    ----------
-    certificates : sequence of dict
-        Certificates made with :func:`envelope` (or in its format).
-    case : str, optional
-        Case name recorded in the bundle.
-
-    Returns
-    -------
-    dict
-    """
+    """Several certificates in one file (``"kind": "bundle"``), valid iff each one is."""
     out: dict[str, Any] = {"format": FORMAT, "kind": "bundle"}
     if case is not None:
         out["case"] = case
@@ -116,16 +89,6 @@ def checked(cert: dict[str, Any]) -> str | None:
 
     A certificate the checker refuses as too costly (work estimate, time budget) is reported like
     an invalid one, so a builder moves on instead of failing.
-
-    Parameters
-    ----------
-    cert : dict
-        A certificate.
-
-    Returns
-    -------
-    str or None
-        The first failing check (name and detail), the refusal, or None when valid.
     """
     try:
         verdict = proofs_check.check_certificate(cert)
@@ -156,33 +119,12 @@ def rounded(
     precisions: Sequence[int] = PRECISIONS,
     what: str,
 ) -> dict:
-    """Round the float ``matrices`` with growing precision until ``build(rounded)`` checks.
+    """The first certificate ``build({name: [exact matrices]})`` that :mod:`proofs_check`
+    accepts, rounding the float witness ``matrices`` to each of ``precisions`` significant bits,
+    with ``produced_by`` (tool, bits, float margin, ``lmi_margin``).
 
-    Parameters
-    ----------
-    build : callable
-        ``build({name: [exact matrices]}) -> certificate``.
-    matrices : dict of str to list of ndarray
-        The float witness, by name.
-    margin : float
-        The float witness's relative margin (must exceed ``lmi_margin``).
-    lmi_margin : float
-        Least margin worth rounding.
-    precisions : sequence of int
-        Significant bits tried in turn.
-    what : str
-        Names the certificate in error messages.
-
-    Returns
-    -------
-    dict
-        The first certificate :func:`proofs_check.check_certificate` accepts, with
-        ``produced_by`` (tool, significant bits, float margin, lmi_margin).
-
-    Raises
-    ------
-    RationalizationError
-        If the margin is too small or no rounding passes the exact check.
+    Raises :class:`RationalizationError` (naming ``what``) if ``margin`` does not exceed
+    ``lmi_margin`` or no rounding passes the exact check.
     """
     if not margin > lmi_margin:
         raise RationalizationError(
@@ -218,22 +160,18 @@ def certificate_results(
     """One ``verified`` result per certificate ``make()`` builds for ``case``, as a document.
 
     ``evidence(certificate)`` is shown beside the document. No certificate at all gives one
-    ``inconclusive`` result listing the reasons.
-
-    Raises
-    ------
-    NotApplicable
-        If the property to certify is decided false (there is nothing to certify).
+    ``inconclusive`` result listing the reasons; a property decided false raises
+    :class:`NotApplicable` (there is nothing to certify).
     """
     try:
         certs, reasons = make()
     except InconclusiveError as error:
-        return [ClaimResult("inconclusive", "exact", message=str(error))]
+        return [ClaimResult(Status.INCONCLUSIVE, Method.EXACT, message=str(error))]
     except PropertyFails as error:
         raise NotApplicable(str(error)) from error
     if not certs:
         why = f"no certificate for {case.name}: " + "; ".join(reasons)
-        return [ClaimResult("inconclusive", "exact", message=why)]
+        return [ClaimResult(Status.INCONCLUSIVE, Method.EXACT, message=why)]
     return [
         certified_result(evidence(cert), document=cert, message=cert["claim"]["statement"])
         for cert in certs
@@ -244,5 +182,5 @@ def certified_result(evidence: dict[str, Any], *, document: dict, message: str) 
     """The ``verified`` result of a certificate claim, carrying ``document`` for the report
     (method ``exact``: the document was accepted by ``proofs_check`` when it was built)."""
     return ClaimResult(
-        "verified", "exact", evidence={**evidence, DOCUMENT_KEY: document}, message=message
+        Status.VERIFIED, Method.EXACT, {**evidence, DOCUMENT_KEY: document}, message=message
     )

@@ -33,6 +33,7 @@ __all__ = [
     "Property",
     "RunCache",
     "Status",
+    "Wording",
     "status_of",
 ]
 
@@ -46,6 +47,13 @@ class Status(StrEnum):
     REFUTED = "refuted"  # it fails, with a counterexample in the evidence
     CORRECTED = "corrected"  # the paper's wording fails, the corrected statement holds
     INCONCLUSIVE = "inconclusive"  # a margin lies inside tolerance or a solver failed
+
+
+class Wording(StrEnum):
+    """Which statement of a claim a property tests: the paper's, or our corrected one."""
+
+    PAPER = "paper"
+    CORRECTED = "corrected"
 
 
 class Method(StrEnum):
@@ -189,15 +197,9 @@ class Claim:
     seeded: bool = False
 
     def run(self, case: Case | None, ctx: Context | None = None) -> list[ClaimResult]:
-        """The check's results on ``case``, stamped with this id and the case name.
-
-        Raises
-        ------
-        NotApplicable
-            When the claim says nothing about the case.
-        TypeError
-            When the check returns something other than a list of :class:`ClaimResult`.
-        """
+        """The check's results on ``case``, stamped with this id and the case name; raises
+        :class:`NotApplicable` when the claim says nothing about the case, ``TypeError`` when
+        the check returns anything but a list of :class:`ClaimResult`."""
         results = self.check(case, Context() if ctx is None else ctx)
         if not isinstance(results, list | tuple):
             returned = type(results).__name__
@@ -270,7 +272,7 @@ class Property:
 
     id: str
     claim: str
-    wording: str
+    wording: Wording
     statement: str
     examples: SearchStrategy[Any]
     holds: Callable[[Any], bool]
@@ -278,5 +280,6 @@ class Property:
     expected_to_hold: bool = True
 
     def __post_init__(self) -> None:
-        if self.wording not in ("paper", "corrected"):
+        if self.wording not in set(Wording):
             raise ValueError(f"wording {self.wording!r} is not 'paper' or 'corrected'")
+        object.__setattr__(self, "wording", Wording(self.wording))

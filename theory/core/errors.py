@@ -1,4 +1,4 @@
-"""One exception tree for the whole library (STYLE.md, *Adopt* 4).
+"""One exception tree for the whole library (docs/cli.md, *Exit codes*).
 
 Every class derives from :class:`TrackcertError` and from the builtin it refines, so callers may
 catch either. The CLI turns any :class:`TrackcertError` into exit code 2 (bad input), 1 (the
@@ -33,21 +33,9 @@ class TrackcertError(Exception):
 
 
 class CaseError(TrackcertError, ValueError):
-    """Invalid input: names the file, the field, what was expected and what was found.
-
-    Parameters
-    ----------
-    field : str
-        Dotted path of the offending field, e.g. ``tdoa.agents[3]``.
-    expected : str
-        What a valid value looks like.
-    got : object
-        What was found (shown with ``repr``-like brevity).
-    file : str, optional
-        The case file (or ``<data>`` when the input did not come from a file).
-    hint : str, optional
-        How to fix it.
-    """
+    """Invalid input: names the ``file`` (``<data>`` when the input is no file), the dotted
+    ``field`` (``tdoa.agents[3]``), what was ``expected``, what was found (``got``, shown
+    briefly) and, optionally, a ``hint`` on how to fix it."""
 
     def __init__(
         self,
@@ -97,17 +85,8 @@ class FaultError(TrackcertError):
 
 
 class OutputError(FaultError, OSError):
-    """Writing an output failed (a full disk, a lost permission): names the path and the reason.
-
-    Parameters
-    ----------
-    path : str
-        The output as the user named it (a file, or the ``-o`` folder).
-    reason : str
-        The system's reason (``No space left on device``).
-    left : str
-        What the output is now (``left as it was``).
-    """
+    """Writing an output failed (a full disk, a lost permission): names the ``path`` as the user
+    named it, the system's ``reason`` and what the output is now (``left``)."""
 
     def __init__(self, path: str, reason: str, left: str) -> None:
         self.path = path

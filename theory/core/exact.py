@@ -76,24 +76,7 @@ class RationalizationError(InconclusiveError):
 
 
 def dyadic(x: float, exponent: int) -> Fraction:
-    """``x`` rounded to the nearest multiple of ``2**exponent`` (exactly).
-
-    Parameters
-    ----------
-    x : float
-        A finite number.
-    exponent : int
-        The grid is ``2**exponent``.
-
-    Returns
-    -------
-    Fraction
-
-    Raises
-    ------
-    RationalizationError
-        If ``x`` is not finite.
-    """
+    """``x`` rounded exactly to the nearest multiple of ``2**exponent`` (finite ``x`` only)."""
     if not np.isfinite(x):
         raise RationalizationError(f"cannot round the non-finite value {x!r} to a rational")
     scaled = round(exact_float(x) / Fraction(2) ** exponent)
@@ -101,19 +84,8 @@ def dyadic(x: float, exponent: int) -> Fraction:
 
 
 def dyadic_matrix(matrix: np.ndarray, bits: int) -> list[list[Fraction]]:
-    """Round every entry to ``bits`` significant bits relative to the largest entry.
-
-    Parameters
-    ----------
-    matrix : ndarray
-        A real matrix (2-d) or vector (1-d, returned as a single row).
-    bits : int
-        Significant bits kept for the largest entry; smaller entries share its grid.
-
-    Returns
-    -------
-    list of list of Fraction
-    """
+    """Every entry rounded to ``bits`` significant bits of the largest one (whose grid the
+    smaller entries share); a vector becomes one row."""
     array = np.atleast_2d(np.asarray(matrix, dtype=float))
     top = float(np.abs(array).max(initial=0.0))
     exponent = (int(np.floor(np.log2(top))) if top > 0 else 0) - bits
@@ -125,15 +97,6 @@ def symmetric_projection(matrix: np.ndarray) -> np.ndarray:
 
     Float addition is commutative, so the result is exactly symmetric and stays so after
     entrywise rounding.
-
-    Parameters
-    ----------
-    matrix : ndarray
-        A square matrix.
-
-    Returns
-    -------
-    ndarray
     """
     array = np.asarray(matrix, dtype=float)
     return (array + array.T) / 2
@@ -144,21 +107,7 @@ def exact_decimal(x: float | int | Fraction) -> Fraction:
 
     This is how the suite reads data written in a case file (coordinates, weights, system
     matrices): the decimal as written, not the binary float nearest to it. Integers and
-    ``Fraction`` are returned exactly.
-
-    Parameters
-    ----------
-    x : float, int or Fraction
-        A finite number.
-
-    Returns
-    -------
-    Fraction
-
-    Raises
-    ------
-    RationalizationError
-        If ``x`` is not finite.
+    ``Fraction`` are returned exactly; a non-finite ``x`` raises :class:`RationalizationError`.
     """
     if isinstance(x, Fraction | int) and not isinstance(x, bool):
         return Fraction(x)
@@ -173,20 +122,6 @@ def exact_float(x: float) -> Fraction:
     For checks about the floats the suite actually computes with (e.g. the zero pattern of the
     powers of a float ``W``), where the decimal a user wrote (:func:`exact_decimal`) is not the
     number in memory.
-
-    Parameters
-    ----------
-    x : float
-        A finite number.
-
-    Returns
-    -------
-    Fraction
-
-    Raises
-    ------
-    RationalizationError
-        If ``x`` is not finite.
     """
     if not np.isfinite(x):
         raise RationalizationError(f"cannot read the non-finite value {x!r} as a rational")
@@ -194,17 +129,8 @@ def exact_float(x: float) -> Fraction:
 
 
 def exact_matrix(matrix: Any) -> list[list[Fraction]]:
-    """A matrix of exact rationals: ``Fraction`` entries kept, floats read as decimals.
-
-    Parameters
-    ----------
-    matrix : array_like or list of lists
-        Real entries (floats, ints or Fractions); a vector becomes one row.
-
-    Returns
-    -------
-    list of list of Fraction
-    """
+    """A matrix of exact rationals: ``Fraction`` entries kept, floats read as decimals, a vector
+    as one row."""
     rows = matrix if isinstance(matrix, list) else np.atleast_2d(np.asarray(matrix)).tolist()
     return [
         [exact_decimal(x if isinstance(x, Fraction) else float(x)) for x in np.atleast_1d(row)]
@@ -213,28 +139,8 @@ def exact_matrix(matrix: Any) -> list[list[Fraction]]:
 
 
 def project_affine(x: Sequence[Fraction], a: Sequence[Fraction], b: Fraction) -> list[Fraction]:
-    """Exact orthogonal projection of ``x`` onto the hyperplane ``{y : a·y = b}``.
-
-    .. math:: y = x + \\frac{b - a \\cdot x}{a \\cdot a}\\, a
-
-    Parameters
-    ----------
-    x : sequence of Fraction
-        The point.
-    a : sequence of Fraction
-        The constraint's normal vector.
-    b : Fraction
-        The constraint's value.
-
-    Returns
-    -------
-    list of Fraction
-
-    Raises
-    ------
-    ValueError
-        If ``a = 0``.
-    """
+    """Exact orthogonal projection of ``x`` onto ``{y : a·y = b}``: ``y = x + (b − a·x)/(a·a) a``
+    (``ValueError`` if ``a = 0``)."""
     norm2 = sum(Fraction(v) * v for v in a)
     if norm2 == 0:
         raise ValueError("the constraint vector a is zero")
@@ -247,21 +153,9 @@ def stochastic_matrix(W: Any) -> list[list[Fraction]]:
 
     Entries are read as decimals (:func:`exact_matrix`); each row is then projected onto
     ``Σ_j w_ij = 1`` within its support (zeros stay zero), moving each entry by at most the
-    row's rounding error divided by its support size. Rows already summing to one are unchanged.
-
-    Parameters
-    ----------
-    W : array_like
-        Consensus weights (floats read as decimals, or Fractions).
-
-    Returns
-    -------
-    list of list of Fraction
-
-    Raises
-    ------
-    RationalizationError
-        If a row has a negative entry, is zero, or needs a change larger than ``1e-9``.
+    row's rounding error divided by its support size. Rows already summing to one are unchanged;
+    a negative or zero row, or one needing a change above ``1e-9``, raises
+    :class:`RationalizationError`.
     """
     out = []
     for i, row in enumerate(exact_matrix(W)):
@@ -276,21 +170,8 @@ def stochastic_matrix(W: Any) -> list[list[Fraction]]:
 
 
 def fraction_strings(value: Any) -> Any:
-    """Nested lists of Fractions as nested lists of exact strings ``"p/q"``.
-
-    Parameters
-    ----------
-    value : Fraction or nested iterables of Fraction
-
-    Returns
-    -------
-    str or nested lists of str
-
-    Raises
-    ------
-    TypeError
-        For anything other than Fractions.
-    """
+    """Nested lists of Fractions as nested lists of exact strings ``"p/q"`` (``TypeError`` for
+    anything else)."""
     if isinstance(value, Fraction):
         return str(value)
     if isinstance(value, Iterable) and not isinstance(value, str):
@@ -303,19 +184,8 @@ def rational_unit_vector(u: Sequence[float], bits: int) -> list[Fraction]:
 
     Inverse stereographic projection from the pole ``±e_d`` farther from ``u`` maps rational
     ``s ∈ Q^{d−1}`` to ``(2s, ±(1 − |s|²)) / (1 + |s|²)``, a rational unit vector; ``s`` is
-    ``u``'s projection rounded to ``bits`` bits, so the result is within ``~2^{−bits}`` of ``u``.
-
-    Parameters
-    ----------
-    u : sequence of float
-        A non-zero vector of length ``d ≥ 2`` (normalised first).
-    bits : int
-        Grid ``2^{−bits}`` of the stereographic coordinates.
-
-    Returns
-    -------
-    list of Fraction
-        ``d`` rationals whose squares sum to exactly one.
+    ``u``'s projection rounded to ``bits`` bits, so the result (``d ≥ 2`` rationals whose squares
+    sum to exactly one) is within ``~2^{−bits}`` of ``u``.
     """
     vector = np.asarray(u, dtype=float)
     vector = vector / np.linalg.norm(vector)
@@ -329,26 +199,8 @@ def rational_unit_vector(u: Sequence[float], bits: int) -> list[Fraction]:
 def first_success(
     attempt: Callable[[int], T | None], *, precisions: Sequence[int] = PRECISIONS, what: str
 ) -> tuple[T, int]:
-    """Call ``attempt(bits)`` for each precision until it returns a result.
-
-    Parameters
-    ----------
-    attempt : callable
-        ``attempt(bits)`` returns a result, or ``None`` when that precision fails.
-    precisions : sequence of int
-        Precisions tried in order.
-    what : str
-        Names the witness in the error message.
-
-    Returns
-    -------
-    (result, bits)
-
-    Raises
-    ------
-    RationalizationError
-        If every precision fails (``what`` names the witness in the message).
-    """
+    """The first result of ``attempt(bits)`` (``None``: that precision fails) over ``precisions``,
+    and its bits; :class:`RationalizationError` naming ``what`` if every precision fails."""
     for bits in precisions:
         result = attempt(bits)
         if result is not None:
@@ -380,30 +232,13 @@ def rational_matrix(M: np.ndarray | Matrix) -> Matrix:
 
 
 def kron(a: Matrix, b: Matrix) -> Matrix:
-    """The Kronecker product ``a ⊗ b`` (``np.kron``'s layout).
-
-    Parameters
-    ----------
-    a, b : list of rows of Fraction
-        Exact matrices.
-    """
+    """The Kronecker product ``a ⊗ b`` of exact matrices (``np.kron``'s layout)."""
     return [[x * y for x in ra for y in rb] for ra in a for rb in b]
 
 
 def null_basis(rows: Matrix, n: int) -> list[list[Fraction]]:
-    """A rational basis of ``{x ∈ Qⁿ : rows · x = 0}`` (from the reduced row echelon form).
-
-    Parameters
-    ----------
-    rows : list of rows of Fraction
-        The matrix (possibly with no rows: then the basis is the identity's columns).
-    n : int
-        Number of columns.
-
-    Returns
-    -------
-    list of vectors (lists of Fraction)
-    """
+    """A rational basis of ``{x ∈ Qⁿ : rows · x = 0}`` (from the reduced row echelon form; no
+    rows: the identity's columns)."""
     if not rows:
         return [[Fraction(int(i == j)) for i in range(n)] for j in range(n)]
     R, rank = to_fmpq(rows).rref()
@@ -420,18 +255,8 @@ def null_basis(rows: Matrix, n: int) -> list[list[Fraction]]:
 
 
 def rational_eigenvalues(A: Matrix) -> list[Fraction]:
-    """The distinct rational eigenvalues of ``A`` (linear factors of its characteristic polynomial).
-
-    Parameters
-    ----------
-    A : list of rows of Fraction
-        Square matrix.
-
-    Returns
-    -------
-    list of Fraction
-        Sorted by decreasing modulus.
-    """
+    """The distinct rational eigenvalues of ``A`` (linear factors of its characteristic
+    polynomial), by decreasing modulus."""
     _, factors = to_fmpq(A).charpoly().factor()
     roots = []
     for poly, _ in factors:

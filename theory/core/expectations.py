@@ -30,7 +30,7 @@ from decimal import Decimal
 from enum import StrEnum
 from typing import Any
 
-from theory.core.claims import Claim, ClaimResult, status_of
+from theory.core.claims import Claim, ClaimResult, Status, status_of
 from theory.core.verdicts import expectations_verdict
 
 __all__ = [
@@ -126,7 +126,7 @@ class Expectation:
     @property
     def observed(self) -> Any:
         """The value of the first conclusive observation (else the first; ``None`` if none)."""
-        conclusive = [o for o in self.observations if o.status != "inconclusive"]
+        conclusive = [o for o in self.observations if o.status != Status.INCONCLUSIVE]
         chosen = conclusive or list(self.observations)
         return chosen[0].value if chosen else None
 
@@ -172,7 +172,7 @@ def observations_from(source: str, evidence: Mapping[str, Any], status: str) -> 
     unsure = {k: v for k, v in values.items() if k in undecided}
     return [
         (source, part, part_status)
-        for part, part_status in ((decided, status), (unsure, "inconclusive"))
+        for part, part_status in ((decided, status), (unsure, Status.INCONCLUSIVE))
         if part
     ]
 
@@ -205,7 +205,7 @@ def judge(case: Any, observed: Observed, *, source: str) -> list[Expectation]:
     """The verdicts on the keys of ``case``'s ``expect`` block that one observer (named
     ``source``) answers; the others are left to the analyses that do (``trackcert iss`` does not
     vouch for ``simulation_bounded``, nor ``trackcert simulate`` for ``iss``)."""
-    found = observations_from(source, observed.evidence(), "verified")
+    found = observations_from(source, observed.evidence(), Status.VERIFIED)
     answered = {k: v for k, v in case.expect.items() if k in observed.values}
     return evaluate(case.name, answered, found, case.expect_rules)
 
@@ -251,9 +251,10 @@ def expectation_claim(
 def _verdict(expected: Any, found: tuple[Observation, ...], rule: Rule) -> ExpectationVerdict:
     if not found:
         return ExpectationVerdict.UNCHECKED
-    if any(not matches(expected, o.value, rule) for o in found if o.status != "inconclusive"):
+    undecided = Status.INCONCLUSIVE
+    if any(not matches(expected, o.value, rule) for o in found if o.status != undecided):
         return ExpectationVerdict.UNMET
-    if all(o.status == "inconclusive" for o in found):
+    if all(o.status == undecided for o in found):
         return ExpectationVerdict.INCONCLUSIVE
     return ExpectationVerdict.MET
 

@@ -1,11 +1,12 @@
 """Communication networks: adjacency from edges or a distance rule, consensus weights, components.
 
-Agent ids are 0-based inside the library and 1-based wherever a user sees them (DESIGN.md).
-Named weights follow DESIGN.md: ``metropolis`` is w_ij = 1/(1 + max(d_i, d_j)) on each edge with
-w_ii = 1 − Σ_j w_ij; ``uniform`` is w_ij = 1/(d_i + 1) for j ∈ N_i ∪ {i}. Each rule is written
-once in floats (:func:`metropolis_weights`, :func:`uniform_weights`, what filters and simulations
-use) and once in exact rationals (:func:`exact_metropolis_weights`, :func:`exact_uniform_weights`,
-what certificates and exact claims use), side by side (:data:`NAMED_WEIGHTS`).
+Agent ids are 0-based inside the library and 1-based wherever a user sees them. Named weights
+(docs/topology.md, *Named weights*): ``metropolis`` is w_ij = 1/(1 + max(d_i, d_j)) on each
+edge with w_ii = 1 − Σ_j w_ij; ``uniform`` is w_ij = 1/(d_i + 1) for j ∈ N_i ∪ {i}. Each rule is
+written once in floats (:func:`metropolis_weights`, :func:`uniform_weights`, what filters and
+simulations use) and once in exact rationals (:func:`exact_metropolis_weights`,
+:func:`exact_uniform_weights`, what certificates and exact claims use), side by side
+(:data:`NAMED_WEIGHTS`).
 """
 
 from __future__ import annotations
@@ -33,24 +34,8 @@ __all__ = [
 
 
 def adjacency_from_edges(n: int, edges: np.ndarray, *, directed: bool = False) -> np.ndarray:
-    """Boolean "hears" matrix ``A[r, s]`` of ``n`` agents from 0-based ``edges``.
-
-    ``A[r, s]`` means "agent r receives from agent s".
-
-    Parameters
-    ----------
-    n : int
-        Number of agents.
-    edges : ndarray of int, shape (m, 2)
-        0-based pairs ``(s, r)``. A directed edge ``(s, r)`` means information flows from sender
-        ``s`` to receiver ``r``, so row ``r`` of a consensus matrix ``W`` has ``w_rs > 0``.
-    directed : bool
-        Whether ``edges`` are directed; undirected edges are symmetrised.
-
-    Returns
-    -------
-    ndarray of bool, shape (n, n)
-    """
+    """Boolean "hears" matrix ``A[r, s]`` (agent r receives from agent s) of ``n`` agents from
+    0-based ``edges`` ``(s, r)``; undirected edges are symmetrised."""
     adjacency = np.zeros((n, n), dtype=bool)
     for s, r in np.asarray(edges, dtype=int).reshape(-1, 2):
         adjacency[r, s] = True
@@ -66,18 +51,6 @@ def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray
     written (:func:`theory.core.exact.exact_decimal`): pairs whose float squared distance
     lies within a rounding bound of ``comm_range²`` are re-compared in rationals, so an agent at
     exactly the range is never linked and one a hair inside always is.
-
-    Parameters
-    ----------
-    positions : ndarray, shape (N, d)
-        Agent positions, one per row.
-    comm_range : float
-        Communication range: agents ``i ≠ j`` are linked iff ``‖p_i − p_j‖ < comm_range``.
-
-    Returns
-    -------
-    ndarray of bool, shape (N, N)
-        Symmetric, with a false diagonal.
     """
     positions = np.asarray(positions, dtype=float)
     diff = positions[:, None, :] - positions[None, :, :]
@@ -127,35 +100,14 @@ def uniform_weights(adjacency: np.ndarray) -> np.ndarray:
 
 
 def exact_metropolis_weights(adjacency: np.ndarray) -> list[list[Fraction]]:
-    """The Metropolis weights of :func:`metropolis_weights` in exact rationals (DESIGN.md).
-
-    Parameters
-    ----------
-    adjacency : ndarray of bool, shape (N, N)
-        Symmetric adjacency without self-loops.
-
-    Returns
-    -------
-    list of list of Fraction
-        ``w_ij = 1/(1 + max(d_i, d_j))`` on each edge, ``w_ii = 1 − Σ_j w_ij``, 0 elsewhere.
-    """
+    """:func:`metropolis_weights` in exact rationals: ``w_ij = 1/(1 + max(d_i, d_j))`` on each
+    edge, ``w_ii = 1 − Σ_j w_ij``."""
     degree = np.asarray(adjacency, dtype=bool).sum(axis=1)
     return _exact(adjacency, lambda r, s: Fraction(1, 1 + int(max(degree[r], degree[s]))))
 
 
 def exact_uniform_weights(adjacency: np.ndarray) -> list[list[Fraction]]:
-    """The uniform weights of :func:`uniform_weights` in exact rationals (DESIGN.md).
-
-    Parameters
-    ----------
-    adjacency : ndarray of bool, shape (N, N)
-        ``adjacency[r, s]``: ``r`` hears ``s``.
-
-    Returns
-    -------
-    list of list of Fraction
-        ``w_rs = 1/(d_r + 1)`` for ``s ∈ N_r ∪ {r}``, 0 elsewhere.
-    """
+    """:func:`uniform_weights` in exact rationals: ``w_rs = 1/(d_r + 1)`` for ``s ∈ N_r ∪ {r}``."""
     degree = np.asarray(adjacency, dtype=bool).sum(axis=1)
     return _exact(adjacency, lambda r, s: Fraction(1, 1 + int(degree[r])))
 
@@ -168,24 +120,8 @@ NAMED_WEIGHTS = {
 
 
 def exact_weights(adjacency: np.ndarray, rule: str) -> list[list[Fraction]]:
-    """The named weights ``rule`` of ``adjacency`` in exact rationals.
-
-    Parameters
-    ----------
-    adjacency : ndarray of bool, shape (N, N)
-        ``adjacency[r, s]``: ``r`` hears ``s`` (symmetric for ``metropolis``).
-    rule : {"metropolis", "uniform"}
-        The weight rule.
-
-    Returns
-    -------
-    list of list of Fraction
-
-    Raises
-    ------
-    ValueError
-        For another rule.
-    """
+    """The named weights ``rule`` (``metropolis`` or ``uniform``; else ``ValueError``) of
+    ``adjacency`` in exact rationals."""
     if rule not in NAMED_WEIGHTS:
         raise ValueError(f"rule must be 'metropolis' or 'uniform'; got {rule!r}")
     return NAMED_WEIGHTS[rule][1](adjacency)

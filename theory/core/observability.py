@@ -26,22 +26,9 @@ __all__ = [
 
 @dataclass(frozen=True)
 class RankResult:
-    """A numerical rank together with the evidence that decided it.
-
-    Attributes
-    ----------
-    rank : int
-        Number of singular values above ``threshold``.
-    singular_values : tuple of float
-        All singular values, descending.
-    threshold : float
-        Absolute threshold used (``rank_tol · σ_max``).
-    rank_tol : float
-        The relative tolerance the threshold was derived from.
-    margin : float
-        ``min(σ_r / threshold, threshold / σ_{r+1})`` (∞ when not applicable): how many times
-        the decision clears the threshold; below ``inconclusive_factor`` the verdict is unsafe.
-    """
+    """A numerical rank and what decided it: the singular values (descending), the absolute
+    ``threshold`` ``rank_tol · σ_max``, and the ``margin`` ``min(σ_r / threshold, threshold /
+    σ_{r+1})`` (∞ when not applicable) by which the decision clears it."""
 
     rank: int
     singular_values: tuple[float, ...]
@@ -80,21 +67,7 @@ def numeric_rank(matrix: np.ndarray, *, rank_tol: float = RANK_TOL) -> RankResul
 
 
 def observability_matrix(A: np.ndarray, C: np.ndarray, steps: int | None = None) -> np.ndarray:
-    """``O = [C; C A; …; C A^{steps−1}]`` (seed 000 eq. (4.18)).
-
-    Parameters
-    ----------
-    A : ndarray, shape (n, n)
-        State matrix.
-    C : ndarray
-        Output matrix, reshaped to ``(-1, n)``.
-    steps : int, optional
-        Number of blocks ``C A^k``; defaults to ``n``.
-
-    Returns
-    -------
-    ndarray, shape (steps · p, n)
-    """
+    """``O = [C; C A; …; C A^{steps−1}]`` (seed 000 eq. (4.18))."""
     n = A.shape[0]
     blocks, block = [], np.asarray(C, dtype=float).reshape(-1, n)
     for _ in range(n if steps is None else steps):
@@ -106,23 +79,8 @@ def observability_matrix(A: np.ndarray, C: np.ndarray, steps: int | None = None)
 def unobservable_eigenvalues(
     A: np.ndarray, C: np.ndarray, *, rank_tol: float = RANK_TOL
 ) -> list[complex]:
-    """Eigenvalues λ of ``A`` failing the PBH test ``rank [A − λI; C] = n``.
-
-    Parameters
-    ----------
-    A : ndarray, shape (n, n)
-        State matrix.
-    C : ndarray
-        Output matrix, reshaped to ``(-1, n)``.
-    rank_tol : float
-        Relative tolerance of the ranks (see :func:`numeric_rank`).
-
-    Returns
-    -------
-    list of complex
-        Repeated eigenvalues are listed once per lost rank (geometric defect), so the list's
-        length is ``n − rank O`` when ``A`` is diagonalisable.
-    """
+    """Eigenvalues λ of ``A`` failing the PBH test ``rank [A − λI; C] = n``, each listed once
+    per lost rank (so ``n − rank O`` of them when ``A`` is diagonalisable)."""
     n = A.shape[0]
     scale = max(1.0, float(np.abs(A).max(initial=0.0)))
     distinct = distinct_values(np.linalg.eigvals(A), scale=scale)

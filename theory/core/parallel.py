@@ -112,32 +112,12 @@ def default_workers() -> int:
 
 
 def scheduler_address(option: str | None = None) -> str | None:
-    """The scheduler to use: ``option`` (``--scheduler``), else ``$TRACKCERT_SCHEDULER``, else none.
-
-    Parameters
-    ----------
-    option : str, optional
-        The command-line value.
-
-    Returns
-    -------
-    str or None
-    """
+    """The scheduler: ``option`` (``--scheduler``), else ``$TRACKCERT_SCHEDULER``, else none."""
     return option or os.environ.get(SCHEDULER_SETTING) or None
 
 
 def worker_timeout() -> float:
-    """Seconds to wait for a worker: ``$TRACKCERT_WORKER_TIMEOUT``, else :data:`WORKER_TIMEOUT`.
-
-    Returns
-    -------
-    float
-
-    Raises
-    ------
-    CaseError
-        If the setting is not a number of seconds > 0 (file ``<environment>``).
-    """
+    """Seconds to wait for a worker: ``$TRACKCERT_WORKER_TIMEOUT``, else :data:`WORKER_TIMEOUT`."""
     text = os.environ.get(WORKER_TIMEOUT_SETTING)
     if text is None:
         return WORKER_TIMEOUT
@@ -168,19 +148,9 @@ def in_worker() -> bool:
 class TaskRunner:
     """Runs independent tasks; made by :func:`engine`.
 
-    Attributes
-    ----------
-    workers : int
-        Local worker processes (ignored with a scheduler); 1 is the serial path.
-    scheduler : str or None
-        Address of an existing scheduler.
-    preload : tuple of str
-        Modules the local cluster's forkserver imports before forking the workers.
-    named : tuple of str
-        Where the scheduler's address came from, for messages: (field, file), e.g.
-        ``("--scheduler", "<command line>")``.
-    wait : float
-        Seconds to wait for a worker (:func:`worker_timeout`).
+    ``workers`` local processes (1: the serial path; ignored with a ``scheduler`` address),
+    ``preload`` the modules the local cluster's forkserver imports, ``named`` the (field, file)
+    the scheduler's address came from (for messages), ``wait`` the seconds to wait for a worker.
     """
 
     def __init__(
@@ -214,27 +184,11 @@ class TaskRunner:
         *,
         progress: Callable[[int], None] | None = None,
     ) -> list[R]:
-        """``[fn(item) for item in items]``, the calls spread over the workers.
+        """``[fn(item) for item in items]``, the calls spread over the workers, in item order.
 
-        Parameters
-        ----------
-        fn : callable
-            A picklable function of one argument (module level, or a ``functools.partial`` of
-            one); it must not depend on state of this process other than its argument.
-        items : sequence
-            The arguments (picklable).
-        progress : callable, optional
-            Called with the number of tasks finished so far, after each one finishes.
-
-        Returns
-        -------
-        list
-            ``fn(item)`` for each item, in item order.
-
-        Raises
-        ------
-        Exception
-            The first (in item order) exception a task raised, re-raised here.
+        ``fn`` is picklable (module level, or a ``functools.partial`` of one) and depends only
+        on its argument; ``progress`` is called with the number of tasks finished. The first
+        exception (in item order) a task raised is re-raised here.
         """
         results: list[Any] = [None] * len(items)
         errors: dict[int, BaseException] = {}
@@ -252,21 +206,8 @@ class TaskRunner:
         return results
 
     def completed(self, fn: Callable[[T], R], items: Sequence[T]) -> Iterator[Outcome]:
-        """The outcome of ``fn(item)`` for each item, as each task finishes.
-
-        Parameters
-        ----------
-        fn : callable
-            As for :meth:`map`.
-        items : sequence
-            As for :meth:`map`.
-
-        Yields
-        ------
-        Outcome
-            In completion order (item order on the serial path); a task that raised (or whose
-            worker died) yields its exception instead of a value.
-        """
+        """The outcome of ``fn(item)`` for each item, in completion order (item order on the
+        serial path); a task that raised, or whose worker died, yields its exception."""
         if self.serial or (len(items) <= 1 and self.scheduler is None):
             yield from _serial(fn, items)  # one task is not worth starting a local cluster
             return
@@ -423,17 +364,8 @@ def _preload_forkserver(modules: Sequence[str]) -> None:
 
 @dataclass(frozen=True)
 class Outcome:
-    """One finished task of :meth:`TaskRunner.completed`.
-
-    Attributes
-    ----------
-    index : int
-        The item's position.
-    value : object
-        ``fn(item)`` (``None`` when the task failed).
-    error : BaseException or None
-        The exception the task raised (or the worker's failure, e.g. ``KilledWorker``).
-    """
+    """One finished task of :meth:`TaskRunner.completed`: the item's ``index``, and ``fn(item)``
+    or the exception it raised (or the worker's failure, e.g. ``KilledWorker``)."""
 
     index: int
     value: Any = None

@@ -44,22 +44,7 @@ _NO_KEY = object()
 
 
 def read_case_bytes(path: str) -> bytes:
-    """The bytes of the file ``path``, refusing it unread past the ``case_bytes`` limit.
-
-    Parameters
-    ----------
-    path : str
-        The case file.
-
-    Returns
-    -------
-    bytes
-
-    Raises
-    ------
-    CaseError
-        ``<file>``: unreadable, or larger than the limit (naming it and how to raise it).
-    """
+    """The bytes of the file ``path``, refusing it unread past the ``case_bytes`` limit."""
     bound = limit("case_bytes")
     try:
         with open(path, "rb") as handle:
@@ -78,14 +63,7 @@ def read_case_bytes(path: str) -> bytes:
 
 
 def decode_text(raw: bytes) -> str:
-    """``raw`` as UTF-8 text (a UTF-8 byte-order mark is dropped).
-
-    Raises
-    ------
-    CaseError
-        ``<file>``: "not UTF-8 text" for invalid UTF-8 (binary, UTF-16, Latin-1 …) or a control
-        character YAML does not accept (NUL, …), saying where.
-    """
+    """``raw`` as UTF-8 text (a UTF-8 byte-order mark is dropped)."""
     hint = "Save the case file as UTF-8 text."
     if raw.startswith(_UTF16_BOMS):
         raise CaseError(
@@ -264,24 +242,7 @@ class _Builder:
 
 
 def load_yaml(text: str) -> Any:
-    """The one YAML document in ``text``, as plain data, checked as the module docstring says.
-
-    Parameters
-    ----------
-    text : str
-        The case file's text (:func:`decode_text`).
-
-    Returns
-    -------
-    object
-        Mappings, lists and scalars (an aliased node is shared, as ``yaml.safe_load`` shares it;
-        its size counted at every alias).
-
-    Raises
-    ------
-    CaseError
-        ``<yaml>`` for a syntax error (saying where), otherwise naming the offending node.
-    """
+    """The one YAML document in ``text``, as plain data, checked as the module docstring says."""
     builder = _Builder()
     try:
         for event in yaml.parse(text, Loader=_LOADER):

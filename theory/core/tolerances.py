@@ -1,4 +1,4 @@
-"""Every named tolerance of the suite, once: its default, unit, meaning and why (STYLE.md 6).
+"""Every named tolerance of the suite, once: its default, unit, meaning and why (docs/cli.md).
 
 A module that decides something by comparing a float with a threshold imports the threshold from
 here (``from theory.core.tolerances import RANK_TOL``) and echoes it, under its name, in the
@@ -84,21 +84,8 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Tolerance:
-    """One named tolerance.
-
-    Attributes
-    ----------
-    name : str
-        The name used in code, case files (``tolerances:``) and outputs, e.g. ``rank_tol``.
-    default : float
-        Its default value.
-    unit : str
-        What it is measured in (``relative to σ_max``, ``metres``, ``factor``, …).
-    meaning : str
-        The comparison it sets, in one sentence.
-    why : str
-        Where the value comes from.
-    """
+    """One named tolerance: its ``name`` in code, case files and outputs, ``default``,
+    ``unit``, the comparison it sets (``meaning``) and where the value comes from (``why``)."""
 
     name: str
     default: float
@@ -121,7 +108,7 @@ RANK_TOL = _named(
     1e-9,
     "relative to the largest singular value",
     "a singular value below rank_tol · σ_max counts as zero (numeric rank, seed 000 eq. (4.18))",
-    "relative, so scale-aware (STYLE.md); far above SVD rounding (~1e-16 · dimension), and every "
+    "relative, so scale-aware; far above SVD rounding (~1e-16 · dimension), and every "
     "bundled topology verdict clears it by more than inconclusive_factor",
 )
 INCONCLUSIVE_FACTOR = _named(
@@ -478,18 +465,7 @@ ISS_SAFE_STEPS = int(
 
 
 def bits_ladder(top: int) -> tuple[int, int, int]:
-    """The precisions tried in turn up to ``top`` bits: a quarter, a half, all of it.
-
-    Parameters
-    ----------
-    top : int
-        The finest precision (``PERRON_BITS`` or ``ROUNDING_BITS``).
-
-    Returns
-    -------
-    tuple of int
-        ``(top // 4, top // 2, top)``: coarser roundings give shorter certificates.
-    """
+    """The precisions tried in turn up to ``top`` bits: a quarter, a half, all of it."""
     return (top // 4, top // 2, top)
 
 
@@ -548,22 +524,7 @@ PF_TOLERANCES = {
 
 
 def defaults(*names: str) -> dict[str, float]:
-    """The default values of ``names``, e.g. ``defaults("rank_tol", "inconclusive_factor")``.
-
-    Parameters
-    ----------
-    *names : str
-        Names in :data:`TOLERANCES`.
-
-    Returns
-    -------
-    dict
-
-    Raises
-    ------
-    KeyError
-        Naming an unknown tolerance and listing the known ones.
-    """
+    """The default values of ``names``, e.g. ``defaults("rank_tol", "inconclusive_factor")``."""
     unknown = [n for n in names if n not in TOLERANCES]
     if unknown:
         raise KeyError(f"unknown tolerances {unknown}; known: {sorted(TOLERANCES)}")
@@ -571,11 +532,5 @@ def defaults(*names: str) -> dict[str, float]:
 
 
 def table() -> list[dict[str, Any]]:
-    """The table as plain data (``name``, ``default``, ``unit``, ``meaning``, ``why``).
-
-    Returns
-    -------
-    list of dict
-        In the order of :data:`TOLERANCES`.
-    """
+    """The table as plain data (``name``, ``default``, ``unit``, ``meaning``, ``why``)."""
     return [vars(t).copy() for t in TOLERANCES.values()]

@@ -1,4 +1,4 @@
-"""One exit-code rule for every command, and the verdict words it maps (DESIGN.md, *CLI*).
+"""One exit-code rule for every command, and the verdict words it maps (docs/cli.md, *Exit codes*).
 
 A command decides a property — True (holds), False (fails) or None (inconclusive: a margin lies
 inside its tolerance, a solver failed) — and judges the keys of the case's ``expect`` block that
@@ -51,17 +51,7 @@ _EXIT = {True: EXIT_HOLDS, False: EXIT_FAILS, None: EXIT_INCONCLUSIVE}
 
 
 def exit_code(verdict: Verdict) -> int:
-    """The exit code of a verdict: True 0, False 1, None 3.
-
-    Parameters
-    ----------
-    verdict : bool or None
-        The property's (or the expectations') verdict.
-
-    Returns
-    -------
-    int
-    """
+    """The exit code of a verdict: True 0, False 1, None 3."""
     return _EXIT[verdict]
 
 
@@ -74,18 +64,7 @@ def all_hold(verdicts: Iterable[Verdict]) -> Verdict:
 
 
 def expectations_verdict(expectations: Iterable[Any]) -> Verdict:
-    """The verdict of a set of expectations: False if one is unmet, True if all are met, else None.
-
-    Parameters
-    ----------
-    expectations : iterable of Expectation
-        Judged expectations (anything with a ``verdict`` of
-        :data:`theory.core.expectations.VERDICTS`); none at all is True (nothing to meet).
-
-    Returns
-    -------
-    bool or None
-    """
+    """The expectations' verdict: False if one is unmet, True if all (or none) met, else None."""
     verdicts = {e.verdict for e in expectations}
     if "unmet" in verdicts:
         return False
@@ -93,33 +72,10 @@ def expectations_verdict(expectations: Iterable[Any]) -> Verdict:
 
 
 def command_verdict(property_verdict: Verdict, expectations: Sequence[Any]) -> Verdict:
-    """The verdict a command exits with: its expectations' if it judged any, else its property's.
-
-    Parameters
-    ----------
-    property_verdict : bool or None
-        What the command decided (True for a command that decides no property of its own).
-    expectations : sequence of Expectation
-        The expectations the command judged (the keys of the case's ``expect`` block it
-        observes; empty when the case states none of them).
-
-    Returns
-    -------
-    bool or None
-    """
+    """The verdict a command exits with: its expectations' if it judged any, else its property's."""
     return expectations_verdict(expectations) if expectations else property_verdict
 
 
 def interrupted_code(signum: int) -> int:
-    """The exit code of a command stopped by signal ``signum``: 128 + ``signum``, as shells do.
-
-    Parameters
-    ----------
-    signum : int
-        The signal (``signal.SIGINT`` = 2 → 130, ``signal.SIGTERM`` = 15 → 143).
-
-    Returns
-    -------
-    int
-    """
+    """The exit code of a command stopped by signal ``signum``: 128 + ``signum``, as shells do."""
     return 128 + signum

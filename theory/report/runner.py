@@ -139,7 +139,7 @@ class RunResult:
     @property
     def all_expectations_met(self) -> bool:
         """Whether every expectation of every case is met."""
-        return all(e.verdict == "met" for e in self.expectations)
+        return all(e.met for e in self.expectations)
 
     @property
     def verdict(self) -> Verdict:

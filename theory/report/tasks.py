@@ -48,8 +48,10 @@ from theory.core.claims import (
     Claim,
     ClaimResult,
     Context,
+    Method,
     NotApplicable,
     RunCache,
+    Status,
 )
 from theory.core.jsonable import canonical
 from theory.registry import domains, get_claim
@@ -501,7 +503,7 @@ def failure(claim: Claim, case: str, error: BaseException, seed: int | None) -> 
     )
     evidence = {"error": {"type": kind, "message": str(error), "where": _where(error)}}
     result = ClaimResult(
-        "inconclusive", "none", evidence, message=message, claim=claim.id, case=case
+        Status.INCONCLUSIVE, Method.NONE, evidence, message=message, claim=claim.id, case=case
     )
     return _wrap(claim, result, seed)
 

@@ -28,6 +28,7 @@ import numpy as np
 
 from theory.core.atomic_output import replaced_folder
 from theory.sim.outputs import save_figure
+from theory.sweep.points import Agreement, PointStatus
 
 __all__ = [
     "AGREEMENT_MARKERS",
@@ -55,19 +56,22 @@ MAX_LINES = 12
 """More series than this are drawn as a median line and a min–max band."""
 
 STATUS_COLOURS = {
-    "verified": "tab:green",
-    "refuted": "tab:red",
-    "inconclusive": "tab:orange",
-    "invalid": "tab:gray",
+    PointStatus.VERIFIED: "tab:green",
+    PointStatus.REFUTED: "tab:red",
+    PointStatus.INCONCLUSIVE: "tab:orange",
+    PointStatus.INVALID: "tab:gray",
 }
 
-AGREEMENT_MARKERS = {"disagree": "x", "inconclusive": "o"}
+AGREEMENT_MARKERS = {Agreement.DISAGREE: "x", Agreement.INCONCLUSIVE: "o"}
 """How a point's agreement is marked on its verdict square (``agree`` and ``n/a`` unmarked)."""
 
-AGREEMENT_LABELS = {"disagree": "simulation disagrees", "inconclusive": "comparison inconclusive"}
+AGREEMENT_LABELS = {
+    Agreement.DISAGREE: "simulation disagrees",
+    Agreement.INCONCLUSIVE: "comparison inconclusive",
+}
 MARKER_STYLE = {
-    "disagree": {"c": "black"},
-    "inconclusive": {"facecolors": "none", "edgecolors": "black"},
+    Agreement.DISAGREE: {"c": "black"},
+    Agreement.INCONCLUSIVE: {"facecolors": "none", "edgecolors": "black"},
 }
 
 

@@ -42,7 +42,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.case_file import Case
-from theory.core.claims import status_of
+from theory.core.claims import Status, status_of
 from theory.core.errors import CaseError, InconclusiveError, PropertyFails, SolverError
 from theory.core.expectations import Observed, judge
 from theory.core.verdicts import EXIT_BAD_INPUT, Verdict, exit_code, expectations_verdict
@@ -241,7 +241,7 @@ def pursuit_prediction(summary: Mapping[str, Any]) -> tuple[Verdict, str]:
     found = summary.get("iss_agreement")
     if not found:
         return None, ""
-    status = {"verified": True, "refuted": False}.get(found["status"])
+    status = {Status.VERIFIED: True, Status.REFUTED: False}.get(found["status"])
     return status, found["message"]
 
 

@@ -49,7 +49,7 @@ STEPS_SHOWN = 20
 
 @claims.register(
     "seed000.sec4.2.2.metropolis",
-    source="seed 000 §4.2.2 (conditions on W before eq. (4.26)); DESIGN.md Metropolis rule",
+    source="seed 000 §4.2.2 (conditions on W before eq. (4.26)); docs/topology.md Metropolis rule",
     statement="Metropolis weights meet §4.2.2's conditions on W (stochastic, w_ii > 0, w_ij > 0 "
     "exactly on the bidirectional links) and are symmetric, hence doubly stochastic, with every "
     "eigenvalue in (−1, 1]",
