@@ -39,7 +39,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from theory.report.schedule import bundled_costs_path, costs_document  # noqa: E402
+from theory.report.runner import bundled_costs_path, costs_document  # noqa: E402
 
 BEFORE = "725a9f44028b"
 """The commit before issue 16 item 1 (the report ran serially in one process)."""
