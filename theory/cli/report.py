@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections import Counter
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from rich.table import Table
@@ -30,9 +30,9 @@ from theory.core.jsonable import dumps
 from theory.core.parallel import engine
 from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
-from theory.report.render import MARKER, build_report, check_count, choose_claims
-from theory.report.runner import RunResult, slowest
-from theory.report.tasks import worker_modules
+
+if TYPE_CHECKING:  # the report's modules (jinja2 …) are imported when a report runs
+    from theory.report.runner import RunResult
 
 __all__ = ["DEFAULT_TIME_LIMIT", "register"]
 
@@ -118,6 +118,8 @@ def register(app: typer.Typer) -> None:
         say where the checks run (the report is the same whatever they say). The checks' times
         go to timings.json; the ten slowest are printed at the end.
         """
+        from theory.report.render import MARKER
+
         check_folder_output(out, "-o/--out", MARKER)
         options = {"seed": seed, "seconds": time_limit or None, "errata_path": errata}
         paths = [resolve_case_path(c) for c in (cases or list(bundled_cases()))]
@@ -144,6 +146,9 @@ def _run(
     ``paths`` and imports the claims (their forkserver imports the same modules: about 3 s that
     would otherwise come before the first check); a case name that names no file was refused
     before, without waiting for them."""
+    from theory.report.render import build_report, check_count, choose_claims
+    from theory.report.tasks import worker_modules
+
     with engine(*where, preload=worker_modules()) as runner:
         runner.start()
         loaded = [load_case(path) for path in paths]
@@ -182,6 +187,8 @@ def _print_summary(document: dict, out: Path) -> None:
 
 def _print_slowest(run: RunResult, count: int = 10) -> None:
     """The ``count`` slowest checks (wall and CPU seconds; all are in timings.json)."""
+    from theory.report.runner import slowest
+
     table = Table(title=f"{count} slowest checks (all in timings.json)")
     for column, justify in (("claim", "left"), ("case", "left"), ("wall s", "right")):
         table.add_column(column, justify=justify, overflow="fold")

@@ -345,14 +345,9 @@ def check_with_cli(relative: Path, out_dir: Path) -> dict[str, Any]:
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([root, *inherited]))
     shown = _command_line(relative)
     try:
+        checker = [sys.executable, "-m", "proofs_check", *command]
         done = subprocess.run(
-            [sys.executable, "-m", "proofs_check", *command],
-            cwd=out_dir,
-            env=env,
-            capture_output=True,
-            text=True,
-            timeout=CHECK_TIMEOUT,
-            check=False,
+            checker, cwd=out_dir, env=env, capture_output=True, text=True, timeout=CHECK_TIMEOUT
         )
     except subprocess.TimeoutExpired:
         return {"command": shown, "exit_code": None, "valid": None, "error": "timed out"}
