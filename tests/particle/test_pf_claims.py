@@ -12,7 +12,6 @@ import pytest
 import yaml
 from hypothesis import given
 from hypothesis import strategies as st
-from theory.report.canonical import canonical
 from typer.testing import CliRunner
 
 from theory.cli import app
@@ -20,6 +19,7 @@ from theory.core.case_file import bundled_cases
 from theory.core.claims import Context
 from theory.core.errors import CaseError
 from theory.core.expectations import EXPECTATIONS_KEY, evaluate
+from theory.core.jsonable import canonical
 from theory.kinds import load_case, parse_case
 from theory.particle.case import PARAM_NAMES
 from theory.particle.experiments import learned_bias

@@ -63,12 +63,9 @@ def register_standard_fakes(fakes: ClaimSet, *, observable=(True, True, True, Tr
         ]
 
     @fakes.register(
-        "seed003.fake.random",
-        source="seed 003 eq. (4)",
-        statement="seeded",
-        kinds=("tdoa",),
+        "seed003.fake.random", source="seed 003 eq. (4)", statement="seeded", kinds=("tdoa",),
         seeded=True,
-    )
+    )  # fmt: skip
     def seeded(case, ctx):
         draw = np.random.default_rng(ctx.seed).normal(size=3)
         evidence = {"draw": draw, "probability_bound": 1e-12}
