@@ -2,18 +2,19 @@
 links or agents (``tdoa-loss-tolerance``); the proofs are in ``docs/design.md``.
 
 Agent ``i``'s block column ``O_i`` has rank ``2d`` iff the directions ``u_j = (p − p_j)/‖p − p_j‖``
-of its receivers (the agents its information reaches, and those they hear) span an affine space
-of dimension ``d`` (seed 000 eqs. (4.36)–(4.37); Theorems 1 and 4 of
-``docs/theory/tdoa-observability.md``). Both kinds show it through one exact inequality: for
-rational unit ``û_j`` with ``‖û_j − u_j‖ ≤ e_j`` (checked with squares, no square root), the
-centred Gram matrix ``C = Σ_j (û_j − m)(û_j − m)ᵀ`` (``m`` the mean of the ``û_j``) satisfies
-``C − τ I ≻ 0``; then every ``U'`` with ``‖U' − Û‖_F² ≤ τ`` has full affine rank (Weyl).
+of a set of its receivers connected by its rows span an affine space of dimension ``d`` (seed 000
+eqs. (4.36)–(4.37); Theorems 1 and 4 of ``docs/theory/tdoa-observability.md``). Both kinds show it
+with rational unit ``û_j``, ``‖û_j − u_j‖ ≤ e_j`` (checked with squares), and the exact test
+``C − τI − T ≻ 0`` of the centred Gram matrix ``C = Σ_j (û_j − m)(û_j − m)ᵀ`` (``m`` the mean):
+no hyperplane ``{x·u = c}`` then comes within reach of every direction, the rounding costing
+``τ`` and the displacement ``T``.
 """
 
 from __future__ import annotations
 
 from fractions import Fraction
 from itertools import combinations
+from math import comb
 from typing import Any
 
 from proofs_check import linalg as la
@@ -133,39 +134,26 @@ def _gram(u: Matrix) -> Matrix:
     return la.matmul(la.transpose(centred), centred)
 
 
-def _full_rank(name: str, u: Matrix, tau: Fraction) -> Check:
-    """``C − τ I ≻ 0``: every configuration within ``√τ`` (Frobenius) of ``Û`` has full rank."""
+def _spread(name: str, u: Matrix, tau: Fraction, turn: Matrix | None = None) -> Check:
+    """``C − τI − T ≻ 0``: for every unit ``x`` and every ``c``, ``Σ_j (x·u'_j − c)² > 0``."""
     shifted = la.sub(_gram(u), la.scale(tau, la.identity(len(u[0]))))
-    return definite(f"{name}C − τI ≻ 0 (τ = {show(tau)})", shifted)
+    if turn is not None:
+        shifted = la.sub(shifted, turn)
+    return definite(f"{name}C − τI − T ≻ 0 (τ = {show(tau)})", shifted)
 
 
-def _moved_rank(
-    name: str,
-    target: list[Fraction],
-    points: Matrix,
-    u: Matrix,
-    e: list[Fraction],
-    h: list[Fraction],
-    kappa: Fraction,
-    mu: Fraction,
-) -> Check:
-    """``C − (1 + μ)Σe_j² I − (1 + 1/μ)Q ≻ 0`` with ``P_j = v_jv_jᵀ/‖v_j‖² = u_ju_jᵀ`` and
-    ``Q = Σ_j (1 + κ)h_j²(I − P_j) + (1 + 1/κ)(h_j⁴/4)P_j``: a unit ``x`` with ``|x·u| = a`` sees a
-    turn ``‖Δu‖ ≤ h`` as ``|x·Δu| ≤ √(1 − a²)h + a h²/2`` (``u·Δu = −‖Δu‖²/2``), so for every
-    hyperplane ``(x, c)`` some displaced direction stays off it (``docs/design.md``)."""
-    dim = len(target)
-    eye = la.identity(dim)
-    total = (1 + mu) * sum((x * x for x in e), Fraction(0))
-    shifted = la.sub(_gram(u), la.scale(total, eye))
+def _turns(target: list[Fraction], points: Matrix, h: list[Fraction], kappa: Fraction) -> Matrix:
+    """``Q = Σ_j (1 + κ)h_j²(I − P_j) + (1 + 1/κ)(h_j⁴/4)P_j``, ``P_j = v_jv_jᵀ/‖v_j‖² = u_ju_jᵀ``:
+    for unit ``x``, ``xᵀQx ≥ Σ_j (x·Δu_j)²`` when ``‖Δu_j‖ ≤ h_j``, since ``u·Δu = −‖Δu‖²/2``
+    gives ``|x·Δu| ≤ √(1 − (x·u)²)‖Δu‖ + |x·u|‖Δu‖²/2`` (Young's inequality with ``κ``)."""
+    eye = la.identity(len(target))
+    total = la.scale(Fraction(0), eye)
     for point, h_j in zip(points, h, strict=True):
         v, q = _offset(target, point)
         P = [[a * b / q for b in v] for a in v]
-        turn = la.add(
-            la.scale((1 + kappa) * h_j * h_j, la.sub(eye, P)),
-            la.scale((1 + 1 / kappa) * h_j**4 / 4, P),
-        )
-        shifted = la.sub(shifted, la.scale(1 + 1 / mu, turn))
-    return definite(f"{name}C − (1 + μ)ΣE²I − (1 + 1/μ)Q ≻ 0", shifted)
+        total = la.add(total, la.scale((1 + kappa) * h_j * h_j, la.sub(eye, P)))
+        total = la.add(total, la.scale((1 + 1 / kappa) * h_j**4 / 4, P))
+    return total
 
 
 def _rationals(raw: Any, where: str, count: int) -> list[Fraction]:
@@ -215,7 +203,9 @@ def observability_margin(cert: dict[str, Any]) -> list[Check]:
         checks += _motions(name, target, agents, members, h, radius)
         kappa = p.bounded(item["kappa"], f"{where}.kappa", "(0, ∞)", "a Young weight")
         mu = p.bounded(item["mu"], f"{where}.mu", "(0, ∞)", "a Young weight")
-        checks.append(_moved_rank(name, target, [agents[j] for j in members], u, e, h, kappa, mu))
+        turn = _turns(target, [agents[j] for j in members], h, kappa)
+        tau = (1 + mu) * sum((x * x for x in e), Fraction(0))  # (E + B)² ≤ (1+μ)E² + (1+1/μ)B²
+        checks.append(_spread(name, u, tau, la.scale(1 + 1 / mu, turn)))
         covered |= set(covers)
     missing = [i + 1 for i in claimed if i not in covered]
     detail = f"agents {missing} are covered by no set" if missing else "every claimed agent"
@@ -285,7 +275,7 @@ def loss_tolerance(cert: dict[str, Any]) -> list[Check]:
     k = p.index(claim["fewer_than"], "claim.fewer_than", 1, len(pool) + 1)
     u = p.matrix(witness["directions"], "witness.directions", len(agents), dim)
     e = _rationals(witness["errors"], "witness.errors", len(agents))
-    subsets = sum(_binomial(len(pool), size) for size in range(k))
+    subsets = sum(comb(len(pool), size) for size in range(k))
     work = subsets * len(agents) * (len(agents) + 2 * len(links))
     if subsets > MAX_SUBSETS or work > MAX_WORK:
         why = f"{subsets} removal sets, work {work:.3g} (limits {MAX_SUBSETS}, {MAX_WORK:.3g})"
@@ -296,13 +286,6 @@ def loss_tolerance(cert: dict[str, Any]) -> list[Check]:
     for size in range(k):
         checks.append(_removals(size, items, pool, links, undirected, dim, u, e, verdicts))
     return checks
-
-
-def _binomial(n: int, k: int) -> int:
-    out = 1
-    for x in range(k):
-        out = out * (n - x) // (x + 1)
-    return out
 
 
 def _removals(
@@ -328,7 +311,7 @@ def _removals(
             if members not in verdicts:
                 verdicts[members] = _set_rank(members, dim, u, e)
             if not verdicts[members].valid:
-                what = [x + 1 for x in removed] if items == "agents" else _pairs(removed)
+                what = [x + 1 for x in removed] if gone else [[a + 1, b + 1] for a, b in removed]
                 why = f"removing {items} {what}: agent {i + 1}: {verdicts[members].detail}"
                 return Check(f"any {size} {items} removed: every agent observable", False, why)
     detail = f"{count} removal sets, {len(verdicts)} receiver sets of full rank"
@@ -341,10 +324,5 @@ def _set_rank(members: frozenset[int], dim: int, u: Matrix, e: list[Fraction]) -
     ids = sorted(members)
     if len(ids) <= dim:
         return Check("", False, f"receivers {[j + 1 for j in ids]}: at most d = {dim} agents")
-    tau = sum((e[j] * e[j] for j in ids), Fraction(0))
-    check = _full_rank("", [u[j] for j in ids], tau)
+    check = _spread("", [u[j] for j in ids], sum((e[j] * e[j] for j in ids), Fraction(0)))
     return Check("", check.valid, f"receivers {[j + 1 for j in ids]}: {check.detail}")
-
-
-def _pairs(removed: tuple) -> list[list[int]]:
-    return [[s + 1, r + 1] for s, r in removed]
