@@ -124,16 +124,17 @@ def test_the_witness_loses_rank_exactly_at_its_size(data: dict) -> None:
 
 @settings(max_examples=10)
 @given(connected_scenes())
-def test_margin_certificates_check_and_a_radius_at_the_witness_is_refused(data: dict) -> None:
+def test_margin_certificates_check_and_a_radius_past_the_witness_is_refused(data: dict) -> None:
+    """Past ``ρ̄`` the claim is false (the witness is a smaller displacement that loses rank):
+    the checker must refuse a radius just beyond it."""
     case = parse_case(data)
     margin = tdoa_margin(case, seed=0)
     for cert in margin.certificates:
         assert verdict(cert) == "valid"
         if margin.upper_bound is not None:
             tampered = copy.deepcopy(cert)
-            tampered["claim"]["radius"] = str(
-                Fraction(margin.upper_bound).limit_denominator(10**6) * 2
-            )
+            past = Fraction(margin.upper_bound) * (1 + Fraction(1, 10**9))
+            tampered["claim"]["radius"] = str(past)
             assert verdict(tampered) == "invalid"
 
 

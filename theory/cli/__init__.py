@@ -40,7 +40,7 @@ COMMANDS: dict[str, CommandEntry] = {
     ),
     "design": CommandEntry(
         "theory.cli.design",
-        "Certified design answers: margins, placement, redundancy (and weights, gains).",
+        "Certified design answers: how far agents may drift, where to put them, what may fail.",
     ),
     "dkf": CommandEntry(
         "theory.cli.dkf",
