@@ -6,9 +6,10 @@ The margin of a tdoa case is the largest ``ρ`` such that every agent keeps ``ra
 
 * **below**, certified: for the receivers ``S`` of an agent, rational unit ``û_j`` within ``e_j``
   of the directions ``u_j``; a displacement below ``ρ`` turns ``u_j`` by less than ``h_j`` with
-  ``h_j² ≥ 2s²/(2 − s²)``, ``s = 2ρ/‖p − p_j‖``; Weyl's inequality then asks that the centred
-  Gram matrix satisfy ``C − τI ≻ 0`` with ``τ = Σ (e_j + h_j)²``, checked exactly
-  (a ``tdoa-observability-margin`` certificate);
+  ``h_j² ≥ 2s²/(2 − s²)``, ``s = 2ρ/‖p − p_j‖``, mostly tangent to the sphere; then no hyperplane
+  holds every displaced direction if ``C − (1 + μ)ΣE² I − (1 + 1/μ)Q ≻ 0`` (:func:`margin_matrix`;
+  ``C`` the centred Gram matrix of the ``û_j``), checked exactly (a ``tdoa-observability-margin``
+  certificate);
 * **above**, by a witness: a displacement putting the receivers of one agent on a circular cone
   with apex at the displaced target (Theorem 2 of ``docs/theory/tdoa-observability.md``), found by
   a seeded Nelder–Mead search and built in rationals so that the rank loss is decided exactly.
@@ -105,11 +106,12 @@ def scenes(spec: TdoaSpec) -> list[Scene]:
     out = []
     for k in range(spec.steps):
         hears = np.asarray(spec.hears[k], bool)
+        undirected = bool(np.array_equal(hears, hears.T))
         pairs = zip(*np.nonzero(hears), strict=True)
-        if spec.directed:
-            links = tuple(sorted((int(s), int(r)) for r, s in pairs))
-        else:
+        if undirected:
             links = tuple(sorted({(int(min(r, s)), int(max(r, s))) for r, s in pairs}))
+        else:
+            links = tuple(sorted((int(s), int(r)) for r, s in pairs))
         comm = None if spec.comm_range is None else rational_points([[spec.comm_range]])[0][0]
         out.append(
             Scene(
@@ -120,7 +122,7 @@ def scenes(spec: TdoaSpec) -> list[Scene]:
                 rational_points([spec.target[k]])[0],
                 rational_points(spec.agents[k]),
                 links,
-                not spec.directed,
+                undirected,
                 comm,
             )
         )
@@ -237,7 +239,9 @@ def _certify(scene: Scene, members: tuple[int, ...], cap: Fraction | None) -> _S
         floats, np.sqrt([float(x) for x in q]), np.array([float(e) for e in errors])
     )
     kappa = Fraction(kappa_f).limit_denominator(1 << 20)
-    rho = _round_down(eps) if cap is None else min(_round_down(eps), cap)
+    everyone = [_squared(scene.exact_target, p) for p in scene.exact_agents]
+    reach = _round_down(float(np.sqrt(float(min(everyone)))) / 2 * (1 - 1e-9))  # TDOAs defined
+    rho = min(_round_down(eps), reach, cap if cap is not None else reach)
     projections = [[[a * b / q_j for b in v] for a in v] for v, q_j in zip(offsets, q, strict=True)]
     base = sub(
         _exact_gram(units), scale((1 + MU) * sum(e * e for e in errors), identity(scene.dim))
@@ -248,7 +252,7 @@ def _certify(scene: Scene, members: tuple[int, ...], cap: Fraction | None) -> _S
         bounds = [sqrt_up(2 * s2 / (2 - s2)) for s2 in (4 * rho * rho / q_j for q_j in q)]
         form = _exact_form(projections, bounds, kappa, scene.dim)
         if (
-            all(4 * rho * rho < q_j for q_j in q)
+            all(4 * rho * rho < q_j for q_j in everyone)
             and positive_definite(sub(base, scale(1 + 1 / MU, form))).positive
         ):
             return _SetBound(members, rho, units, errors, bounds, kappa)
@@ -294,7 +298,9 @@ def _levels(scene: Scene) -> list[_Level]:
         return [_Level(None, scene.links)]
     R = scene.comm_range
     slack = {
-        (a, b): (R - sqrt_up(_squared(scene.exact_agents[a], scene.exact_agents[b]))) / 2
+        (a, b): _round_down(
+            (R - sqrt_up(_squared(scene.exact_agents[a], scene.exact_agents[b]))) / 2
+        )
         for a, b in scene.links
     }
     return [
