@@ -32,7 +32,7 @@ from theory.tdoa.case import TDOA
 from theory.tdoa.geometry.crb import crb_trace, optimal_crb_trace, platonic_solids, unit_circle
 from theory.tdoa.geometry.margin import Margin, float_radius, margin_matrix, tdoa_margin
 
-__all__ = ["Formation", "Placement", "tdoa_placement"]
+__all__ = ["Formation", "Placement", "fisher_trace", "tdoa_placement"]
 
 SEPARATION = 0.01
 """Least distance between two agents, as a fraction of the range."""
@@ -129,7 +129,7 @@ def fisher_trace(x: np.ndarray) -> tuple[float, np.ndarray]:
 
 
 def _best_directions(n: int, dim: int, rng: np.random.Generator, starts: int) -> list:
-    """Unit direction sets of least trace from the §4.3.1 formation (if any) and seeded random
+    """Unit direction sets of least trace from the §4.3.1 formations (if any) and seeded random
     starts, best first."""
     seeds = [units for _, units in _reference_units(n, dim)]
     seeds += [rng.standard_normal((n, dim)) for _ in range(starts - len(seeds))]
