@@ -63,8 +63,6 @@ def documented_parameters(doc: str) -> set[str] | None:
 
 
 CALLABLES = sorted(public_callables(), key=lambda item: item[0])
-
-
 def _own_parameters(function) -> list[inspect.Parameter]:
     signature = inspect.signature(function)
     return [p for p in signature.parameters.values() if p.name not in SKIP_PARAMS]
