@@ -594,11 +594,8 @@ def _link_witnesses(scene: Scene) -> list[Displacement]:
     out = []
     for a, b in scene.links:
         kept = tuple(link for link in scene.links if link != (a, b))
-        broken = next(
-            (i for i in range(len(scene.agents)) if scene.deficient(scene.receivers(i, kept))),
-            None,
-        )
-        if broken is None:
+        broken = [i for i in range(len(scene.agents)) if scene.deficient(scene.receivers(i, kept))]
+        if not broken:
             continue
         pa, pb = scene.exact_agents[a], scene.exact_agents[b]
         d2 = _squared(pa, pb)
@@ -608,8 +605,11 @@ def _link_witnesses(scene: Scene) -> list[Displacement]:
         agents = [list(p) for p in scene.exact_agents]
         agents[a] = [x + lam * (x - y) for x, y in zip(pa, pb, strict=True)]
         agents[b] = [y - lam * (x - y) for x, y in zip(pa, pb, strict=True)]
-        if loses_rank(scene, scene.exact_target, agents, broken):
-            out.append(_displacement(scene, broken, "link", scene.exact_target, agents))
+        out += [
+            _displacement(scene, i, "link", scene.exact_target, agents)
+            for i in broken
+            if loses_rank(scene, scene.exact_target, agents, i)
+        ]
     return out
 
 
