@@ -62,9 +62,10 @@ def test_determinant_agrees_with_sympy(a) -> None:
 
 
 def test_checker_imports_only_the_standard_library_and_stays_small() -> None:
-    """``proofs_check`` never imports ``theory`` (nor numpy/sympy/flint) and stays < 1,150 lines."""
+    """``proofs_check`` never imports ``theory`` (nor numpy/sympy/flint) and stays < 1,500 lines
+    (1,150 before the two TDOA design kinds of ``observability.py``)."""
     allowed = {"__future__", "argparse", "dataclasses", "fractions", "json", "math", "re", "sys"}
-    allowed |= {"collections", "contextlib", "time", "typing", "proofs_check"}
+    allowed |= {"collections", "contextlib", "itertools", "time", "typing", "proofs_check"}
     total = 0
     for path in sorted((ROOT / "proofs_check").glob("*.py")):
         source = path.read_text(encoding="utf-8")
@@ -77,7 +78,7 @@ def test_checker_imports_only_the_standard_library_and_stays_small() -> None:
                 names = [node.module or ""]
             for name in names:
                 assert name.split(".")[0] in allowed, f"{path.name} imports {name}"
-    assert total < 1150
+    assert total < 1500
 
 
 def _files() -> list[Path]:

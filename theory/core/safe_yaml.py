@@ -17,7 +17,7 @@ used:
 * a key repeated in one mapping is refused, naming the key and both lines;
 * merge keys (``<<``), recursive aliases and multi-document streams are refused.
 
-The limits are :mod:`theory.core.limits`'s. Errors are :class:`~theory.core.errors.CaseError`
+The limits are :mod:`theory.core.validation`'s. Errors are :class:`~theory.core.errors.CaseError`
 naming the field (the dotted path of the offending node, or ``<file>`` / ``<yaml>``).
 """
 

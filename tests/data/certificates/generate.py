@@ -28,10 +28,12 @@ from theory.core.exact import dyadic_matrix, fraction_strings, rational_matrix
 from theory.kinds import load_case
 from theory.pursuit.certificates import iss_certificate
 from theory.registry import case_certificates
+from theory.tdoa.design import tdoa_redundancy
 from theory.tdoa.estimation.stability import (
     covariance_bound_certificate,
     ekf_covariance_bound_certificate,
 )
+from theory.tdoa.geometry.margin import tdoa_margin
 from theory.tdoa.observability.certificates import generic_rank_certificates
 
 HERE = Path(__file__).resolve().parent
@@ -132,6 +134,7 @@ def good() -> dict[str, dict]:
         ),
         **_boundary(),
         **_radius_kinds(),
+        **_tdoa_design(),
         "generic-rank-fig43-case-d": bundle(generic_rank_certificates(case.spec, case=case.name)),
         "generic-rank-seed002-fig32-split-agent4": generic_rank_certificates(
             split.spec, case=split.name
@@ -297,7 +300,35 @@ def bad(valid: dict[str, dict]) -> tuple[dict[str, dict], dict[str, object]]:
     del c["witness"]["r"]
     malformed["iss-dropped-left-eigenvector"] = c
     malformed["nested-bundle"] = bundle([bundle([valid["mjls-stability-scalar"]])])
+    _tdoa_design_defects(valid, invalid, malformed)
     return invalid, malformed
+
+
+def _tdoa_design() -> dict[str, dict]:
+    """A displacement margin (witness ρ̄ ≈ 1.33 above it) and a loss tolerance (docs/design.md)."""
+    cases = HERE.parents[2] / "cases"
+    margin = tdoa_margin(load_case(cases / "fig43-case-a.yaml"), search=False)
+    ring = load_case(cases / "seed000-sec44-ring.yaml")
+    return {
+        "tdoa-observability-margin-fig43-case-a": margin.certificates[0],
+        "tdoa-loss-tolerance-seed000-sec44-ring-links": tdoa_redundancy(
+            ring, links=True
+        ).certificates[0],
+    }
+
+
+def _tdoa_design_defects(valid: dict, invalid: dict, malformed: dict) -> None:
+    """A radius past the witness (3/2 > ρ̄ ≈ 1.33: false), fewer_than = 3 on the ring (removing
+    two links isolates an agent: false), a zero radius (refused)."""
+    c = copy.deepcopy(valid["tdoa-observability-margin-fig43-case-a"])
+    c["claim"]["radius"] = "3/2"
+    invalid["tdoa-observability-margin-radius-past-witness"] = c
+    c = copy.deepcopy(valid["tdoa-loss-tolerance-seed000-sec44-ring-links"])
+    c["claim"]["fewer_than"] = 3
+    invalid["tdoa-loss-tolerance-ring-fewer-than-3"] = c
+    c = copy.deepcopy(valid["tdoa-observability-margin-fig43-case-a"])
+    c["claim"]["radius"] = "0"
+    malformed["tdoa-observability-margin-zero-radius"] = c
 
 
 def _claims_beyond_the_kind(valid: dict[str, dict]) -> dict[str, dict]:
