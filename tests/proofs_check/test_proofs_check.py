@@ -62,7 +62,10 @@ def test_determinant_agrees_with_sympy(a) -> None:
 
 
 def test_checker_imports_only_the_standard_library_and_stays_small() -> None:
-    """``proofs_check`` never imports ``theory`` (nor numpy/sympy/flint) and stays < 1,150 lines."""
+    """``proofs_check`` never imports ``theory`` (nor numpy/sympy/flint) and stays < 1,300 lines.
+
+    (1,150 until issue 25: the ``iss-box`` kind added its box parsing and corner reduction.)
+    """
     allowed = {"__future__", "argparse", "dataclasses", "fractions", "json", "math", "re", "sys"}
     allowed |= {"collections", "contextlib", "time", "typing", "proofs_check"}
     total = 0
@@ -77,7 +80,7 @@ def test_checker_imports_only_the_standard_library_and_stays_small() -> None:
                 names = [node.module or ""]
             for name in names:
                 assert name.split(".")[0] in allowed, f"{path.name} imports {name}"
-    assert total < 1150
+    assert total < 1300
 
 
 def _files() -> list[Path]:

@@ -16,7 +16,7 @@ from typing import Any, NamedTuple
 import typer
 from typer import _click
 from typer.core import TyperCommand, TyperGroup
-from typer.main import get_command_from_info
+from typer.main import get_command_from_info, get_group_from_info
 
 __all__ = ["COMMANDS", "CommandEntry", "LazyCommands", "app", "main"]
 
@@ -37,6 +37,10 @@ COMMANDS: dict[str, CommandEntry] = {
     "check": CommandEntry(
         "theory.cli.certify",
         "Re-verify a certificate exactly with proofs_check (0 valid, 1 invalid, 2 malformed).",
+    ),
+    "design": CommandEntry(
+        "theory.cli.design",
+        "Certified design answers: which gains (and later weights, radii) work, with certificates.",
     ),
     "dkf": CommandEntry(
         "theory.cli.dkf",
@@ -131,6 +135,14 @@ class LazyCommands(TyperGroup):
                 info, pretty_exceptions_short=True, rich_markup_mode=self.rich_markup_mode
             )
             self.add_command(command)
+        for info in registry.registered_groups:  # a sub-application such as ``design``
+            group = get_group_from_info(
+                info,
+                pretty_exceptions_short=True,
+                suggest_commands=self.suggest_commands,
+                rich_markup_mode=self.rich_markup_mode,
+            )
+            self.add_command(group, info.name)
 
 
 app = typer.Typer(
