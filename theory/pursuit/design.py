@@ -325,6 +325,15 @@ class _Problem:
     max_gain: Fraction | None
     min_rate: Fraction | None
     gain_rtol: Fraction | None
+    gains: dict[tuple, tuple[Fraction, Fraction]] = field(default_factory=dict, compare=False)
+
+    def gain(self, box: tuple) -> tuple[Fraction, Fraction]:
+        """The exact enclosure [lo, hi] of the analysis gain over ``box`` (hi: the witness's)."""
+        if box not in self.gains:
+            kind_box = _kind_box(self.intervals(box))
+            hi = box_witness(self.bounds, kind_box)["gain"]
+            self.gains[box] = (box_gain_below(self.bounds, kind_box), hi)
+        return self.gains[box]
 
     def intervals(self, box: tuple[tuple[Fraction, Fraction], ...]) -> dict[str, tuple]:
         """Every parameter's interval on the cell (unboxed ones: their case value)."""
@@ -338,10 +347,12 @@ class _Problem:
 
 @dataclass(frozen=True)
 class _Decision:
-    """A cell's outcome and the sides a split may improve (empty: final)."""
+    """A cell's outcome, the sides a split may improve (empty: final) and, for a certified
+    cell, the witness its certificate is made of once the cell is final."""
 
     cell: Cell
     split: tuple[str, ...] = field(default=())
+    witness: tuple[dict, dict] | None = None
 
 
 def _kind_box(spans: dict[str, tuple]) -> dict[str, tuple[Fraction, Fraction]]:
@@ -435,17 +446,17 @@ def _decide(problem: _Problem, box: tuple, depth: int) -> _Decision:
     if decided is not None:
         return decided
     kind_box = _kind_box(problem.intervals(box))
-    gain = (box_gain_below(problem.bounds, kind_box), box_witness(problem.bounds, kind_box)["gain"])
+    gain = problem.gain(box)
     decided = _requirement_failure(problem, box, depth, gain)
     if decided is not None:
         return decided
     witness = box_witness(problem.bounds, kind_box, rate=problem.min_rate)
     gain = (gain[0], witness["gain"])
-    certificate = iss_box_certificate(problem.bounds, kind_box, witness, case=problem.case.name)
-    cell = Cell(box, CellStatus.CERTIFIED, depth, certificate=certificate, iss_gain=gain)
+    cell = Cell(box, CellStatus.CERTIFIED, depth, iss_gain=gain)
     rtol = problem.gain_rtol
     loose = rtol is not None and gain[1] > gain[0] * (1 + rtol)
-    return _Decision(cell, tuple(a.path for a in problem.axes if a.path in GAINS) if loose else ())
+    sides = tuple(a.path for a in problem.axes if a.path in GAINS) if loose else ()
+    return _Decision(cell, sides, (kind_box, witness))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -459,12 +470,6 @@ def _halves(problem: _Problem, box: tuple, k: int) -> list[tuple]:
     return [(*box[:k], (lo, middle), *box[k + 1 :]), (*box[:k], (middle, hi), *box[k + 1 :])]
 
 
-def _gain_spread(problem: _Problem, box: tuple) -> Fraction:
-    """hi − lo of the gain enclosure over ``box``."""
-    kind_box = _kind_box(problem.intervals(box))
-    return box_witness(problem.bounds, kind_box)["gain"] - box_gain_below(problem.bounds, kind_box)
-
-
 def _split(problem: _Problem, decision: _Decision) -> list[tuple]:
     """The halves of the cell along a side of ``decision.split``: for gains, the side whose
     halves have the narrowest gain enclosures (a side the gain does not depend on is never
@@ -473,7 +478,8 @@ def _split(problem: _Problem, decision: _Decision) -> list[tuple]:
     gains = decision.split[0] in GAINS
 
     def priority(k: int) -> tuple[Fraction, float]:
-        spread = max(_gain_spread(problem, h) for h in _halves(problem, box, k)) if gains else 0
+        halves = _halves(problem, box, k) if gains else []
+        spread = max((problem.gain(h)[1] - problem.gain(h)[0] for h in halves), default=0)
         return Fraction(spread), -problem.axes[k].share(*box[k])
 
     sides = [k for k, a in enumerate(problem.axes) if a.path in decision.split]
@@ -558,13 +564,18 @@ def _cells(problem: _Problem, grid: int, depth: int, max_cells: int) -> tuple[Ce
             queue.extend((half, level + 1) for half in _split(problem, decision))
             count += 1
             continue
-        done.append(_final(decision, level < depth))
+        done.append(_final(problem, decision, level < depth))
     return tuple(sorted(done, key=lambda c: c.box))
 
 
-def _final(decision: _Decision, deeper: bool) -> Cell:
-    """The cell as it stays: an undecided one says why it was not split further."""
+def _final(problem: _Problem, decision: _Decision, deeper: bool) -> Cell:
+    """The cell as it stays: a certified one gets its certificate, an undecided one says why it
+    was not split further."""
     cell = decision.cell
+    if decision.witness is not None:
+        box, witness = decision.witness
+        certificate = iss_box_certificate(problem.bounds, box, witness, case=problem.case.name)
+        return replace(cell, certificate=certificate)
     if cell.status != CellStatus.UNDECIDED or not decision.split:
         return cell
     why = "the cell budget (max_cells) is spent" if deeper else "the depth limit is reached"
@@ -621,7 +632,7 @@ def design_summary(case: Case) -> dict[str, Any]:
             "epsilon": "only ε₁ ≠ 0 (eq. (22)); the gains do not depend on ε",
         },
         "box_conditions": list(regions.box_conditions),
-        "map": {k: v for k, v in regions.to_json().items() if k != "cells"},
+        "map": {k: v for k, v in regions.to_json().items() if k not in ("cells", "box_conditions")},
     }
     if regions.cells and regions.cells[0].status == CellStatus.REFUTED and len(regions.cells) == 1:
         return out
