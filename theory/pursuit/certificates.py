@@ -533,16 +533,18 @@ def box_witness(bounds: LoopBounds, box: Box, *, rate: Fraction | None = None) -
 def box_gain_below(bounds: LoopBounds, box: Box) -> Fraction:
     """An exact lower bound of the analysis gain g_e(1 + g_ξ) (seed 003 §5) over ``box``.
 
-    c♯ ≥ √(s_lo²‖K_p‖² + 1 (+ μ_r)), λ_min(K) ≤ min(s_hi λ_min(K_p), k_γ,hi), k_c a(L) ≤
-    k_c,hi a(L), each with the bracket end on the side that keeps the bound valid.
+    g_e = c♯/min(sλ_min(K_p), k_γ) with c♯ = √(s²‖K_p‖² + C) is at least c♯/(sλ_min(K_p)), which
+    decreases in s (its value at s_hi), and at least c♯/k_γ (at s_lo, k_γ,hi); g_ξ = b/(√r_min
+    k_c a(L)) is at least its value at k_c,hi. Bracket ends are taken on the side that keeps
+    each bound valid.
     """
     s_lo, s_hi = box["K_p_scale"]
     two_stage = bounds.controller == Controller.II
-    lam = s_hi * bounds.lambda_p[1]
+    constant = 1 + (bounds.mu_r if two_stage else 0)
+    norm = max(bounds.norm_p[0], Fraction(0))
+    g_e = _sqrt_below(s_hi * s_hi * norm * norm + constant) / (s_hi * bounds.lambda_p[1])
     if two_stage:
-        lam = min(lam, box["k_gamma"][1])
-    norm = s_lo * max(bounds.norm_p[0], Fraction(0))
-    g_e = _sqrt_below(norm * norm + 1 + (bounds.mu_r if two_stage else 0)) / lam
+        g_e = max(g_e, _sqrt_below(s_lo * s_lo * norm * norm + constant) / box["k_gamma"][1])
     if bounds.r is None or not two_stage:
         return g_e
     alpha = box["k_c"][1] * bounds.a[1]
