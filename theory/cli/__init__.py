@@ -40,7 +40,7 @@ COMMANDS: dict[str, CommandEntry] = {
     ),
     "design": CommandEntry(
         "theory.cli.design",
-        "Certified design answers: which gains (and later weights, radii) work, with certificates.",
+        "Certified design answers: which parameters work, with certificates.",
     ),
     "dkf": CommandEntry(
         "theory.cli.dkf",

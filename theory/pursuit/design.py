@@ -404,59 +404,71 @@ def _rates_hold(problem: _Problem, spans: dict[str, tuple], end: int) -> bool:
     return positive_definite(gram, semi=True).positive
 
 
-def _requirement_failure(
-    problem: _Problem, box: tuple, depth: int, gain: tuple
-) -> _Decision | None:
-    """The cell's decision when a requirement (min_rate, max_gain) fails or is undecided."""
-    gains = tuple(a.path for a in problem.axes if a.path in GAINS)
+def _rate_failure(problem: _Problem, box: tuple, depth: int) -> _Decision | None:
+    """The decision against the cell when ``min_rate`` fails at its lowest gains (exact)."""
     spans = problem.intervals(box)
-    if problem.min_rate is not None and not _rates_hold(problem, spans, 0):
-        whole = not _rates_hold(problem, spans, 1)
-        detail = f"the certified decay rate min(λ_min(K), k_c a(L)) < {problem.min_rate} here"
-        failing = FailingCondition("decay_rate_at_least", "requirement --min-rate",
-                                   problem.corner(box, {}), whole, detail)  # fmt: skip
-        cell = Cell(box, CellStatus.REFUTED, depth, failing_condition=failing)
-        return _Decision(cell, () if whole else gains)
-    if problem.max_gain is None or gain[1] <= problem.max_gain:
+    if problem.min_rate is None or _rates_hold(problem, spans, 0):
         return None
-    source, limit = "requirement --max-gain", problem.max_gain
+    whole = not _rates_hold(problem, spans, 1)
+    detail = f"the certified decay rate min(λ_min(K), k_c a(L)) < {problem.min_rate} here"
+    failing = FailingCondition("decay_rate_at_least", "requirement --min-rate",
+                               problem.corner(box, {}), whole, detail)  # fmt: skip
+    cell = Cell(box, CellStatus.REFUTED, depth, failing_condition=failing)
+    return _Decision(cell, () if whole else _gain_sides(problem))
+
+
+def _gain_failure(problem: _Problem, box: tuple, depth: int, gain: tuple) -> _Decision | None:
+    """The decision against the cell, or undecided, when its gain may exceed ``max_gain``.
+
+    Refuted on the whole cell when the gain's exact lower end exceeds the limit, at a point when
+    the lower end at a corner of lowest k_γ, k_c (either end of the K_p scale) does.
+    """
+    limit = problem.max_gain
+    if limit is None or gain[1] <= limit:
+        return None
+    source = "requirement --max-gain"
     if gain[0] > limit:
         detail = f"the analysis gain is ≥ {float(gain[0]):.6g} > {limit} on the cell"
-        point = problem.corner(box, {})
-        failing = FailingCondition("iss_gain_at_most", source, point, True, detail)
-        cell = Cell(box, CellStatus.REFUTED, depth, failing_condition=failing, iss_gain=gain)
-        return _Decision(cell)
+        failing = FailingCondition(
+            "iss_gain_at_most", source, problem.corner(box, {}), True, detail
+        )
+        return _Decision(
+            Cell(box, CellStatus.REFUTED, depth, failing_condition=failing, iss_gain=gain)
+        )
+    spans = problem.intervals(box)
     for s_end in (0, 1):
         point = problem.corner(box, {"K_p_scale": s_end})
-        at = spans | {p: (x, x) for p, x in point.items()}
-        below = box_gain_below(problem.bounds, _kind_box(at))
+        below = box_gain_below(
+            problem.bounds, _kind_box(spans | {p: (x, x) for p, x in point.items()})
+        )
         if below > limit:
             detail = f"the analysis gain at this point is ≥ {float(below):.6g} > {limit}"
             failing = FailingCondition("iss_gain_at_most", source, point, False, detail)
             cell = Cell(box, CellStatus.REFUTED, depth, failing_condition=failing, iss_gain=gain)
-            return _Decision(cell, gains)
-    enclosure = f"[{float(gain[0]):.6g}, {float(gain[1]):.6g}]"
-    reason = f"the gain enclosure {enclosure} contains --max-gain {limit}"
-    return _Decision(Cell(box, CellStatus.UNDECIDED, depth, iss_gain=gain, reason=reason), gains)
+            return _Decision(cell, _gain_sides(problem))
+    reason = f"the gain enclosure [{float(gain[0]):.6g}, {float(gain[1]):.6g}] contains {limit}"
+    cell = Cell(box, CellStatus.UNDECIDED, depth, iss_gain=gain, reason=reason)
+    return _Decision(cell, _gain_sides(problem))
+
+
+def _gain_sides(problem: _Problem) -> tuple[str, ...]:
+    return tuple(a.path for a in problem.axes if a.path in GAINS)
 
 
 def _decide(problem: _Problem, box: tuple, depth: int) -> _Decision:
     """Certify, refute or leave undecided one cell (module docstring)."""
-    decided = _epsilon(problem, box, depth)
+    decided = _epsilon(problem, box, depth) or _rate_failure(problem, box, depth)
     if decided is not None:
         return decided
     kind_box = _kind_box(problem.intervals(box))
-    gain = problem.gain(box)
-    decided = _requirement_failure(problem, box, depth, gain)
+    witness = box_witness(problem.bounds, kind_box, rate=problem.min_rate)
+    gain = (problem.gain(box)[0], witness["gain"])
+    decided = _gain_failure(problem, box, depth, gain)
     if decided is not None:
         return decided
-    witness = box_witness(problem.bounds, kind_box, rate=problem.min_rate)
-    gain = (gain[0], witness["gain"])
     cell = Cell(box, CellStatus.CERTIFIED, depth, iss_gain=gain)
-    rtol = problem.gain_rtol
-    loose = rtol is not None and gain[1] > gain[0] * (1 + rtol)
-    sides = tuple(a.path for a in problem.axes if a.path in GAINS) if loose else ()
-    return _Decision(cell, sides, (kind_box, witness))
+    loose = problem.gain_rtol is not None and gain[1] > gain[0] * (1 + problem.gain_rtol)
+    return _Decision(cell, _gain_sides(problem) if loose else (), (kind_box, witness))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -521,8 +533,8 @@ def gain_regions(
 
     The box (``axes``, :func:`parse_box`) is cut into ``grid`` cells per side; a cell that a
     split may decide (undecided, refuted at one point only, or certified with a gain enclosure
-    wider than ``gain_rtol``) is halved along the side it covers most of, breadth first, at most
-    ``depth`` times and while the map has fewer than ``max_cells`` cells. ``max_gain`` and
+    wider than ``gain_rtol``) is halved (:func:`_split`), breadth first, at most ``depth`` times
+    and while the map has fewer than ``max_cells`` cells. ``max_gain`` and
     ``min_rate`` are optional requirements on the analysis's ISS gain g_e(1 + g_ξ) and decay rates
     (λ_min(K), k_c a(L)). ``margin_tol`` as in ``trackcert iss`` (the case's, else the default).
     CaseError for a case of another kind or settings out of range.
@@ -532,7 +544,13 @@ def gain_regions(
     if margin_tol is None:
         margin_tol = case.tolerances.get("margin_tol", MARGIN_TOL)
     tol = float(margin_tol)
-    _check_settings(case, axes, grid, depth, max_cells, tol, max_gain, min_rate, gain_rtol)
+    options = {
+        "margin_tol": tol,
+        "max_gain": max_gain,
+        "min_rate": min_rate,
+        "gain_rtol": gain_rtol,
+    }
+    _check_settings(axes, grid, depth, max_cells, options)
     values = _case_values(case.spec)
     fixed = {k: v for k, v in values.items() if k not in {a.path for a in axes}}
     records, whole = _whole_box(case, axes, tol)
@@ -589,9 +607,9 @@ def _product(sides: list[list[tuple]]) -> list[tuple]:
     return boxes
 
 
-def _check_settings(case: Case, axes: tuple, grid: int, depth: int, max_cells: int, tol: float,
-                    max_gain: Fraction | None, min_rate: Fraction | None,
-                    gain_rtol: Fraction | None) -> None:  # fmt: skip
+def _check_settings(axes: tuple, grid: int, depth: int, max_cells: int, options: dict) -> None:
+    """CaseError (of the command line) for settings out of range."""
+
     def refuse(name: str, expected: str, got: object) -> None:
         raise CaseError(name, expected, got, file=COMMAND_LINE)
 
@@ -603,12 +621,9 @@ def _check_settings(case: Case, axes: tuple, grid: int, depth: int, max_cells: i
         refuse("--depth", "an integer from 0 to 40", depth)
     if grid ** len(axes) > max_cells:
         refuse("--max-cells", f"at least the grid's {grid ** len(axes)} cells", max_cells)
-    if not tol > 0:
-        refuse("--margin-tol", "a number > 0", tol)
-    named = {"--max-gain": max_gain, "--min-rate": min_rate, "--gain-rtol": gain_rtol}
-    for name, value in named.items():
+    for name, value in options.items():
         if value is not None and not value > 0:
-            refuse(name, "a number > 0", value)
+            refuse(f"--{name.replace('_', '-')}", "a number > 0", value)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -634,7 +649,8 @@ def design_summary(case: Case) -> dict[str, Any]:
         "box_conditions": list(regions.box_conditions),
         "map": {k: v for k, v in regions.to_json().items() if k not in ("cells", "box_conditions")},
     }
-    if regions.cells and regions.cells[0].status == CellStatus.REFUTED and len(regions.cells) == 1:
+    unsettled = (ConditionStatus.FAILS, ConditionStatus.INCONCLUSIVE)
+    if any(c["status"] in unsettled for c in regions.box_conditions):
         return out
     bounds = loop_bounds(case.spec)
     values = _case_values(case.spec)
