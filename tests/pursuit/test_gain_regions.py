@@ -296,6 +296,8 @@ def test_the_gain_never_goes_below_the_condition_number_of_k_p() -> None:
         ("epsilon.2=1:2", "--box"),
         ("K_p_scale=x:2", "--box K_p_scale"),
         ("epsilon.0=-1:1:log", "--box epsilon.0"),
+        ("k_gamma=1e99999:1e100000", "--box k_gamma"),  # refused before 10^99999 is built
+        ("k_gamma=1e-301:1", "--box k_gamma"),
     ],
 )
 def test_bad_boxes_name_the_option(text: str, field: str) -> None:

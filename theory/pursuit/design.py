@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
@@ -250,11 +251,16 @@ def _case_values(spec: PursuitSpec) -> dict[str, Fraction]:
 
 
 def _number(text: str, where: str) -> Fraction:
+    """An exact number of ``--box``: 0 or a magnitude in [1e-300, 1e300] (floats must hold it)."""
+    expected = "a decimal or a fraction such as 0.5, 1e-3 or 1/3, 0 or of magnitude 1e-300 … 1e300"
+    if len(text) > 60 or re.search(r"[eE][+-]?\d{4}", text):
+        raise CaseError(where, expected, text, file=COMMAND_LINE)
     try:
         value = Fraction(text.strip())
     except (ValueError, ZeroDivisionError):
-        expected = "a decimal or a fraction such as 0.5, 1e-3 or 1/3"
         raise CaseError(where, expected, text, file=COMMAND_LINE) from None
+    if value and not Fraction(1, 10**300) <= abs(value) <= 10**300:
+        raise CaseError(where, expected, text, file=COMMAND_LINE)
     return value
 
 
