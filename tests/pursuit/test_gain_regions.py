@@ -54,20 +54,23 @@ BUNDLED = [
 
 
 def _short(x: float) -> Fraction:
-    return Fraction(f"{x:.3g}")
+    """``x`` at 3 significant digits (0 below 1e-290: ``--box`` takes magnitudes ≥ 1e-300)."""
+    return Fraction(f"{x:.3g}") if abs(x) >= 1e-290 else Fraction(0)
 
 
 @st.composite
 def _side(draw: st.DrawFn, path: str, value: Fraction) -> str:
-    """``PATH=LO:HI[:log]``: gains around the case's value, ε components often across 0."""
+    """``PATH=LO:HI[:log]`` as a user writes it (decimals): gains around the case's value, ε
+    components often across 0 and sometimes tiny."""
     if path.startswith("epsilon."):
         lo = _short(draw(st.floats(-2.0, 1.0)))
-        return f"{path}={lo}:{lo + _short(draw(st.floats(0.05, 3.0)))}"
+        hi = lo + _short(draw(st.floats(0.05, 3.0)))
+        return f"{path}={float(lo)!r}:{float(hi)!r}"
     lo = _short(float(value) * 10 ** draw(st.floats(-2.0, 1.0)))
     hi = _short(float(lo) * 10 ** draw(st.floats(0.05, 3.0)))
     if lo >= hi:
         hi = lo * 2
-    return f"{path}={lo}:{hi}{':log' if draw(st.booleans()) else ''}"
+    return f"{path}={float(lo)!r}:{float(hi)!r}{':log' if draw(st.booleans()) else ''}"
 
 
 @st.composite
