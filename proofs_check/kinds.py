@@ -15,6 +15,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
+from proofs_check import gain_box
 from proofs_check import linalg as la
 from proofs_check import parse as p
 from proofs_check.checks import Check, definite, show
@@ -350,11 +351,8 @@ def _same(name: str, stated: Fraction, actual: Fraction) -> Check:
     return Check(name, stated == actual, f"stated {show(stated)}, recomputed {show(actual)}")
 
 
-def iss(cert: dict[str, Any]) -> list[Check]:
-    """The ISS estimate of seed 003 Theorem 2 (corrected) with the witness's constants."""
-    p.fields(cert["claim"], "claim", ("statement",))
-    need = ("dim", "controller", "epsilon", "K_p", "paths")
-    data = p.fields(cert["data"], "data", need, ("k_gamma", "laplacian", "k_c"))
+def _loop(data: dict[str, Any]) -> tuple[bool, list[list[Fraction]], Matrix]:
+    """Controller Type II?, the paths (15)/(16) and ``K_p`` of an ``iss`` or ``iss-box`` loop."""
     dim = p.index(data["dim"], "data.dim", 2, 3)
     two_stage = p.text(data["controller"], "data.controller", ("I", "II")) == "II"
     names = ("r_x", "r_y", "r_z", "c")[: 2 * dim - 2]  # paths (15) and (16)
@@ -362,36 +360,69 @@ def iss(cert: dict[str, Any]) -> list[Check]:
     paths = [[p.rational(path[k], f"data.paths: {k}") for k in names] for path in paths]
     if dim == 3 and not all(path[3] for path in paths):
         raise p.MalformedError("data.paths: c must be non-zero")
+    return two_stage, paths, p.matrix(data["K_p"], "data.K_p", dim, dim)
+
+
+def iss(cert: dict[str, Any]) -> list[Check]:
+    """The ISS estimate of seed 003 Theorem 2 (corrected) with the witness's constants."""
+    p.fields(cert["claim"], "claim", ("statement",))
+    need = ("dim", "controller", "epsilon", "K_p", "paths")
+    data = p.fields(cert["data"], "data", need, ("k_gamma", "laplacian", "k_c"))
+    two_stage, paths, K_p = _loop(data)
     n = len(paths)
     if (two_stage, n > 1, n > 1) != ("k_gamma" in data, "laplacian" in data, "k_c" in data):
         raise p.MalformedError("data: k_gamma iff controller II; laplacian and k_c iff N > 1")
+    eps = p.matrix([data["epsilon"]], "data.epsilon", 1, len(K_p))[0]
+    k_gamma = p.rational(data["k_gamma"], "data.k_gamma") if two_stage else None
+    k_c = p.rational(data["k_c"], "data.k_c") if n > 1 else None
+    at = gain_box.point(K_p, k_gamma, k_c, eps[0])
+    return _iss_checks(cert["witness"], two_stage, paths, at, data.get("laplacian"))
+
+
+def iss_box(cert: dict[str, Any]) -> list[Check]:
+    """The ``iss`` estimate with the same constants at every point of ``claim.box``."""
+    data = p.fields(cert["data"], "data", ("dim", "controller", "K_p", "paths"), ("laplacian",))
+    two_stage, paths, K_p = _loop(data)
+    if (len(paths) > 1) != ("laplacian" in data):
+        raise p.MalformedError("data: laplacian iff N > 1")
+    claim = p.fields(cert["claim"], "claim", ("box",), ("statement",))
+    box = gain_box.parse_box(claim["box"], two_stage=two_stage, coordinated=len(paths) > 1)
+    at = gain_box.corners(K_p, box)
+    return _iss_checks(cert["witness"], two_stage, paths, at, data.get("laplacian"))
+
+
+def _iss_checks(
+    raw_witness: Any, two_stage: bool, paths: list, at: gain_box.Corners, raw_L: Any
+) -> list[Check]:
+    """E1–E5, C1–C6 of ``iss`` with each monotone check at its corner of ``at``."""
+    n, dim = len(paths), len(at.K_p_high)
     keys = ("lambda", "kp_bar", "mu_r", "s", "g_e", "gain")
     keys += ("a", "b", "rho", "kappa", "alpha", "g_xi") if n > 1 else ()
-    raw = p.fields(cert["witness"], "witness", keys + ("r",) * (n > 1))
+    raw = p.fields(raw_witness, "witness", keys + ("r",) * (n > 1))
     w = {k: p.rational(raw[k], f"witness.{k}") for k in keys}
-    eps = p.matrix([data["epsilon"]], "data.epsilon", 1, dim)[0]
-    K_p = p.matrix(data["K_p"], "data.K_p", dim, dim)
-    K = [[*row, Fraction(0)] for row in K_p] + [[Fraction(0)] * dim] if two_stage else K_p
-    if two_stage:
-        K[dim].append(p.rational(data["k_gamma"], "data.k_gamma"))
     lam, kp_bar, s = w["lambda"], w["kp_bar"], w["s"]
     mu_r = max(max(v[0] ** 2, v[1] ** 2) + ((v[2] / v[3]) ** 2 if dim == 3 else 0) for v in paths)
     bound = f"k̄_p² + 1{' + μ_r' if two_stage else ''}"
     room = s * s - kp_bar**2 - 1 - (mu_r if two_stage else 0)
     sharp = f"s = {show(s)}, s² − ({bound}) = {show(room)}"
+    lo, hi = at.epsilon_1
+    e1 = f"ε₁ ∈ [{show(lo)}, {show(hi)}]" if at.box else f"ε₁ = {show(lo)}"
+    low, high = (" at the lowest gains", " at the largest K_p scale") if at.box else ("", "")
+    K, K_p = at.K_low, at.K_p_high
     checks = [
-        Check("E1: ε₁ ≠ 0 (ΔΔᵀ is invertible)", eps[0] != 0, f"ε₁ = {show(eps[0])}"),
+        Check("E1: ε₁ ≠ 0 (ΔΔᵀ is invertible)", lo > 0 or hi < 0, e1),
         Check("E2: λ > 0", lam > 0, f"λ = {show(lam)}"),
-        definite("E2: K − λI ⪰ 0", la.sub(K, la.scale(lam, la.identity(len(K)))), semi=True),
-        definite("E3: k̄_p I − K_p ⪰ 0", la.sub(la.scale(kp_bar, la.identity(dim)), K_p), semi=True),
+        definite(f"E2: K − λI ⪰ 0{low}", la.sub(K, la.scale(lam, la.identity(len(K)))), semi=True),
+        definite(
+            f"E3: k̄_p I − K_p ⪰ 0{high}", la.sub(la.scale(kp_bar, la.identity(dim)), K_p), semi=True
+        ),
         _same("E4: μ_r = max_i max(r_x², r_y²) (+ (r_z/c)² in 3D)", w["mu_r"], mu_r),
         Check(f"E4: s ≥ 0, s² ≥ {bound}", s >= 0 and room >= 0, sharp),
         _same("E5: g_e = s/λ", w["g_e"], s / lam if lam else Fraction(0)),
     ]
     if n == 1:
         return [*checks, _same("C6: gain = g_e (N = 1)", w["gain"], w["g_e"])]
-    k_c = p.rational(data["k_c"], "data.k_c")
-    return checks + _coordination(data["laplacian"], raw["r"], n, k_c, w, two_stage)
+    return checks + _coordination(raw_L, raw["r"], n, at.k_c_low, w, two_stage)
 
 
 def _coordination(raw_L: Any, raw_r: Any, n: int, k_c: Fraction, w: dict, two: bool) -> list[Check]:
@@ -448,5 +479,6 @@ KINDS = {
     "iss": iss,
     "tdoa-observability-margin": observability_margin,
     "tdoa-loss-tolerance": loss_tolerance,
+    "iss-box": iss_box,
 }
 """Each kind's checker."""

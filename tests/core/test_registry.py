@@ -198,8 +198,9 @@ def test_the_command_table_matches_what_the_modules_register() -> None:
         for info in app.registered_commands:
             help_text = info.help or inspect.getdoc(info.callback) or ""
             registered[info.name] = (module, help_text.splitlines()[0])
-        for group in app.registered_groups:  # sub-apps (`trackcert design`)
-            registered[group.name] = (module, group.typer_instance.info.help.splitlines()[0])
+        for group in app.registered_groups:  # a sub-application such as ``design``
+            help_text = group.help or group.typer_instance.info.help or ""
+            registered[group.name] = (module, help_text.splitlines()[0])
     assert {name: (e.module, e.help) for name, e in COMMANDS.items()} == registered
     modules = {p.stem for p in (ROOT / "cli").glob("*.py")} - {"__init__", "__main__", "common"}
     assert {e.module.rpartition(".")[2] for e in COMMANDS.values()} == modules

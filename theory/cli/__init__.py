@@ -40,7 +40,7 @@ COMMANDS: dict[str, CommandEntry] = {
     ),
     "design": CommandEntry(
         "theory.cli.design",
-        "Certified design answers: how far agents may drift, where to put them, what may fail.",
+        "Certified design answers: which parameters work, how far agents may drift, what may fail",
     ),
     "dkf": CommandEntry(
         "theory.cli.dkf",
@@ -135,14 +135,14 @@ class LazyCommands(TyperGroup):
                 info, pretty_exceptions_short=True, rich_markup_mode=self.rich_markup_mode
             )
             self.add_command(command)
-        for info in registry.registered_groups:  # sub-apps such as `trackcert design`
+        for info in registry.registered_groups:  # a sub-application such as ``design``
             group = get_group_from_info(
                 info,
                 pretty_exceptions_short=True,
                 suggest_commands=self.suggest_commands,
                 rich_markup_mode=self.rich_markup_mode,
             )
-            self.add_command(group)
+            self.add_command(group, info.name)
 
 
 app = typer.Typer(

@@ -9,12 +9,18 @@ k̄ above ‖K_p‖, s above √μ, a below a(L), b above ‖R^{1/2}W‖, ρ bel
 data is returned; :func:`iss_certificate` writes the JSON certificate and has the independent
 checker :mod:`proofs_check` (which re-implements the same list) accept it. A case whose
 conditions fail (ε₁ = 0, a graph not strongly connected) gets no certificate.
+
+:func:`iss_box_certificate` states the same estimate, with the same constants, for every gain of a
+box (kind ``iss-box``): the case's box-independent constants are bracketed once
+(:func:`loop_bounds`), and each cell's witness (:func:`box_witness`) takes every monotone bound at
+the corner where it is weakest (docs/design.md, *Gain regions*).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
@@ -42,11 +48,18 @@ from theory.pursuit.iss import (
 )
 
 __all__ = [
+    "BOX_STATEMENT",
     "CERTIFICATE_INEQUALITIES",
     "STATEMENT",
+    "LoopBounds",
+    "box_gain_below",
+    "box_witness",
+    "bracket",
     "claims",
+    "iss_box_certificate",
     "iss_certificate",
     "iss_certificate_data",
+    "loop_bounds",
     "pursuit_certificates",
     "safe_constant",
     "verify_certificate",
@@ -105,6 +118,34 @@ def _sqrt_above(value: Fraction) -> Fraction:
     while s * s < value:
         s += Fraction(1, 10 ** _grid(float(s), ISS_DIGITS))
     return s
+
+
+def _sqrt_below(value: Fraction) -> Fraction:
+    """A short decimal rational t ≥ 0 with t² ≤ value (checked exactly)."""
+    if value <= 0:
+        return Fraction(0)
+    t = max(_rational_below(math.sqrt(float(value))), Fraction(0))
+    while t * t > value:
+        t -= Fraction(1, 10 ** _grid(float(t), ISS_DIGITS))
+    return max(t, Fraction(0))
+
+
+def bracket(estimate: float, at_most: Callable[[Fraction], bool]) -> tuple[Fraction, Fraction]:
+    """Rationals lo ≤ v < hi around a number v known exactly only through ``at_most``.
+
+    ``at_most(x)`` decides x ≤ v exactly (e.g. K_p − xI ⪰ 0 for v = λ_min(K_p)); the float
+    ``estimate`` of v is rounded at ``iss_digits`` and moved out, by doubling steps, until both
+    ends pass; InconclusiveError after ``iss_safe_steps`` steps.
+    """
+    step = Fraction(10) ** -_grid(estimate, ISS_DIGITS)
+    lo, hi = _rational_below(estimate), _rational_above(estimate)
+    for _ in range(ISS_SAFE_STEPS):
+        low_ok, high_ok = at_most(lo), not at_most(hi)
+        if low_ok and high_ok:
+            return lo, hi
+        lo, hi = (lo if low_ok else lo - step), (hi if high_ok else hi + step)
+        step *= 2
+    raise InconclusiveError(f"no rational bracket of {estimate!r} passes its exact checks")
 
 
 def safe_constant(
@@ -386,6 +427,154 @@ def iss_certificate(spec: PursuitSpec, *, case: str | None = None) -> dict[str, 
     if not verdict.valid:
         failed = [c.name for c in verdict.checks if not c.valid]
         raise RuntimeError(f"the iss certificate failed proofs_check (a bug): {failed}")
+    return cert
+
+
+# ---------------------------------------------------------------------------------------------
+# the certificate over a box of gains (kind iss-box)
+
+BOX_STATEMENT = (
+    "seed 003 Theorem 2 (corrected) for every gain of the box (K_p scaled by any s in K_p_scale, "
+    "k_gamma and k_c in their intervals, any epsilon with epsilon_1 in its interval): the "
+    "estimate of kind iss holds with the witness's lambda, g_e, kappa, alpha, b, rho and gain"
+)
+"""The claim of every ``iss-box`` certificate (docs/certificates.md)."""
+
+
+@dataclass(frozen=True)
+class LoopBounds:
+    """The case's constants no box parameter changes, as exact brackets lo ≤ v ≤ hi.
+
+    ``lambda_p`` ∋ λ_min(K_p) and ``norm_p`` ∋ ‖K_p‖ (K_p as written, before scaling), ``mu_r``
+    the exact path bound; for N > 1 the exact ``r`` and brackets of a(L), b = ‖R^{1/2}W‖ and
+    √r_min, and κ ≥ √(r_max/r_min). ``data`` is the certificate's ``data`` (canonical strings).
+    """
+
+    data: dict[str, Any]
+    controller: Controller
+    mu_r: Fraction
+    lambda_p: tuple[Fraction, Fraction]
+    norm_p: tuple[Fraction, Fraction]
+    r: tuple[Fraction, ...] | None = None
+    a: tuple[Fraction, Fraction] | None = None
+    b: tuple[Fraction, Fraction] | None = None
+    rho: tuple[Fraction, Fraction] | None = None
+    kappa: Fraction | None = None
+
+
+def loop_bounds(spec: PursuitSpec) -> LoopBounds:
+    """:class:`LoopBounds` of ``spec``, whose box-independent conditions must hold.
+
+    InconclusiveError if a bracket does not pass its exact checks.
+    """
+    K_p = exact_gain_matrix(spec.K_p)
+    eigenvalues = np.linalg.eigvalsh(spec.K_p)
+    data: dict[str, Any] = {
+        "dim": spec.dim,
+        "controller": spec.controller,
+        "K_p": _text(K_p),
+        "paths": _text(_pursuit_data(spec, pursuit_iss(spec))["paths"]),
+    }
+    bounds = LoopBounds(
+        data,
+        spec.controller,
+        pursuit_iss(spec).mu_r,
+        bracket(float(eigenvalues[0]), lambda x: _psd(_shifted(K_p, x))),
+        bracket(float(eigenvalues[-1]), lambda x: not _e3_holds(K_p, x)),
+    )
+    if spec.n_trackers == 1:
+        return bounds
+    coordination = coordination_iss(spec)
+    r = list(coordination.r)
+    L = [[Fraction(int(x)) for x in row] for row in spec.laplacian]
+    data["laplacian"] = _text(L)
+    return replace(
+        bounds,
+        r=tuple(r),
+        a=bracket(coordination.a_L, lambda x: x <= 0 or _c3_holds(L, r, x)),
+        b=bracket(coordination.b, lambda x: not _c4_holds(r, x)),
+        rho=bracket(math.sqrt(coordination.r_min), lambda x: x <= 0 or _rho_holds(r, x)),
+        kappa=bracket(coordination.kappa, lambda x: x <= 0 or not _kappa_holds(r, x))[1],
+    )
+
+
+Box = Mapping[str, tuple[Fraction, Fraction]]
+"""A box in the names of kind ``iss-box``: ``K_p_scale``, ``epsilon_1``, ``k_gamma``, ``k_c``."""
+
+
+def box_witness(bounds: LoopBounds, box: Box, *, rate: Fraction | None = None) -> dict[str, Any]:
+    """The ``iss-box`` witness of ``box``: each bound at the corner where it is weakest.
+
+    λ = min(s_lo·λ̲_p, k_γ,lo) ≤ λ_min(K), k̄_p = s_hi·k̄, α = k_c,lo·a. ``rate``, when the caller
+    has decided exactly that λ_min(K) ≥ rate and k_c a(L) ≥ rate at the lowest gains, replaces
+    λ and α where it is larger, so that the certificate shows the rate.
+    """
+    s_lo, s_hi = box["K_p_scale"]
+    two_stage = bounds.controller == Controller.II
+    lam = s_lo * bounds.lambda_p[0]
+    if two_stage:
+        lam = min(lam, box["k_gamma"][0])
+    lam = max(lam, rate or 0)
+    kp_bar = s_hi * bounds.norm_p[1]
+    s = _sqrt_above(kp_bar * kp_bar + 1 + (bounds.mu_r if two_stage else 0))
+    witness: dict[str, Any] = {"lambda": lam, "kp_bar": kp_bar, "mu_r": bounds.mu_r, "s": s}
+    witness["g_e"] = witness["gain"] = s / lam
+    if bounds.r is None:
+        return witness
+    k_c = box["k_c"][0]
+    a = max(bounds.a[0], (rate or 0) / k_c)
+    b, rho = bounds.b[1], bounds.rho[0]
+    g_xi = b / (rho * k_c * a) if two_stage else Fraction(0)
+    witness |= {"r": list(bounds.r), "a": a, "b": b, "rho": rho, "kappa": bounds.kappa}
+    witness |= {"alpha": k_c * a, "g_xi": g_xi, "gain": witness["g_e"] * (1 + g_xi)}
+    return witness
+
+
+def box_gain_below(bounds: LoopBounds, box: Box) -> Fraction:
+    """An exact lower bound of the analysis gain g_e(1 + g_ξ) (seed 003 §5) over ``box``.
+
+    g_e = c♯/min(sλ_min(K_p), k_γ) with c♯ = √(s²‖K_p‖² + C) is at least c♯/(sλ_min(K_p)), which
+    decreases in s (its value at s_hi), and at least c♯/k_γ (at s_lo, k_γ,hi); g_ξ = b/(√r_min
+    k_c a(L)) is at least its value at k_c,hi. Bracket ends are taken on the side that keeps
+    each bound valid.
+    """
+    s_lo, s_hi = box["K_p_scale"]
+    two_stage = bounds.controller == Controller.II
+    constant = 1 + (bounds.mu_r if two_stage else 0)
+    norm = max(bounds.norm_p[0], Fraction(0))
+    g_e = _sqrt_below(s_hi * s_hi * norm * norm + constant) / (s_hi * bounds.lambda_p[1])
+    if two_stage:
+        g_e = max(g_e, _sqrt_below(s_lo * s_lo * norm * norm + constant) / box["k_gamma"][1])
+    if bounds.r is None or not two_stage:
+        return g_e
+    alpha = box["k_c"][1] * bounds.a[1]
+    return g_e * (1 + max(bounds.b[0], Fraction(0)) / (bounds.rho[1] * alpha))
+
+
+def iss_box_certificate(
+    bounds: LoopBounds, box: Box, witness: dict[str, Any], *, case: str | None = None
+) -> dict[str, Any]:
+    """The ``iss-box`` certificate of ``box`` with ``witness``, accepted by ``proofs_check``.
+
+    RuntimeError if ``proofs_check`` rejects it (a bug: the witness is built to pass).
+    """
+    cert: dict[str, Any] = {
+        "format": proofs_check.FORMAT,
+        "kind": "iss-box",
+        "source": "seed 003, Lemmas 1–4 and Theorems 1–2 (corrected), over a box of gains",
+        **({"case": case} if case is not None else {}),
+        "claim": {"statement": BOX_STATEMENT, "box": _text(dict(box))},
+        "data": bounds.data,
+        "witness": _text(witness),
+        "produced_by": {
+            "module": "theory.pursuit.certificates",
+            "rounding": f"{ISS_DIGITS} significant digits, each bound at its weakest corner",
+        },
+    }
+    verdict = proofs_check.check_certificate(cert)
+    if not verdict.valid:
+        failed = [c.name for c in verdict.checks if not c.valid]
+        raise RuntimeError(f"the iss-box certificate failed proofs_check (a bug): {failed}")
     return cert
 
 

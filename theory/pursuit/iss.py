@@ -498,9 +498,12 @@ class Condition:
 
 def _delta_condition(spec: PursuitSpec, tol: float) -> Condition:
     eps = [exact_decimal(x) for x in spec.epsilon]
-    det = eps[0] ** 2 * (sum(x * x for x in eps) if spec.dim == 3 else 1)
-    norm = math.sqrt(float(sum(x * x for x in eps)))
-    margin = abs(float(eps[0])) / norm if norm > 0 else 0.0
+    squares = sum(x * x for x in eps)
+    det = eps[0] ** 2 * (squares if spec.dim == 3 else 1)
+    norm = math.sqrt(float(squares)) if squares < 10**300 else math.inf
+    margin = abs(float(eps[0])) / norm if 1e-150 < norm < math.inf else 0.0
+    if squares and margin == 0.0:  # ‖ε‖² under- or overflows a float: the exact ratio
+        margin = math.sqrt(float(eps[0] ** 2 / squares))
     source = "seed 003 eq. (22), Remark 6 (corrected: needs ε₁ ≠ 0)"
     formula = "ε₁²·‖ε‖²" if spec.dim == 3 else "ε₁²"
     if det == 0:

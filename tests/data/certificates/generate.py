@@ -26,7 +26,12 @@ from theory.consensus.s_detectability import decide_s_detectability, s_detectabi
 from theory.core.certificate_format import bundle
 from theory.core.exact import dyadic_matrix, fraction_strings, rational_matrix
 from theory.kinds import load_case
-from theory.pursuit.certificates import iss_certificate
+from theory.pursuit.certificates import (
+    box_witness,
+    iss_box_certificate,
+    iss_certificate,
+    loop_bounds,
+)
 from theory.registry import case_certificates
 from theory.tdoa.design import tdoa_redundancy
 from theory.tdoa.estimation.stability import (
@@ -143,7 +148,22 @@ def good() -> dict[str, dict]:
             f"iss-{name}": iss_certificate(load_case(cases / f"{name}.yaml").spec, case=name)
             for name in ("pursuit-table1-n3", "pursuit-table2-n1")
         },
+        "iss-box-pursuit-table1-n3": _iss_box(),
     }
+
+
+def _iss_box() -> dict:
+    """Table I, N = 3, for every k_γ ∈ [1/10, 10], k_c ∈ [1/10, 1], K_p scale ∈ [1, 2] and
+    ε₁ ∈ [−1, −1/4] (kind iss-box): λ = 1/10 = k_γ,lo, k̄_p ≥ 4/5, α = a/10."""
+    name = "pursuit-table1-n3"
+    bounds = loop_bounds(load_case(HERE.parents[2] / "cases" / f"{name}.yaml").spec)
+    box = {
+        "K_p_scale": (Fraction(1), Fraction(2)),
+        "epsilon_1": (Fraction(-1), Fraction(-1, 4)),
+        "k_gamma": (Fraction(1, 10), Fraction(10)),
+        "k_c": (Fraction(1, 10), Fraction(1)),
+    }
+    return iss_box_certificate(bounds, box, box_witness(bounds, box), case=name)
 
 
 def _boundary() -> dict[str, dict]:
@@ -299,6 +319,15 @@ def bad(valid: dict[str, dict]) -> tuple[dict[str, dict], dict[str, object]]:
     c = copy.deepcopy(valid["iss-pursuit-table1-n3"])
     del c["witness"]["r"]
     malformed["iss-dropped-left-eigenvector"] = c
+    c = copy.deepcopy(valid["iss-box-pursuit-table1-n3"])
+    c["claim"]["box"]["epsilon_1"] = ["-1", "0"]
+    invalid["iss-box-epsilon-interval-reaches-zero"] = c
+    c = copy.deepcopy(valid["iss-box-pursuit-table1-n3"])
+    c["claim"]["box"]["k_gamma"] = ["1/20", "10"]
+    invalid["iss-box-k-gamma-below-lambda"] = c
+    c = copy.deepcopy(valid["iss-box-pursuit-table1-n3"])
+    c["claim"]["box"]["k_c"] = ["1", "1/10"]
+    malformed["iss-box-empty-interval"] = c
     malformed["nested-bundle"] = bundle([bundle([valid["mjls-stability-scalar"]])])
     _tdoa_design_defects(valid, invalid, malformed)
     return invalid, malformed
