@@ -70,6 +70,7 @@ __all__ = [
     "PfSpec",
     "ReceivedHeading",
     "check_pf_expect",
+    "check_pf_runs",
     "check_pf_work",
     "parse_pf",
 ]
@@ -279,6 +280,16 @@ def check_pf_work(config: PfConfig, filters: int, steps: int, runs: int, field: 
     work = float(filters) * particles * rounds * (steps + 1) * runs
     what = f"{filters} filters × {particles:,} particles × {rounds} exchange rounds × steps × runs"
     check_estimate("work", work, field, what)
+
+
+def check_pf_runs(spec: PfSpec, runs: int, field: str, *, file: str = "<data>") -> None:
+    """Refuse ``runs`` Monte Carlo runs of ``spec`` past :mod:`theory.core.limits` (the count,
+    then :func:`check_pf_work`), naming ``field`` in ``file``."""
+    try:
+        check_count("runs", positive_int(runs, field), field)
+        check_pf_work(spec.config, len(spec.network.filters), spec.steps, runs, field)
+    except CaseError as error:
+        raise error.in_file(file) from None
 
 
 def _choice(block: Mapping[str, Any], key: str, default: E) -> E:
