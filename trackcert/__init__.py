@@ -48,6 +48,7 @@ __all__ = [
     "__version__",
     "certify",
     "check",
+    "consensus_weights",
     "dkf",
     "iss",
     "load_case",
@@ -813,6 +814,54 @@ def load_case(path: str | os.PathLike[str]) -> Any:
     from theory.kinds import load_case as load
 
     return load(path)
+
+
+def consensus_weights(graph: Any, rule: str = "metropolis", *, n: int | None = None) -> Any:
+    r"""The named consensus weights on a graph, exactly as case files define them.
+
+    ``metropolis``: :math:`w_{ij} = 1/(1 + \max(d_i, d_j))` on each edge and
+    :math:`w_{ii} = 1 - \sum_j w_{ij}` (undirected graphs); ``uniform``:
+    :math:`w_{ij} = 1/(d_i + 1)` for :math:`j \in N_i \cup \{i\}` (in-neighbours of a digraph).
+
+    Parameters
+    ----------
+    graph : networkx.Graph, networkx.DiGraph or sequence of pairs
+        Nodes are 0-based agent indices; a ``DiGraph`` edge ``(s, r)`` means ``s`` sends to ``r``.
+    rule : {"metropolis", "uniform"}
+        The weight rule.
+    n : int, optional
+        Number of agents (default: the graph's number of nodes; required for an edge list).
+
+    Returns
+    -------
+    numpy.ndarray
+        The ``n × n`` row-stochastic matrix, for :func:`dkf` or :func:`topology`.
+
+    Raises
+    ------
+    ValueError
+        For an unknown rule, Metropolis weights on a directed graph, or a node outside
+        ``0..n-1``.
+    """
+    import numpy as np
+
+    from theory.core.network import adjacency_from_edges, metropolis_weights, uniform_weights
+
+    if n is None:
+        if not hasattr(graph, "number_of_nodes"):
+            raise ValueError("consensus_weights of an edge list needs n, the number of agents")
+        n = graph.number_of_nodes()
+    edges, directed = _edges(graph, n, None)
+    hears = adjacency_from_edges(
+        n, np.array(edges, dtype=int).reshape(-1, 2) - 1, directed=directed
+    )
+    if rule == "uniform":
+        return uniform_weights(hears)
+    if rule != "metropolis":
+        raise ValueError(f"rule {rule!r} is not one of ['metropolis', 'uniform']")
+    if directed:
+        raise ValueError("Metropolis weights are defined for undirected graphs; use 'uniform'")
+    return metropolis_weights(hears)
 
 
 def topology(
