@@ -230,8 +230,8 @@ class Result:
         if self.case is not None:
             head += f" · case <code>{html.escape(self.case.name)}</code>"
         head += f" · <strong style='color:{_COLOURS[self.verdict]}'>{word}</strong>"
-        sentence = self.summary()
-        if sentence != word:
+        sentence = self.summary().removeprefix(word).lstrip(": ")
+        if sentence:
             head += f": {html.escape(sentence)}"
         notes = [] if self.margin is None else [f"margin {self.margin:.4g}"]
         notes += [f"{k} = {_cell(v)}" for k, v in self.tolerances.items()]
@@ -643,6 +643,7 @@ _VERDICT_WORD = {True: "HOLDS", False: "FAILS", None: "INCONCLUSIVE"}
 _COLOURS = {True: "#1a7f37", False: "#cf222e", None: "#9a6700"}
 _FAILS = "the property fails: "
 _NOT_HOLDING = ("fails", "inconclusive")
+_OPEN_ROWS = 12  # longer tables start collapsed
 
 
 def _expected(result: Result) -> str:
@@ -681,7 +682,10 @@ def _html_table(columns: Sequence[str], rows: list[Sequence[Any]]) -> str:
     body = "".join(
         "<tr>" + "".join(f"<td>{html.escape(_cell(v))}</td>" for v in row) + "</tr>" for row in rows
     )
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    table = f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    if len(rows) <= _OPEN_ROWS:
+        return table
+    return f"<details><summary>{len(rows)} rows</summary>{table}</details>"
 
 
 # --------------------------------------------------------------------------------------------
@@ -1325,8 +1329,8 @@ def pf(
     from theory.particle.report import pf_report
 
     loaded, data = _resolve(case)
-    if runs is not None and loaded.kind == "pf":
-        check_pf_runs(loaded.spec, runs, "runs")
+    if runs is not None:
+        check_pf_runs(loaded, runs, "runs")
     with engine(workers) as runner:
         report = pf_report(
             loaded,

@@ -273,3 +273,10 @@ def test_design_answers_plug_in_as_one_line() -> None:
     assert result.to_json()["s_detectable"] is True and result.exit_code == 0
     with pytest.raises(AttributeError, match="no answer"):
         design.no_such_answer  # noqa: B018
+
+
+def test_pf_refuses_another_kind_before_any_run() -> None:
+    with pytest.raises(CaseError, match="field 'kind': expected pf"):
+        trackcert.pf("seed002-fig32-split", runs=4)
+    result = CliRunner().invoke(app, ["pf", "seed002-fig32-split", "--runs", "4"])
+    assert result.exit_code == 2 and "expected pf" in result.output  # was a traceback

@@ -98,7 +98,7 @@ def run_pf_case(
     if out is not None:
         check_folder_output(out, "-o/--out", MARKER)
     if runs is not None:
-        check_pf_runs(case.spec, runs, "--runs", file=COMMAND_LINE)
+        check_pf_runs(case, runs, "--runs", file=COMMAND_LINE)
     total = runs or getattr(case.spec, "runs", 1)
     with (
         engine(workers, scheduler) as runner,

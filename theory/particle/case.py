@@ -43,7 +43,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from theory.core.case_file import KindSpec
+from theory.core.case_file import Case, KindSpec
 from theory.core.errors import CaseError
 from theory.core.limits import check_count, check_estimate, check_length
 from theory.core.network import adjacency_from_edges
@@ -73,6 +73,7 @@ __all__ = [
     "check_pf_runs",
     "check_pf_work",
     "parse_pf",
+    "require_pf",
 ]
 
 
@@ -282,9 +283,19 @@ def check_pf_work(config: PfConfig, filters: int, steps: int, runs: int, field: 
     check_estimate("work", work, field, what)
 
 
-def check_pf_runs(spec: PfSpec, runs: int, field: str, *, file: str = "<data>") -> None:
-    """Refuse ``runs`` Monte Carlo runs of ``spec`` past :mod:`theory.core.limits` (the count,
-    then :func:`check_pf_work`), naming ``field`` in ``file``."""
+def require_pf(case: Case) -> PfSpec:
+    """The spec of a ``kind: pf`` case; a :class:`CaseError` naming the kind otherwise."""
+    if case.kind != "pf":
+        raise CaseError(
+            "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
+        )
+    return case.spec
+
+
+def check_pf_runs(case: Case, runs: int, field: str, *, file: str = "<data>") -> None:
+    """Refuse ``runs`` Monte Carlo runs of a pf case past :mod:`theory.core.limits` (the count,
+    then :func:`check_pf_work`), naming ``field`` in ``file``; :func:`require_pf` first."""
+    spec = require_pf(case)
     try:
         check_count("runs", positive_int(runs, field), field)
         check_pf_work(spec.config, len(spec.network.filters), spec.steps, runs, field)
