@@ -457,8 +457,8 @@ class PfResult(Result):
     """Monte Carlo runs of seed 002's distributed TDOA particle filter (``trackcert pf``).
 
     ``verdict``: the case's expectations (True when it states none), judged from the claims'
-    observations. ``agents``: per-node error summary. ``report`` is
-    ``theory.particle.report.PfReport``.
+    observations. ``agents``: per-node error summary; ``figures``: the PNG files written.
+    ``report`` is ``theory.particle.report.PfReport``.
     """
 
     command: ClassVar[str] = "pf"
@@ -467,6 +467,11 @@ class PfResult(Result):
     def agents(self) -> list[dict[str, Any]]:
         """Per-node error summary rows (``id``, mean, final and tail errors, …)."""
         return self.to_json()["agents"]
+
+    @property
+    def figures(self) -> list[Path]:
+        """The PNG figures written (none without a ``folder``)."""
+        return [Path(f) for f in self.report.figures]
 
     def summary(self) -> str:
         """Runs, seed and the expectations' verdict in one sentence.
