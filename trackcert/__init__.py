@@ -493,20 +493,22 @@ class Certificate(Result):
 
     ``verdict``: True when certificates were made (each already accepted by ``proofs_check``),
     False when the property is decided false (nothing to certify), None when no certificate
-    could be made (``reason`` says why). ``certificate``: the bundle document; ``certificates``:
-    the documents inside it. ``report`` is the bundle (or ``None``).
+    could be made (``reason`` says why; ``refuted`` marks the False case). ``certificate``: the
+    bundle document; ``certificates``: the documents inside it. ``report`` is the bundle (or
+    ``None``).
     """
 
     reason: str = ""
+    refuted: bool = False
 
     command: ClassVar[str] = "certify"
 
     @property
     def verdict(self) -> bool | None:
-        """True the property holds, False it does not, None inconclusive."""
+        """True certified, False the property is decided false, None no certificate."""
         if self.report is not None:
             return True
-        return False if self.reason.startswith(_FAILS) else None
+        return False if self.refuted else None
 
     @property
     def certificate(self) -> dict[str, Any] | None:
@@ -646,7 +648,6 @@ class DesignResult(Result):
 
 _VERDICT_WORD = {True: "HOLDS", False: "FAILS", None: "INCONCLUSIVE"}
 _COLOURS = {True: "#1a7f37", False: "#cf222e", None: "#9a6700"}
-_FAILS = "the property fails: "
 _NOT_HOLDING = ("fails", "inconclusive")
 _OPEN_ROWS = 12  # longer tables start collapsed
 
@@ -1374,7 +1375,7 @@ def certify(result: Any, *, seed: int = 0) -> Certificate:
     try:
         return Certificate(certificate_bundle(case, seed=seed), case, data)
     except PropertyFails as error:
-        return Certificate(None, case, data, reason=f"{_FAILS}{error}")
+        return Certificate(None, case, data, reason=f"the property fails: {error}", refuted=True)
     except InconclusiveError as error:
         return Certificate(None, case, data, reason=str(error))
 
