@@ -189,7 +189,8 @@ class Result:
 
             from theory.core.atomic_output import write_file
 
-            write_file(path, yaml.safe_dump(data, sort_keys=False, allow_unicode=True))
+            flow = {"sort_keys": False, "allow_unicode": True, "default_flow_style": None}
+            write_file(path, yaml.safe_dump(data, **flow))  # a row of numbers on one line
         return data
 
     def summary(self) -> str:
@@ -684,7 +685,7 @@ def _cell(value: Any) -> str:
 def _html_table(columns: Sequence[str], rows: list[Sequence[Any]]) -> str:
     if not rows:
         return ""
-    head = "".join(f"<th>{html.escape(str(c))}</th>" for c in columns)
+    head = "".join(f"<th>{html.escape(str(c).replace('_', ' '))}</th>" for c in columns)
     body = "".join(
         "<tr>" + "".join(f"<td>{html.escape(_cell(v))}</td>" for v in row) + "</tr>" for row in rows
     )
