@@ -965,6 +965,8 @@ def topology(
             T=T != 1.0,
             comm_range=comm_range is not None,
             directed=directed is not None,
+            name=name != "network",
+            source=source != "",
         )
         case, data = _resolve(agents, tolerances)
     else:
@@ -1085,6 +1087,8 @@ def dkf(
             R=R is not None,
             L=L is not None,
             order=order != "consensus-then-filter",
+            name=name != "dkf",
+            source=source != "",
         )
         case, data = _resolve(A, tolerances)
     else:
@@ -1198,6 +1202,7 @@ def iss(
         block = _lists(dict(config or fields))
         case, data = _resolve(_case_mapping(name, "", "pursuit", block, tolerances))
     else:
+        _refuse("iss", name=name != "pursuit")
         case, data = _resolve(config, tolerances)
     return IssResult(iss_report(case), case, data)
 

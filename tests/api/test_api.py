@@ -233,6 +233,8 @@ def test_a_case_excludes_plain_objects_and_unknown_keywords_raise() -> None:
         trackcert.iss(k_gama=3)
     with pytest.raises(TypeError, match="config or fields"):
         trackcert.iss("pursuit-table1-n1", k_gamma=3)
+    with pytest.raises(TypeError, match="name"):  # the case has its own
+        trackcert.iss("pursuit-table1-n1", name="mine")
     with pytest.raises(ValueError, match="node 4"):
         trackcert.topology(FIG43_D, TARGET, nx.path_graph(8))
     with pytest.raises(ValueError, match="self-loop"):
