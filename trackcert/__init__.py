@@ -256,7 +256,7 @@ class TopologyResult(Result):
 
     @property
     def margin(self) -> float:
-        """Distance of the deciding quantity from its threshold (None: no margin)."""
+        """The least factor by which a deciding singular value clears ``rank_tol · σ_max``."""
         return min(a.margin for step in self.report.result.steps for a in step.agents)
 
     @property
@@ -317,7 +317,7 @@ class DkfResult(Result):
 
     @property
     def margin(self) -> float | None:
-        """Distance of the deciding quantity from its threshold (None: no margin)."""
+        """The rounded witness's margin (S-detectable) or the certificate's ε (not)."""
         decision = self.report.analysis.decision
         if decision.verdict is None:
             return None
@@ -325,7 +325,7 @@ class DkfResult(Result):
 
     @property
     def certificates(self) -> tuple[dict[str, Any], ...]:
-        """Certificate documents the analysis produced."""
+        """The exact certificate that decided S-detectability (either way)."""
         document = self.report.analysis.decision.certificate
         return () if document is None else (document,)
 
@@ -393,7 +393,7 @@ class IssResult(Result):
 
     @property
     def margin(self) -> float | None:
-        """Distance of the deciding quantity from its threshold (None: no margin)."""
+        """The least margin among the conditions that have one."""
         margins = [c["margin"] for c in self.conditions if c["margin"] is not None]
         return min(margins, default=None)
 
@@ -513,22 +513,22 @@ class Certificate(Result):
 
     @property
     def certificate(self) -> dict[str, Any] | None:
-        """The document :func:`check` takes (None: none produced)."""
+        """The bundle document (what ``trackcert certify`` writes), or None."""
         return self.report
 
     @property
     def certificates(self) -> tuple[dict[str, Any], ...]:
-        """Certificate documents the analysis produced."""
+        """The certificates inside the bundle."""
         return () if self.report is None else tuple(self.report["certificates"])
 
     @property
     def evidence(self) -> dict[str, Any]:
-        """The numbers behind the verdict (the JSON record without its header)."""
+        """Kind and statement of each certificate, and why there are none."""
         return {"certificates": [_about(c) for c in self.certificates], "reason": self.reason}
 
     @property
     def tolerances(self) -> dict[str, Any]:
-        """The named tolerances used."""
+        """None: a certificate is checked exactly."""
         return {}
 
     def summary(self) -> str:
@@ -588,7 +588,7 @@ class CheckResult(Result):
 
     @property
     def verdict(self) -> bool:
-        """True the property holds, False it does not, None inconclusive."""
+        """Whether every check of the certificate holds."""
         return self.report.valid
 
     @property
@@ -626,22 +626,22 @@ class DesignResult(Result):
 
     @property
     def verdict(self) -> bool | None:
-        """True the property holds, False it does not, None inconclusive."""
+        """The answer's own verdict (True when it has none: answered)."""
         return getattr(self.report, "verdict", True)
 
     @property
     def tolerances(self) -> dict[str, Any]:
-        """The named tolerances used."""
+        """The answer's tolerances."""
         return dict(getattr(self.report, "tolerances", None) or {})
 
     @property
     def certificates(self) -> tuple[dict[str, Any], ...]:
-        """Certificate documents the analysis produced."""
+        """The answer's certificates."""
         return tuple(getattr(self.report, "certificates", None) or ())
 
     @property
     def exit_code(self) -> int:
-        """The exit code of the matching command (0 holds, 1 fails, 3 inconclusive)."""
+        """The design command's exit code for the answer."""
         from theory.core.verdicts import exit_code
 
         return exit_code(self.verdict)
@@ -717,11 +717,12 @@ def _resolve(source: Any, tolerances: Mapping[str, Any] | None = None) -> tuple[
     from theory.kinds import parse_case
 
     extra = {k: v for k, v in (tolerances or {}).items() if v is not None}
+    file = "<data>"
     if isinstance(source, Result):
         if source.case is None:
             raise TypeError(f"a {type(source).__name__} has no case to analyse")
+        file = source.case.file  # messages keep naming the file the case came from
         source = source.case_data if source.case_data is not None else source.case
-    file = "<data>"
     if isinstance(source, Case):
         if not extra:
             return source, None
