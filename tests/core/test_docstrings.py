@@ -17,6 +17,7 @@ import re
 from pathlib import Path
 
 import pytest
+from docstring_sections import documented_parameters, parameters_section
 
 import theory
 
@@ -41,28 +42,9 @@ def public_callables():
                 yield f"{module_name}.{name}", obj
 
 
-def parameters_section(doc: str) -> str | None:
-    match = re.search(
-        r"\n\s*Parameters\n\s*-+\n(.*?)(?:\n\s*\n\s*[A-Z][a-z]+\n\s*-+\n|\Z)", doc, re.S
-    )
-    return match.group(1) if match else None
-
-
-def documented_parameters(doc: str) -> set[str] | None:
-    section = parameters_section(doc)
-    if section is None:
-        return None
-    lines = [line for line in section.splitlines() if line.strip()]
-    indent = min(len(line) - len(line.lstrip()) for line in lines) if lines else 0
-    names = set()
-    for line in lines:
-        if len(line) - len(line.lstrip()) == indent:
-            head = line.strip().split(":")[0]
-            names.update(part.strip().lstrip("*") for part in head.split(","))
-    return {n for n in names if n}
-
-
 CALLABLES = sorted(public_callables(), key=lambda item: item[0])
+
+
 def _own_parameters(function) -> list[inspect.Parameter]:
     signature = inspect.signature(function)
     return [p for p in signature.parameters.values() if p.name not in SKIP_PARAMS]

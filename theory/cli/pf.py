@@ -28,8 +28,6 @@ from theory.cli.common import (
     workers_option,
 )
 from theory.core.case_file import Case
-from theory.core.errors import CaseError
-from theory.core.validation import check_count
 from theory.core.verdicts import command_verdict, exit_code
 from theory.kinds import load_case
 
@@ -71,18 +69,13 @@ def run_pf_case(
     for the case's own; ``out``: folder for ``pf.json`` and figures) and return the
     expectations' exit code."""
     from theory.core.parallel import engine
-    from theory.particle.case import check_pf_work
+    from theory.particle.case import check_pf_runs
     from theory.particle.report import MARKER, pf_report
 
     if out is not None:
         check_folder_output(out, "-o/--out", MARKER)
     if runs is not None:
-        check_count("runs", runs, "--runs", file=COMMAND_LINE)
-        spec = case.spec
-        try:
-            check_pf_work(spec.config, len(spec.network.filters), spec.steps, runs, "--runs")
-        except CaseError as error:
-            raise error.in_file(COMMAND_LINE) from None
+        check_pf_runs(case, runs, "--runs", file=COMMAND_LINE)
     total = runs or getattr(case.spec, "runs", 1)
     with (
         engine(workers, scheduler) as runner,

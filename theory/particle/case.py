@@ -43,7 +43,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from theory.core.case_file import KindSpec
+from theory.core.case_file import Case, KindSpec
 from theory.core.errors import CaseError
 from theory.core.network import adjacency_from_edges
 from theory.core.validation import (
@@ -72,8 +72,10 @@ __all__ = [
     "PfSpec",
     "ReceivedHeading",
     "check_pf_expect",
+    "check_pf_runs",
     "check_pf_work",
     "parse_pf",
+    "require_pf",
 ]
 
 
@@ -281,6 +283,26 @@ def check_pf_work(config: PfConfig, filters: int, steps: int, runs: int, field: 
     work = float(filters) * particles * rounds * (steps + 1) * runs
     what = f"{filters} filters × {particles:,} particles × {rounds} exchange rounds × steps × runs"
     check_estimate("work", work, field, what)
+
+
+def require_pf(case: Case) -> PfSpec:
+    """The spec of a ``kind: pf`` case; a :class:`CaseError` naming the kind otherwise."""
+    if case.kind != "pf":
+        raise CaseError(
+            "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
+        )
+    return case.spec
+
+
+def check_pf_runs(case: Case, runs: int, field: str, *, file: str = "<data>") -> None:
+    """Refuse ``runs`` Monte Carlo runs of a pf case past :mod:`theory.core.limits` (the count,
+    then :func:`check_pf_work`), naming ``field`` in ``file``; :func:`require_pf` first."""
+    spec = require_pf(case)
+    try:
+        check_count("runs", positive_int(runs, field), field)
+        check_pf_work(spec.config, len(spec.network.filters), spec.steps, runs, field)
+    except CaseError as error:
+        raise error.in_file(file) from None
 
 
 def _choice(block: Mapping[str, Any], key: str, default: E) -> E:

@@ -19,11 +19,11 @@ from typing import Any
 from theory.core.atomic_output import check_replaceable, replaced_folder
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, Context, RunCache
-from theory.core.errors import CaseError
 from theory.core.expectations import Expectation, evaluate, observations_from
 from theory.core.jsonable import plain
 from theory.core.parallel import TaskRunner
 from theory.core.verdicts import Verdict, expectations_verdict
+from theory.particle.case import require_pf
 from theory.particle.experiments import (
     MonteCarlo,
     monte_carlo,
@@ -97,10 +97,7 @@ def pf_report(
     write nothing; :class:`CaseError` if it holds files but no ``pf.json``,
     :class:`OutputError` if writing fails, leaving it as it was).
     """
-    if case.kind != "pf":
-        raise CaseError(
-            "kind", "pf (this command runs particle-filter cases)", case.kind, file=case.file
-        )
+    require_pf(case)
     if out is not None:
         check_replaceable(out, MARKER)
     spec = replace(

@@ -97,6 +97,7 @@ __all__ = [
     "parse_tdoa",
     "parse_tdoa_sim",
     "rank_tolerances",
+    "scene_simulation",
 ]
 
 
@@ -636,3 +637,32 @@ TDOA_SIM = KindSpec(
     expect_rules={"max_final_error": "at_most"},
 )
 """The ``tdoa-sim`` case kind."""
+
+
+def scene_simulation(spec: TdoaSpec) -> dict[str, Any]:
+    """The ``tdoa-sim`` block that runs a static 3-D ``tdoa`` scene as checked: the agents hold
+    their positions (``b: .inf``, the formation their own offsets from the centroid), the target
+    starts at rest where the scene puts it, the network and weights are the scene's (seed 000
+    §4.2.2, §4.4); a :class:`CaseError` for a moving, 2-D or directed scene."""
+    if spec.steps > 1:
+        raise CaseError("tdoa.agents", "a static scene to simulate", f"{spec.steps} time steps")
+    if spec.dim != 3:
+        raise CaseError("tdoa.agents", "3-D positions (tdoa-sim is 3-D)", f"{spec.dim}-D points")
+    if spec.directed:
+        raise CaseError("tdoa.directed", "false (tdoa-sim runs undirected networks)", True)
+    agents = spec.agents[0]
+    block: dict[str, Any] = {
+        "agents": agents.tolist(),
+        "target": spec.target[0].tolist(),
+        "T": spec.T,
+        "b": math.inf,
+        "formation": (agents - agents.mean(axis=0)).tolist(),
+    }
+    explicit = spec.weights_rule is WeightRule.EXPLICIT
+    if spec.comm_range is not None and not explicit:
+        block["comm_range"] = spec.comm_range
+    else:
+        pairs = np.argwhere(np.triu(spec.hears[0], 1))
+        block["edges"] = (pairs + 1).tolist()
+    block["weights"] = spec.weights[0].tolist() if explicit else spec.weights_rule.value
+    return block
