@@ -1259,8 +1259,7 @@ def simulate(
     """
     import tempfile
 
-    from theory.core.validation import check_count
-    from theory.core.validation import positive_int
+    from theory.core.validation import check_count, positive_int
     from theory.kinds import simulator_for
     from theory.sim.simulate import simulate_case
 
@@ -1375,8 +1374,8 @@ def certify(result: Any, *, seed: int = 0) -> Certificate:
         ``verdict`` False (no certificate) when the property is decided false, None when no
         certificate could be made; ``reason`` says which.
     """
-    from theory.registry import certificate_bundle
     from theory.core.errors import InconclusiveError, PropertyFails
+    from theory.registry import certificate_bundle
 
     case, data = _resolve(result)
     try:
