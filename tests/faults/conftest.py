@@ -2,11 +2,21 @@
 
 from __future__ import annotations
 
+import signal
 from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 from fault_commands import Command, commands, restore, run, snapshot, write_events
+
+
+@pytest.fixture(autouse=True)
+def _sigint_raises():
+    """SIGINT raises KeyboardInterrupt as at a terminal, also when pytest runs as a background job
+    (which starts with SIGINT ignored, so Python installs no handler)."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
 
 
 @dataclass(frozen=True)

@@ -683,7 +683,7 @@ def draw_gain_map(regions: GainRegions, path: Path) -> Path:
     from matplotlib.colors import LogNorm
     from matplotlib.patches import Patch, Rectangle
 
-    from theory.sim.figures import new_figure, save_figure
+    from theory.sim.outputs import new_figure, save_figure
 
     axes = regions.axes
     if len(axes) > 2:
