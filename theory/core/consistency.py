@@ -72,16 +72,28 @@ def nees(errors: np.ndarray, covariances: np.ndarray) -> np.ndarray:
     Returns
     -------
     ndarray, shape (...)
-        ``χ²_n`` distributed for a consistent filter; NaN where an error is NaN (a stopped run).
+        ``χ²_n`` distributed for a consistent filter; NaN where an error is NaN (a stopped run);
+        ∞ where ``P`` is singular to working precision (a filter claiming no uncertainty).
 
     References
     ----------
     Bar-Shalom, Li, Kirubarajan (2001), eq. (5.4.1-5).
     """
     e = np.asarray(errors, dtype=float)
-    solved = np.linalg.solve(np.asarray(covariances, dtype=float), np.nan_to_num(e)[..., None])
-    value = np.einsum("...i,...i->...", e, solved[..., 0])
+    P = np.asarray(covariances, dtype=float)
+    singular = _singular(P)
+    safe = np.where(singular[..., None, None], np.eye(P.shape[-1]), P)
+    solved = np.linalg.solve(safe, np.nan_to_num(e)[..., None])
+    value = np.where(singular, np.inf, np.einsum("...i,...i->...", e, solved[..., 0]))
     return np.where(np.isnan(e).any(axis=-1), np.nan, value)
+
+
+def _singular(P: np.ndarray) -> np.ndarray:
+    """Where ``P`` is singular to working precision: ``σ_min ≤ n·eps·σ_max`` (a collapsed cloud)."""
+    if P.shape[-1] == 0:
+        return np.zeros(P.shape[:-2], dtype=bool)
+    s = np.linalg.svd(np.nan_to_num(P), compute_uv=False)
+    return s[..., -1] <= P.shape[-1] * np.finfo(float).eps * s[..., 0]
 
 
 def nis(innovations: np.ndarray, covariances: np.ndarray) -> np.ndarray:
