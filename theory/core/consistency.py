@@ -40,6 +40,7 @@ __all__ = [
     "agent_columns",
     "chi2_band",
     "consistency_test",
+    "describe",
     "filter_metrics",
     "gospa",
     "nees",
@@ -486,3 +487,48 @@ def padded(innovation: np.ndarray, covariance: np.ndarray, size: int) -> tuple:
     full = np.eye(size)
     full[:m, :m] = covariance
     return np.concatenate([innovation, np.zeros(size - m)]), full
+
+
+def describe(metrics: dict[str, Any]) -> list[str]:
+    """One line per agent and statistic of a :func:`filter_metrics` record, and one for OSPA:
+    the value, its band and probability, the verdict and the safe side (for printed tables).
+
+    Parameters
+    ----------
+    metrics : dict
+        A ``metrics`` record (from a simulation summary, ``pf.json`` or an API result).
+
+    Returns
+    -------
+    list of str
+    """
+    lines = [
+        "NEES/NIS against two-sided χ² bands: above the band the covariance understates the error"
+    ]
+    for name in ("nees", "nis"):
+        for agent, test in enumerate(metrics[name], start=1):
+            band = test["band"]
+            lines.append(
+                f"agent {agent} {test['statistic']} {_number(test['value'])} vs "
+                f"{band['probability']:.0%} band [{_number(band['lower'])}, "
+                f"{_number(band['upper'])}] ({band['dof']} dof): {test['verdict']}"
+                f"{_SIDES.get(test['verdict'], '')}"
+            )
+    positions = metrics["positions"]
+    if positions is not None:
+        tol = positions["tolerance"]
+        lines.append(
+            f"mean OSPA {positions['mean_ospa']:.3g} m, GOSPA {positions['mean_gospa']:.3g} "
+            f"(c = {tol['ospa_cutoff']:g} m, p = {tol['ospa_order']:g}, "
+            f"α = {tol['gospa_alpha']:g}); smaller is better"
+        )
+    return lines
+
+
+_SIDES = {"optimistic": " (unsafe side)", "pessimistic": " (safe side)"}
+"""What a verdict outside the band means for the user."""
+
+
+def _number(value: Any) -> str:
+    """A float to 4 significant digits (JSON records hold ``"inf"``/``"nan"`` as text)."""
+    return f"{value:.4g}" if isinstance(value, float | int) else str(value)
