@@ -45,6 +45,7 @@ from theory.consensus.riccati import coupled_riccati_step, error_noise_covarianc
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, status_of
 from theory.core.consistency import agent_columns, filter_metrics, nees, nis, padded
+from theory.core.consistency import evidence as metrics_evidence
 from theory.core.tolerances import CONVERGED_TOL, GROWTH
 from theory.core.verdicts import all_hold
 from theory.sim.outputs import save_figure, write_agents_csv, write_runs_npz
@@ -280,7 +281,10 @@ def check_ch5_examples(case: Case | None, ctx: Context) -> list[ClaimResult]:
                 bounded = all(abs(g - 1) <= CONVERGED_TOL for g in growth)
                 unbounded = all(g > GROWTH for g in growth)
                 verdicts.append(_growth_verdict(bounded, unbounded, weights == "W_g"))
-                evidence[f"{name} {weights} {order}"] = {"growth_K/2_to_K": growth}
+                evidence[f"{name} {weights} {order}"] = {
+                    "growth_K/2_to_K": growth,
+                    "filter_metrics": metrics_evidence(consensus_kf_metrics(ex["C"], [run])),
+                }
                 curves[f"{name} {weights} {order}"] = run.cov_norms[:, ex["unstable_agents"]]
     folder = ctx.figure_folder()
     return [

@@ -41,6 +41,7 @@ __all__ = [
     "chi2_band",
     "consistency_test",
     "describe",
+    "evidence",
     "filter_metrics",
     "gospa",
     "nees",
@@ -532,3 +533,33 @@ _SIDES = {"optimistic": " (unsafe side)", "pessimistic": " (safe side)"}
 def _number(value: Any) -> str:
     """A float to 4 significant digits (JSON records hold ``"inf"``/``"nan"`` as text)."""
     return f"{value:.4g}" if isinstance(value, float | int) else str(value)
+
+
+def evidence(metrics: dict[str, Any]) -> dict[str, Any]:
+    """A :func:`filter_metrics` record as a claim's evidence: per statistic the values, bands
+    and verdicts by agent, the band probability and the safe side; OSPA/GOSPA means.
+
+    Parameters
+    ----------
+    metrics : dict
+        A ``metrics`` record.
+
+    Returns
+    -------
+    dict
+    """
+    out: dict[str, Any] = {}
+    for name in ("nees", "nis"):
+        tests = metrics[name]
+        out[name.upper()] = {
+            "value": [t["value"] for t in tests],
+            "band": [[t["band"]["lower"], t["band"]["upper"]] for t in tests],
+            "dof": [t["band"]["dof"] for t in tests],
+            "verdict": [t["verdict"] for t in tests],
+            "probability": metrics["tolerance"]["consistency_probability"],
+            "safe_side": "below the upper edge",
+        }
+    positions = metrics["positions"]
+    if positions is not None:
+        out["OSPA"] = {k: positions[k] for k in ("mean_ospa", "mean_gospa", "tolerance")}
+    return out

@@ -35,7 +35,7 @@ import numpy as np
 
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, Method, Status, status_of
-from theory.core.consistency import filter_metrics, nees, nis
+from theory.core.consistency import evidence, filter_metrics, nees, nis
 from theory.core.parallel import TaskRunner, engine
 from theory.core.tolerances import PF_TOLERANCES
 from theory.particle.case import PARAM_NAMES, PF, Model, PfConfig, PfSpec
@@ -406,6 +406,7 @@ def check_convergence(case: Case, ctx: Context) -> list[ClaimResult]:
                 "nodes": node_summary(mc, case.spec),
                 "runs": int(mc.errors.shape[0]),
                 "seed": mc.seed,
+                "filter_metrics": evidence(pf_metrics(mc, case.spec)),
             },
             margin=convergence_margin(mc.tail_errors, filters, wanted, **bands),
             tolerance=bands,

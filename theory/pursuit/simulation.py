@@ -32,6 +32,7 @@ import numpy as np
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, NotApplicable
 from theory.core.consistency import agent_columns
+from theory.core.consistency import evidence as metrics_evidence
 from theory.core.errors import CaseError, PropertyFails
 from theory.core.expectations import Observed
 from theory.core.tolerances import ISS_BOUND_RTOL, RUNAWAY_FACTOR
@@ -564,6 +565,8 @@ def check_simulation_agrees(case: Case, ctx: Context) -> list[ClaimResult]:
         figures = (_figure(run.times, iss_margin_along(case.spec, run), folder),)
     evidence = {k: v for k, v in verdict.items() if k not in ("status", "message")}
     evidence |= {"seed": SIMULATION_SEED, "records": len(run.times), "steps": run.steps}
+    arguments = dec_arguments(case.spec, len(run.times) - 1)
+    evidence["filter_metrics"] = metrics_evidence(dekf_metrics([run], arguments))
     evidence["expectations"] = {"simulation_bounded": verdict["simulation_bounded"]}
     return [
         ClaimResult(

@@ -25,6 +25,7 @@ import numpy as np
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, Method, status_of
 from theory.core.consistency import agent_columns, filter_metrics, nees, nis
+from theory.core.consistency import evidence as metrics_evidence
 from theory.core.expectations import Observed
 from theory.core.tolerances import ERROR_BOUND_SIGMAS
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
@@ -297,6 +298,7 @@ def b_tradeoff_claim(case: Case, ctx: Context) -> list[ClaimResult]:
         "mean_cov_norm": norms,
         "seeds": list(SWEEP_SEEDS),
         "steps": steps,
+        "filter_metrics": metrics_evidence(tdoa_filter_metrics(sweep)),
     }
     return [
         ClaimResult(
