@@ -56,6 +56,21 @@ def test_nees_is_the_quadratic_form_and_nan_stays_nan() -> None:
     assert nis(nu, S) == pytest.approx(1.0)
 
 
+@settings(max_examples=50, deadline=None)
+@given(st.integers(1, 6), st.integers(0, 2**32 - 1), st.floats(0.01, 100))
+def test_nees_is_the_whitened_squared_norm(n: int, seed: int, scale: float) -> None:
+    """``eᵀP⁻¹e = ‖L⁻¹e‖²`` for ``P = LLᵀ`` (random, bounded conditioning), and scaling ``P`` by
+    ``c`` divides it by ``c``; a singular ``P`` gives ∞ (a filter claiming no uncertainty)."""
+    rng = np.random.default_rng(seed)
+    L = np.tril(rng.uniform(-1, 1, (n, n)), -1) + np.diag(rng.uniform(0.5, 2, n))
+    P, e = L @ L.T, rng.normal(size=n)
+    whitened = np.linalg.solve(L, e)
+    assert nees(e, P) == pytest.approx(whitened @ whitened, rel=1e-9)
+    assert nees(e, scale * P) == pytest.approx(nees(e, P) / scale, rel=1e-9)
+    flat = np.outer(L[:, 0], L[:, 0])
+    assert (n == 1) or nees(e, flat) == np.inf
+
+
 def test_nothing_to_test_is_inconclusive() -> None:
     test = consistency_test("NIS", np.full((2, 3), np.nan), 0)
     assert test.verdict is Consistency.INCONCLUSIVE
