@@ -419,16 +419,23 @@ class SimulationResult(Result):
     """A closed-loop Monte Carlo simulation (``trackcert simulate``).
 
     ``verdict``: the case's expectations about the runs (True when it states none).
-    ``agents``: one summary row per agent. ``files``: the data and figures written;
-    ``figures``: the PNG files among them. ``report`` is ``theory.sim.simulate.Simulation``.
+    ``agents``: one summary row per agent. ``metrics``: the filter's NEES/NIS against their χ²
+    bands and OSPA/GOSPA. ``files``: the data and figures written; ``figures``: the PNG files
+    among them. ``report`` is ``theory.sim.simulate.Simulation``.
     """
 
     command: ClassVar[str] = "simulate"
 
     @property
     def agents(self) -> list[dict[str, Any]]:
-        """Per-agent summary rows (``id``, final and mean localization error, …)."""
+        """Per-agent summary rows (``id``, final and mean localization error, ANEES, …)."""
         return self.to_json()["agents"]
+
+    @property
+    def metrics(self) -> dict[str, Any]:
+        """NEES and NIS tests per agent (value, band, margin, verdict, the safe side) and
+        OSPA/GOSPA where positions are estimated (docs/simulation.md, *Filter metrics*)."""
+        return self.to_json()["metrics"]
 
     @property
     def files(self) -> list[Path]:
@@ -458,16 +465,22 @@ class PfResult(Result):
     """Monte Carlo runs of seed 002's distributed TDOA particle filter (``trackcert pf``).
 
     ``verdict``: the case's expectations (True when it states none), judged from the claims'
-    observations. ``agents``: per-node error summary; ``figures``: the PNG files written.
-    ``report`` is ``theory.particle.report.PfReport``.
+    observations. ``agents``: per-node error summary; ``metrics``: NEES of the weighted particle
+    cloud and NIS against their χ² bands, OSPA/GOSPA of the estimates; ``figures``: the PNG
+    files written. ``report`` is ``theory.particle.report.PfReport``.
     """
 
     command: ClassVar[str] = "pf"
 
     @property
     def agents(self) -> list[dict[str, Any]]:
-        """Per-node error summary rows (``id``, mean, final and tail errors, …)."""
+        """Per-node error summary rows (``id``, mean, final and tail errors, ANEES, …)."""
         return self.to_json()["agents"]
+
+    @property
+    def metrics(self) -> dict[str, Any]:
+        """NEES and NIS tests per filtering node and OSPA/GOSPA (docs/particle-filter.md)."""
+        return self.to_json()["metrics"]
 
     @property
     def figures(self) -> list[Path]:

@@ -98,6 +98,8 @@ def run_pf_case(
 
 
 def _print(report: dict) -> None:
+    from theory.core.consistency import describe
+
     table = Table(
         title=f"{report['case']}: {report['runs']} runs, seed {report['seed']}, "
         f"model {report['model']}, m = {report['share']}"
@@ -121,6 +123,8 @@ def _print(report: dict) -> None:
             f"{a['tail_error_q10']:.2f} / {a['tail_error_median']:.2f} / {a['tail_error_q90']:.2f}",
         )
     console.print(table)
+    for line in describe(report["metrics"]):
+        console.print(line, markup=False)
     for claim in report["claims"]:
         console.print(f"{claim['id']}: {claim['status']} — {claim['message']}", markup=False)
     for e in report["expectations"]:

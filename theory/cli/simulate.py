@@ -117,6 +117,8 @@ def check_options(runs: int | None, steps: int | None) -> None:
 def _print_table(report: dict) -> None:
     from rich.table import Table
 
+    from theory.core.consistency import describe
+
     table = Table(title=f"{report['case']} ({report['runs']} run(s), seed {report['seed']})")
     columns = [key for key in report["agents"][0] if key != "id"]
     table.add_column("agent", justify="right")
@@ -125,6 +127,8 @@ def _print_table(report: dict) -> None:
     for agent in report["agents"]:
         table.add_row(str(agent["id"]), *(_cell(agent[c]) for c in columns))
     console.print(table)
+    for line in describe(report["metrics"]):
+        console.print(line, markup=False)
     console.print(f"files in {Path(report['files'][0]).parent}")
 
 

@@ -20,7 +20,9 @@ and gains come from the one coupled Riccati step of :mod:`theory.consensus.ricca
 ``N(0, P_i(0))`` with the run's generator. The summary reports per agent the final and mean
 estimation error ``‖x̂_i − x‖`` (``final_localization_error`` / ``mean_localization_error``) and
 ``cov_growth = ‖P_i(K)‖/‖P_i(K/2)‖`` with the verdict ``bounded`` (``|growth − 1| ≤
-CONVERGED_TOL``), ``unbounded`` (``growth > GROWTH``) or ``undecided``.
+CONVERGED_TOL``), ``unbounded`` (``growth > GROWTH``) or ``undecided``; and the NEES/NIS tests
+of :mod:`theory.core.consistency` (``metrics``; ``anees``, ``mean_nis`` and their verdicts in the
+agents' rows).
 """
 
 from __future__ import annotations
@@ -38,10 +40,12 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from theory.consensus.case import DkfSpec, Order, ch5_examples
-from theory.consensus.operators import B2_matrix, B_matrix, closed_loop
+from theory.consensus.operators import B2_matrix, B_matrix, E_map, closed_loop
 from theory.consensus.riccati import coupled_riccati_step, error_noise_covariance
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, status_of
+from theory.core.consistency import agent_columns, filter_metrics, nees, nis, padded
+from theory.core.consistency import evidence as metrics_evidence
 from theory.core.tolerances import CONVERGED_TOL, GROWTH
 from theory.core.verdicts import all_hold
 from theory.sim.outputs import save_figure, write_agents_csv, write_runs_npz
@@ -51,6 +55,7 @@ __all__ = [
     "DEFAULT_STEPS",
     "ConsensusKfRun",
     "claims",
+    "consensus_kf_metrics",
     "dkf_simulator",
     "run_dkf_case",
     "simulate_consensus_kf",
@@ -66,10 +71,15 @@ P0_SCALE = 10.0
 
 @dataclass(frozen=True, eq=False)
 class ConsensusKfRun:
-    """One run: ``ε_i(k) = x(k) − x̂_i(k)``, shape (K+1, N, n), and ``P_i(k)``, (K+1, N, n, n)."""
+    """One run: ``ε_i(k) = x(k) − x̂_i(k)``, shape (K+1, N, n), and ``P_i(k)``, (K+1, N, n, n);
+    the innovations ``ν_i(k) = y_i − C_iξ_i`` (K, N, m) and their ``S_i = C_iΠ_iC_i' + R_i``
+    (K, N, m, m), zero- and identity-padded to ``m = max_i rank rows of C_i``
+    (:func:`theory.core.consistency.padded`)."""
 
     errors: np.ndarray
     covariances: np.ndarray
+    innovations: np.ndarray
+    innovation_covariances: np.ndarray
 
     @property
     def cov_norms(self) -> np.ndarray:
@@ -96,21 +106,26 @@ def simulate_consensus_kf(
     (5.1)–(5.9), App. C.3)."""
     consensus_first = Order(order) is Order.CONSENSUS_THEN_FILTER
     n, agents = A.shape[0], W.shape[0]
+    m = max(Ci.shape[0] for Ci in C)
     errors = np.empty((steps + 1, agents, n))
     covariances = np.empty((steps + 1, agents, n, n))
+    innovations = np.empty((steps, agents, m))
+    innovation_covariances = np.empty((steps, agents, m, m))
     errors[0], covariances[0] = np.asarray(x0) - np.asarray(estimate0), P0
     for k in range(steps):
         omega = rng.multivariate_normal(np.zeros(n), Q)
         gains, covariances[k + 1] = coupled_riccati_step(A, C, W, Q, R, covariances[k], order=order)
         es = W @ errors[k] if consensus_first else errors[k]
-        es = np.array(
-            [
-                (A - L @ Ci) @ e + omega - L @ _measurement_noise(rng, Ri)
-                for e, L, Ci, Ri in zip(es, gains, C, R, strict=True)
-            ]
-        )
-        errors[k + 1] = es if consensus_first else W @ es
-    return ConsensusKfRun(errors, covariances)
+        base = E_map(W, covariances[k]) if consensus_first else covariances[k]
+        updated = []
+        for i, (e, L, Ci, Ri) in enumerate(zip(es, gains, C, R, strict=True)):
+            v = _measurement_noise(rng, Ri)
+            innovations[k, i], innovation_covariances[k, i] = padded(
+                Ci @ e + v, Ci @ base[i] @ Ci.T + Ri, m
+            )
+            updated.append((A - L @ Ci) @ e + omega - L @ v)
+        errors[k + 1] = np.array(updated) if consensus_first else W @ np.array(updated)
+    return ConsensusKfRun(errors, covariances, innovations, innovation_covariances)
 
 
 def _measurement_noise(rng: np.random.Generator, R_i: np.ndarray) -> np.ndarray:
@@ -199,12 +214,27 @@ def summarize_dkf(spec: DkfSpec, runs: Sequence[ConsensusKfRun]) -> dict[str, An
         spec.A, spec.C, spec.W, spec.Q, spec.R, P0_SCALE * np.eye(spec.A.shape[0]),
         norms.shape[0] - 1, order=spec.order,
     )  # fmt: skip
+    metrics = consensus_kf_metrics(spec.C, runs)
+    agents = [{**row, **agent_columns(metrics, i)} for i, row in enumerate(agents)]
     return {
         "agents": agents,
+        "metrics": metrics,
         "true_error_trace": {"half": float(traces[half]), "final": float(traces[-1])},
         "tolerances": {"converged_tol": CONVERGED_TOL, "growth": GROWTH},
         "P0": f"{P0_SCALE:g} I",
     }
+
+
+def consensus_kf_metrics(C: Sequence[np.ndarray], runs: Sequence[ConsensusKfRun]) -> dict:
+    """NEES of ``ε_i(k)`` against ``P_i(k)`` and NIS of ``ν_i`` against ``S_i``, per agent, over
+    runs (:func:`theory.core.consistency.filter_metrics`; no position is estimated)."""
+    n = runs[0].errors.shape[-1]
+    errors = nees(np.stack([r.errors for r in runs]), np.stack([r.covariances for r in runs]))
+    innovations = nis(
+        np.stack([r.innovations for r in runs]),
+        np.stack([r.innovation_covariances for r in runs]),
+    )
+    return filter_metrics(errors, n, innovations, np.array([Ci.shape[0] for Ci in C]))
 
 
 def dkf_simulator(case: Case, steps: int | None = None) -> Simulator:
@@ -251,7 +281,10 @@ def check_ch5_examples(case: Case | None, ctx: Context) -> list[ClaimResult]:
                 bounded = all(abs(g - 1) <= CONVERGED_TOL for g in growth)
                 unbounded = all(g > GROWTH for g in growth)
                 verdicts.append(_growth_verdict(bounded, unbounded, weights == "W_g"))
-                evidence[f"{name} {weights} {order}"] = {"growth_K/2_to_K": growth}
+                evidence[f"{name} {weights} {order}"] = {
+                    "growth_K/2_to_K": growth,
+                    "filter_metrics": metrics_evidence(consensus_kf_metrics(ex["C"], [run])),
+                }
                 curves[f"{name} {weights} {order}"] = run.cov_norms[:, ex["unstable_agents"]]
     folder = ctx.figure_folder()
     return [

@@ -32,11 +32,14 @@ __all__ = [
     "CERT_TOL",
     "CLUSTER_TOL",
     "COINCIDENCE_TOL",
+    "CONSISTENCY_PROBABILITY",
+    "CONSISTENCY_RTOL",
     "CONVERGED_TOL",
     "CONV_TOL",
     "EIGEN_TOL",
     "ERROR_BOUND_SIGMAS",
     "EXACT_DIM",
+    "GOSPA_ALPHA",
     "GROWTH",
     "INCONCLUSIVE_FACTOR",
     "INEQUALITY_RTOL",
@@ -54,6 +57,8 @@ __all__ = [
     "MIN_CONDITIONING",
     "MIRROR_TOL",
     "MODE_ZERO_TOL",
+    "OSPA_CUTOFF",
+    "OSPA_ORDER",
     "PERIOD_TOL",
     "PERRON_BITS",
     "PF_TOLERANCES",
@@ -521,6 +526,45 @@ PF_TOLERANCES = {
     ),
 }
 """The ``kind: pf`` tolerances (their case keys), by name."""
+
+# ------------------------------ filter consistency and OSPA (theory.core.consistency)
+CONSISTENCY_PROBABILITY = _named(
+    "consistency_probability",
+    0.95,
+    "probability",
+    "the two-sided χ² acceptance band of NEES/ANEES and NIS holds the statistic of a consistent "
+    "filter with this probability ((1 − p)/2 in each tail)",
+    "Bar-Shalom, Li, Kirubarajan (2001) §5.4: the customary 95 % two-sided region",
+)
+CONSISTENCY_RTOL = _named(
+    "consistency_rtol",
+    0.05,
+    "widths of the χ² band",
+    "a NEES/NIS average within consistency_rtol band widths of either edge is inconclusive",
+    "the band is only as exact as the Gaussian, linear and independence assumptions behind it",
+)
+OSPA_CUTOFF = _named(
+    "ospa_cutoff",
+    10.0,
+    "metres",
+    "OSPA/GOSPA cutoff c: a position error counts as min(c, ‖e‖), a missing or extra estimate as c",
+    "diverge_tol of the particle filter: beyond 10 m an estimate has lost the target",
+)
+OSPA_ORDER = _named(
+    "ospa_order",
+    2.0,
+    "exponent p",
+    "OSPA/GOSPA order p (p = 2: root-mean-square localization)",
+    "Schuhmacher, Vo, Vo (2008) and García-Fernández, Svensson (2017) use p = 2 for tracking",
+)
+GOSPA_ALPHA = _named(
+    "gospa_alpha",
+    2.0,
+    "factor",
+    "GOSPA α: a missed or false estimate costs c^p/α (α = 2: the sum of localization, missed "
+    "and false target costs)",
+    "α = 2 is the only value with the assignment decomposition (García-Fernández, Svensson 2017)",
+)
 
 
 def defaults(*names: str) -> dict[str, float]:

@@ -35,6 +35,7 @@ import numpy as np
 
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, Method, Status, status_of
+from theory.core.consistency import evidence, filter_metrics, nees, nis
 from theory.core.parallel import TaskRunner, engine
 from theory.core.tolerances import PF_TOLERANCES
 from theory.particle.case import PARAM_NAMES, PF, Model, PfConfig, PfSpec
@@ -56,6 +57,7 @@ __all__ = [
     "monte_carlo",
     "node_summary",
     "one_run",
+    "pf_metrics",
     "plot_errors",
     "plot_learned_pdfs",
     "plot_particles",
@@ -89,7 +91,7 @@ class MonteCarlo:
     """``R`` runs of a scenario: ``errors (R, K+1, F)``, ``estimates (R, K+1, F, 2)``,
     ``paths (R, K+1, 2)``, the final fits ``(R, F, 4)`` of the learned model (NaN where a node
     never fitted; ``None`` for other models), run 0's particle snapshots, the base seed, the
-    model and ``m``."""
+    model and ``m``; the NEES of the weighted cloud and the NIS, each ``(R, K+1, F)``."""
 
     errors: np.ndarray
     estimates: np.ndarray
@@ -99,6 +101,8 @@ class MonteCarlo:
     seed: int
     model: Model
     share: int
+    nees: np.ndarray
+    nis: np.ndarray
 
     @property
     def tail_errors(self) -> np.ndarray:
@@ -134,7 +138,9 @@ def monte_carlo(
             records = serial.map(task, range(runs), progress=progress)
     else:
         records = runner.map(task, range(runs), progress=progress)
-    errors, estimates, paths, learned, snapshots = zip(*records, strict=True)
+    errors, estimates, paths, learned, snapshots, nees_values, nis_values = zip(
+        *records, strict=True
+    )
     return MonteCarlo(
         np.asarray(errors),
         np.asarray(estimates),
@@ -144,6 +150,8 @@ def monte_carlo(
         seed,
         model,
         config.share,
+        np.asarray(nees_values),
+        np.asarray(nis_values),
     )
 
 
@@ -154,11 +162,14 @@ def _run_record(
     seed: int,
     snapshot_steps: tuple[int, ...],
     r: int,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None, dict[int, np.ndarray]]:
-    """Run ``r`` as plain arrays (errors, estimates, path, learned fits, run 0's snapshots)."""
+) -> tuple:
+    """Run ``r`` as plain arrays (errors, estimates, path, learned fits, run 0's snapshots, the
+    cloud's NEES and the NIS of :func:`theory.particle.filter.predicted_measurements`)."""
     path, _, run = one_run(spec, config, model, [seed, r], snapshot_steps if r == 0 else ())
     learned = run.motion.params if model is Model.LEARNED else None
-    return run.errors, run.estimates, path, learned, run.snapshots
+    errors = nees(run.cloud_means - path[:, None], run.cloud_covariances)
+    innovations = nis(run.innovations, run.innovation_covariances)
+    return run.errors, run.estimates, path, learned, run.snapshots, errors, innovations
 
 
 def one_run(
@@ -231,6 +242,14 @@ def node_summary(mc: MonteCarlo, spec: PfSpec) -> list[dict[str, Any]]:
             }
         )
     return rows
+
+
+def pf_metrics(mc: MonteCarlo, spec: PfSpec) -> dict[str, Any]:
+    """NEES of the weighted cloud, NIS of the predicted measurements and OSPA/GOSPA of the
+    estimates ``χ_i`` (eq. (3.13)) per filtering node (:mod:`theory.core.consistency`)."""
+    dims = spec.network.measurement_mask.sum(axis=1)
+    positions = (mc.estimates, mc.paths)
+    return filter_metrics(mc.nees, 2, mc.nis, dims, positions)
 
 
 def convergence_verdicts(
@@ -387,6 +406,7 @@ def check_convergence(case: Case, ctx: Context) -> list[ClaimResult]:
                 "nodes": node_summary(mc, case.spec),
                 "runs": int(mc.errors.shape[0]),
                 "seed": mc.seed,
+                "filter_metrics": evidence(pf_metrics(mc, case.spec)),
             },
             margin=convergence_margin(mc.tail_errors, filters, wanted, **bands),
             tolerance=bands,

@@ -67,6 +67,7 @@ __all__ = [
     "PfState",
     "UniformMotion",
     "build_motion",
+    "cloud_moments",
     "consensus_exchange",
     "estimate",
     "initial_state",
@@ -76,6 +77,7 @@ __all__ = [
     "normalise_log_weights",
     "pf_step",
     "pf_update",
+    "predicted_measurements",
     "propagate",
     "run_filter",
     "simulate_measurements",
@@ -105,12 +107,19 @@ class PfState:
 @dataclass(frozen=True, eq=False)
 class PfRun:
     """One filter run: ``estimates (K+1, F, 2)``, errors ``E_i(k)`` ``(K+1, F)`` (eq. 3.20), the
-    weighted particles ``(F, P, 3)`` (x, y, w̄) at the snapshot steps, the final motion model."""
+    weighted particles ``(F, P, 3)`` (x, y, w̄) at the snapshot steps, the final motion model;
+    the weighted cloud's mean ``(K+1, F, 2)`` and covariance ``(K+1, F, 2, 2)`` after the
+    consensus step, and the innovations ``y − ŷ`` ``(K+1, F, N)`` with covariances
+    ``(K+1, F, N, N)`` of :func:`predicted_measurements` (zero/identity off the mask)."""
 
     estimates: np.ndarray
     errors: np.ndarray
     snapshots: dict[int, np.ndarray]
     motion: Motion
+    cloud_means: np.ndarray
+    cloud_covariances: np.ndarray
+    innovations: np.ndarray
+    innovation_covariances: np.ndarray
 
 
 def initial_state(
@@ -236,6 +245,29 @@ def estimate(state: PfState, fraction: float = 0.2) -> np.ndarray:
     return np.einsum("fq,fqd->fd", w, c) / w.sum(axis=1, keepdims=True)
 
 
+def cloud_moments(state: PfState) -> tuple[np.ndarray, np.ndarray]:
+    """Weighted mean ``(F, 2)`` and covariance ``(F, 2, 2)`` of every node's particle cloud (the
+    posterior the particles represent, seed 002 eq. (3.12))."""
+    mean = np.einsum("fp,fpd->fd", state.weights, state.positions)
+    spread = state.positions - mean[:, None]
+    return mean, np.einsum("fp,fpd,fpe->fde", state.weights, spread, spread)
+
+
+def predicted_measurements(
+    state: PfState, y: np.ndarray, network: PfNetwork, sigma: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Innovations ``y − ŷ`` ``(F, N)`` and their covariances ``(F, N, N)`` from the prior
+    particles: ``ŷ = Σ w h(x)``, ``S = Σ w (h − ŷ)(h − ŷ)ᵀ + σ²I`` on the measured rows (the
+    others 0 and identity, :func:`theory.core.consistency.padded`); eqs. (3.6)–(3.9)."""
+    mask = network.measurement_mask
+    h = range_differences(state.positions, network.nodes, np.asarray(network.filters)[:, None])
+    mean = np.einsum("fp,fpn->fn", state.weights, h)
+    spread = (h - mean[:, None]) * mask[:, None]
+    S = np.einsum("fp,fpn,fpm->fnm", state.weights, spread, spread)
+    S += np.eye(mask.shape[1]) * np.where(mask, sigma**2, 1.0)[:, None, :]
+    return np.where(mask, y - mean, 0.0), S
+
+
 def multinomial_resample(state: PfState, rng: np.random.Generator) -> PfState:
     """Draw ``P`` particles per node with replacement with probabilities ``w̄`` (§3.2.1 step 5).
 
@@ -302,9 +334,11 @@ def run_filter(
     p(K)``, from particles uniform on ``bounds``; after each estimate the filter continues with
     ``motion.observe(χ)``, and keeps the weighted particles at ``snapshot_steps``."""
     state = initial_state(len(network.filters), config.particles, bounds, rng)
-    estimates, snapshots = [], {}
+    estimates, snapshots, moments, innovations = [], {}, [], []
     for k, y in enumerate(measurements):
+        innovations.append(predicted_measurements(state, y, network, config.sigma))
         weighted, chi = pf_update(state, y, network, config, rng)
+        moments.append(cloud_moments(weighted))
         motion = motion.observe(chi)
         state = propagate(multinomial_resample(weighted, rng), motion, rng)
         estimates.append(chi)
@@ -312,7 +346,9 @@ def run_filter(
             snapshots[k] = np.concatenate([weighted.positions, weighted.weights[..., None]], -1)
     chis = np.asarray(estimates)
     errors = np.linalg.norm(chis - np.asarray(path)[:, None, :], axis=-1)
-    return PfRun(chis, errors, snapshots, motion)
+    means, covariances = (np.asarray(a) for a in zip(*moments, strict=True))
+    nu, S = (np.asarray(a) for a in zip(*innovations, strict=True))
+    return PfRun(chis, errors, snapshots, motion, means, covariances, nu, S)
 
 
 @dataclass(frozen=True)

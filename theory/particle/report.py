@@ -12,13 +12,14 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from theory.core.atomic_output import check_replaceable, replaced_folder
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, Context, RunCache
+from theory.core.consistency import agent_columns
 from theory.core.expectations import Expectation, evaluate, observations_from
 from theory.core.jsonable import plain
 from theory.core.parallel import TaskRunner
@@ -28,6 +29,7 @@ from theory.particle.experiments import (
     MonteCarlo,
     monte_carlo,
     node_summary,
+    pf_metrics,
     shared_monte_carlo,
     write_figures,
 )
@@ -49,13 +51,15 @@ SOURCES = {c.id: c.source for c in PF_CLAIMS}
 class PfReport:
     """The record ``trackcert pf`` prints (and writes as ``pf.json``): the case with the runs and
     seed used, the per-node error summary, the ``pf`` claims' results, the expectations judged
-    from them, and the figures written."""
+    from them, the figures written, and the filter metrics (NEES/NIS bands, OSPA/GOSPA:
+    :func:`theory.particle.experiments.pf_metrics`)."""
 
     case: Case
     agents: list[dict[str, Any]]
     claims: tuple[ClaimResult, ...]
     expectations: tuple[Expectation, ...]
     figures: tuple[str, ...] = ()
+    metrics: dict[str, Any] = field(default_factory=dict)
 
     @property
     def verdict(self) -> Verdict:
@@ -63,7 +67,7 @@ class PfReport:
         return expectations_verdict(self.expectations)
 
     def to_json(self) -> dict[str, Any]:
-        """``case``, ``runs``, ``seed``, ``model``, ``share``, ``config``, ``agents``,
+        """``case``, ``runs``, ``seed``, ``model``, ``share``, ``config``, ``agents``, ``metrics``,
         ``claims``, ``expectations`` (the verdict records) and ``figures``."""
         spec = self.case.spec
         return {
@@ -74,6 +78,7 @@ class PfReport:
             "share": spec.config.share,
             "config": plain(vars(spec.config)),
             "agents": self.agents,
+            "metrics": self.metrics,
             "claims": [r.to_json(SOURCES[r.claim]) for r in self.claims],
             "expectations": [e.to_json() for e in self.expectations],
             "figures": list(self.figures),
@@ -111,7 +116,9 @@ def pf_report(
         found for r in claims for found in observations_from(r.claim, plain(r.evidence), r.status)
     ]
     expectations = evaluate(case.name, plain(case.expect), observed)
-    report = PfReport(case, node_summary(mc, spec), tuple(claims), tuple(expectations), ())
+    metrics = pf_metrics(mc, spec)
+    agents = [{**row, **agent_columns(metrics, i)} for i, row in enumerate(node_summary(mc, spec))]
+    report = PfReport(case, agents, tuple(claims), tuple(expectations), (), metrics)
     if out is None:
         return report
     with replaced_folder(out, MARKER) as staging:

@@ -78,10 +78,13 @@ def encircling_paths(
 @dataclass(frozen=True, eq=False)
 class RangeDekfRun:
     """Filtered estimates x̂_{k|k}^[i] (K+1, N, 2d) and information matrices Ω_{k|k}^[i] of every
-    tracker at every step (seed 003 Algorithm 2)."""
+    tracker at every step, and the range innovations ``y − ‖q̂_{k|k−1} − p‖`` (K+1, N, 1) with
+    their variances ``C Ω_{k|k−1}⁻¹ Cᵀ + 1/V`` (K+1, N, 1, 1) (seed 003 Algorithm 2, (41))."""
 
     estimates: np.ndarray
     information: np.ndarray
+    innovations: np.ndarray
+    innovation_covariances: np.ndarray
 
     def errors(self, target: np.ndarray) -> np.ndarray:
         """Position errors ``‖q̂^[i] − q‖``, shape (K+1, N), against the true ``target`` states
@@ -115,13 +118,29 @@ def range_dekf(
     x = np.tile(x0, (n, 1))
     estimates = np.empty((steps, n, 2 * d))
     information = np.empty((steps, n, 2 * d, 2 * d))
+    innovations = np.empty((steps, n, 1))
+    variances = np.empty((steps, n, 1, 1))
     for k in range(steps):
         ranges = np.linalg.norm(trackers[k] - target[k, :d], axis=1)
         y = ranges + np.sqrt(noise_var) * rng.standard_normal(n)
+        innovations[k], variances[k] = _range_innovations(x, Omega, trackers[k], y, V)
         estimates[k], information[k], Omega, x = dekf_step(
             x, Omega, trackers[k], y, fusion=fusion, F=F, W=W, V=V
         )
-    return RangeDekfRun(estimates, information)
+    return RangeDekfRun(estimates, information, innovations, variances)
+
+
+def _range_innovations(
+    x_pred: np.ndarray, Omega: np.ndarray, positions: np.ndarray, ranges: np.ndarray, V: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """``ν = y − ‖q̂ − p‖`` and ``S = C Ω⁻¹ Cᵀ + 1/V`` of every tracker's correction (seed 003
+    eqs. (10), (41): the range variance the filter assumes is ``1/V``)."""
+    d = positions.shape[1]
+    diff = x_pred[:, :d] - positions
+    predicted = np.linalg.norm(diff, axis=1)
+    C = np.concatenate([diff / predicted[:, None], np.zeros_like(diff)], axis=1)
+    spread = np.einsum("ni,ni->n", C, np.linalg.solve(Omega, C[..., None])[..., 0])
+    return (ranges - predicted)[:, None], (spread + 1 / V)[:, None, None]
 
 
 def transition_matrix(dim: int, Ts: float) -> np.ndarray:

@@ -31,11 +31,14 @@ import numpy as np
 
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, NotApplicable
+from theory.core.consistency import agent_columns
+from theory.core.consistency import evidence as metrics_evidence
 from theory.core.errors import CaseError, PropertyFails
 from theory.core.expectations import Observed
 from theory.core.tolerances import ISS_BOUND_RTOL, RUNAWAY_FACTOR
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.closed_loop import DecRun, DecSettings, StopCause, simulate_dec
+from theory.pursuit.filter_metrics import dekf_metrics
 from theory.pursuit.model import desired_speed
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
 from theory.sim.simulate import Finished, Simulator
@@ -186,10 +189,12 @@ def summarize_pursuit(
 
     ``stopped_at``, ``stop_causes`` and ``stop_reasons`` per run are ``None`` when it completed;
     ``iss_agreement`` is run 0 against the certified estimate (:func:`simulation_agreement`), or
-    ``None`` when ``trackcert iss`` certifies nothing.
+    ``None`` when ``trackcert iss`` certifies nothing; ``metrics`` the DEKF's NEES/NIS and OSPA
+    (:func:`theory.pursuit.filter_metrics.dekf_metrics`).
     """
     loc = np.mean([r.localization_errors for r in runs], axis=0)
     pur = np.mean([r.pursuit_errors for r in runs], axis=0)
+    metrics = dekf_metrics(runs, dec_arguments(spec, len(runs[0].times) - 1))
     agents = [
         {
             "id": i + 1,
@@ -197,11 +202,13 @@ def summarize_pursuit(
             "mean_localization_error": float(loc[:, i].mean()),
             "final_pursuit_error": float(pur[-1, i]),
             "mean_pursuit_error": float(pur[:, i].mean()),
+            **agent_columns(metrics, i),
         }
         for i in range(loc.shape[1])
     ]
     return {
         "agents": agents,
+        "metrics": metrics,
         "final_gamma_spread": float(np.mean([np.ptp(r.gammas[-1]) for r in runs])),
         "final_gamma_rate_error": float(
             np.mean([np.abs(r.gamma_rates[-1] - spec.omega_bar).max() for r in runs])
@@ -558,6 +565,8 @@ def check_simulation_agrees(case: Case, ctx: Context) -> list[ClaimResult]:
         figures = (_figure(run.times, iss_margin_along(case.spec, run), folder),)
     evidence = {k: v for k, v in verdict.items() if k not in ("status", "message")}
     evidence |= {"seed": SIMULATION_SEED, "records": len(run.times), "steps": run.steps}
+    arguments = dec_arguments(case.spec, len(run.times) - 1)
+    evidence["filter_metrics"] = metrics_evidence(dekf_metrics([run], arguments))
     evidence["expectations"] = {"simulation_bounded": verdict["simulation_bounded"]}
     return [
         ClaimResult(

@@ -64,43 +64,41 @@ def measurement_step(
     *,
     linearize_at: np.ndarray | None = None,
     agents: np.ndarray | None = None,
+    innovations: list | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """``x̂_i(k|k)``, ``P_i(k|k)`` of every agent at one ping (``R_i = r I``).
 
     ``linearize_at`` evaluates the Jacobians there (the true target: the linearized filter whose
     covariance is the Riccati recursion along the true geometry) instead of at each prediction;
-    ``agents`` are the positions of the estimates' holders (default ``0, 1, …``).
+    ``agents`` are the positions of the estimates' holders (default ``0, 1, …``); a list given as
+    ``innovations`` receives ``(ν, S = HPH' + R)`` of every update (one for ``centralized``).
     Seed 000 eqs. (4.12)–(4.15), (4.27), (4.32), (4.34).
     """
     dim = positions.shape[1]
     if Filter(kind) is Filter.CENTRALIZED:
-        return _centralized_step(x, P, readings, positions, neighbours, r, linearize_at, agents)
+        point, at = x[0, :dim], _at(x[0, :dim], linearize_at)
+        h = np.concatenate(tdoa_predictions(point, positions, neighbours, agents=agents))
+        H = np.vstack(tdoa_jacobians(at, positions, neighbours, agents=agents))
+        y = np.concatenate(readings)
+        x0, P0 = _update(x[0], P[0], y - h, H, r, innovations)
+        return np.tile(x0, (x.shape[0], 1)), np.tile(P0, (x.shape[0], 1, 1))
     points = x[:, :dim]
     predictions = tdoa_predictions(points, positions, neighbours, agents=agents)
     jacobians = tdoa_jacobians(_at(points, linearize_at), positions, neighbours, agents=agents)
     x_new, P_new = np.empty_like(x), np.empty_like(P)
     for i, (y, h, H) in enumerate(zip(readings, predictions, jacobians, strict=True)):
-        x_new[i], P_new[i] = ekf_update(x[i], P[i], y - h, H, r * np.eye(y.shape[0]))
+        x_new[i], P_new[i] = _update(x[i], P[i], y - h, H, r, innovations)
     return x_new, P_new
 
 
-def _centralized_step(
-    x: np.ndarray,
-    P: np.ndarray,
-    readings: list[np.ndarray],
-    positions: np.ndarray,
-    neighbours: list[np.ndarray],
-    r: float,
-    linearize_at: np.ndarray | None,
-    agents: np.ndarray | None,
+def _update(
+    x: np.ndarray, P: np.ndarray, innovation: np.ndarray, H: np.ndarray, r: float, out: list | None
 ) -> tuple[np.ndarray, np.ndarray]:
-    point = x[0, : positions.shape[1]]
-    h = np.concatenate(tdoa_predictions(point, positions, neighbours, agents=agents))
-    H = np.vstack(tdoa_jacobians(_at(point, linearize_at), positions, neighbours, agents=agents))
-    y = np.concatenate(readings)
-    x0, P0 = ekf_update(x[0], P[0], y - h, H, r * np.eye(y.shape[0]))
-    n = x.shape[0]
-    return np.tile(x0, (n, 1)), np.tile(P0, (n, 1, 1))
+    """:func:`ekf_update` with ``R = rI``, ``(ν, HPH' + R)`` appended to ``out`` (eq. (4.13))."""
+    R = r * np.eye(innovation.shape[0])
+    if out is not None:
+        out.append((innovation, H @ P @ H.T + R))
+    return ekf_update(x, P, innovation, H, R)
 
 
 def _at(points: np.ndarray, linearize_at: np.ndarray | None) -> np.ndarray:

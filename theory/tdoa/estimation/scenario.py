@@ -10,7 +10,9 @@ Timeline of ping ``k`` (time ``t_k = kT``), seed 000 §4.2.2–4.4:
    for ``τ`` seconds, tracking ``ζ*`` built from ``x̂_i(t) = exp(F(t − t_k)) x̄_i`` (B.14–B.18);
 3. the estimates are predicted to the next ping (4.26), (4.33).
 
-Recorded at ping ``k``: the estimate and covariance after round 0 and the true state. With
+Recorded at ping ``k``: the estimate and covariance after round 0, the true state, and each
+update's innovation ``ν = y − h(x̂)`` with ``S = HPH' + rI`` (padded,
+:func:`theory.core.consistency.padded`). With
 ``filter: decentralized`` no averaging happens; with ``centralized`` one EKF uses every agent's
 rows.
 """
@@ -22,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from theory.core.consistency import padded
 from theory.core.network import adjacency_from_range, metropolis_weights, uniform_weights
 from theory.tdoa.case import CovNorm, Filter, Linearize, TdoaSimSpec, WeightRule
 from theory.tdoa.estimation.agents import (
@@ -46,9 +49,11 @@ __all__ = [
 @dataclass(frozen=True, eq=False)
 class TdoaRun:
     """Arrays recorded along one run: at the ``K + 1`` pings, the true states, ``x̄_i``, ``P̄_i``
-    after (4.28), (4.35), their norms and each agent's number of TDOA rows; every ``τ``
-    (``M + 1`` instants) the positions and cumulative distances, and per interval whether each
-    agent tracked (``‖P̄_i‖ > b``)."""
+    after (4.28), (4.35), their norms and each agent's number of TDOA rows; the innovations
+    ``(K+1, U, m)`` of the ``U`` updates of a ping (one per agent, one for ``centralized``),
+    padded to ``m`` rows, their covariances and dimensions; every ``τ`` (``M + 1`` instants) the
+    positions and cumulative distances, and per interval whether each agent tracked
+    (``‖P̄_i‖ > b``)."""
 
     ping_times: np.ndarray
     truth: np.ndarray
@@ -56,6 +61,9 @@ class TdoaRun:
     covariances: np.ndarray
     cov_norms: np.ndarray
     degrees: np.ndarray
+    innovations: np.ndarray
+    innovation_covariances: np.ndarray
+    innovation_dims: np.ndarray
     fine_times: np.ndarray
     paths: np.ndarray
     distance: np.ndarray
@@ -136,7 +144,7 @@ class _Run:
         self.neighbours: list[np.ndarray] = []
         fixed = spec.hears is not None or isinstance(spec.weights, np.ndarray)
         self.fixed_weights = weights_at(spec, spec.agents) if fixed else None
-        self.record = _Recorder(n, spec.steps, spec.rounds)
+        self.record = _Recorder(n, spec.steps, spec.rounds, spec.filter == Filter.CENTRALIZED)
         self.record.fine(0, self.states, self.travelled)
 
     def measure(self, k: int) -> None:
@@ -145,6 +153,7 @@ class _Run:
         self.neighbours = neighbour_lists(hears_at(spec, positions))
         readings = tdoa_readings(self.truth[k, :3], positions, self.neighbours, spec.r, self.rng)
         at = self.truth[k, :3] if spec.linearize == Linearize.TRUTH else None
+        updates: list = []
         self.x, self.P = measurement_step(
             spec.filter,
             self.x,
@@ -154,7 +163,9 @@ class _Run:
             self.neighbours,
             spec.r,
             linearize_at=at,
+            innovations=updates,
         )
+        self.record.updates(k, updates)
 
     def average(self) -> bool:
         """A consensus round (4.28), (4.35) of step 2; whether this filter averages at all."""
@@ -282,7 +293,11 @@ def _controller(
 class _Recorder:
     """Preallocated arrays filled along the run."""
 
-    def __init__(self, n: int, K: int, m: int) -> None:
+    def __init__(self, n: int, K: int, m: int, centralized: bool) -> None:
+        updates, rows = (1, n * (n - 1)) if centralized else (n, n - 1)
+        self.innovations = np.zeros((K + 1, updates, rows))
+        self.innovation_covariances = np.tile(np.eye(rows), (K + 1, updates, 1, 1))
+        self.innovation_dims = np.zeros((K + 1, updates), dtype=int)
         self.estimates = np.empty((K + 1, n, 6))
         self.covariances = np.empty((K + 1, n, 6, 6))
         self.cov_norms = np.empty((K + 1, n))
@@ -295,6 +310,12 @@ class _Recorder:
     def ping(self, k: int, x: np.ndarray, P: np.ndarray, norms: np.ndarray, deg: list) -> None:
         self.estimates[k], self.covariances[k], self.cov_norms[k] = x, P, norms
         self.degrees[k] = deg
+
+    def updates(self, k: int, updates: list[tuple[np.ndarray, np.ndarray]]) -> None:
+        rows = self.innovations.shape[-1]
+        for u, (nu, S) in enumerate(updates):
+            self.innovations[k, u], self.innovation_covariances[k, u] = padded(nu, S, rows)
+            self.innovation_dims[k, u] = nu.shape[0]
 
     def fine(
         self,
@@ -316,6 +337,9 @@ class _Recorder:
             covariances=self.covariances,
             cov_norms=self.cov_norms,
             degrees=self.degrees,
+            innovations=self.innovations,
+            innovation_covariances=self.innovation_covariances,
+            innovation_dims=self.innovation_dims,
             fine_times=spec.tau * np.arange(K * self.m + 1),
             paths=self.paths,
             distance=self.distance,

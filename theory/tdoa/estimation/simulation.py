@@ -4,7 +4,9 @@ observer, and the claim on the movement threshold ``b`` (seed 000 §4.3–4.4).
 Per agent (1-based ``id``): ``final_localization_error`` ``‖p̄_i(K) − p(K)‖`` and
 ``mean_localization_error`` (the mean over the pings ``k = 1, …, K``, after the first
 measurement), in metres; ``final_cov_norm`` and ``mean_cov_norm`` (same ranges, in the case's
-norm); ``distance`` travelled; ``mse_to_pcrb``. Over Monte Carlo runs each number is the mean
+norm); ``distance`` travelled; ``mse_to_pcrb``; the NEES/NIS tests and OSPA of
+:mod:`theory.core.consistency` (``anees``, ``mean_nis``, verdicts, ``mean_ospa``; the full
+records under ``metrics``). Over Monte Carlo runs each number is the mean
 over runs. The expect keys: ``bounded_error`` (every agent's final error below ``error_bound``
 metres, default ``ERROR_BOUND_SIGMAS · √r``) and ``max_final_error`` (judged ``at_most``).
 """
@@ -22,6 +24,8 @@ import numpy as np
 
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, Method, status_of
+from theory.core.consistency import agent_columns, filter_metrics, nees, nis
+from theory.core.consistency import evidence as metrics_evidence
 from theory.core.expectations import Observed
 from theory.core.tolerances import ERROR_BOUND_SIGMAS
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
@@ -48,6 +52,7 @@ __all__ = [
     "run_pcrb",
     "sim_observed",
     "summarize_runs",
+    "tdoa_filter_metrics",
     "tdoa_simulator",
     "write_data",
     "write_figures",
@@ -92,10 +97,15 @@ def summarize_runs(spec: TdoaSimSpec, runs: Sequence[TdoaRun]) -> dict[str, Any]
     keys = per_run[0].keys()
     means = {key: np.mean([m[key] for m in per_run], axis=0) for key in keys}
     n = means["distance"].shape[0]
-    agents = [{"id": i + 1, **{key: float(means[key][i]) for key in keys}} for i in range(n)]
+    metrics = tdoa_filter_metrics(runs)
+    agents = [
+        {"id": i + 1, **{key: float(means[key][i]) for key in keys}, **agent_columns(metrics, i)}
+        for i in range(n)
+    ]
     totals = [float(m["distance"].sum()) for m in per_run]
     return {
         "agents": agents,
+        "metrics": metrics,
         "total_distance": float(np.mean(totals)),
         "runs_total_distance": totals,
         "mean_localization_error": float(means["mean_localization_error"].mean()),
@@ -103,6 +113,28 @@ def summarize_runs(spec: TdoaSimSpec, runs: Sequence[TdoaRun]) -> dict[str, Any]
         "moving_fraction": float(np.mean([run.moving.mean() for run in runs])),
         "pcrb_position_trace": float(np.mean([bound[1:].mean() for bound in bounds])),
     }
+
+
+def tdoa_filter_metrics(runs: Sequence[TdoaRun]) -> dict[str, Any]:
+    """NEES of ``x̄_i(k) − x(k)`` against ``P̄_i(k)`` at every ping, NIS of every update (the
+    centralized filter's one update counted for every agent, who all hold its estimate), OSPA and
+    GOSPA of the estimated positions (:func:`theory.core.consistency.filter_metrics`)."""
+    truth = np.stack([r.truth for r in runs])
+    estimates = np.stack([r.estimates for r in runs])
+    errors = nees(estimates - truth[:, :, None], np.stack([r.covariances for r in runs]))
+    innovations = nis(
+        np.stack([r.innovations for r in runs]),
+        np.stack([r.innovation_covariances for r in runs]),
+    )
+    dims = np.stack([r.innovation_dims for r in runs])
+    shape = errors.shape
+    return filter_metrics(
+        errors,
+        6,
+        np.broadcast_to(innovations, shape),
+        np.broadcast_to(dims, shape),
+        (estimates[..., :3], truth[..., :3]),
+    )
 
 
 def write_data(runs: Sequence[TdoaRun], summary: dict[str, Any], folder: Path) -> list[Path]:
@@ -266,6 +298,7 @@ def b_tradeoff_claim(case: Case, ctx: Context) -> list[ClaimResult]:
         "mean_cov_norm": norms,
         "seeds": list(SWEEP_SEEDS),
         "steps": steps,
+        "filter_metrics": metrics_evidence(tdoa_filter_metrics(sweep)),
     }
     return [
         ClaimResult(

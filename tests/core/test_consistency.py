@@ -1,0 +1,214 @@
+"""NEES/NIS bands, OSPA and GOSPA (theory.core.consistency) against their definitions: the χ²
+band of Bar-Shalom, Li, Kirubarajan (2001) §5.4, OSPA a metric (Schuhmacher et al. 2008), GOSPA
+with α = 2 the best partial assignment (García-Fernández, Svensson 2017, Proposition 1)."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.stats import binom, chi2
+
+from theory.consensus.kalman_filter import simulate_consensus_kf
+from theory.core.consistency import (
+    Consistency,
+    chi2_band,
+    consistency_test,
+    gospa,
+    nees,
+    nis,
+    ospa,
+    padded,
+    position_distances,
+)
+
+coordinates = st.floats(-20, 20, allow_nan=False, allow_infinity=False)
+point_sets = st.lists(st.tuples(coordinates, coordinates), max_size=4).map(
+    lambda points: np.array(points, dtype=float).reshape(-1, 2)
+)
+cutoffs = st.floats(0.5, 30)
+orders = st.sampled_from([1.0, 2.0, 3.0])
+
+
+def test_band_is_bar_shalom_example() -> None:
+    """§5.4.2: 50 runs of a 2-state filter, 95 %: ANEES in [1.5, 2.6]."""
+    band = chi2_band(2 * 50, 50, 0.95)
+    assert (round(band.lower, 1), round(band.upper, 1)) == (1.5, 2.6)
+    assert chi2.cdf(50 * band.upper, 100) - chi2.cdf(50 * band.lower, 100) == pytest.approx(0.95)
+
+
+def test_band_refuses_impossible_arguments() -> None:
+    with pytest.raises(ValueError, match="dof"):
+        chi2_band(0, 1)
+    with pytest.raises(ValueError, match="probability"):
+        chi2_band(4, 2, 1.0)
+
+
+def test_nees_is_the_quadratic_form_and_nan_stays_nan() -> None:
+    P = np.array([[4.0, 1.0], [1.0, 2.0]])
+    e = np.array([1.0, -2.0])
+    assert nees(e, P) == pytest.approx(e @ np.linalg.solve(P, e))
+    assert np.isnan(nees(np.array([np.nan, 1.0]), P))
+    nu, S = padded(np.array([3.0]), np.array([[9.0]]), 3)
+    assert nis(nu, S) == pytest.approx(1.0)
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.integers(1, 6), st.integers(0, 2**32 - 1), st.floats(0.01, 100))
+def test_nees_is_the_whitened_squared_norm(n: int, seed: int, scale: float) -> None:
+    """``eᵀP⁻¹e = ‖L⁻¹e‖²`` for ``P = LLᵀ`` (random, bounded conditioning), and scaling ``P`` by
+    ``c`` divides it by ``c``; a singular ``P`` gives ∞ (a filter claiming no uncertainty)."""
+    rng = np.random.default_rng(seed)
+    L = np.tril(rng.uniform(-1, 1, (n, n)), -1) + np.diag(rng.uniform(0.5, 2, n))
+    P, e = L @ L.T, rng.normal(size=n)
+    whitened = np.linalg.solve(L, e)
+    assert nees(e, P) == pytest.approx(whitened @ whitened, rel=1e-9)
+    assert nees(e, scale * P) == pytest.approx(nees(e, P) / scale, rel=1e-9)
+    flat = np.outer(L[:, 0], L[:, 0])
+    assert (n == 1) or nees(e, flat) == np.inf
+
+
+def test_nothing_to_test_is_inconclusive() -> None:
+    test = consistency_test("NIS", np.full((2, 3), np.nan), 0)
+    assert test.verdict is Consistency.INCONCLUSIVE
+
+
+def _kalman_runs(runs: int, steps: int, seed: int, scale: float = 1.0) -> tuple:
+    """A one-agent consensus KF (the Kalman filter: W = [1]) on a 2-state unstable system, its
+    initial state drawn from the filter's own prior; NEES and NIS with P, S scaled by ``scale``."""
+    A, C, Q, R = (
+        np.array([[1.0, 0.1], [0.0, 1.0]]),
+        [np.eye(1, 2)],
+        0.05 * np.eye(2),
+        [0.2 * np.eye(1)],
+    )
+    P0 = 2.0 * np.eye(2)
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(runs):
+        x0 = rng.multivariate_normal(np.zeros(2), P0)
+        out.append(
+            simulate_consensus_kf(
+                A, C, np.eye(1), Q, R, x0=x0, estimate0=np.zeros(2), P0=P0, steps=steps, rng=rng
+            )
+        )
+    errors = nees(np.stack([r.errors for r in out]), scale * np.stack([r.covariances for r in out]))
+    innovations = nis(
+        np.stack([r.innovations for r in out]),
+        scale * np.stack([r.innovation_covariances for r in out]),
+    )
+    return errors[..., 0], innovations[..., 0]
+
+
+def test_consistent_kalman_filter_falls_in_band_with_stated_probability() -> None:
+    """The linear Gaussian Kalman filter is exactly consistent: at a fixed step the ANEES over 10
+    runs lies below, in and above its χ²₂₀ band with probabilities 2.5 %, 95 %, 2.5 % over
+    independent seeds. Each count of 400 seeds must lie in its binomial central 99.8 %: a band
+    too wide, too narrow, one-sided or of the wrong dimension fails."""
+    seeds, runs, step, p = 400, 10, 4, 0.95
+    below = above = 0
+    for seed in range(seeds):
+        errors, _ = _kalman_runs(runs, step, seed)
+        test = consistency_test("NEES", errors[:, step : step + 1], 2, probability=p)
+        below += test.value < test.band.lower
+        above += test.value > test.band.upper
+    for count, chance in ((below, (1 - p) / 2), (above, (1 - p) / 2), (seeds - below - above, p)):
+        low, high = binom.ppf(1e-3, seeds, chance), binom.isf(1e-3, seeds, chance)
+        assert low <= count <= high, (below, above, low, high)
+
+
+def test_consistent_filter_passes_and_inconsistent_one_fails() -> None:
+    """Issue 26 'Done when': the same runs with P and S scaled by 0.1 (a filter trusting itself
+    ten times too much) are optimistic, by 10 pessimistic; unscaled they are consistent."""
+    errors, innovations = _kalman_runs(20, 60, seed=7)
+    assert consistency_test("NEES", errors, 2).verdict is Consistency.CONSISTENT
+    assert consistency_test("NIS", innovations, 1).verdict is Consistency.CONSISTENT
+    errors, innovations = _kalman_runs(20, 60, seed=7, scale=0.1)
+    for test in (consistency_test("NEES", errors, 2), consistency_test("NIS", innovations, 1)):
+        assert test.verdict is Consistency.OPTIMISTIC and test.margin < 0
+        assert test.value > test.band.upper
+    errors, _ = _kalman_runs(20, 60, seed=7, scale=10.0)
+    assert consistency_test("NEES", errors, 2).verdict is Consistency.PESSIMISTIC
+
+
+@settings(max_examples=60, deadline=None)
+@given(point_sets, point_sets, point_sets, cutoffs, orders)
+def test_ospa_is_a_metric(X: np.ndarray, Y: np.ndarray, Z: np.ndarray, c: float, p: float) -> None:
+    d = lambda a, b: ospa(a, b, cutoff=c, order=p)  # noqa: E731
+    assert d(X, X) == pytest.approx(0.0, abs=1e-9)
+    assert d(X, Y) == pytest.approx(d(Y, X), rel=1e-9, abs=1e-12)
+    assert 0.0 <= d(X, Y) <= c * (1 + 1e-12)
+    assert d(X, Z) <= d(X, Y) + d(Y, Z) + 1e-9 * c
+    if len(X) != len(Y):
+        assert d(X, Y) > 0
+
+
+@settings(max_examples=60, deadline=None)
+@given(point_sets, point_sets, point_sets, cutoffs, orders)
+def test_gospa_is_a_metric(X: np.ndarray, Y: np.ndarray, Z: np.ndarray, c: float, p: float) -> None:
+    d = lambda a, b: gospa(a, b, cutoff=c, order=p)  # noqa: E731
+    assert d(X, X) == pytest.approx(0.0, abs=1e-9)
+    assert d(X, Y) == pytest.approx(d(Y, X), rel=1e-9, abs=1e-12)
+    assert d(X, Z) <= d(X, Y) + d(Y, Z) + 1e-9 * c
+
+
+def _partial_assignment_gospa(X: np.ndarray, Y: np.ndarray, c: float, p: float) -> float:
+    """Proposition 1 by brute force: the least Σ_{(i,j)∈γ} d^p + c^p/2 (|X| + |Y| − 2|γ|) over
+    every partial assignment γ (no cutoff on assigned pairs)."""
+    best = c**p / 2 * (len(X) + len(Y))
+    for size in range(1, min(len(X), len(Y)) + 1):
+        for rows in itertools.combinations(range(len(X)), size):
+            for cols in itertools.permutations(range(len(Y)), size):
+                cost = sum(
+                    np.linalg.norm(X[i] - Y[j]) ** p for i, j in zip(rows, cols, strict=True)
+                )
+                best = min(best, cost + c**p / 2 * (len(X) + len(Y) - 2 * size))
+    return best ** (1 / p)
+
+
+@settings(max_examples=60, deadline=None)
+@given(point_sets, point_sets, cutoffs, orders)
+def test_gospa_alpha_two_is_the_best_partial_assignment(
+    X: np.ndarray, Y: np.ndarray, c: float, p: float
+) -> None:
+    assert gospa(X, Y, cutoff=c, order=p, alpha=2) == pytest.approx(
+        _partial_assignment_gospa(X, Y, c, p), rel=1e-9, abs=1e-12
+    )
+
+
+@settings(max_examples=40, deadline=None)
+@given(point_sets, cutoffs, orders)
+def test_gospa_and_ospa_agree_on_equal_cardinalities(X: np.ndarray, c: float, p: float) -> None:
+    """With ``|X| = |Y| = n`` there is no cardinality term: GOSPA^p = n · OSPA^p."""
+    Y = X[::-1] + 0.7
+    n = len(X)
+    assert gospa(X, Y, cutoff=c, order=p) ** p == pytest.approx(
+        n * ospa(X, Y, cutoff=c, order=p) ** p, rel=1e-9, abs=1e-12
+    )
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    st.lists(st.tuples(coordinates, coordinates), min_size=6, max_size=6),
+    st.lists(st.booleans(), min_size=6, max_size=6),
+    cutoffs,
+)
+def test_position_distances_are_ospa_and_gospa_of_singletons(
+    points: list, missing: list, c: float
+) -> None:
+    estimates = np.array(points, dtype=float).reshape(1, 3, 2, 2)
+    estimates[np.array(missing).reshape(1, 3, 2)] = np.nan
+    truth = np.array([[[0.0, 1.0], [2.0, -1.0], [5.0, 5.0]]])
+    record = position_distances(estimates, truth, cutoff=c, order=2.0, alpha=2.0)
+    for agent in range(2):
+        sets = [
+            (estimates[0, k, agent][None] if not missing[2 * k + agent] else np.zeros((0, 2)))
+            for k in range(3)
+        ]
+        expect_o = np.mean([ospa(s, truth[0, k][None], cutoff=c) for k, s in enumerate(sets)])
+        expect_g = np.mean([gospa(s, truth[0, k][None], cutoff=c) for k, s in enumerate(sets)])
+        assert record["ospa"][agent] == pytest.approx(expect_o, rel=1e-12, abs=1e-12)
+        assert record["gospa"][agent] == pytest.approx(expect_g, rel=1e-12, abs=1e-12)

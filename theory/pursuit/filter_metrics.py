@@ -1,0 +1,78 @@
+"""NEES, NIS and OSPA/GOSPA of the DEKF (seed 003 Algorithm 2) along simulated pursuit runs.
+
+The closed loop (:mod:`theory.pursuit.closed_loop`) records the trackers' and the target's
+trajectories but not the filter's information matrices. The DEKF is replayed here, with the one
+implementation :func:`theory.pursuit.dekf.range_dekf` and the run's own priors, fusion weights,
+``V`` and ``Q``, on the recorded tracker and target positions at every sampling instant
+``kT_s`` up to where the run stopped; run ``i``'s range noise (σ of the case) comes from
+``SeedSequence([REPLAY_KEY, i])``. The statistics are then those of the filter on the
+closed-loop geometry (:mod:`theory.core.consistency`); the range variance the filter assumes is
+``1/V``, so a case whose ``V`` exceeds ``1/σ²`` trusts its ranges more than their noise allows.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from theory.core.consistency import filter_metrics, nees, nis
+from theory.pursuit.closed_loop import DecRun, _filter_setup, build_loop
+from theory.pursuit.dekf import RangeDekfRun, range_dekf
+
+__all__ = ["REPLAY_KEY", "dekf_metrics", "replay_dekf"]
+
+REPLAY_KEY = 3
+"""First word of the replays' seed sequences (seed 003)."""
+
+
+def replay_dekf(run: DecRun, arguments: dict[str, Any], index: int) -> RangeDekfRun:
+    """Algorithm 2 on run ``index``'s recorded trajectories every ``T_s`` (module docstring;
+    ``arguments`` are :func:`theory.pursuit.simulation.dec_arguments`'); seed 003 (41)–(44)."""
+    settings = arguments["settings"]
+    every = round(settings.Ts / settings.dt)
+    positions, target = run.positions[::every], run.target[::every]
+    finite = np.isfinite(positions).all(axis=(1, 2))
+    last = len(finite) if finite.all() else int(np.argmin(finite))
+    d = positions.shape[-1]
+    loop = build_loop(settings, arguments["paths"], arguments["in_neighbours"], d)
+    dekf = _filter_setup(loop, settings, arguments["x0"], arguments["P0"], arguments["fusion"])
+    return range_dekf(
+        positions[:last],
+        target[:last],
+        Ts=settings.Ts,
+        noise_var=settings.sigma**2,
+        V=settings.V,
+        Q=np.linalg.inv(dekf["W"]),
+        fusion=dekf["fusion"],
+        x0=dekf["x_pred"][0],
+        P0=np.linalg.inv(dekf["Omega"][0]),
+        rng=np.random.default_rng(np.random.SeedSequence([REPLAY_KEY, index])),
+    )
+
+
+def dekf_metrics(runs: Sequence[DecRun], arguments: dict[str, Any]) -> dict[str, Any]:
+    """NEES of ``x̂_{k|k}`` against ``Ω_{k|k}⁻¹``, NIS of every range correction and OSPA/GOSPA
+    of ``q̂_{k|k}`` per tracker over the replays (NaN after a run stopped)."""
+    replays = [replay_dekf(run, arguments, i) for i, run in enumerate(runs)]
+    settings = arguments["settings"]
+    every = round(settings.Ts / settings.dt)
+    truth = np.stack([run.target[::every] for run in runs])
+    steps, d = truth.shape[1], truth.shape[2] // 2
+    estimates = np.stack([_padded(r.estimates, steps) for r in replays])
+    information = np.stack([_padded(r.information, steps, eye=True) for r in replays])
+    covariances = np.linalg.inv(information)
+    innovations = nis(
+        np.stack([_padded(r.innovations, steps) for r in replays]),
+        np.stack([_padded(r.innovation_covariances, steps, eye=True) for r in replays]),
+    )
+    errors = nees(estimates - truth[:, :, None], covariances)
+    return filter_metrics(errors, 2 * d, innovations, 1, (estimates[..., :d], truth[..., :d]))
+
+
+def _padded(values: np.ndarray, steps: int, *, eye: bool = False) -> np.ndarray:
+    """``values`` (K, …) extended to ``steps`` records with NaN (identity matrices if ``eye``,
+    their vectors being NaN already)."""
+    fill = np.broadcast_to(np.eye(values.shape[-1]) if eye else np.nan, values.shape[1:])
+    return np.concatenate([values, np.broadcast_to(fill, (steps - len(values), *fill.shape))])
