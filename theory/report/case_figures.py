@@ -166,16 +166,17 @@ def _dkf(case: Case, folder: Path) -> list[tuple[str, str]]:
     fig, ax = plt.subplots(figsize=(4.2, 4.0))
     circle = np.exp(1j * np.linspace(0, 2 * np.pi, 361))
     ax.plot(circle.real, circle.imag, color="#8a94a6", lw=1, label="unit circle")
-    for matrix, marker, label in ((spec.A, "x", "eig(A)"), (spec.W, "o", "eig(W)")):
-        values = np.linalg.eigvals(matrix)
-        ax.scatter(
-            values.real,
-            values.imag,
-            marker=marker,
-            s=50,
-            label=label,
-            facecolors="none" if marker == "o" else None,
-        )
+    eig_a, eig_w = np.linalg.eigvals(spec.A), np.linalg.eigvals(spec.W)
+    ax.scatter(eig_a.real, eig_a.imag, marker="x", s=60, color="#b3261e", label="eig(A)")
+    ax.scatter(
+        eig_w.real,
+        eig_w.imag,
+        marker="o",
+        s=60,
+        facecolors="none",
+        edgecolors="#1f5fa8",
+        label="eig(W)",
+    )
     ax.set_xlabel("Re λ")
     ax.set_ylabel("Im λ")
     ax.set_aspect("equal", adjustable="datalim")
