@@ -79,9 +79,14 @@ def _scene(
         ax.scatter(
             [target[i]], [target[j]], marker="*", s=160, color="#b3261e", zorder=4, label="target"
         )
+    shown = points[:, [i, j]] if target is None else np.vstack([points[:, [i, j]], target[[i, j]]])
+    lo, hi = shown.min(axis=0), shown.max(axis=0)
+    pad = max(0.15 * float((hi - lo).max()), 1.0)  # one agent, or all on a line: still a frame
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.set_xlabel(f"{labels[0]} (m)")
     ax.set_ylabel(f"{labels[1]} (m)")
-    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_aspect("equal", adjustable="box")
     ax.grid(True, alpha=0.3)
 
 

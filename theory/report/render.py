@@ -45,7 +45,7 @@ from theory.core.jsonable import dumps, layout
 from theory.core.parallel import TaskRunner
 from theory.registry import all_claims
 from theory.report.case_figures import draw_case
-from theory.report.design_section import design_sections
+from theory.report.design_section import design_sections, headline
 from theory.report.document import (
     Artifacts,
     ErratumEntry,
@@ -401,7 +401,10 @@ def render_markdown(document: dict[str, Any]) -> str:
     """``report.md`` of ``document``."""
     env = _environment(autoescape=False)
     env.filters["cell"] = lambda text: str(text).replace("|", "\\|").replace("\n", " ")
-    return env.get_template("report.md.j2").render(doc=document, **_views(document))
+    design = {case: headline(section) for case, section in document["design"].items()}
+    return env.get_template("report.md.j2").render(
+        doc=document, design_lines=design, **_views(document)
+    )
 
 
 def _environment(*, autoescape: bool) -> jinja2.Environment:
