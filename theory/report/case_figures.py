@@ -108,7 +108,7 @@ def _geometry(
     for ax, (pair, labels) in zip(axes[0], views, strict=True):
         _scene(ax, points, hears, pair, target, labels)
     axes[0][0].legend(loc="best", fontsize=8)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.12, right=0.97, bottom=0.12, top=0.93, wspace=0.3)
     return [(_save(fig, folder, "geometry.png"), caption)]
 
 
@@ -159,7 +159,7 @@ def _pursuit(case: Case, folder: Path) -> list[tuple[str, str]]:
     ax.set_xticks([])
     ax.set_yticks([])
     ax.set_title("communication digraph (s → r: r receives)", fontsize=9)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.12, right=0.97, bottom=0.12, top=0.93, wspace=0.3)
     caption = f"The {n} trackers' communication digraph (a_ij = 1: i receives from j)."
     return [(_save(fig, folder, "graph.png"), caption)]
 
@@ -187,7 +187,7 @@ def _dkf(case: Case, folder: Path) -> list[tuple[str, str]]:
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize=8)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.18, right=0.97, bottom=0.12, top=0.93, wspace=0.3)
     caption = (
         "Eigenvalues of A (modes outside the unit circle are unstable) and of the "
         "consensus weights W."
