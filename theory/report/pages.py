@@ -8,6 +8,7 @@ bytes of every page, depend on the document only.
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 from typing import Any
 
@@ -61,6 +62,15 @@ def _worst(results: list[dict[str, Any]]) -> str:
     return next((s for s in order if s in present), "none")
 
 
+def _reading_order(claim: dict[str, Any]) -> tuple:
+    """Chapter order within a paper: the section numbers that open the id after ``seedNNN.``
+    (``thm4.2.3`` → (4, 2, 3), before ``lem5.2.2``; ``thm2`` before ``thm10``); ids that open
+    with none (appendices, ``lemA.1.1``) after them."""
+    match = re.match(r"[a-z_]*(\d+(?:\.\d+)*)", claim["id"].split(".", 1)[-1])
+    numbers = tuple(int(n) for n in match.group(1).split(".")) if match else ()
+    return (not numbers, numbers, claim["id"])
+
+
 def contents_view(document: dict[str, Any], pages: dict[str, str]) -> list[dict[str, Any]]:
     """Per paper, its registered claims with one verdict line each and a link per result."""
     by_id: dict[str, list[dict[str, Any]]] = {}
@@ -70,9 +80,8 @@ def contents_view(document: dict[str, Any], pages: dict[str, str]) -> list[dict[
     sections = []
     for paper in papers:
         claims = []
-        for claim in document["registered"]:
-            if claim["paper"] != paper:
-                continue
+        mine = [c for c in document["registered"] if c["paper"] == paper]
+        for claim in sorted(mine, key=_reading_order):
             results = by_id.get(claim["id"], [])
             links = [
                 {
