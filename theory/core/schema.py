@@ -225,7 +225,7 @@ def markdown(kind: KindSchema) -> str:
         *_table(kind.fields, kind.kind),
         "## `expect`",
         "",
-        *_table(kind.expect, "expect"),
+        *_table(kind.expect, "expect", absent="not checked"),
         "## `tolerances`",
         "",
         *(_table(kind.tolerances, "tolerances") if kind.tolerances else ["None.", ""]),
@@ -233,9 +233,12 @@ def markdown(kind: KindSchema) -> str:
     return "\n".join(lines).rstrip("\n") + "\n"
 
 
-def _table(fields: Sequence[Field], prefix: str, *, nested: bool = True) -> list[str]:
+def _table(
+    fields: Sequence[Field], prefix: str, *, nested: bool = True, absent: str = "—"
+) -> list[str]:
+    """A reference table; ``absent`` is shown for an optional key without a default."""
     rows = ["| field | type | meaning | unit | default |", "|---|---|---|---|---|"]
-    rows += [_row(f, prefix, nested) for f in _flatten(fields, prefix, nested)]
+    rows += [_row(f, absent) for f in _flatten(fields, prefix, nested)]
     return [*rows, ""]
 
 
@@ -249,9 +252,9 @@ def _flatten(fields: Sequence[Field], prefix: str, nested: bool) -> list[tuple[s
     return out
 
 
-def _row(entry: tuple[str, Field], prefix: str, nested: bool) -> str:
+def _row(entry: tuple[str, Field], absent: str) -> str:
     path, f = entry
-    default = "required" if f.required else (f.default if f.default is not None else "—")
+    default = "required" if f.required else (f.default if f.default is not None else absent)
     cells = (f"`{path}`", _type(f), f.meaning, f.unit or "—", default)
     return "| " + " | ".join(_cell(c) for c in cells) + " |"
 
