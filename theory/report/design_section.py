@@ -74,7 +74,7 @@ def _pursuit_headline(answers: dict[str, Any]) -> list[str]:
     box = answers["map"]
     axes = ", ".join(f"{p['path']} ∈ [{p['lo']}, {p['hi']}]" for p in box["parameters"])
     counts = ", ".join(f"{n} {s}" for s, n in box["counts"].items())
-    lines.append(f"Gain box {axes} (the case's gains inside it): cells {counts}.")
+    lines.append(f"Gain box {axes} (a tenth to ten times the case's gains): cells {counts}.")
     return lines
 
 
