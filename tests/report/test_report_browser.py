@@ -47,28 +47,43 @@ pytestmark = [
 
 
 class _Page(HTMLParser):
-    """Collects the body's data attributes and the summary table's rows."""
+    """Collects the body's data attributes, the summary table's rows, a case page's claim rows,
+    its figures, and the search results the page's script listed."""
 
     def __init__(self) -> None:
         super().__init__()
         self.body: dict[str, str | None] = {}
         self.rows: list[tuple[str | None, str | None]] = []
         self.hidden: list[bool] = []
-        self._in_summary = False
+        self.case_rows: list[tuple[str | None, str | None]] = []
+        self.images: list[str | None] = []
+        self.found: list[str | None] = []
+        self._table: str | None = None
+        self._in_results = False
 
     def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
         attributes = dict(attrs)
         if tag == "body":
             self.body = attributes
         elif tag == "table":
-            self._in_summary = attributes.get("id") == "summary-table"
-        elif tag == "tr" and self._in_summary and "data-claim" in attributes:
+            self._table = attributes.get("id")
+        elif tag == "tr" and "data-claim" in attributes and self._table == "summary-table":
             self.rows.append((attributes["data-claim"], attributes.get("data-case")))
             self.hidden.append("hidden" in attributes)
+        elif tag == "tr" and "data-claim" in attributes and self._table == "case-claims":
+            self.case_rows.append((attributes["data-claim"], attributes.get("data-status")))
+        elif tag == "img":
+            self.images.append(attributes.get("src"))
+        elif tag == "ol" and attributes.get("id") == "search-results":
+            self._in_results = True
+        elif tag == "a" and self._in_results:
+            self.found.append(attributes.get("href"))
 
     def handle_endtag(self, tag: str) -> None:
         if tag == "table":
-            self._in_summary = False
+            self._table = None
+        elif tag == "ol":
+            self._in_results = False
 
 
 def test_index_html_renders_in_chromium(fakes, tmp_path) -> None:
@@ -119,6 +134,74 @@ def test_summary_filter_presets_from_the_address(fakes, tmp_path) -> None:
         if c["status"] == "inconclusive" and c["case"] == "case-b"
     ]
     assert shown == expected and len(expected) == 1
+
+
+def test_case_page_renders_in_chromium(fakes, tmp_path) -> None:
+    """A case page as its reader sees it: every claim on the case with its verdict, the case's
+    geometry figure and the claims' figures loaded, the design answers, no script error."""
+    register_standard_fakes(fakes)
+    figure = tmp_path / "figure.png"
+    figure.write_bytes(_png())
+
+    @fakes.register("seed003.fake.thm2", source="seed 003 Thm 2", statement="t", kinds=("tdoa",))
+    def with_figure(case, ctx):
+        return [result(margin=0.5, figures=(str(figure),), evidence={"radius": 0.5})]
+
+    out = tmp_path / "report"
+    cases = [load_case(write_case(tmp_path, "case-a")), load_case(write_case(tmp_path, "case-b"))]
+    document = write_report(run_claims(cases, seed=0), out)
+    screenshot = out / "case-a.png"
+    done, page = _render(out / "cases" / "case-a.html", tmp_path, f"--screenshot={screenshot}")
+    assert page.body.get("data-loaded") == "yes", "the page's load event never ran"
+    assert "Uncaught" not in done.stderr, done.stderr[-2000:]
+    assert page.body.get("data-broken-images") == "0", "a figure of the case page did not load"
+    expected = [(c["id"], c["status"]) for c in document["claims"] if c["case"] == "case-a"]
+    assert page.case_rows == expected and len(expected) == 3
+    assert "../figures/cases/case-a/geometry.png" in page.images
+    assert "../figures/seed003.fake.thm2/case-a/figure.png" in page.images
+    assert "Certified displacement margin" in done.stdout
+    assert screenshot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_search_finds_the_papers_wording_in_chromium(fakes, tmp_path) -> None:
+    """``contents.html#q=Theorem 2`` lists the claim whose source says ``Thm 2``; the overview's
+    filter ``#text=Theorem 2`` shows its rows only."""
+    register_standard_fakes(fakes)
+
+    @fakes.register("seed003.fake.thm2", source="seed 003 Thm 2", statement="t", kinds=("tdoa",))
+    def theorem(case, ctx):
+        return [result()]
+
+    @fakes.register("seed003.fake.thm23", source="seed 003 Thm 23", statement="t", kinds=("tdoa",))
+    def other(case, ctx):
+        return [result()]
+
+    out = tmp_path / "report"
+    document = write_report(run_claims([load_case(write_case(tmp_path, "case-a"))], seed=0), out)
+    _, page = _render((out / "contents.html").as_uri() + "#q=Theorem%202", tmp_path)
+    assert page.found == ["contents.html#claim-seed003.fake.thm2"]
+    _, page = _render((out / "index.html").as_uri() + "#text=Theorem%202", tmp_path)
+    shown = [row for row, hidden in zip(page.rows, page.hidden, strict=True) if not hidden]
+    assert shown == [
+        (c["id"], c["case"]) for c in document["claims"] if c["id"] == "seed003.fake.thm2"
+    ]
+
+
+def _png() -> bytes:
+    """A small PNG drawn by matplotlib."""
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(2, 1.5), dpi=50)
+    ax.plot([0, 1, 2], [2, 1, 3])
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", metadata={"Software": None})
+    plt.close(fig)
+    return buffer.getvalue()
 
 
 def _render(

@@ -24,11 +24,16 @@ def test_met_expectations_exit_0(fakes, tmp_path) -> None:
     done = _report(str(write_case(tmp_path)), "-o", str(out), "--seed", "3")
     assert done.exit_code == 0, done.output
     assert sorted(p.name for p in out.iterdir()) == [
+        "cases",
+        "contents.html",
+        "figures",
         "index.html",
         "report.json",
         "report.md",
+        "search-index.js",
         "timings.json",
     ]
+    assert sorted(p.name for p in (out / "cases").iterdir()) == ["four-path.html", "model.html"]
     assert "every expectation is met" in done.stdout
     assert json.loads((out / "report.json").read_text())["seed"] == 3
 

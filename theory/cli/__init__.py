@@ -59,11 +59,15 @@ COMMANDS: dict[str, CommandEntry] = {
     ),
     "pf": CommandEntry(
         "theory.cli.pf",
-        "Run the distributed TDOA particle filter of seed 002 on a ``kind: pf`` case.",
+        "Run the distributed TDOA particle filter of seed 002 on a kind: pf case.",
     ),
     "report": CommandEntry(
         "theory.cli.report",
         "Run every registered check on every case; write index.html, report.md, report.json.",
+    ),
+    "schema": CommandEntry(
+        "theory.cli.schema",
+        "Print a case kind's JSON Schema, or write its reference page and schema file.",
     ),
     "simulate": CommandEntry(
         "theory.cli.simulate",

@@ -48,7 +48,7 @@ def register(app: typer.Typer) -> None:
         workers: int = workers_option(),
         scheduler: str = scheduler_option(),
     ) -> None:
-        """Run the distributed TDOA particle filter of seed 002 on a ``kind: pf`` case."""
+        """Run the distributed TDOA particle filter of seed 002 on a kind: pf case."""
         code = run_pf_case(
             load_case(case_name), runs, seed, out, as_json, workers=workers, scheduler=scheduler
         )

@@ -115,11 +115,16 @@ def build_document(
     artifacts: Sequence[Artifacts],
     environment: dict[str, Any],
     errata: Sequence[ErratumEntry] | None,
+    pages: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """The ``report.json`` document: ``format``, ``seed``, ``summary``, ``papers``, ``claims``
     (one per artifact, in ``run.records`` order), ``registered``, ``expectations``,
-    ``not_applicable``, ``errata`` (``None`` when no errata document was found), ``environment``.
+    ``not_applicable``, ``errata`` (``None`` when no errata document was found), ``design``
+    (case → its design answers, :func:`theory.report.design_section.design_sections`),
+    ``case_figures`` (case → its own figures), ``environment``; ``pages`` gives ``design`` and
+    ``case_figures`` (empty when omitted).
     """
+    pages = pages or {}
     claims = [_claim_entry(a) for a in artifacts]
     statuses = Counter(c["status"] for c in claims)
     verdicts = Counter(e.verdict for e in run.expectations)
@@ -148,6 +153,8 @@ def build_document(
         "expectations": [e.to_json() for e in run.expectations],
         "not_applicable": [{"id": i, "case": c, "reason": r} for i, c, r in run.not_applicable],
         "errata": None if errata is None else [_erratum(e, claims, known) for e in errata],
+        "design": pages.get("design", {}),
+        "case_figures": pages.get("case_figures", {}),
         "environment": environment,
     }
 

@@ -44,6 +44,8 @@ from theory.core.errors import COMMAND_LINE, CaseError
 from theory.core.jsonable import dumps, layout
 from theory.core.parallel import TaskRunner
 from theory.registry import all_claims
+from theory.report.case_figures import draw_case
+from theory.report.design_section import design_sections, headline
 from theory.report.document import (
     Artifacts,
     ErratumEntry,
@@ -52,6 +54,9 @@ from theory.report.document import (
     environment,
     parse_errata,
 )
+from theory.report.evidence_table import evidence_rows
+from theory.report.glossary import STATUS_LEGEND, margin_table
+from theory.report.pages import case_pages, page_views, result_view, search_file
 from theory.report.runner import (
     ProgressHook,
     RunResult,
@@ -61,6 +66,7 @@ from theory.report.runner import (
     timings_document,
     write_timings,
 )
+from theory.report.search import canonical, script_rules
 from theory.report.tasks import (
     CertificateChecker,
     Record,
@@ -82,6 +88,7 @@ __all__ = [
     "markdown_to_html",
     "render_html",
     "render_markdown",
+    "render_pages",
     "write_report",
 ]
 
@@ -95,8 +102,13 @@ EVIDENCE_LIMIT = 20_000
 """Characters of a result's evidence shown in HTML/Markdown (``report.json`` has all of it)."""
 
 _TEMPLATES = Path(__file__).with_name("templates")
-_IMAGE_TYPES = {".png": "image/png", ".svg": "image/svg+xml", ".jpg": "image/jpeg",
-                ".jpeg": "image/jpeg", ".gif": "image/gif"}  # fmt: skip
+_IMAGE_TYPES = {
+    ".png": "image/png",
+    ".svg": "image/svg+xml",
+    ".jpg": "image/jpeg",
+    ".jpeg": "image/jpeg",
+    ".gif": "image/gif",
+}
 
 
 def choose_claims(patterns: Sequence[str] = ()) -> list[Claim]:
@@ -224,18 +236,39 @@ def write_report(
         run.records, out, checker=prechecked(run.certificate_checks) if checker is None else checker
     )
     env = environment(run.seed, run.cases, run.records, run.time_limit)
-    text = dumps(build_document(run, artifacts, env, errata))
+    pages = {"design": design_sections(run.cases), "case_figures": _case_figures(run.cases, out)}
+    text = dumps(build_document(run, artifacts, env, errata, pages))
     document = json.loads(text)
     files = {
         "report.json": text,
         "report.md": render_markdown(document),
         "index.html": render_html(document, out),
+        **render_pages(document),
     }
     for name, content in files.items():
-        partial = out / f".{name}.partial"
+        (out / name).parent.mkdir(parents=True, exist_ok=True)
+        partial = (out / name).with_name(f".{Path(name).name}.partial")
         partial.write_text(content, encoding="utf-8")
         os.replace(partial, out / name)
     return document
+
+
+def _case_figures(cases: Sequence[Case], out_dir: Path) -> dict[str, list[dict[str, Any]]]:
+    """Each case's own figures (:func:`theory.report.case_figures.draw_case`) written under
+    ``out_dir/figures/cases/<case>/``, as report entries (path, SHA-256, caption)."""
+    figures = {}
+    for case in cases:
+        folder = f"figures/cases/{slug(case.name)}"
+        drawn = draw_case(case, out_dir / folder)
+        figures[case.name] = [
+            {
+                "path": f"{folder}/{name}",
+                "caption": caption,
+                "sha256": hashlib.sha256((out_dir / folder / name).read_bytes()).hexdigest(),
+            }
+            for name, caption in drawn
+        ]
+    return figures
 
 
 def _read_errata(errata_path: str | Path | None) -> list[ErratumEntry] | None:
@@ -328,16 +361,50 @@ def _reserve(folder: str, record: Record, name: str, taken: set[str]) -> str:
 def render_html(document: dict[str, Any], out_dir: Path) -> str:
     """The self-contained ``index.html`` of ``document`` (figures embedded from ``out_dir``)."""
     env = _environment(autoescape=True)
-    env.filters["datauri"] = lambda path: _data_uri(out_dir / path)
     env.filters["md"] = lambda text: Markup(markdown_to_html(text))
-    return env.get_template("index.html.j2").render(doc=document, **_views(document))
+    views = _views(document)
+    return env.get_template("index.html.j2").render(
+        doc=document,
+        **views,
+        legend=STATUS_LEGEND,
+        margins=margin_table(),
+        search_rules=script_rules(),
+        figure_src=lambda path: _data_uri(out_dir / path),
+    )
+
+
+def render_pages(document: dict[str, Any]) -> dict[str, str]:
+    """The pages read by case and by theorem: ``contents.html``, ``cases/<case>.html`` and
+    ``search-index.js`` (:mod:`theory.report.pages`), relative path → text."""
+    env = _environment(autoescape=True)
+    views = page_views(document)
+    common = {"doc": document, **views}
+    files = {
+        "contents.html": env.get_template("contents.html.j2").render(root="", **common),
+        "search-index.js": search_file(document),
+    }
+    template = env.get_template("case.html.j2")
+    for case in views["case_views"]:
+        design = case["design"]
+        rows = evidence_rows(design["answers"]) if design and "answers" in design else []
+        files[case["page"]] = template.render(
+            root="../",
+            case=case,
+            design_rows=rows,
+            figure_src=lambda path: f"../{path}",
+            **common,
+        )
+    return files
 
 
 def render_markdown(document: dict[str, Any]) -> str:
     """``report.md`` of ``document``."""
     env = _environment(autoescape=False)
     env.filters["cell"] = lambda text: str(text).replace("|", "\\|").replace("\n", " ")
-    return env.get_template("report.md.j2").render(doc=document, **_views(document))
+    design = {case: headline(section) for case, section in document["design"].items()}
+    return env.get_template("report.md.j2").render(
+        doc=document, design_lines=design, **_views(document)
+    )
 
 
 def _environment(*, autoescape: bool) -> jinja2.Environment:
@@ -353,6 +420,7 @@ def _environment(*, autoescape: bool) -> jinja2.Environment:
     env.filters["pretty"] = _pretty
     env.filters["seed"] = _seed
     env.filters["image"] = lambda path: Path(path).suffix.lower() in _IMAGE_TYPES
+    env.filters["slug"] = slug
     return env
 
 
@@ -365,7 +433,7 @@ def _views(document: dict[str, Any]) -> dict[str, Any]:
     sections = []
     for paper in papers:
         claims = [
-            {**claim, "results": by_id.get(claim["id"], [])}
+            {**claim, "results": [result_view(r) for r in by_id.get(claim["id"], [])]}
             for claim in document["registered"]
             if claim["paper"] == paper
         ]
@@ -382,6 +450,11 @@ def _views(document: dict[str, Any]) -> dict[str, Any]:
         "sections": sections,
         "errata_sections": _errata_sections(errata),
         "status_order": tuple(s.value for s in Status),
+        "pages": case_pages(document),
+        "row_words": {
+            (r["id"], r["case"]): canonical(f"{r['id']} {r['case']} {r['source']}")
+            for r in document["claims"]
+        },
     }
 
 
