@@ -82,6 +82,7 @@ __all__ = [
     "SelfWeightSearch",
     "alternative_residual",
     "decide_s_detectability",
+    "lmi_radius",
     "max_self_weight",
     "s_detectability_witness",
     "self_weight_family",
@@ -303,6 +304,22 @@ def _solve_lmi(
         spectral_radius(covariance_operator_matrix(W, Gamma, Order.FILTER_THEN_CONSENSUS)),
         spectral_radius(B_matrix(W, Gamma)),
     )  # fmt: skip
+
+
+def lmi_radius(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    *,
+    solver: str = "CLARABEL",
+    problems: LmiCache | None = None,
+) -> float:
+    """``r_σ(L)`` (float, informative) with the LMI's candidate gains at ``ρ = 1``; ``inf`` when
+    the solver gives none (a search objective, never a verdict)."""
+    A = np.asarray(A, dtype=float)
+    C = [np.asarray(Ci, dtype=float).reshape(-1, A.shape[0]) for Ci in C]
+    lmi = _solve_lmi(A, C, np.asarray(W, dtype=float), 1.0, solver, problems)
+    return float("inf") if lmi.radius_L is None else lmi.radius_L
 
 
 def s_detectability_witness(
