@@ -41,7 +41,7 @@ from theory.consensus.conditions import self_weight_ok_exact, squared_unobservab
 from theory.consensus.infeasibility import infeasibility_certificate
 from theory.consensus.s_detectability import LmiCache, decide_s_detectability
 from theory.core.case_file import Case
-from theory.core.errors import CaseError
+from theory.core.errors import COMMAND_LINE, CaseError
 from theory.core.exact import Matrix, RationalizationError, stochastic_matrix
 from theory.core.links import parse_link_expr
 from theory.core.tolerances import WEIGHT_TOL
@@ -100,7 +100,7 @@ def self_weight_family_exact(W: Matrix, agents: Sequence[int]) -> Family:
         if rest <= 0:
             raise CaseError(
                 "--agent", "an agent with some weight on others (w_aa < 1)", a + 1,
-                hint=f"agent {a + 1} has w_aa = 1: nothing to rescale",
+                file=COMMAND_LINE, hint=f"agent {a + 1} has w_aa = 1: nothing to rescale",
             )  # fmt: skip
         for j, x in enumerate(W[a]):
             if j != a and x:
@@ -127,7 +127,7 @@ def link_family(W: Matrix, links: Sequence[str]) -> Family:
             or not all(p.isdigit() and int(p) < N for p in parts[1:])
         ):
             raise CaseError(
-                "--link", f"a weight W.i.j with 0 ≤ i, j < {N}", link.path, file="<command line>"
+                "--link", f"a weight W.i.j with 0 ≤ i, j < {N}", link.path, file=COMMAND_LINE
             )
         offset, factor = link.exact()
         entries[(int(parts[1]), int(parts[2]))] = (offset, factor)
@@ -139,14 +139,14 @@ def link_family(W: Matrix, links: Sequence[str]) -> Family:
     if not entries or lo >= hi:
         raise CaseError(
             "--link", "links that leave an interval of w with every weight in [0, 1]",
-            ", ".join(links), file="<command line>",
+            ", ".join(links), file=COMMAND_LINE,
         )  # fmt: skip
     for i, row in enumerate(family.at(lo)):
         factors = sum((entries[(i, j)][1] for j in range(N) if (i, j) in entries), Fraction(0))
         if sum(row) != 1 or factors != 0:
             raise CaseError(
                 "--link", f"row {i} of W summing to 1 for every w", f"{', '.join(links)}",
-                file="<command line>", hint="link the row's other weights too, e.g. W.0.1=1-w",
+                file=COMMAND_LINE, hint="link the row's other weights too, e.g. W.0.1=1-w",
             )  # fmt: skip
     return family
 
@@ -375,14 +375,18 @@ def self_weight_design(
     """
     width = Fraction(width) if not isinstance(width, float) else Fraction(repr(width))
     if width <= 0:
-        raise CaseError("--width", "a number > 0", str(width), file="<command line>")
+        raise CaseError("--width", "a number > 0", str(width), file=COMMAND_LINE)
     A, C, W = exact_system(case)
+    if links and agents is not None:
+        raise CaseError("--link", "either --link or --agent", "both", file=COMMAND_LINE)
     if links:
         family, ids = link_family(W, links), ()
     else:
         chosen = list(agents) if agents is not None else default_agents(A, C, W)
         if any(not 0 <= a < len(W) for a in chosen):
-            raise CaseError("--agent", f"agents 1…{len(W)}", [a + 1 for a in chosen])
+            raise CaseError(
+                "--agent", f"agents 1…{len(W)}", [a + 1 for a in chosen], file=COMMAND_LINE
+            )
         family, ids = self_weight_family_exact(W, chosen), tuple(a + 1 for a in chosen)
     decider = _Decider(A, C, family, case.name, solver)
     return _search(decider, _exact_bound(A, C, family), width, ids)
