@@ -38,3 +38,17 @@ def test_every_question_is_an_explicit_function() -> None:
     assert not hasattr(trackcert.design, "ANSWERS") and not hasattr(trackcert.design, "answer")
     with pytest.raises(TypeError):
         trackcert.design.self_weight("ch5-example-1-wg", no_such_option=1)
+
+
+@pytest.mark.parametrize(
+    ("name", "args", "options"),
+    [
+        ("margin", ("fig43-case-a",), {"search": False}),
+        ("placement", (4, 30.0), {"starts": 1, "dim": 2}),
+        ("gains", ("pursuit-table1-n1",), {"grid": 1, "depth": 0, "max_cells": 1}),
+    ],
+)
+def test_the_other_answers_return_design_results(name: str, args: tuple, options: dict) -> None:
+    result = getattr(trackcert.design, name)(*args, **options)
+    assert isinstance(result, trackcert.DesignResult) and result.exit_code == 0
+    assert all(trackcert.check(c).verdict for c in result.certificates)

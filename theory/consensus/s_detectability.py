@@ -274,7 +274,7 @@ def _solve_lmi(
     problems: LmiCache | None = None,
 ) -> LmiSolution:
     """Solve the normalised LMI: its candidate gains, margins and multipliers (floats only)."""
-    problem, parts = (problems or LmiCache()).problem(A, C, W, rho)
+    problem, parts = (LmiCache() if problems is None else problems).problem(A, C, W, rho)
     try:
         with warnings.catch_warnings():  # inaccuracy is reported through the status table
             warnings.simplefilter("ignore", UserWarning)
@@ -426,6 +426,10 @@ class LmiCache:
 
     def __init__(self) -> None:
         self._problems: dict[tuple, tuple[cp.Problem, dict[str, Any]]] = {}
+
+    def __len__(self) -> int:
+        """How many problems are built."""
+        return len(self._problems)
 
     def problem(
         self, A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float
