@@ -77,7 +77,13 @@ def test_links_give_the_same_family_as_the_agent() -> None:
 
 @pytest.mark.parametrize(
     ("links", "field"),
-    [(("W.0.0=w",), "--link"), (("W.0.9=w", "W.0.0=1-w"), "--link"), (("W.0.0=2*v",), "--link")],
+    [
+        (("W.0.0=w",), "--link"),
+        (("W.0.9=w", "W.0.0=1-w"), "--link"),
+        (("W.0.0=2*v",), "--link"),
+        (("W.0.0=0*w",), "--link"),
+        (("W.0.0=w", "W.0.1=1-w", "W.1.1=-2+w", "W.1.0=3-w"), "--link"),  # no common w
+    ],
 )
 def test_bad_links_are_refused_naming_the_option(links: tuple[str, ...], field: str) -> None:
     with pytest.raises(CaseError) as raised:

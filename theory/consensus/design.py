@@ -136,7 +136,7 @@ def link_family(W: Matrix, links: Sequence[str]) -> Family:
         ends = sorted(((0 - offset) / factor, (1 - offset) / factor))
         lo, hi = max(lo, ends[0]), min(hi, ends[1])
     family = Family(W, entries, lo, hi, "links " + ", ".join(links))
-    if not entries or lo >= hi:
+    if not any(factor for _, factor in entries.values()) or lo >= hi:
         raise CaseError(
             "--link", "links that leave an interval of w with every weight in [0, 1]",
             ", ".join(links), file=COMMAND_LINE,
