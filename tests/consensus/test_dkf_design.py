@@ -91,19 +91,19 @@ def test_bad_links_are_refused_naming_the_option(links: tuple[str, ...], field: 
     assert raised.value.field == field
 
 
-def test_a_cycle_of_blind_agents_gives_a_certified_bracket_below_the_paper_bound() -> None:
-    """A = 2, agents 1, 2 blind: Theorem 6's threshold (a root of a quadratic, ≈ 0.19) lies below
-    the self-weight bound 1/4, so the exact route does not apply and the bracket contains it."""
+def test_a_cycle_of_blind_agents_is_exact_by_the_blind_set_condition() -> None:
+    """A = 2, agents 1, 2 blind: Theorem 6's threshold (4 r_σ(W_SS(w)) = 1, here 19/100) lies
+    below the self-weight bound 1/4; the blind-set condition decides it exactly."""
     tenth = Fraction(1, 10)
     W = [[tenth, tenth, 8 * tenth], [tenth, tenth, 8 * tenth], [0, 0, Fraction(1)]]
     result = self_weight_design(_scalar_case(Fraction(2), W, [False, False, True]), agents=[0],
                                 width=Fraction(1, 1000))  # fmt: skip
     # 4 r_σ([[w, (1 − w)/9], [1/10, 1/10]]) = 1  ⇔  (w − 1/4)(1/10 − 1/4) = (1 − w)/90
     threshold = (Fraction(3, 80) - Fraction(1, 90)) / (Fraction(3, 20) - Fraction(1, 90))
-    low, high = result.supremum.interval
-    assert result.status == "bracket" and not result.supremum.exact
-    assert low < threshold <= high and high - low <= Fraction(1, 1000)
-    assert all(_valid(c) for c in result.certificates)
+    assert threshold == Fraction(19, 100) and result.status == "exact"
+    assert result.supremum.rational == threshold and "blind-set" in result.condition
+    assert threshold - Fraction(1, 1000) <= result.below.w < threshold == result.at_or_above.w
+    assert all(_valid(c) for c in result.certificates) and len(result.certificates) == 2
 
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -29,7 +29,7 @@ every probe is listed.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
@@ -38,11 +38,18 @@ import numpy as np
 import sympy
 
 from theory.consensus.conditions import self_weight_ok_exact, squared_unobservable_polynomial
-from theory.consensus.infeasibility import infeasibility_certificate
+from theory.consensus.infeasibility import blind_flats, infeasibility_certificate
+from theory.consensus.operators import nonnegative_radius_below
 from theory.consensus.s_detectability import LmiCache, decide_s_detectability
 from theory.core.case_file import Case
 from theory.core.errors import COMMAND_LINE, CaseError
-from theory.core.exact import Matrix, RationalizationError, stochastic_matrix
+from theory.core.exact import (
+    Matrix,
+    RationalizationError,
+    rational_eigenvalues,
+    rational_matrix,
+    stochastic_matrix,
+)
 from theory.core.links import parse_link_expr
 from theory.core.tolerances import WEIGHT_TOL
 
@@ -245,54 +252,147 @@ class SelfWeightDesign:
 
 @dataclass(frozen=True)
 class _Bound:
-    """``u``: no ``w ≥ u`` satisfies Thm 5.2.10 (2) for agent ``agent`` (0-based)."""
+    """``u`` (``value``): the necessary ``condition`` fails for every ``w ≥ u`` of the family;
+    ``fails(w)`` decides it exactly at a rational ``w``."""
 
-    agent: int
     value: Supremum
+    condition: str
+    fails: Callable[[Fraction], bool]
 
 
-def _largest_square(s: list[Fraction]) -> sympy.Expr | None:
-    """``μ = max |λ²|`` over the roots of ``s`` when a real root attains it (exact), else None
-    (the float moduli only choose the root; the caller re-checks the bound exactly)."""
-    z = sympy.Symbol("z")
-    poly = sympy.Poly([sympy.Rational(c.numerator, c.denominator) for c in reversed(s)], z)
-    if poly.degree() < 1:
-        return None
-    top = max(abs(complex(r)) for r in np.roots([float(c) for c in reversed(s)]))
-    if top == 0:
-        return None
-    real = [r for r in sympy.real_roots(poly) if abs(float(r)) >= top * (1 - 1e-12)]
-    return sympy.Abs(real[0]) if real else None
+def _fraction(x: sympy.Rational) -> Fraction:
+    return Fraction(int(x.p), int(x.q))
 
 
-def _bound_of(a: int, offset: Fraction, factor: Fraction, s: list[Fraction]) -> _Bound | None:
-    """``u_a = (1/μ_a − offset)/factor`` exactly (None when ``μ_a`` is 0 or not a real root)."""
-    mu = _largest_square(s)
-    if mu is None:
-        return None
-    x = sympy.Symbol("x")
-    u = (1 / mu - sympy.Rational(offset)) / sympy.Rational(factor)
-    value = float(sympy.N(u, 30))
-    if u.is_Rational:
-        q = Fraction(int(u.p), int(u.q))
-        return _Bound(a, Supremum(True, value, (q, q), rational=q))
-    minimal = sympy.Poly(sympy.minimal_polynomial(u, x), x)
-    for (left, right), _ in minimal.intervals(eps=sympy.Rational(1, 10**20)):
-        if left <= value <= right or float(left) <= value <= float(right):
-            interval = (Fraction(int(left.p), int(left.q)), Fraction(int(right.p), int(right.q)))
-            coefficients = tuple(int(c) for c in reversed(minimal.all_coeffs()))
-            return _Bound(a, Supremum(True, value, interval, polynomial=coefficients))
+def _algebraic(poly: sympy.Poly, left: Fraction, right: Fraction) -> Supremum | None:
+    """The one root of ``poly`` in ``[left, right]``: rational, or its minimal polynomial (the
+    irreducible factor with a root there) and an isolating interval of width ``≤ 10⁻²⁰``."""
+    lo, hi = (
+        sympy.Rational(left.numerator, left.denominator),
+        sympy.Rational(right.numerator, right.denominator),
+    )
+    for factor, _ in poly.factor_list()[1]:
+        if factor.count_roots(lo, hi) != 1:
+            continue
+        if factor.degree() == 1:
+            b, a = factor.all_coeffs()[1], factor.all_coeffs()[0]
+            q = _fraction(-b / a)
+            return Supremum(True, float(q), (q, q), rational=q)
+        for (a, b), _ in factor.intervals(eps=sympy.Rational(1, 10**20), inf=lo, sup=hi):
+            interval = (_fraction(a), _fraction(b))
+            primitive = factor.primitive()[1]
+            coefficients = tuple(int(c) for c in reversed(primitive.all_coeffs()))
+            value = float((a + b) / 2)
+            return Supremum(True, value, interval, polynomial=coefficients)
     return None
 
 
+def _self_weight_bound(A: np.ndarray, C: np.ndarray, a: int, offset: Fraction,
+                       factor: Fraction) -> _Bound | None:  # fmt: skip
+    """Thm 5.2.10 (2) for the rising self-weight ``w_aa = offset + factor·w``: ``u = (1/μ −
+    offset)/factor``, ``μ = max |λ²|`` over ``A_aᵘ`` when a real root attains it."""
+    s = squared_unobservable_polynomial(A, C)
+    if len(s) < 2:
+        return None
+    z = sympy.Symbol("z")
+    poly = sympy.Poly([sympy.Rational(c.numerator, c.denominator) for c in reversed(s)], z)
+    top = max(abs(complex(r)) for r in np.roots([float(c) for c in reversed(s)]))
+    real = [r for r in sympy.real_roots(poly) if top and abs(float(r)) >= top * (1 - 1e-12)]
+    if not real:
+        return None
+    w = sympy.Symbol("w")
+    u = (1 / sympy.Abs(real[0]) - sympy.Rational(offset)) / sympy.Rational(factor)
+    minimal = sympy.Poly(sympy.minimal_polynomial(u, w), w)
+    value = Fraction(repr(float(sympy.N(u, 30))))
+    spread = Fraction(1, 10**12) * max(1, abs(value))
+    sup = _algebraic(minimal, value - spread, value + spread)
+    if sup is None:
+        return None
+    condition = (
+        f"Thm 5.2.10 (2) for agent {a + 1}: w_aa r_σ(A_aᵘ)² < 1 fails exactly for every "
+        f"w ≥ {sup.value:.10g} (Schur–Cohn; monotone in w)"
+    )
+    return _Bound(sup, condition, lambda x: not self_weight_ok_exact(A, C, offset + factor * x))
+
+
+def _blind_set_bounds(A: np.ndarray, C: list[np.ndarray], family: Family) -> list[_Bound]:
+    """Theorem 4 (docs/theory/s-detectability.md) for every rational eigenvalue and blind set S
+    that the family changes: ``u`` the first root in ``(lo, hi]`` of a leading principal minor of
+    ``I − λ² W_SS(w)``, kept when the condition fails on all of ``[u, hi]`` (exact signs at
+    rational points between the roots)."""
+    A_q = rational_matrix(A)
+    C_q = [rational_matrix(c) if c.size else [] for c in C]
+    w = sympy.Symbol("w")
+    out = []
+    for lam in rational_eigenvalues(A_q):
+        if lam == 0:
+            continue
+        for _, S in blind_flats(A_q, C_q, lam):
+            if not any(i in S and j in S for i, j in family.entries):
+                continue
+            bound = _blind_set_bound(family, lam, S, w)
+            if bound is not None:
+                out.append(bound)
+    return out
+
+
+def _blind_set_bound(family: Family, lam: Fraction, S: tuple[int, ...], w: sympy.Symbol
+                     ) -> _Bound | None:  # fmt: skip
+    square = sympy.Rational(lam.numerator, lam.denominator) ** 2
+
+    def entry(i: int, j: int) -> sympy.Expr:
+        offset, factor = family.entries.get((i, j), (family.base[i][j], Fraction(0)))
+        return (
+            sympy.Rational(offset.numerator, offset.denominator)
+            + sympy.Rational(factor.numerator, factor.denominator) * w
+        )
+
+    M = sympy.Matrix([[int(i == j) - square * entry(i, j) for j in S] for i in S])
+    minors = [sympy.Poly(M[:k, :k].det(), w) for k in range(1, len(S) + 1)]
+    product = sympy.Poly(sympy.prod(m.as_expr() for m in minors if m.degree() > 0) or 1, w)
+    if product.degree() < 1:
+        return None
+    lo, hi = (sympy.Rational(x.numerator, x.denominator) for x in (family.lo, family.hi))
+    roots = [(a, b) for (a, b), _ in product.sqf_part().intervals(eps=sympy.Rational(1, 10**20))
+             if b > lo and a <= hi]  # fmt: skip
+    if not roots or roots[0][0] <= lo or roots[-1][0] <= hi < roots[-1][1]:
+        return None
+
+    def fails(x: Fraction) -> bool:
+        W_SS = [[lam * lam * _value(family, i, j, x) for j in S] for i in S]
+        return not nonnegative_radius_below(W_SS)
+
+    ends = [_fraction(b) for _, b in roots]
+    starts = [_fraction(a) for a, _ in roots[1:]] + [_fraction(hi)]
+    samples = [(e + s_) / 2 for e, s_ in zip(ends, starts, strict=True) if e < s_]
+    if not all(fails(x) for x in samples):
+        return None
+    sup = _algebraic(product, _fraction(roots[0][0]), _fraction(roots[0][1]))
+    if sup is None:
+        return None
+    condition = (
+        f"blind-set condition (Theorem 4) for λ = {lam}, agents "
+        f"{', '.join(str(i + 1) for i in S)}: λ² r_σ(W_SS(w)) < 1 fails exactly for every "
+        f"w ≥ {sup.value:.10g} (signs of the leading minors of I − λ² W_SS(w))"
+    )
+    return _Bound(sup, condition, fails)
+
+
+def _value(family: Family, i: int, j: int, w: Fraction) -> Fraction:
+    offset, factor = family.entries.get((i, j), (family.base[i][j], Fraction(0)))
+    return offset + factor * w
+
+
 def _exact_bound(A: np.ndarray, C: list[np.ndarray], family: Family) -> _Bound | None:
-    """The least ``u_a`` over the family's rising self-weights (module docstring)."""
+    """The least exact bound over the family's rising self-weights (Thm 5.2.10 (2)) and its
+    blind sets (Theorem 4) (module docstring)."""
     bounds = [
         b
         for a, offset, factor in family.rising_diagonal()
-        if (b := _bound_of(a, offset, factor, squared_unobservable_polynomial(A, C[a])))
+        if (b := _self_weight_bound(A, C[a], a, offset, factor))
     ]
-    return min(bounds, key=lambda b: b.value.value, default=None)
+    bounds += _blind_set_bounds(A, C, family)
+    return min(bounds, key=lambda b: b.value.interval[0], default=None)
 
 
 def default_agents(A: np.ndarray, C: list[np.ndarray], W: Matrix) -> list[int]:
@@ -304,7 +404,7 @@ def default_agents(A: np.ndarray, C: list[np.ndarray], W: Matrix) -> list[int]:
     bounds = {
         a: b.value.value
         for a in free
-        if (b := _bound_of(a, Fraction(0), Fraction(1), squared_unobservable_polynomial(A, C[a])))
+        if (b := _self_weight_bound(A, C[a], a, Fraction(0), Fraction(1)))
     }
     if not bounds:
         return free[:1]
@@ -411,7 +511,7 @@ def _search(
         return answer(status, None, None, first if first.verdict is False else None, "",
                       f"at the family's smallest w = {family.lo}: {first.reason}")  # fmt: skip
     d = _digits(width)
-    if _refuted_from(decider, bound) and family.lo < bound.value.interval[1] <= family.hi:
+    if _refuted_from(bound) and family.lo < bound.value.interval[1] <= family.hi:
         low_end, high_end = bound.value.interval
         below = _decimal_below(low_end, d)
         if below >= family.lo:
@@ -419,10 +519,7 @@ def _search(
                 high_end if bound.value.rational is not None else _decimal_at_or_above(high_end, d)
             )
             near = decider.decide(below)
-            condition = (
-                f"Thm 5.2.10 (2) for agent {bound.agent + 1}: w_aa r_σ(A_aᵘ)² < 1 fails exactly "
-                f"for every w ≥ {bound.value.value:.10g} (Schur–Cohn, monotone in w)"
-            )
+            condition = bound.condition
             if near.verdict is True:
                 refuted = decider.refute(above)
                 note = (
@@ -443,14 +540,10 @@ def _search(
     return _bisect(decider, first, last, width, answer, "")
 
 
-def _refuted_from(decider: _Decider, bound: _Bound | None) -> bool:
-    """Whether Thm 5.2.10 (2) fails exactly at the isolating interval's upper end (Schur–Cohn):
-    the bound is then exact, whatever float chose its root."""
-    if bound is None:
-        return False
-    offset, factor = decider.family.entries[(bound.agent, bound.agent)]
-    top = offset + factor * bound.value.interval[1]
-    return not self_weight_ok_exact(decider.A, decider.C[bound.agent], top)
+def _refuted_from(bound: _Bound | None) -> bool:
+    """Whether the bound's condition fails exactly at its isolating interval's upper end: a
+    re-check independent of how the root was chosen."""
+    return bound is not None and bound.fails(bound.value.interval[1])
 
 
 def _bisect(decider: _Decider, low: Probe, high: Probe, width: Fraction, answer: Any,
