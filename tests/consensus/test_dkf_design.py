@@ -11,13 +11,15 @@ import math
 from fractions import Fraction
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from proofs_check import check_certificate
-from theory.consensus.design import self_weight_design
+from theory.consensus.design import exact_system, self_weight_design, self_weight_family_exact
+from theory.consensus.properties import dkf_case
 from theory.consensus.redundancy import dkf_redundancy
 from theory.consensus.s_detectability import decide_s_detectability
+from theory.consensus.strategies import dkf_problems
 from theory.consensus.weight_design import weight_design
 from theory.core.errors import CaseError
 from theory.core.exact import stochastic_matrix
@@ -168,3 +170,23 @@ def test_weight_design_beats_the_case_on_its_graph_and_is_certified() -> None:
         _valid(cert) and Fraction(cert["claim"]["spectral_radius_below"]) == result.designed.radius
     )
     assert math.isfinite(result.designed.estimate)
+
+
+@settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    problem=dkf_problems(max_states=2, max_agents=3, a_bound=2, integer_data=True),
+    t=st.fractions(0, 1),
+)
+def test_a_certified_supremum_is_never_contradicted(problem, t) -> None:
+    """Random systems: below a certified S-detectable point the family decides S-detectable or
+    inconclusive, past an exact supremum it decides not or inconclusive, never the other way."""
+    assume(problem.W[0, 0] < 1)
+    case = parse_case(dkf_case(problem))
+    result = self_weight_design(case, agents=[0], width=Fraction(1, 100))
+    A, C, W = exact_system(case)
+    family = self_weight_family_exact(W, [0])
+    if result.below is not None:
+        assert decide_s_detectability(A, C, family.at(t * result.below.w)).verdict is not False
+    if result.status == "exact":
+        u = result.supremum.interval[1]
+        assert decide_s_detectability(A, C, family.at(u + t * (1 - u))).verdict is not True
