@@ -190,3 +190,24 @@ def test_a_certified_supremum_is_never_contradicted(problem, t) -> None:
     if result.status == "exact":
         u = result.supremum.interval[1]
         assert decide_s_detectability(A, C, family.at(u + t * (1 - u))).verdict is not True
+
+
+def test_without_an_exact_bound_the_bracket_is_bisected_between_certificates() -> None:
+    """The bracket route alone (no exact candidate given): the blind-cycle family's threshold
+    19/100 lies in a bracket of the width asked, both ends decided by checked certificates."""
+    from theory.consensus.design import _Decider, _search
+
+    tenth = Fraction(1, 10)
+    W = [[tenth, tenth, 8 * tenth], [tenth, tenth, 8 * tenth], [0, 0, Fraction(1)]]
+    case = _scalar_case(Fraction(2), W, [False, False, True])
+    A, C, W_q = exact_system(case)
+    decider = _Decider(A, C, self_weight_family_exact(W_q, [0]), case.name, "CLARABEL")
+    result = _search(decider, None, Fraction(1, 1000), (1,))
+    low, high = result.supremum.interval
+    assert result.status == "bracket" and not result.supremum.exact
+    assert low < Fraction(19, 100) <= high and high - low <= Fraction(1, 1000)
+    assert (result.below.w, result.at_or_above.w) == (low, high)
+    assert [c["kind"] for c in result.certificates] == [
+        "s-detectability", "s-detectability-infeasible",
+    ]  # fmt: skip
+    assert all(_valid(c) for c in result.certificates)
