@@ -9,7 +9,9 @@ CPU seconds of 8 probes (``time.process_time``):
 * LMI: the float LMI alone (what the reuse changes);
 * decision: the whole exact decision of each probe (LMI, exact certificate routes, proofs_check),
   through :func:`~theory.consensus.s_detectability.max_self_weight` with ``reuse`` off and on;
-  both must return the same bracket.
+  both must return the same bracket;
+* sweep: 11 whole decisions of Example 1's self-weight sweep, one per point as ``trackcert
+  sweep`` makes them, each with a fresh build against the thread's default cache.
 
 Systems: seed 000 Example 2 (agent 3) and a directed ring of N agents (``--agents``, default 10)
 watching ``A = 1.2 I₃``, agent 1 without a sensor (its self-weight varies; Thm 5.2.10 (2) puts the
@@ -28,6 +30,7 @@ import numpy as np
 from benchmarks.bench_dkf import ring
 from theory.consensus.s_detectability import (
     LmiCache,
+    decide_s_detectability,
     lmi_radius,
     max_self_weight,
     self_weight_family,
@@ -44,7 +47,9 @@ def _lmi(A, C, W, agent: int, reuse: bool) -> float:
     shared = LmiCache()
     start = time.process_time()
     for w in np.linspace(0.1, 0.9, PROBES):
-        lmi_radius(A, C, self_weight_family(W, [agent], w), problems=shared if reuse else None)
+        lmi_radius(
+            A, C, self_weight_family(W, [agent], w), problems=shared if reuse else LmiCache()
+        )
     return time.process_time() - start
 
 
@@ -52,6 +57,16 @@ def _decisions(A, C, W, agent: int, reuse: bool) -> tuple[float, tuple]:
     start = time.process_time()
     search = max_self_weight(A, C, W, [agent], weight_tol=WEIGHT_TOL, reuse=reuse)
     return time.process_time() - start, search.probes
+
+
+def _sweep(fresh: bool) -> float:
+    """CPU seconds of an 11-point sweep of Example 1's self-weight, one decision per point as
+    ``trackcert sweep`` makes them: ``fresh`` builds each point's LMI, else the thread's cache."""
+    start = time.process_time()
+    for w in np.linspace(0.2, 0.3, 11):
+        A, C, W = self_weight_examples("example 1", float(w))
+        decide_s_detectability(A, C, W, problems=LmiCache() if fresh else None)
+    return time.process_time() - start
 
 
 def main() -> None:
@@ -73,6 +88,12 @@ def main() -> None:
         assert b_old == b_new and len(b_new) == PROBES, (b_old, b_new)
         print(ROW.format(name, f"{old:.3f}", f"{new:.3f}", f"{old / new:.1f}x",
                          f"{d_old:.3f}", f"{d_new:.3f}", f"{d_old / d_new:.1f}x"))  # fmt: skip
+    _sweep(fresh=False)  # the thread's cache warm, as after a sweep's first point
+    old, new = _sweep(fresh=True), _sweep(fresh=False)
+    print(
+        f"sweep of 11 decisions (example 1): rebuilt {old:.3f}, reused {new:.3f}, "
+        f"ratio {old / new:.1f}x"
+    )
 
 
 if __name__ == "__main__":

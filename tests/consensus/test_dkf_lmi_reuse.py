@@ -37,3 +37,11 @@ def test_one_problem_per_support() -> None:
     A, C, W = self_weight_examples("example 1", 1.0)  # w_12 = 0: another support
     assert decide_s_detectability(A, C, W, problems=cache).verdict is False and len(cache) == 2
     assert np.array_equal(W[0], [1, 0, 0])
+
+
+def test_a_limited_cache_keeps_the_most_recent_problems() -> None:
+    cache = LmiCache(limit=1)
+    for w in (0.2, 1.0, 0.2):  # two supports, alternating
+        A, C, W = self_weight_examples("example 1", w)
+        assert decide_s_detectability(A, C, W, problems=cache).verdict is (w < 0.25)
+        assert len(cache) == 1

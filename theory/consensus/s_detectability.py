@@ -45,6 +45,7 @@ returned, and an inconclusive probe stops the search.
 
 from __future__ import annotations
 
+import threading
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -74,6 +75,7 @@ from theory.core.tolerances import CERT_TOL, LMI_MARGIN, WEIGHT_TOL
 __all__ = [
     "CERT_TOL",
     "LMI_MARGIN",
+    "SHARED_PROBLEMS",
     "SOLVER_STATUSES",
     "SOLVER_STATUS_TABLE",
     "LmiCache",
@@ -213,7 +215,8 @@ def decide_s_detectability(
     infeasibility; ``candidate_gains`` further labelled gains (the case's, the Riccati
     iteration's) tried with exact Lyapunov tuples; ``case`` is recorded in the certificate.
     ``W`` given as rows of ``Fraction`` is certified as it is (a float ``W`` is read as the
-    decimals it prints as); ``problems`` keeps the built LMI for re-solving (:class:`LmiCache`).
+    decimals it prints as); ``problems`` keeps the built LMI for re-solving (:class:`LmiCache`;
+    default: this thread's, :data:`SHARED_PROBLEMS` problems).
     """
     order = Order(order)
     A = np.asarray(A, dtype=float)
@@ -274,7 +277,7 @@ def _solve_lmi(
     problems: LmiCache | None = None,
 ) -> LmiSolution:
     """Solve the normalised LMI: its candidate gains, margins and multipliers (floats only)."""
-    problem, parts = (LmiCache() if problems is None else problems).problem(A, C, W, rho)
+    problem, parts = (_thread_problems() if problems is None else problems).problem(A, C, W, rho)
     try:
         with warnings.catch_warnings():  # inaccuracy is reported through the status table
             warnings.simplefilter("ignore", UserWarning)
@@ -304,6 +307,19 @@ def _solve_lmi(
         spectral_radius(covariance_operator_matrix(W, Gamma, Order.FILTER_THEN_CONSENSUS)),
         spectral_radius(B_matrix(W, Gamma)),
     )  # fmt: skip
+
+
+SHARED_PROBLEMS = 2
+"""Problems kept per thread when no :class:`LmiCache` is given."""
+
+_LOCAL = threading.local()
+
+
+def _thread_problems() -> LmiCache:
+    """This thread's :class:`LmiCache` (made on first use)."""
+    if not hasattr(_LOCAL, "problems"):
+        _LOCAL.problems = LmiCache(limit=SHARED_PROBLEMS)
+    return _LOCAL.problems
 
 
 def lmi_radius(
@@ -418,14 +434,17 @@ def _build_lmi(
 
 class LmiCache:
     """Built LMIs kept for re-solving (issue 28 item 4): one per ``(A, C, support of W, ρ)``,
-    with ``W`` set as a parameter, so a bisection or sweep over weights compiles its problem once.
+    with ``W`` set as a parameter, so a bisection or sweep over weights compiles its problem once;
+    at most ``limit`` problems, the least recently used dropped first.
 
-    Not shared between threads; make one per search (``None`` in
-    :func:`decide_s_detectability` builds a fresh problem per call).
+    Not shared between threads: a search makes its own, and :func:`decide_s_detectability`
+    without one uses a per-thread cache of :data:`SHARED_PROBLEMS` problems (so sweeps, one
+    decision per point, reuse too).
     """
 
-    def __init__(self) -> None:
+    def __init__(self, limit: int | None = None) -> None:
         self._problems: dict[tuple, tuple[cp.Problem, dict[str, Any]]] = {}
+        self._limit = limit
 
     def __len__(self) -> int:
         """How many problems are built."""
@@ -438,9 +457,11 @@ class LmiCache:
         support = W != 0
         key = (A.tobytes(), A.shape, tuple((c.tobytes(), c.shape) for c in C),
                support.tobytes(), support.shape, rho)  # fmt: skip
-        if key not in self._problems:
-            self._problems[key] = _build_lmi(A, C, support, rho)
-        problem, parts = self._problems[key]
+        built = self._problems.pop(key, None) or _build_lmi(A, C, support, rho)
+        self._problems[key] = built  # most recently used last
+        if self._limit is not None and len(self._problems) > self._limit:
+            del self._problems[next(iter(self._problems))]
+        problem, parts = built
         parts["W"].value = W / rho
         return problem, parts
 
@@ -531,11 +552,12 @@ def max_self_weight(
     one built LMI per support (:class:`LmiCache`; False rebuilds it per probe, the old path)."""
     probes: list[tuple[float, bool | None]] = []
     ids = tuple(a + 1 for a in agents)
-    problems = LmiCache() if reuse else None
+    problems = LmiCache()
 
     def decide(w: float) -> bool | None:
         family = self_weight_family(W, agents, w)
-        verdict = decide_s_detectability(A, C, family, solver=solver, problems=problems).verdict
+        cache = problems if reuse else LmiCache()
+        verdict = decide_s_detectability(A, C, family, solver=solver, problems=cache).verdict
         probes.append((w, verdict))
         return verdict
 
