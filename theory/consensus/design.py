@@ -267,6 +267,7 @@ class _Bound:
 
 
 def _fraction(x: sympy.Rational) -> Fraction:
+    """A sympy rational as a Fraction."""
     return Fraction(int(x.p), int(x.q))
 
 
@@ -344,16 +345,9 @@ def _blind_set_bounds(A: np.ndarray, C: list[np.ndarray], family: Family) -> lis
 
 def _blind_set_bound(family: Family, lam: Fraction, S: tuple[int, ...], w: sympy.Symbol
                      ) -> _Bound | None:  # fmt: skip
+    """Theorem 4's bound for one rational ``λ`` and blind set ``S`` (None: not exact here)."""
     square = sympy.Rational(lam.numerator, lam.denominator) ** 2
-
-    def entry(i: int, j: int) -> sympy.Expr:
-        offset, factor = family.entries.get((i, j), (family.base[i][j], Fraction(0)))
-        return (
-            sympy.Rational(offset.numerator, offset.denominator)
-            + sympy.Rational(factor.numerator, factor.denominator) * w
-        )
-
-    M = sympy.Matrix([[int(i == j) - square * entry(i, j) for j in S] for i in S])
+    M = sympy.Matrix([[int(i == j) - square * _value(family, i, j, w) for j in S] for i in S])
     minors = [sympy.Poly(M[:k, :k].det(), w) for k in range(1, len(S) + 1)]
     product = sympy.Poly(sympy.prod(m.as_expr() for m in minors if m.degree() > 0) or 1, w)
     if product.degree() < 1:
@@ -384,7 +378,8 @@ def _blind_set_bound(family: Family, lam: Fraction, S: tuple[int, ...], w: sympy
     return _Bound(sup, condition, fails)
 
 
-def _value(family: Family, i: int, j: int, w: Fraction) -> Fraction:
+def _value(family: Family, i: int, j: int, w: Any) -> Any:
+    """``w_ij(w)`` of the family, for a rational ``w`` or a sympy symbol."""
     offset, factor = family.entries.get((i, j), (family.base[i][j], Fraction(0)))
     return offset + factor * w
 
