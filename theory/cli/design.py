@@ -179,6 +179,7 @@ def redundancy(
 
 
 def _print_dkf_redundancy(result: Any) -> None:
+    """The dkf redundancy answer, plainly."""
     shown = ", ".join(f"{x[0]}←{x[1]}" if isinstance(x, tuple) else str(x) for x in result.witness)
     if result.k is None:
         head = f"{result.case}: no loss of {result.items} found that breaks S-detectability"
@@ -349,6 +350,7 @@ def self_weight(
 
 
 def _print_self_weight(result: Any) -> None:
+    """The supremum (exact value or bracket) and both certified ends, plainly."""
     sup = result.supremum
     who = f"agent(s) {', '.join(map(str, result.agents))}" if result.agents else result.family
     if sup is None:
@@ -394,6 +396,7 @@ def weights(
 
 
 def _print_weights(result: Any) -> None:
+    """The designed and compared weights with their certified ρ, plainly."""
     table = Table(title=f"{result.case}: consensus weights and certified r_σ(L) < ρ")
     for column in ("weights", "certified ρ", "estimate", "W (rows)"):
         table.add_column(column)

@@ -137,6 +137,7 @@ def dkf_redundancy(case: Case, *, links: bool = True, max_sets: int = MAX_SETS) 
 
 def _answer(case: Case, links: bool, k: int | None, removed: tuple, certified_below: int,
             checked: int, kept: list, reason: str) -> DkfRedundancy:  # fmt: skip
+    """The answer with its witness 1-based and the note on what a loss means."""
     witness = tuple((i + 1, j + 1) for i, j in removed) if links else tuple(a + 1 for a in removed)
     what = "links" if links else "agents"
     note = (

@@ -104,6 +104,7 @@ class WeightDesign:
 
 
 def _rows(support: np.ndarray) -> list[np.ndarray]:
+    """Each row's support columns."""
     return [np.flatnonzero(row) for row in support]
 
 
