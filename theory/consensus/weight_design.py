@@ -3,9 +3,10 @@ item 1): ``trackcert design weights`` as a library call.
 
 **Search (floats).** Each row of ``W`` is a softmax over the case's support (``w_ij > 0`` and the
 diagonal), so every candidate is row-stochastic on exactly that graph. Nelder–Mead (scipy)
-minimises ``r_σ(L)`` with the LMI's candidate gains
+minimises the smaller ``r_σ(L)`` of two gain choices: the LMI's candidate gains
 (:func:`~theory.consensus.s_detectability.lmi_radius`, one solve of the LMI built once: issue 28
-item 4), from uniform weights and, on a symmetric graph, Metropolis weights.
+item 4) and the projection gains ``L_i = A C_i⁺`` (fixed, so only ``W`` changes L), from the
+case's, uniform and, on a symmetric graph, Metropolis weights.
 
 **Certified (exact).** The best ``W`` is rounded to rationals with denominator ``DENOMINATOR``
 on the same support (the diagonal completing each row to exactly 1), and the least ``ρ`` of a
@@ -26,7 +27,9 @@ from typing import Any
 import numpy as np
 from scipy.optimize import minimize
 
+from theory.consensus.certificates import projection_gains
 from theory.consensus.design import exact_system
+from theory.consensus.operators import L_matrix, closed_loop, spectral_radius
 from theory.consensus.s_detectability import LmiCache, decide_s_detectability, lmi_radius
 from theory.core.case_file import Case
 from theory.core.exact import Matrix
@@ -147,12 +150,20 @@ def _rational(W: np.ndarray, support: np.ndarray) -> Matrix:
     return out
 
 
-def _certify(name: str, A, C, W: Matrix, problems: LmiCache, case: str) -> CertifiedWeights:
+def _radius(A, C, W: np.ndarray, projection: np.ndarray, problems: LmiCache) -> float:
+    """The smaller float ``r_σ(L)`` of the LMI's candidate gains and the projection gains
+    (seed 000 eq. (5.13); informative, a search objective)."""
+    fixed = spectral_radius(L_matrix(W, projection))
+    return min(lmi_radius(A, C, W, problems=problems), fixed)
+
+
+def _certify(name: str, A, C, W: Matrix, projection: np.ndarray, problems: LmiCache,
+             case: str) -> CertifiedWeights:  # fmt: skip
     """The least ``ρ`` of the ladder above the float radius certified for ``W``."""
-    estimate = lmi_radius(A, C, np.asarray(W, dtype=float), problems=problems)
+    estimate = _radius(A, C, np.asarray(W, dtype=float), projection, problems)
     tries = [Fraction(1)]
     if math.isfinite(estimate) and estimate < 1:
-        up = [Fraction(math.ceil(estimate * (1 + step) * 10**4), 10**4) for step in LADDER]
+        up = [Fraction(max(1, math.ceil(estimate * (1 + step) * 10**4)), 10**4) for step in LADDER]
         tries = sorted({r for r in up if r < 1}) + tries
     for rho in tries:
         result = decide_s_detectability(A, C, W, rho=float(rho), case=case, problems=problems)
@@ -172,12 +183,14 @@ def weight_design(case: Case, *, max_evaluations: int = 300) -> WeightDesign:
     if np.array_equal(adjacency, adjacency.T):
         named["metropolis"] = exact_metropolis_weights(adjacency)
     problems = LmiCache()
+    gains = [np.array(g, dtype=float).reshape(A.shape[0], -1) for g in projection_gains(A, C)]
+    projection = closed_loop(A, C, gains)
     evaluations = 0
 
     def objective(theta: np.ndarray) -> float:
         nonlocal evaluations
         evaluations += 1
-        return lmi_radius(A, C, _weights(theta, support), problems=problems)
+        return _radius(A, C, _weights(theta, support), projection, problems)
 
     best: tuple[float, np.ndarray] | None = None
     for start in named.values():
@@ -193,8 +206,10 @@ def weight_design(case: Case, *, max_evaluations: int = 300) -> WeightDesign:
             best = (float(found.fun), found.x)
     assert best is not None
     designed = _certify("designed", A, C, _rational(_weights(best[1], support), support),
-                        problems, case.name)  # fmt: skip
-    compared = tuple(_certify(n, A, C, W, problems, case.name) for n, W in named.items())
+                        projection, problems, case.name)  # fmt: skip
+    compared = tuple(
+        _certify(n, A, C, W, projection, problems, case.name) for n, W in named.items()
+    )
     note = (
         "spectral radii are certified bounds r_σ(L) < ρ (s-detectability certificates); the "
         "search is local (Nelder–Mead), so a smaller radius may exist"
