@@ -265,18 +265,6 @@ def test_import_is_light_and_versions_agree() -> None:
     assert result.exit_code == 0 and result.stdout.strip() == f"trackcert {theory.__version__}"
 
 
-def test_design_answers_plug_in_as_one_line() -> None:
-    from trackcert import design
-
-    assert set(design.ANSWERS) <= set(design.__all__)
-    answer = design.answer("theory.consensus.analysis:analyze_dkf")  # any library answer
-    result = answer("ch5-example-1-wg", search_self_weight=False)
-    assert isinstance(result, trackcert.DesignResult) and result.case.name == "ch5-example-1-wg"
-    assert result.to_json()["s_detectable"] is True and result.exit_code == 0
-    with pytest.raises(AttributeError, match="no answer"):
-        design.no_such_answer  # noqa: B018
-
-
 def test_pf_refuses_another_kind_before_any_run() -> None:
     with pytest.raises(CaseError, match="field 'kind': expected pf"):
         trackcert.pf("seed002-fig32-split", runs=4)

@@ -1,6 +1,10 @@
 """``trackcert design …``: certified design answers, one subcommand per question.
 
-Each subcommand is a shell over one library function: ``gains`` over
+Each subcommand is a shell over one library function: ``self-weight`` over
+:func:`theory.consensus.design.self_weight_design` (0 some weight certified S-detectable, 1 none
+at the family's smallest weight, 3 nothing certified), ``weights`` over
+:func:`theory.consensus.weight_design.weight_design` (0 the designed weights certified, 3 not),
+``gains`` over
 :func:`theory.pursuit.design.gain_regions` (0 a cell of the box is certified, 1 every cell is
 refuted, 3 none certified and some undecided), ``margin`` over
 :func:`theory.tdoa.geometry.margin.tdoa_margin`, ``placement`` over
@@ -45,7 +49,15 @@ BOX_HELP = (
     "case's values."
 )
 
-REDUNDANCY: dict[str, Callable[..., Redundancy]] = {"tdoa": tdoa_redundancy}
+
+def _dkf_redundancy(case: Case, *, links: bool) -> Any:
+    """:func:`theory.consensus.redundancy.dkf_redundancy`, imported when asked for."""
+    from theory.consensus.redundancy import dkf_redundancy
+
+    return dkf_redundancy(case, links=links)
+
+
+REDUNDANCY: dict[str, Callable[..., Any]] = {"tdoa": tdoa_redundancy, "dkf": _dkf_redundancy}
 """Case kind → its redundancy function (``links=True`` for links, ``False`` for agents)."""
 
 
@@ -162,7 +174,28 @@ def redundancy(
     result = REDUNDANCY[loaded.kind](loaded, links=links)
     code = exit_code(result.verdict)
     data = {**result.to_json(), "exit_code": code}
-    finish(data, code, as_json=as_json, show=lambda: _print_redundancy(result))
+    show = _print_redundancy if isinstance(result, Redundancy) else _print_dkf_redundancy
+    finish(data, code, as_json=as_json, show=lambda: show(result))
+
+
+def _print_dkf_redundancy(result: Any) -> None:
+    """The dkf redundancy answer, plainly."""
+    shown = ", ".join(f"{x[0]}←{x[1]}" if isinstance(x, tuple) else str(x) for x in result.witness)
+    if result.k is None:
+        head = f"{result.case}: no loss of {result.items} found that breaks S-detectability"
+    else:
+        head = (
+            f"{result.case}: losing {result.k} {result.items} breaks S-detectability: remove "
+            f"{shown or 'nothing'}"
+        )
+    console.print(head, markup=False, style="bold")
+    console.print(result.reason, markup=False)
+    console.print(
+        f"every set of fewer than {result.certified_below} {result.items} keeps S-detectability "
+        f"({result.checked} sets decided exactly; {len(result.certificates)} certificates)",
+        markup=False,
+    )
+    console.print(result.note, markup=False)
 
 
 def _print_redundancy(result: Redundancy) -> None:
@@ -278,3 +311,98 @@ def gains(
     )
     code = exit_code(regions.verdict)
     finish(regions.to_json(), code, as_json=as_json, show=lambda: _print_gains(regions))
+
+
+@design_app.command("self-weight")
+@reports_errors
+def self_weight(
+    case: str = case_argument("Case file or bundled case name (kind: dkf)."),
+    agent: Annotated[
+        list[int] | None,
+        typer.Option(
+            "--agent",
+            help="Agent (1-based) whose self-weight varies; repeat to vary "
+            "several together. Default: the agents with the least exact bound.",
+        ),
+    ] = None,
+    link: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--link",
+            help="W.i.j=EXPR, EXPR affine in w (e.g. W.0.1=1-w), as sweep "
+            "--link; repeat for each weight. Replaces --agent.",
+        ),
+    ] = None,
+    width: str = typer.Option("0.0001", "--width", help="Width of a certified bracket."),
+    as_json: bool = json_option(),
+) -> None:
+    """Supremum of a self-weight (or linked weights) keeping S-detectability, exact if possible."""
+    from theory.consensus.design import self_weight_design
+
+    loaded = _case_of(case, ("dkf",))
+    agents = None if not agent else [a - 1 for a in agent]
+    result = self_weight_design(
+        loaded, agents=agents, links=tuple(link or ()), width=_positive(width, "--width")
+    )
+    code = exit_code(result.verdict)
+    finish({**result.to_json(), "exit_code": code}, code, as_json=as_json,
+           show=lambda: _print_self_weight(result))  # fmt: skip
+
+
+def _print_self_weight(result: Any) -> None:
+    """The supremum (exact value or bracket) and both certified ends, plainly."""
+    sup = result.supremum
+    who = f"agent(s) {', '.join(map(str, result.agents))}" if result.agents else result.family
+    if sup is None:
+        console.print(f"{result.case}: {who}: {result.status}", markup=False, style="bold")
+    elif sup.exact:
+        exact = str(sup.rational) if sup.rational is not None else (
+            f"root of {' + '.join(f'{c}·w^{k}' for k, c in enumerate(sup.polynomial))} in "
+            f"[{float(sup.interval[0]):.12g}, {float(sup.interval[1]):.12g}]"
+        )  # fmt: skip
+        console.print(
+            f"{result.case}: {who}: S-detectable below w* = {sup.value:.6g} (exact: {exact})",
+            markup=False, style="bold",
+        )  # fmt: skip
+    else:
+        lo, hi = (float(x) for x in sup.interval)
+        console.print(
+            f"{result.case}: {who}: supremum in [{lo:.6g}, {hi:.6g}] ({result.status})",
+            markup=False, style="bold",
+        )  # fmt: skip
+    for label, probe in (("certified S-detectable at", result.below),
+                         ("refuted at", result.at_or_above)):  # fmt: skip
+        if probe is not None:
+            kind = probe.certificate["kind"] if probe.certificate else "no certificate"
+            console.print(f"  {label} w = {probe.w} ({kind})", markup=False)
+    if result.condition:
+        console.print(f"  {result.condition}", markup=False)
+    console.print(result.note, markup=False)
+
+
+@design_app.command("weights")
+@reports_errors
+def weights(
+    case: str = case_argument("Case file or bundled case name (kind: dkf)."),
+    as_json: bool = json_option(),
+) -> None:
+    """Rational weights on the case's graph, certified S-detectable with a small r_σ(L)."""
+    from theory.consensus.weight_design import weight_design
+
+    result = weight_design(_case_of(case, ("dkf",)))
+    code = exit_code(result.verdict)
+    finish({**result.to_json(), "exit_code": code}, code, as_json=as_json,
+           show=lambda: _print_weights(result))  # fmt: skip
+
+
+def _print_weights(result: Any) -> None:
+    """The designed and compared weights with their certified ρ, plainly."""
+    table = Table(title=f"{result.case}: consensus weights and certified r_σ(L) < ρ")
+    for column in ("weights", "certified ρ", "estimate", "W (rows)"):
+        table.add_column(column)
+    for entry in (result.designed, *result.compared):
+        rho = "not certified" if entry.radius is None else f"{float(entry.radius):.4g}"
+        rows = "; ".join(" ".join(f"{float(x):.3f}" for x in row) for row in entry.W)
+        table.add_row(entry.name, rho, f"{entry.estimate:.4g}", rows)
+    console.print(table)
+    console.print(result.note, markup=False)

@@ -91,7 +91,8 @@ def float_margin(
     """Relative margin ``min_i min(λ_min(P_i), λ_min(ρP_i − T_i(P))) / max_i ‖P_i‖₂`` of a float
     witness (``T`` named as in :mod:`proofs_check.operators`): positive iff strictly feasible."""
     P = [symmetric_projection(p) for p in P]
-    images = apply_operator(operator, W, np.stack([np.asarray(g, float) for g in gammas]), P)
+    Gamma = np.stack([np.asarray(g, float) for g in gammas])
+    images = apply_operator(operator, np.asarray(W, float), Gamma, P)
     top = max(float(np.linalg.norm(p, 2)) for p in P)
     if not np.isfinite(top) or top == 0:
         return float("-inf")
@@ -276,9 +277,9 @@ def primal_lyapunov(
 ) -> np.ndarray | None:
     """The float ``X = Σ_k T^k(I)`` solving ``X − T(X) = I`` for the order's operator, or None
     when ``I − T`` is singular or ``X ⊁ 0`` (seed 000 Lemma 5.2.2, "only if")."""
-    T = covariance_operator_matrix(W, closed_loop(A, C, gains), order)
+    T = covariance_operator_matrix(np.asarray(W, float), closed_loop(A, C, gains), order)
     try:
-        X = float_lyapunov(T, np.asarray(W).shape[0], np.asarray(A).shape[0])
+        X = float_lyapunov(T, len(W), np.asarray(A).shape[0])
     except np.linalg.LinAlgError:
         return None
     return X if all(np.linalg.eigvalsh(Xi)[0] > 0 for Xi in X) else None

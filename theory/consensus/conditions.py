@@ -72,6 +72,7 @@ __all__ = [
     "self_weight_bounds",
     "self_weight_ok_exact",
     "source_components",
+    "squared_unobservable_polynomial",
     "unobservable_partition",
     "w_detectability",
 ]
@@ -470,20 +471,30 @@ def _charpoly(M: fmpq_mat) -> list[Fraction]:
     return [Fraction(int(x.p), int(x.q)) for x in M.charpoly().coeffs()]  # c_0 … c_k
 
 
-def self_weight_ok_exact(A: np.ndarray, C: np.ndarray, w: float) -> bool:
-    """``w r_σ(A_u)² < 1`` decided exactly, ``w`` read as the written decimal (seed 000
-    Thm 5.2.10 (2); steps 1–4 of the module docstring)."""
+def squared_unobservable_polynomial(A: np.ndarray, C: np.ndarray | list) -> list[Fraction]:
+    """Coefficients ``s_0 … s_k`` of ``s(z) = (−1)^k p(√z) p(−√z)``, whose roots are the squares
+    ``λ²`` of the eigenvalues of ``A_u`` (``p`` its characteristic polynomial; ``[1]`` when
+    ``(A, C)`` is observable), exact (step 3 of the module docstring)."""
     A_u = exact_unobservable_part(A, C)
     k = A_u.nrows()
     if k == 0:
-        return True
+        return [Fraction(1)]
     p = _charpoly(A_u)
     p_neg = [c * (-1) ** j for j, c in enumerate(p)]
     product = [Fraction(0)] * (2 * k + 1)
     for i, a in enumerate(p):
         for j, b in enumerate(p_neg):
             product[i + j] += a * b
-    s = [(-1) ** k * product[2 * j] for j in range(k + 1)]
+    return [(-1) ** k * product[2 * j] for j in range(k + 1)]
+
+
+def self_weight_ok_exact(A: np.ndarray, C: np.ndarray, w: float | Fraction) -> bool:
+    """``w r_σ(A_u)² < 1`` decided exactly, ``w`` read as the written decimal (seed 000
+    Thm 5.2.10 (2); steps 1–4 of the module docstring)."""
+    s = squared_unobservable_polynomial(A, C)
+    k = len(s) - 1
+    if k == 0:
+        return True
     wq = exact_decimal(w)
     if wq == 0:
         return True

@@ -45,6 +45,7 @@ returned, and an inconclusive probe stops the search.
 
 from __future__ import annotations
 
+import threading
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -68,19 +69,22 @@ from theory.consensus.operators import (
     covariance_operator_matrix,
     spectral_radius,
 )
-from theory.core.exact import RationalizationError
+from theory.core.exact import Matrix, RationalizationError
 from theory.core.tolerances import CERT_TOL, LMI_MARGIN, WEIGHT_TOL
 
 __all__ = [
     "CERT_TOL",
     "LMI_MARGIN",
+    "SHARED_PROBLEMS",
     "SOLVER_STATUSES",
     "SOLVER_STATUS_TABLE",
+    "LmiCache",
     "LmiSolution",
     "SDetectability",
     "SelfWeightSearch",
     "alternative_residual",
     "decide_s_detectability",
+    "lmi_radius",
     "max_self_weight",
     "s_detectability_witness",
     "self_weight_family",
@@ -190,7 +194,7 @@ class SDetectability:
 def decide_s_detectability(
     A: np.ndarray,
     C: Sequence[np.ndarray],
-    W: np.ndarray,
+    W: np.ndarray | Matrix,
     *,
     rho: float = 1.0,
     order: Order | str = Order.CONSENSUS_THEN_FILTER,
@@ -199,6 +203,7 @@ def decide_s_detectability(
     cert_tol: float = CERT_TOL,
     candidate_gains: Sequence[tuple[str, Sequence[np.ndarray]]] = (),
     case: str | None = None,
+    problems: LmiCache | None = None,
 ) -> SDetectability:
     """Decide whether gains ``L_i`` exist with ``r_σ(L) < rho`` (seed 000 Def. 5.2.4, Lemma
     5.2.2, App. C.3; ``r_σ(J) = r_σ(L)``, so the answer holds for both orders).
@@ -209,19 +214,23 @@ def decide_s_detectability(
     rounding; ``cert_tol`` the ``ε_cert`` at which the float dual is reported as suggesting
     infeasibility; ``candidate_gains`` further labelled gains (the case's, the Riccati
     iteration's) tried with exact Lyapunov tuples; ``case`` is recorded in the certificate.
+    ``W`` given as rows of ``Fraction`` is certified as it is (a float ``W`` is read as the
+    decimals it prints as); ``problems`` keeps the built LMI for re-solving (:class:`LmiCache`;
+    default: this thread's, :data:`SHARED_PROBLEMS` problems).
     """
     order = Order(order)
     A = np.asarray(A, dtype=float)
+    exact_W = W if isinstance(W, list) else np.asarray(W, dtype=float)
     W = np.asarray(W, dtype=float)
     C = [np.asarray(Ci, dtype=float).reshape(-1, A.shape[0]) for Ci in C]
     tolerances = {"lmi_margin": lmi_margin, "cert_tol": cert_tol}
-    lmi = _solve_lmi(A, C, W, rho, solver)
+    lmi = _solve_lmi(A, C, W, rho, solver, problems)
     margin = float("-inf") if lmi.witness_margin is None else lmi.witness_margin
     witness = (lmi.gains, lmi.Y) if margin >= lmi_margin else None
     floats = [("LMI candidate gains", lmi.gains)] if lmi.gains else []
     found, reasons = primal_certificate(
-        A, C, W, order=order, rho=rho, witness=witness, candidates=[*floats, *candidate_gains],
-        case=case,
+        A, C, exact_W, order=order, rho=rho, witness=witness,
+        candidates=[*floats, *candidate_gains], case=case,
     )  # fmt: skip
     if found is not None:
         gains = certificate_gains(found.document, C)
@@ -237,7 +246,7 @@ def decide_s_detectability(
         )  # fmt: skip
     margins = {"witness_margin": lmi.witness_margin, "radius_bound": lmi.radius_bound}
     try:
-        cert = infeasibility_certificate(A, C, W, rho=rho, case=case)
+        cert = infeasibility_certificate(A, C, exact_W, rho=rho, case=case)
     except RationalizationError as error:
         reasons.append(str(error))
     else:
@@ -260,10 +269,15 @@ def _inconclusive_reason(hint: float | None, reasons: list[str], cert_tol: float
 
 
 def _solve_lmi(
-    A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float, solver: str
+    A: np.ndarray,
+    C: list[np.ndarray],
+    W: np.ndarray,
+    rho: float,
+    solver: str,
+    problems: LmiCache | None = None,
 ) -> LmiSolution:
     """Solve the normalised LMI: its candidate gains, margins and multipliers (floats only)."""
-    problem, parts = _build_lmi(A, C, W, rho)
+    problem, parts = (_thread_problems() if problems is None else problems).problem(A, C, W, rho)
     try:
         with warnings.catch_warnings():  # inaccuracy is reported through the status table
             warnings.simplefilter("ignore", UserWarning)
@@ -293,6 +307,35 @@ def _solve_lmi(
         spectral_radius(covariance_operator_matrix(W, Gamma, Order.FILTER_THEN_CONSENSUS)),
         spectral_radius(B_matrix(W, Gamma)),
     )  # fmt: skip
+
+
+SHARED_PROBLEMS = 2
+"""Problems kept per thread when no :class:`LmiCache` is given."""
+
+_LOCAL = threading.local()
+
+
+def _thread_problems() -> LmiCache:
+    """This thread's :class:`LmiCache` (made on first use)."""
+    if not hasattr(_LOCAL, "problems"):
+        _LOCAL.problems = LmiCache(limit=SHARED_PROBLEMS)
+    return _LOCAL.problems
+
+
+def lmi_radius(
+    A: np.ndarray,
+    C: Sequence[np.ndarray],
+    W: np.ndarray,
+    *,
+    solver: str = "CLARABEL",
+    problems: LmiCache | None = None,
+) -> float:
+    """``r_σ(L)`` (float, informative) with the LMI's candidate gains at ``ρ = 1``; ``inf`` when
+    the solver gives none (a search objective, never a verdict)."""
+    A = np.asarray(A, dtype=float)
+    C = [np.asarray(Ci, dtype=float).reshape(-1, A.shape[0]) for Ci in C]
+    lmi = _solve_lmi(A, C, np.asarray(W, dtype=float), 1.0, solver, problems)
+    return float("inf") if lmi.radius_L is None else lmi.radius_L
 
 
 def s_detectability_witness(
@@ -364,9 +407,12 @@ def witness_margin(
 
 
 def _build_lmi(
-    A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float
+    A: np.ndarray, C: list[np.ndarray], support: np.ndarray, rho: float
 ) -> tuple[cp.Problem, dict[str, Any]]:
-    N, n = W.shape[0], A.shape[0]
+    """The LMI of the module docstring for every ``W`` with this ``support``: ``W/ρ`` is the
+    non-negative cvxpy Parameter ``parts["W"]`` (DPP), so a re-solve needs no rebuild."""
+    N, n = support.shape[0], A.shape[0]
+    weights = cp.Parameter((N, N), nonneg=True)
     Ys = [cp.Variable((n, n), symmetric=True) for _ in range(N)]
     Zs = [cp.Variable((n, n), symmetric=True) for _ in range(N)]
     Gs = [cp.Variable((n, Ci.shape[0])) if Ci.shape[0] else None for Ci in C]
@@ -374,7 +420,7 @@ def _build_lmi(
     eye = np.eye(n)
     f1, f2 = [], []
     for j in range(N):
-        coupling = sum((W[i, j] / rho) * Zs[i] for i in range(N) if W[i, j] != 0)
+        coupling = sum(weights[i, j] * Zs[i] for i in range(N) if support[i, j])
         f1.append(Ys[j] - coupling - mu * eye >> 0)
     for i in range(N):
         M = Ys[i] @ A - (Gs[i] @ C[i] if Gs[i] is not None else 0)
@@ -383,7 +429,41 @@ def _build_lmi(
     flat = [cp.vec(v, order="F") for v in (*Ys, *Zs, *(g for g in Gs if g is not None))]
     norm = cp.norm(cp.hstack(flat), 2) <= 1
     problem = cp.Problem(cp.Maximize(mu), [*f1, *f2, norm])
-    return problem, {"Y": Ys, "G": Gs, "Z": Zs, "mu": mu, "f1": f1, "f2": f2}
+    return problem, {"Y": Ys, "G": Gs, "Z": Zs, "mu": mu, "f1": f1, "f2": f2, "W": weights}
+
+
+class LmiCache:
+    """Built LMIs kept for re-solving (issue 28 item 4): one per ``(A, C, support of W, ρ)``,
+    with ``W`` set as a parameter, so a bisection or sweep over weights compiles its problem once;
+    at most ``limit`` problems, the least recently used dropped first.
+
+    Not shared between threads: a search makes its own, and :func:`decide_s_detectability`
+    without one uses a per-thread cache of :data:`SHARED_PROBLEMS` problems (so sweeps, one
+    decision per point, reuse too).
+    """
+
+    def __init__(self, limit: int | None = None) -> None:
+        self._problems: dict[tuple, tuple[cp.Problem, dict[str, Any]]] = {}
+        self._limit = limit
+
+    def __len__(self) -> int:
+        """How many problems are built."""
+        return len(self._problems)
+
+    def problem(
+        self, A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float
+    ) -> tuple[cp.Problem, dict[str, Any]]:
+        """The LMI of ``(A, C, W, ρ)``, built on first use for this support, ``W`` set."""
+        support = W != 0
+        key = (A.tobytes(), A.shape, tuple((c.tobytes(), c.shape) for c in C),
+               support.tobytes(), support.shape, rho)  # fmt: skip
+        built = self._problems.pop(key, None) or _build_lmi(A, C, support, rho)
+        self._problems[key] = built  # most recently used last
+        if self._limit is not None and len(self._problems) > self._limit:
+            del self._problems[next(iter(self._problems))]
+        problem, parts = built
+        parts["W"].value = W / rho
+        return problem, parts
 
 
 def _psd_part(M: np.ndarray) -> np.ndarray:
@@ -465,15 +545,19 @@ def max_self_weight(
     *,
     weight_tol: float = WEIGHT_TOL,
     solver: str = "CLARABEL",
+    reuse: bool = True,
 ) -> SelfWeightSearch:
     """Supremum of ``w ∈ [0, 1]`` with ``(A, C, W(w))`` S-detectable, the 0-based ``agents``
-    varying together (seed 000 Thm 5.2.10 (2); §5.3.1: 0.25, §5.3.2: 0.3378)."""
+    varying together (seed 000 Thm 5.2.10 (2); §5.3.1: 0.25, §5.3.2: 0.3378); ``reuse`` solves
+    one built LMI per support (:class:`LmiCache`; False rebuilds it per probe, the old path)."""
     probes: list[tuple[float, bool | None]] = []
     ids = tuple(a + 1 for a in agents)
+    problems = LmiCache()
 
     def decide(w: float) -> bool | None:
         family = self_weight_family(W, agents, w)
-        verdict = decide_s_detectability(A, C, family, solver=solver).verdict
+        cache = problems if reuse else LmiCache()
+        verdict = decide_s_detectability(A, C, family, solver=solver, problems=cache).verdict
         probes.append((w, verdict))
         return verdict
 

@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.errors import COMMAND_LINE, CaseError
+from theory.core.links import LINK_EXPECTED, parse_link_expr
 
 __all__ = [
     "MAX_POINTS",
@@ -76,18 +77,9 @@ PARAM_EXPECTED = (
     "PATH=SPEC with SPEC one of FROM:TO (integers FROM…TO−1), FROM:TO:linN, FROM:TO:logN "
     "(N ≥ 2 points, ends included), v1,v2,… or a single number"
 )
-LINK_EXPECTED = (
-    "PATH=EXPR with EXPR one of SOURCE, -SOURCE, B*SOURCE, A+SOURCE, A-SOURCE, A+B*SOURCE, "
-    "A-B*SOURCE (A, B numbers; SOURCE the path of a --param)"
-)
 
 _SPACED = re.compile(r"^(?P<kind>lin|log)(?P<count>\d+)$")
 _INTEGER = re.compile(r"^[+-]?\d+$")
-_NUMBER = r"(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
-_EXPR = re.compile(
-    rf"(?:(?P<offset>-?{_NUMBER})(?P<sign>[+-])|(?P<negate>-))?"
-    rf"(?:(?P<factor>{_NUMBER})\*)?(?P<source>[A-Za-z_][\w.]*)"
-)
 
 Number = int | float
 Key = str | int
@@ -200,24 +192,14 @@ def parse_param(text: str) -> Param:
 
 def parse_link(text: str, params: Sequence[Param]) -> Param:
     """One ``--link PATH=EXPR`` argument (e.g. ``W.0.1=1-W.0.0``) following one of the swept
-    ``params``: a :class:`Param` of scale ``link``."""
-    path, sep, expr = text.partition("=")
-    path, expr = path.strip(), "".join(expr.split())
-    if not sep or not path or not expr or any(not part for part in path.split(".")):
-        raise _bad(text, "write PATH=EXPR, e.g. W.0.1=1-W.0.0", field="--link")
-    match = _EXPR.fullmatch(expr)
-    if match is None:
-        why = f"{expr!r} is not an affine expression of one --param path"
-        raise _bad(text, why, field="--link")
+    ``params``: a :class:`Param` of scale ``link`` (:func:`theory.core.links.parse_link_expr`)."""
     swept = {p.path: p for p in params if p.source is None}
-    source = swept.get(match["source"])
-    if source is None:
-        why = f"{match['source']!r} is not swept; --param paths: {', '.join(swept)}"
-        raise _bad(text, why, field="--link")
-    sign = -1 if match["sign"] == "-" or match["negate"] else 1
-    offset, factor = _link_number(match["offset"], 0), sign * _link_number(match["factor"], 1)
+    link = parse_link_expr(text, swept)
+    source = swept[link.source]
+    offset = _link_number(link.offset, 0)
+    factor = link.sign * _link_number(link.factor, 1)
     values = tuple(offset + factor * v for v in source.values)
-    return Param(path, expr, Scale.LINK, values, source.path, offset, factor)
+    return Param(link.path, link.expr, Scale.LINK, values, source.path, offset, factor)
 
 
 def _link_number(text: str | None, default: Number) -> Number:

@@ -1,0 +1,47 @@
+"""The LMI built once per support (issue 28 item 4): re-solving with ``W`` as a cvxpy Parameter
+decides exactly as a fresh build, and one problem serves every ``W`` of one support."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from theory.consensus.s_detectability import (
+    LmiCache,
+    decide_s_detectability,
+    self_weight_family,
+)
+from theory.consensus.strategies import dkf_problems, self_weight_examples
+
+
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(problem=dkf_problems(max_states=2, max_agents=3, integer_data=True), w=st.floats(0, 1))
+def test_reuse_decides_as_a_fresh_build(problem, w: float) -> None:
+    cache = LmiCache()
+    decide_s_detectability(problem.A, list(problem.C), problem.W, problems=cache)  # warm
+    W = self_weight_family(problem.W, [0], w) if problem.W[0, 0] < 1 else problem.W
+    fresh = decide_s_detectability(problem.A, list(problem.C), W)
+    reused = decide_s_detectability(problem.A, list(problem.C), W, problems=cache)
+    assert reused.verdict == fresh.verdict
+    assert (reused.certificate is None) == (fresh.certificate is None)
+
+
+def test_one_problem_per_support() -> None:
+    cache = LmiCache()
+    verdicts = []
+    for w in (0.1, 0.2, 0.24, 0.26, 0.3):
+        A, C, W = self_weight_examples("example 1", w)
+        verdicts.append(decide_s_detectability(A, C, W, problems=cache).verdict)
+    assert verdicts == [True, True, True, False, False] and len(cache) == 1
+    A, C, W = self_weight_examples("example 1", 1.0)  # w_12 = 0: another support
+    assert decide_s_detectability(A, C, W, problems=cache).verdict is False and len(cache) == 2
+    assert np.array_equal(W[0], [1, 0, 0])
+
+
+def test_a_limited_cache_keeps_the_most_recent_problems() -> None:
+    cache = LmiCache(limit=1)
+    for w in (0.2, 1.0, 0.2):  # two supports, alternating
+        A, C, W = self_weight_examples("example 1", w)
+        assert decide_s_detectability(A, C, W, problems=cache).verdict is (w < 0.25)
+        assert len(cache) == 1
