@@ -15,14 +15,12 @@ import sys
 from fractions import Fraction
 
 import numpy as np
-from scipy.sparse.csgraph import connected_components
-
-from theory.core.exact import exact_decimal
 
 __all__ = [
     "NAMED_WEIGHTS",
     "adjacency_from_edges",
     "adjacency_from_range",
+    "component_labels",
     "components",
     "exact_metropolis_weights",
     "exact_uniform_weights",
@@ -50,22 +48,30 @@ def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray
     The rule is strict (``<``), as in seed 000 §4.4, and decided exactly on the numbers as
     written (:func:`theory.core.exact.exact_decimal`): pairs whose float squared distance
     lies within a rounding bound of ``comm_range²`` are re-compared in rationals, so an agent at
-    exactly the range is never linked and one a hair inside always is.
+    exactly the range is never linked and one a hair inside always is. Distances are taken a
+    block of rows at a time (memory ``O(N)`` beyond the ``N × N`` result).
     """
     positions = np.asarray(positions, dtype=float)
-    diff = positions[:, None, :] - positions[None, :, :]
-    squared = (diff**2).sum(axis=-1)
-    adjacency = squared < comm_range**2
-    for i, j in zip(
-        *np.nonzero(np.abs(squared - comm_range**2) <= _range_band(positions, comm_range)),
-        strict=True,
-    ):
-        if i < j:
-            adjacency[i, j] = adjacency[j, i] = _exactly_closer(
-                positions[i], positions[j], comm_range
-            )
+    n = positions.shape[0]
+    adjacency = np.zeros((n, n), dtype=bool)
+    band = _range_band(positions, comm_range)
+    rows = max(1, _BLOCK_ENTRIES // max(n, 1))
+    for start in range(0, n, rows):
+        block = positions[start : start + rows]
+        squared = ((block[:, None, :] - positions[None, :, :]) ** 2).sum(axis=-1)
+        adjacency[start : start + rows] = squared < comm_range**2
+        for i, j in zip(*np.nonzero(np.abs(squared - comm_range**2) <= band), strict=True):
+            i += start
+            if i < j:
+                adjacency[i, j] = adjacency[j, i] = _exactly_closer(
+                    positions[i], positions[j], comm_range
+                )
     np.fill_diagonal(adjacency, False)
     return adjacency
+
+
+_BLOCK_ENTRIES = 1 << 20
+"""Pair distances held at once by :func:`adjacency_from_range` (24 MB in 3-D)."""
 
 
 def _range_band(positions: np.ndarray, comm_range: float) -> float:
@@ -81,6 +87,8 @@ def _range_band(positions: np.ndarray, comm_range: float) -> float:
 
 def _exactly_closer(p: np.ndarray, q: np.ndarray, comm_range: float) -> bool:
     """``‖p − q‖ < comm_range`` in exact rationals (coordinates read as written)."""
+    from theory.core.exact import exact_decimal  # python-flint: only near the boundary
+
     squared = sum((exact_decimal(a) - exact_decimal(b)) ** 2 for a, b in zip(p, q, strict=True))
     return squared < exact_decimal(comm_range) ** 2
 
@@ -88,15 +96,25 @@ def _exactly_closer(p: np.ndarray, q: np.ndarray, comm_range: float) -> bool:
 def metropolis_weights(adjacency: np.ndarray) -> np.ndarray:
     """Metropolis weights of the undirected graph ``adjacency`` (rows and columns sum to 1)."""
     degree = adjacency.sum(axis=1)
-    weights = np.where(adjacency, 1.0 / (1.0 + np.maximum(degree[:, None], degree[None, :])), 0.0)
+    r, s = np.nonzero(adjacency)
+    weights = _on_links(adjacency.shape[0], r, s, 1.0 / (1.0 + np.maximum(degree[r], degree[s])))
     np.fill_diagonal(weights, 1.0 - weights.sum(axis=1))
     return weights
 
 
 def uniform_weights(adjacency: np.ndarray) -> np.ndarray:
     """Uniform weights on ``adjacency``: each agent averages itself and its in-neighbours."""
-    closed = adjacency | np.eye(adjacency.shape[0], dtype=bool)
-    return closed / closed.sum(axis=1, keepdims=True)
+    n = adjacency.shape[0]
+    r, s = np.nonzero(adjacency | np.eye(n, dtype=bool))
+    return _on_links(n, r, s, 1.0 / np.bincount(r, minlength=n)[r])
+
+
+def _on_links(n: int, r: np.ndarray, s: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The ``n × n`` matrix with ``values`` at ``(r, s)`` and zeros elsewhere (written link by
+    link: ``O(N + E)`` writes, not an ``N²`` sweep)."""
+    weights = np.zeros((n, n))
+    weights[r, s] = values
+    return weights
 
 
 def exact_metropolis_weights(adjacency: np.ndarray) -> list[list[Fraction]]:
@@ -148,7 +166,28 @@ def weights_support(weights: np.ndarray) -> np.ndarray:
 
 
 def components(adjacency: np.ndarray) -> list[list[int]]:
-    """Weakly connected components of ``adjacency``: sorted lists of 0-based agents."""
-    count, labels = connected_components(adjacency, connection="weak")
-    parts = [np.flatnonzero(labels == c).tolist() for c in range(count)]
+    """Weakly connected components of ``adjacency``: sorted lists of 0-based agents, ordered by
+    their first agent."""
+    labels = component_labels(adjacency)
+    order = np.argsort(labels, kind="stable")
+    _, starts = np.unique(labels[order], return_index=True)
+    parts = [piece.tolist() for piece in np.split(order, starts[1:])]
     return sorted(parts, key=lambda c: c[0])
+
+
+def component_labels(adjacency: np.ndarray) -> np.ndarray:
+    """Each agent's weakly connected component, labelled by its smallest agent (``O((N + E)
+    log N)``: hooking of roots onto the smaller root, then pointer jumping, until no link joins
+    two trees)."""
+    r, s = np.nonzero(adjacency)
+    root = np.arange(adjacency.shape[0])
+    while True:
+        low = np.minimum(root[r], root[s])
+        hooked = root.copy()
+        np.minimum.at(hooked, root[r], low)
+        np.minimum.at(hooked, root[s], low)
+        while not np.array_equal(hooked[hooked], hooked):
+            hooked = hooked[hooked]
+        if np.array_equal(hooked, root):
+            return root
+        root = hooked

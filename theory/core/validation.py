@@ -94,7 +94,7 @@ LIMITS: dict[str, Limit] = {
             "nodes",
             "the YAML nodes of a case file, counted with every alias expanded (alias bombs)",
         ),
-        Limit("agents", 1_000, "agents", "agents or nodes of a tdoa, tdoa-sim, dkf or pf case"),
+        Limit("agents", 10_000, "agents", "agents or nodes of a tdoa, tdoa-sim, dkf or pf case"),
         Limit("trackers", 1_000, "trackers", "trackers of a pursuit case"),
         Limit(
             "particles", 1_000_000, "particles", "particles of each particle filter (pf.particles)"
@@ -177,8 +177,11 @@ def check_length(raw: Any, name: str, field: str) -> None:
         check_count(name, len(raw), field)
 
 
-def check_estimate(name: str, estimate: float, field: str, what: str) -> None:
-    """Refuse an estimated memory or work (``what``: its formula) above the limit ``name``."""
+def check_estimate(
+    name: str, estimate: float, field: str, what: str, *, alternative: str = ""
+) -> None:
+    """Refuse an estimated memory or work (``what``: its formula) above the limit ``name``;
+    ``alternative`` (a sentence) says how to ask for less instead of raising the limit."""
     entry = LIMITS[name]
     bound = entry.value()
     if estimate > bound:
@@ -186,7 +189,7 @@ def check_estimate(name: str, estimate: float, field: str, what: str) -> None:
             field,
             f"a case within the limit '{name}' of {bound:.3g} {entry.unit}",
             f"an estimated {estimate:.3g} {entry.unit} ({what})",
-            hint=entry.hint(),
+            hint=f"{alternative} {entry.hint()}".strip(),
         )
 
 
@@ -370,18 +373,25 @@ def distinct_points(
     magnitude (at least 1 m), so a far-away point does not make the others look coincident. The
     message names the later point of the first pair (a ``noun``), ``where`` and ``why``.
     """
-    gaps = np.linalg.norm(points[:, None] - points[None], axis=-1)
-    size = np.maximum(1.0, np.abs(points).max(axis=1))
-    close = gaps <= COINCIDENCE_TOL * np.maximum(size[:, None], size[None])
-    close &= np.triu(np.ones_like(close), k=1)
-    if close.any():
-        i, j = (int(k) for k in np.argwhere(close)[0])
-        raise CaseError(
-            f"{field}[{j + 1}]",
-            f"a position distinct from {noun} {i + 1}'s{where}{why}",
-            points[j].tolist(),
-        )
+    size = np.maximum(1.0, np.abs(points).max(axis=1, initial=0.0))
+    rows = max(1, _BLOCK_ENTRIES // max(len(points), 1))
+    for start in range(0, len(points), rows):
+        block = points[start : start + rows]
+        gaps = np.linalg.norm(block[:, None] - points[None], axis=-1)
+        close = gaps <= COINCIDENCE_TOL * np.maximum(size[start : start + rows, None], size[None])
+        close &= np.arange(len(points))[None, :] > np.arange(start, start + len(block))[:, None]
+        if close.any():
+            i, j = (int(k) for k in np.argwhere(close)[0])
+            raise CaseError(
+                f"{field}[{j + 1}]",
+                f"a position distinct from {noun} {start + i + 1}'s{where}{why}",
+                points[j].tolist(),
+            )
     return points
+
+
+_BLOCK_ENTRIES = 1 << 20
+"""Pair distances :func:`distinct_points` holds at once (memory ``O(N)``, not ``O(N²)``)."""
 
 
 def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12) -> np.ndarray:

@@ -25,13 +25,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import networkx as nx
 import numpy as np
-import scipy.sparse
-import scipy.sparse.csgraph
 
+from theory.core.network import component_labels
 from theory.core.observability import RANK_TOL, RankResult, numeric_rank
 from theory.core.tolerances import CLUSTER_TOL, INCONCLUSIVE_FACTOR, UNIQUENESS_TOL
 from theory.tdoa.case import TdoaSpec
@@ -50,6 +48,9 @@ from theory.tdoa.observability.spectral import (
     spectral_network_rank,
     symmetrizing_scale,
 )
+
+if TYPE_CHECKING:
+    import networkx as nx
 
 __all__ = [
     "DENSE_MAX_STATES",
@@ -400,22 +401,19 @@ def _tdoa_rows(positions: np.ndarray, target: np.ndarray, hears: np.ndarray) -> 
 def _components(hears: np.ndarray) -> tuple[list[list[int]], np.ndarray]:
     """Weakly connected components ordered by first agent, and each agent's component index.
 
-    The same partition as :func:`theory.core.network.components`, in ``O(N + E)`` via scipy.
+    The partition of :func:`theory.core.network.components`, in ``O((N + E) log N)``.
     """
-    count, labels = scipy.sparse.csgraph.connected_components(
-        scipy.sparse.csr_matrix(hears), directed=True, connection="weak"
-    )
-    order = np.argsort(labels, kind="stable")
-    pieces = np.split(order, np.cumsum(np.bincount(labels, minlength=count))[:-1])
-    parts = sorted((piece.tolist() for piece in pieces), key=lambda c: c[0])
-    component_of = np.empty(hears.shape[0], dtype=int)
-    for k, part in enumerate(parts):
-        component_of[part] = k
-    return parts, component_of
+    labels = component_labels(hears)
+    roots, component_of = np.unique(labels, return_inverse=True)  # roots: first agents, sorted
+    order = np.argsort(component_of, kind="stable")
+    pieces = np.split(order, np.cumsum(np.bincount(component_of, minlength=len(roots)))[:-1])
+    return [piece.tolist() for piece in pieces], component_of
 
 
 def _condensation(hears: np.ndarray) -> nx.DiGraph:
     """The strongly connected classes of the information flow (``s → r`` when ``r`` hears ``s``)."""
+    import networkx as nx  # directed networks only
+
     flow = nx.DiGraph()
     flow.add_nodes_from(range(hears.shape[0]))
     flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(hears), strict=True))
@@ -424,6 +422,8 @@ def _condensation(hears: np.ndarray) -> nx.DiGraph:
 
 def _reach_groups(hears: np.ndarray) -> list[tuple[list[int], list[int]]]:
     """Agents of a directed network sharing one reach set ``R(i)``: strongly connected classes."""
+    import networkx as nx
+
     condensed = _condensation(hears)
     groups = []
     for node in condensed.nodes:
@@ -594,6 +594,8 @@ def _upstream_leaders(
     localize iff its own stacked Jacobian has rank ``d``; every other agent's error is driven by
     the closed classes upstream of it through ``W_TT ⊗ A``, which is stable (``ρ(W_TT) < 1``).
     """
+    import networkx as nx
+
     condensed = _condensation(scene.hears)
     ranks = {}
     for node in condensed:
@@ -636,6 +638,8 @@ def _directed_detectable(W: np.ndarray, rows: _Rows, rank_tol: float) -> tuple[b
 
 def _unit_eigenvectors(W: np.ndarray) -> np.ndarray:
     """Right eigenvectors of a row-stochastic ``W`` (``w_ii > 0``) for eigenvalue 1."""
+    import networkx as nx
+
     graph = nx.DiGraph((int(r), int(s)) for r, s in zip(*np.nonzero(W), strict=True))
     graph.add_nodes_from(range(W.shape[0]))
     condensed = nx.condensation(graph)
