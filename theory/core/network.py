@@ -11,7 +11,9 @@ simulations use) and once in exact rationals (:func:`exact_metropolis_weights`,
 
 from __future__ import annotations
 
+import itertools
 import sys
+from collections.abc import Iterator
 from fractions import Fraction
 
 import numpy as np
@@ -25,7 +27,9 @@ __all__ = [
     "exact_metropolis_weights",
     "exact_uniform_weights",
     "exact_weights",
+    "is_symmetric",
     "metropolis_weights",
+    "near_pairs",
     "uniform_weights",
     "weights_support",
 ]
@@ -48,30 +52,74 @@ def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray
     The rule is strict (``<``), as in seed 000 §4.4, and decided exactly on the numbers as
     written (:func:`theory.core.exact.exact_decimal`): pairs whose float squared distance
     lies within a rounding bound of ``comm_range²`` are re-compared in rationals, so an agent at
-    exactly the range is never linked and one a hair inside always is. Distances are taken a
-    block of rows at a time (memory ``O(N)`` beyond the ``N × N`` result).
+    exactly the range is never linked and one a hair inside always is. Only pairs in
+    neighbouring cells of a grid are compared (:func:`near_pairs`).
     """
     positions = np.asarray(positions, dtype=float)
     n = positions.shape[0]
     adjacency = np.zeros((n, n), dtype=bool)
     band = _range_band(positions, comm_range)
-    rows = max(1, _BLOCK_ENTRIES // max(n, 1))
-    for start in range(0, n, rows):
-        block = positions[start : start + rows]
-        squared = ((block[:, None, :] - positions[None, :, :]) ** 2).sum(axis=-1)
-        adjacency[start : start + rows] = squared < comm_range**2
-        for i, j in zip(*np.nonzero(np.abs(squared - comm_range**2) <= band), strict=True):
-            i += start
-            if i < j:
-                adjacency[i, j] = adjacency[j, i] = _exactly_closer(
-                    positions[i], positions[j], comm_range
-                )
-    np.fill_diagonal(adjacency, False)
+    for i, j in near_pairs(positions, float(np.sqrt(comm_range**2 + band))):
+        squared = ((positions[i] - positions[j]) ** 2).sum(axis=-1)
+        linked = squared < comm_range**2
+        for k in np.flatnonzero(np.abs(squared - comm_range**2) <= band):
+            linked[k] = _exactly_closer(positions[i[k]], positions[j[k]], comm_range)
+        adjacency[i[linked], j[linked]] = adjacency[j[linked], i[linked]] = True
     return adjacency
 
 
-_BLOCK_ENTRIES = 1 << 20
-"""Pair distances held at once by :func:`adjacency_from_range` (24 MB in 3-D)."""
+def near_pairs(
+    points: np.ndarray, reach: float, *, chunk: int = 1 << 21
+) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """Every pair ``i < j`` of ``points`` (``N × d``) within distance ``reach`` of each other,
+    and possibly some farther ones, in chunks of about ``chunk`` pairs.
+
+    The points are binned in a grid of cubes of side slightly above ``reach`` (by a relative
+    ``10⁻⁶`` and the coordinates' rounding, so that no float error splits a close pair across
+    non-neighbouring cells); only pairs in the same or neighbouring cells are listed. Work and
+    memory ``O(N + pairs listed)``.
+    """
+    points = np.asarray(points, dtype=float)
+    n, dim = points.shape
+    if n < 2:
+        return
+    low = points.min(axis=0)
+    side = reach * (1 + 1e-6) + 64 * sys.float_info.epsilon * float(np.abs(points).max())
+    cells, member_of = np.unique(
+        np.floor((points - low) / side).astype(np.int64), axis=0, return_inverse=True
+    )
+    member_of = member_of.reshape(-1)
+    order = np.argsort(member_of, kind="stable")
+    starts = np.searchsorted(member_of[order], np.arange(len(cells) + 1))
+    index = {tuple(c): k for k, c in enumerate(cells.tolist())}
+    for offset in itertools.product((-1, 0, 1), repeat=dim):
+        if offset < (0,) * dim:
+            continue  # its mirror image lists the same pairs
+        yield from _cell_pairs(order, starts, member_of, cells, index, offset, chunk)
+
+
+def _cell_pairs(order, starts, member_of, cells, index, offset, chunk):
+    """The pairs of :func:`near_pairs` between each cell and its neighbour at ``offset``."""
+    target = np.array(
+        [index.get(tuple(c), -1) for c in (cells + np.array(offset)).tolist()], dtype=np.int64
+    )
+    point_target = target[member_of]
+    count = np.where(point_target >= 0, starts[point_target + 1] - starts[point_target], 0)
+    ends = np.cumsum(count)
+    bounds = np.searchsorted(ends, np.arange(chunk, int(ends[-1]) + chunk, chunk), side="right")
+    first = 0
+    for last in (*bounds.tolist(), len(count)):
+        if last <= first:
+            continue
+        source = np.arange(first, last)
+        many = count[source]
+        i = np.repeat(source, many)
+        within = np.arange(int(many.sum())) - np.repeat(np.cumsum(many) - many, many)
+        j = order[np.repeat(starts[point_target[source]], many) + within]
+        keep = i < j if not any(offset) else np.ones(len(i), dtype=bool)
+        i, j = i[keep], j[keep]
+        first = last
+        yield np.minimum(i, j), np.maximum(i, j)
 
 
 def _range_band(positions: np.ndarray, comm_range: float) -> float:
@@ -97,8 +145,10 @@ def metropolis_weights(adjacency: np.ndarray) -> np.ndarray:
     """Metropolis weights of the undirected graph ``adjacency`` (rows and columns sum to 1)."""
     degree = adjacency.sum(axis=1)
     r, s = np.nonzero(adjacency)
-    weights = _on_links(adjacency.shape[0], r, s, 1.0 / (1.0 + np.maximum(degree[r], degree[s])))
-    np.fill_diagonal(weights, 1.0 - weights.sum(axis=1))
+    n = adjacency.shape[0]
+    values = 1.0 / (1.0 + np.maximum(degree[r], degree[s]))
+    weights = _on_links(n, r, s, values)
+    np.fill_diagonal(weights, 1.0 - np.bincount(r, weights=values, minlength=n))
     return weights
 
 
@@ -156,6 +206,13 @@ def _exact(adjacency: np.ndarray, weight) -> list[list[Fraction]]:
                 W[r][int(s)] = weight(r, int(s))
         W[r][r] = 1 - sum(W[r])
     return W
+
+
+def is_symmetric(adjacency: np.ndarray) -> bool:
+    """Whether every link of ``adjacency`` has its reverse (``O(N² / 8 + E)``: no transpose
+    of the whole matrix)."""
+    r, s = np.nonzero(adjacency)
+    return bool(np.all(adjacency[s, r] == adjacency[r, s]))
 
 
 def weights_support(weights: np.ndarray) -> np.ndarray:

@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.errors import ENVIRONMENT, CaseError
+from theory.core.network import near_pairs
 from theory.core.tolerances import COINCIDENCE_TOL, WEIGHT_SUM_TOL
 
 __all__ = [
@@ -371,27 +372,25 @@ def distinct_points(
 
     Two points are one when their distance is at most ``coincidence_tol`` times their own
     magnitude (at least 1 m), so a far-away point does not make the others look coincident. The
-    message names the later point of the first pair (a ``noun``), ``where`` and ``why``.
+    message names the later point of the first pair (a ``noun``), ``where`` and ``why``. Only
+    pairs in neighbouring cells of a grid are compared (:func:`theory.core.network.near_pairs`).
     """
     size = np.maximum(1.0, np.abs(points).max(axis=1, initial=0.0))
-    rows = max(1, _BLOCK_ENTRIES // max(len(points), 1))
-    for start in range(0, len(points), rows):
-        block = points[start : start + rows]
-        gaps = np.linalg.norm(block[:, None] - points[None], axis=-1)
-        close = gaps <= COINCIDENCE_TOL * np.maximum(size[start : start + rows, None], size[None])
-        close &= np.arange(len(points))[None, :] > np.arange(start, start + len(block))[:, None]
-        if close.any():
-            i, j = (int(k) for k in np.argwhere(close)[0])
-            raise CaseError(
-                f"{field}[{j + 1}]",
-                f"a position distinct from {noun} {start + i + 1}'s{where}{why}",
-                points[j].tolist(),
-            )
+    reach = COINCIDENCE_TOL * float(size.max(initial=1.0))
+    first: tuple[int, int] | None = None
+    for i, j in near_pairs(points, reach):
+        gaps = np.linalg.norm(points[i] - points[j], axis=-1)
+        close = np.flatnonzero(gaps <= COINCIDENCE_TOL * np.maximum(size[i], size[j]))
+        pairs = sorted(zip(i[close].tolist(), j[close].tolist(), strict=True))[:1]
+        first = min([*pairs, *([first] if first else [])], default=None)
+    if first is not None:
+        i, j = first
+        raise CaseError(
+            f"{field}[{j + 1}]",
+            f"a position distinct from {noun} {i + 1}'s{where}{why}",
+            points[j].tolist(),
+        )
     return points
-
-
-_BLOCK_ENTRIES = 1 << 20
-"""Pair distances :func:`distinct_points` holds at once (memory ``O(N)``, not ``O(N²)``)."""
 
 
 def positive_definite(matrix: np.ndarray, field: str, *, rel_tol: float = 1e-12) -> np.ndarray:

@@ -59,6 +59,7 @@ from theory.core.errors import CaseError
 from theory.core.network import (
     adjacency_from_edges,
     adjacency_from_range,
+    is_symmetric,
     metropolis_weights,
     uniform_weights,
     weights_support,
@@ -345,7 +346,7 @@ def _edges(raw: object, n: int) -> np.ndarray:
 
 def _weights(raw: object, hears: np.ndarray, directed: bool) -> tuple[np.ndarray, WeightRule]:
     if raw == WeightRule.METROPOLIS:
-        if directed or not all(np.array_equal(h, h.T) for h in hears):
+        if directed or not all(is_symmetric(h) for h in hears):
             raise CaseError(
                 "tdoa.weights",
                 "uniform or an explicit matrix for a directed network",

@@ -29,9 +29,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from theory.core.network import component_labels
+from theory.core.network import component_labels, is_symmetric
 from theory.core.observability import RANK_TOL, RankResult, numeric_rank
 from theory.core.tolerances import CLUSTER_TOL, INCONCLUSIVE_FACTOR, UNIQUENESS_TOL
+from theory.core.validation import check_estimate
 from theory.tdoa.case import TdoaSpec
 from theory.tdoa.geometry.exact import (
     exact_affine_rank,
@@ -58,6 +59,7 @@ __all__ = [
     "NetworkVerdict",
     "TopologyResult",
     "analyze_topology",
+    "check_topology_cost",
     "observed_values",
 ]
 
@@ -70,7 +72,8 @@ DENSE_MAX_STATES = 240
 class AgentVerdict:
     """What one agent can localize (1-based ``id`` and ``component`` as users see them).
 
-    ``reach`` are the agents whose rows enter ``O_i`` (``R(i)``); ``rank`` is ``rank O_i`` at the
+    ``reach`` are the agents whose rows enter ``O_i`` (``R(i)``, one tuple shared by the agents of
+    a reach set, ``reach_set`` its 1-based index in the record); ``rank`` is ``rank O_i`` at the
     actual geometry (``2d`` when ``observable``); ``sigma_min`` the smallest singular value of
     ``G_{R(i)}`` (zero-padded to ``d``) and ``margin`` how many times the rank decision clears
     ``rank_tol · σ_max``. ``heuristic_4_noncoplanar`` is the paper's condition and ``reason`` says
@@ -82,6 +85,7 @@ class AgentVerdict:
     id: int
     component: int
     reach: tuple[int, ...]
+    reach_set: int
     rank: int
     observable: bool
     sigma_min: float
@@ -138,12 +142,19 @@ class TopologyResult:
         return all(agent.localizes for agent in self.agents)
 
     def to_json(self) -> dict[str, Any]:
-        """The ``trackcert topology --json`` record of the step (plus evidence fields)."""
+        """The ``trackcert topology --json`` record of the step (plus evidence fields).
+
+        ``O(N)``: each component's members and each reach set are listed once, at the top
+        (``component_members``, ``reach_sets``); an agent names its ``component`` and
+        ``reach_set`` by 1-based index.
+        """
         net = self.network
         return {
             "step": self.step,
             "dim": self.dim,
             "agents": [_agent_json(a) for a in self.agents],
+            "component_members": _members(self.agents, lambda a: a.component),
+            "reach_sets": _reach_sets(self.agents),
             "network_rank": net.rank,
             "network_states": net.n_states,
             "network_observable": net.observable,
@@ -196,6 +207,44 @@ def analyze_topology(
     flow = _UNDIRECTED_FLOW if scene.symmetric else _DIRECTED_FLOW
     tolerances = {**tol, "uniqueness_tol": uniqueness_tol, "cluster_tol": cluster_tol}
     return TopologyResult(step + 1, spec.dim, agents, network, flow, tolerances, tuple(doubts))
+
+
+def check_topology_cost(spec: TdoaSpec, *, network_rank: bool = True) -> None:
+    """Refuse, before any work, a scene whose analysis exceeds the limits ``memory_bytes`` or
+    ``work`` (:mod:`theory.core.validation`), counting what it will compute.
+
+    The per-agent verdicts and detectability keep the TDOA rows: ``M`` rows of ``d`` floats and
+    two indices, ``8(d + 2)·M`` bytes (twice, for the rows grouped by component). The network
+    rank adds, per component of ``n`` agents, an eigen-decomposition of its ``W`` (seed 000
+    eq. (4.36) ranked by the spectrum, :mod:`~theory.tdoa.observability.spectral`): about
+    ``3·8·n²`` bytes and ``10·n³`` operations for the largest component of any step. The
+    refusal names ``--no-network-rank``, which skips that part.
+    """
+    rows = int(spec.hears.sum(axis=(1, 2)).max(initial=0))
+    memory = 16.0 * (spec.dim + 2) * rows
+    what = f"16 B × (d + 2)·M, M = {rows} TDOA rows"
+    check_estimate("memory_bytes", memory, "tdoa.agents", what)
+    if not network_rank:
+        return
+    largest = max(int(np.bincount(component_labels(h)).max(initial=0)) for h in spec.hears)
+    skip = (
+        "Pass --no-network-rank for every agent's verdict and the detectability without the "
+        "rank of the whole networked O (those are linear in N + E)."
+    )
+    check_estimate(
+        "memory_bytes",
+        memory + 24.0 * largest**2,
+        "tdoa.agents",
+        f"{what} + 24 B × n², n = {largest} in the largest component",
+        alternative=skip,
+    )
+    check_estimate(
+        "work",
+        10.0 * largest**3,
+        "tdoa.agents",
+        f"10 n³ to diagonalize W, n = {largest} in the largest component",
+        alternative=skip,
+    )
 
 
 _UNDIRECTED_FLOW = "undirected: O_i sees agent i's connected component"
@@ -293,12 +342,15 @@ class _Group:
     reason: str
     dim: int
 
-    def for_agent(self, agent: int, component: int, localizes: bool) -> AgentVerdict:
+    def for_agent(
+        self, agent: int, component: int, reach_set: int, localizes: bool
+    ) -> AgentVerdict:
         rank = 2 * self.decision.rank
         return AgentVerdict(
             agent + 1,
             component,
             self.reach,
+            reach_set,
             rank,
             rank == 2 * self.dim,
             self.sigma_min,
@@ -327,7 +379,7 @@ def _scene(spec: TdoaSpec, step: int) -> _Scene:
         parts,
         component_of,
         _rows_by_part(rows, component_of, len(parts)),
-        bool(np.array_equal(hears, hears.T)),
+        is_symmetric(hears),
         rational_points(positions),
         rational_points([target])[0],
     )
@@ -366,10 +418,10 @@ def _agent_verdicts(
     else:
         leaders = _upstream_leaders(scene, tol, doubts)
     agents: list[AgentVerdict | None] = [None] * scene.spec.n_agents
-    for members, group in groups:
+    for index, (members, group) in enumerate(groups, start=1):
         for i in members:
             ok = all(decision.rank == scene.dim for decision in leaders[i])
-            agents[i] = group.for_agent(i, int(scene.component_of[i]) + 1, ok)
+            agents[i] = group.for_agent(i, int(scene.component_of[i]) + 1, index, ok)
     return tuple(agents)  # type: ignore[arg-type]
 
 
@@ -718,7 +770,7 @@ def _agent_json(agent: AgentVerdict) -> dict[str, Any]:
         "sigma_min": agent.sigma_min,
         "mirror_ambiguous": agent.mirror_ambiguous,
         "mirror_point": agent.mirror_point,
-        "reach": list(agent.reach),
+        "reach_set": agent.reach_set,
         "margin": agent.margin,
         "agrees_with_heuristic": not agent.reason,
         "reason": agent.reason,
@@ -727,6 +779,25 @@ def _agent_json(agent: AgentVerdict) -> dict[str, Any]:
         "uniqueness_note": unique.note,
         "uniqueness_method": unique.method,
     }
+
+
+def _members(agents: tuple[AgentVerdict, ...], index: Any) -> list[list[int]]:
+    """The 1-based ids of the agents with ``index(agent)`` = 1, 2, …, in one pass."""
+    listed: list[list[int]] = []
+    for agent in agents:
+        k = index(agent)
+        listed.extend([] for _ in range(k - len(listed)))
+        listed[k - 1].append(agent.id)
+    return listed
+
+
+def _reach_sets(agents: tuple[AgentVerdict, ...]) -> list[list[int]]:
+    """Each reach set ``R(i)`` once (1-based ids), in ``reach_set`` order."""
+    sets: dict[int, list[int]] = {}
+    for agent in agents:
+        if agent.reach_set not in sets:
+            sets[agent.reach_set] = list(agent.reach)
+    return [sets[k] for k in sorted(sets)]
 
 
 def _ids(agents: list[int] | tuple[int, ...]) -> str:
