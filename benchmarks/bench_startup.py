@@ -10,8 +10,9 @@ process twice:
 * ``old``: the same command in a process that first imports the modules the old code path
   (commit 0af1f31) imported for that command and today's does not (:data:`OLD_EAGER`, listed
   by comparing ``sys.modules`` after each command on both revisions): scipy's sparse graph
-  routines through ``theory.core.network``, python-control through
-  ``theory.consensus.conditions``, pyplot through ``theory.consensus.kalman_filter``.
+  routines through ``theory.core.network``, python-flint through ``theory.tdoa.geometry.crb``,
+  python-control through ``theory.consensus.conditions``, pyplot through
+  ``theory.consensus.kalman_filter``.
 
 It prints both and the ratio old/now, and the floor: a process importing only what every
 command needs (typer, rich, numpy). No assertion: the numbers are the result; the target is
@@ -30,7 +31,7 @@ import tempfile
 OLD_EAGER: dict[str, tuple[str, ...]] = {
     "--help": (),
     "simulate pursuit-table1-n3 (1 step)": (),  # seed 003's ISS needs them still
-    "simulate sim-ch4-fixed-b0 (1 step)": ("scipy.sparse.csgraph",),
+    "simulate sim-ch4-fixed-b0 (1 step)": ("scipy.sparse.csgraph", "flint", "proofs_check.linalg"),
     "simulate ch5-example-1-wg (1 step)": ("matplotlib.pyplot",),
     "dkf ch5-example-1-wg": ("control", "matplotlib.pyplot"),
 }
