@@ -76,15 +76,18 @@ def near_pairs(
 
     The points are binned in a grid of cubes of side slightly above ``reach`` (by a relative
     ``10⁻⁶`` and the coordinates' rounding, so that no float error splits a close pair across
-    non-neighbouring cells); only pairs in the same or neighbouring cells are listed. Work and
-    memory ``O(N + pairs listed)``.
+    non-neighbouring cells), and at least ``2⁻⁴⁰`` of the points' span (cell indices stay far
+    from overflow; larger cells only list more pairs); only pairs in the same or neighbouring
+    cells are listed. Work and memory ``O(N + pairs listed)``.
     """
     points = np.asarray(points, dtype=float)
     n, dim = points.shape
     if n < 2:
         return
     low = points.min(axis=0)
+    span = float((points.max(axis=0) - low).max())
     side = reach * (1 + 1e-6) + 64 * sys.float_info.epsilon * float(np.abs(points).max())
+    side = max(side, span * 2.0**-40)
     cells, member_of = np.unique(
         np.floor((points - low) / side).astype(np.int64), axis=0, return_inverse=True
     )
