@@ -1,146 +1,137 @@
-"""Benchmark: ``trackcert topology`` on random geometric networks vs the naive full matrix.
+"""Benchmark: ``trackcert topology`` on seeded random connected 3-D networks, N = 100 … 10,000.
 
-Run from the repository root: ``python -m benchmarks.bench_topology [--seed S] [--naive-max N]``.
+Run from the repository root: ``python -m benchmarks.bench_topology [--seed S] [--sizes …]``.
 
-For N = 10, 100, 1000 agents placed uniformly in a cube with a communication radius giving a
-mean degree of about 8, it times
+For each N it writes a ``kind: tdoa`` case (agents uniform in a cube of side 100, a
+communication radius giving a mean degree of about 8, agents of small components moved next to
+an agent of the largest one until the network is connected; coordinates rounded to 3 decimals, as
+a user writes them) and runs ``trackcert topology CASE --json --no-network-rank`` as a user
+does, on the default limits, in a fresh process: parse, links by the distance rule, every
+agent's exact verdict, detectability and the JSON record. It prints the wall and CPU seconds of
+the process, the size of the JSON, and the growth exponent ``log(t₂/t₁)/log(N₂/N₁)`` of the
+CPU time between consecutive sizes and from the first size to the last: of the whole process,
+and of the work above start-up (the CPU of the same command on a 10-agent network, measured in
+the same run, subtracted).
 
-* ``verdicts``: per-agent ranks of O_i, σ_min, heuristic, mirror, global uniqueness and the
-  detectability of the networked pair (``analyze_topology(..., network_rank=False)``), which
-  should grow near-linearly in N + E;
-* ``checker``: the same plus the rank of the whole networked pair from the spectrum of W
-  (``analyze_topology``), an eigen-decomposition per component, cubic in its size;
-* ``naive``: forming O = [D_H; D_H (W⊗A); …; D_H (W⊗A)^{6N−1}] (seed 000 eq. (4.36)) with numpy
-  and ranking it by SVD (``numpy.linalg.matrix_rank``), for N up to ``--naive-max``; beyond, its
-  time is extrapolated with the power law fitted (least squares in log-log) to the three largest
-  sizes measured, and its memory is stated exactly.
+It then runs the default command (with the network rank) on each size and prints its exit code
+and time: the rank of the whole ``O`` needs an eigen-decomposition per component (cubic), which
+the command refuses up front, naming ``--no-network-rank``, when its estimate exceeds the limits.
 
-It prints every time and the ratios naive/checker and naive/verdicts. No assertion: the numbers
-are the result. Each timing is the best of ``--repeat`` runs.
-
-BLAS runs single-threaded (``OPENBLAS_NUM_THREADS=1`` etc., unless already set) for both methods:
-on a shared machine multi-threaded BLAS spends most of its time waiting (a 100 × 100 ``eigh``
-took 0.2 s threaded vs 2 ms single-threaded on the development machine).
+No assertion: the numbers are the result (target: N = 10,000 in ≤ 10 s of wall time on 2 cores).
 """
 
 from __future__ import annotations
 
+import argparse
+import itertools
+import json
+import math
 import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
 
-for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_variable, "1")
+import numpy as np
 
-import argparse  # noqa: E402  (BLAS threads must be fixed before numpy loads)
-import time  # noqa: E402
+from theory.core.network import adjacency_from_range, component_labels
 
-import numpy as np  # noqa: E402
-
-from theory.core.network import adjacency_from_range, metropolis_weights  # noqa: E402
-from theory.tdoa.case import TdoaSpec  # noqa: E402
-from theory.tdoa.model import cv_discrete, unit_directions  # noqa: E402
-from theory.tdoa.observability.topology import analyze_topology  # noqa: E402
-
-MEAN_DEGREE = 8.0
 SIDE = 100.0
+MEAN_DEGREE = 8.0
 
 
-def random_geometric_scene(n: int, rng: np.random.Generator) -> TdoaSpec:
-    """N agents uniform in a cube of side 100, radius for mean degree ≈ 8, target inside."""
-    positions = rng.uniform(0, SIDE, size=(n, 3))
-    radius = SIDE * (3 * MEAN_DEGREE / (4 * np.pi * max(n - 1, 1))) ** (1 / 3)
-    hears = adjacency_from_range(positions, radius)
-    target = rng.uniform(0.25 * SIDE, 0.75 * SIDE, size=3)
-    return TdoaSpec(
-        1.0,
-        3,
-        positions[None],
-        target[None],
-        hears[None],
-        metropolis_weights(hears)[None],
-        "metropolis",
-        False,
-        radius,
+def connected_scene(n: int, rng: np.random.Generator) -> tuple[np.ndarray, float, np.ndarray]:
+    """``n`` agents (3 decimals) with a connecting radius, and a target inside the cube."""
+    radius = round(SIDE * (3 * MEAN_DEGREE / (4 * math.pi * max(n - 1, 1))) ** (1 / 3), 3)
+    positions = np.round(rng.uniform(0, SIDE, size=(n, 3)), 3)
+    while True:
+        labels = component_labels(adjacency_from_range(positions, radius))
+        largest = np.bincount(labels).argmax()
+        stray = np.flatnonzero(labels != largest)
+        if not stray.size:
+            break
+        anchors = rng.choice(np.flatnonzero(labels == largest), size=stray.size)
+        step = rng.normal(size=(stray.size, 3))
+        step *= 0.5 * radius / np.linalg.norm(step, axis=1, keepdims=True)
+        positions[stray] = np.round(positions[anchors] + step, 3)
+    target = np.round(rng.uniform(0.25 * SIDE, 0.75 * SIDE, size=3), 3) + 0.0005
+    return positions, radius, target
+
+
+def write_case(path: Path, positions: np.ndarray, radius: float, target: np.ndarray) -> None:
+    """The scene as a ``kind: tdoa`` case file (JSON is valid YAML)."""
+    case = {
+        "name": path.stem,
+        "source": "benchmarks/bench_topology.py (seeded random connected network)",
+        "kind": "tdoa",
+        "tdoa": {
+            "T": 1.0,
+            "agents": positions.tolist(),
+            "target": target.tolist(),
+            "comm_range": radius,
+        },
+    }
+    path.write_text(json.dumps(case), encoding="utf-8")
+
+
+def run(case: Path, *options: str) -> tuple[float, float, int, int]:
+    """Wall seconds, CPU seconds, exit code and stdout bytes of ``trackcert topology``."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    done = subprocess.run(
+        [sys.executable, "-m", "theory.cli", "topology", str(case), "--json", *options],
+        capture_output=True,
+        check=False,
     )
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    if done.returncode not in (0, 1, 3):
+        sys.stderr.write(done.stderr.decode()[-2000:])
+    return wall, cpu, done.returncode, len(done.stdout)
 
 
-def naive_rank(spec: TdoaSpec) -> int:
-    """Form the whole observability matrix of (W ⊗ A, D_H) with numpy and rank it."""
-    n, dim = spec.n_agents, spec.dim
-    A, _ = cv_discrete(spec.T, dim)
-    WA = np.kron(spec.weights[0], A)
-    units = unit_directions(spec.target[0], spec.agents[0])
-    agent, other = np.nonzero(spec.hears[0])
-    D_H = np.zeros((agent.size, 2 * dim * n))
-    for row, (i, j) in enumerate(zip(agent, other, strict=True)):
-        D_H[row, 2 * dim * i : 2 * dim * i + dim] = units[i] - units[j]
-    blocks, block = [], D_H
-    for _ in range(2 * dim * n):
-        blocks.append(block)
-        block = block @ WA
-    return int(np.linalg.matrix_rank(np.vstack(blocks)))
-
-
-def best_time(function, repeat: int) -> tuple[float, object]:
-    best, value = np.inf, None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        value = function()
-        best = min(best, time.perf_counter() - start)
-    return best, value
+def growth(sizes: list[int], seconds: list[float], label: str) -> None:
+    """Print the growth exponents of ``seconds`` between consecutive sizes and end to end."""
+    pairs = list(zip(sizes, seconds, strict=True))
+    for (n1, t1), (n2, t2) in [*itertools.pairwise(pairs), (pairs[0], pairs[-1])]:
+        exponent = math.log(t2 / t1) / math.log(n2 / n1)
+        print(f"growth ({label}) N = {n1} → {n2}: exponent {exponent:.2f}")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seed", type=int, default=20261122)
-    parser.add_argument("--naive-max", type=int, default=40)
-    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--seed", type=int, default=20261207)
+    parser.add_argument("--sizes", type=int, nargs="+", default=[100, 1000, 3000, 10000])
     args = parser.parse_args()
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     rng = np.random.default_rng(args.seed)
-    threads = os.environ["OPENBLAS_NUM_THREADS"]
-    print(
-        f"seed {args.seed}; mean degree ≈ {MEAN_DEGREE}; best of {args.repeat} runs; "
-        f"OPENBLAS_NUM_THREADS={threads}\n"
-    )
-
-    naive_sizes = [n for n in (5, 10, 15, 20, 30, 40, 50, 60) if n <= args.naive_max]
-    naive_times = {}
-    print("naive: form O (6N columns, 6N·2E rows) and rank it by SVD")
-    for n in naive_sizes:
-        spec = random_geometric_scene(n, rng)
-        seconds, rank = best_time(lambda spec=spec: naive_rank(spec), 1 if n > 20 else args.repeat)
-        checked = analyze_topology(spec).network.rank
-        naive_times[n] = seconds
-        rows = 6 * n * int(spec.hears[0].sum())
-        print(f"  N={n:5d}  O is {rows}×{6 * n}  {seconds:9.4f} s  rank {rank} (checker {checked})")
-    sizes = sorted(naive_times)[-3:]
-    slope, intercept = np.polyfit(np.log(sizes), np.log([naive_times[n] for n in sizes]), 1)
-    print(f"  fitted naive time ∝ N^{slope:.2f} on N = {sizes} (theory: ~N^4 for SVD of O)\n")
-
-    print(
-        f"{'N':>6} {'E':>7} {'verdicts s':>11} {'checker s':>10} {'naive s':>12} "
-        f"{'naive/checker':>14} {'naive/verdicts':>15} {'verdicts µs/(N+E)':>18}"
-    )
-    for n in (10, 100, 1000):
-        spec = random_geometric_scene(n, rng)
-        edges = int(spec.hears[0].sum()) // 2
-        t_fast, fast = best_time(
-            lambda spec=spec: analyze_topology(spec, network_rank=False), args.repeat
-        )
-        t_full, _ = best_time(lambda spec=spec: analyze_topology(spec), args.repeat)
-        if n in naive_times:
-            naive, label = naive_times[n], f"{naive_times[n]:.4g}"
-        else:
-            naive = float(np.exp(intercept) * n**slope)
-            label = f"~{naive:.3g}*"
-        per = 1e6 * t_fast / (n + edges)
-        ok = sum(a.localizes for a in fast.agents)
-        print(
-            f"{n:6d} {edges:7d} {t_fast:11.4f} {t_full:10.4f} {label:>12} "
-            f"{naive / t_full:14.3g} {naive / t_fast:15.3g} {per:18.1f}   ({ok}/{n} localize)"
-        )
-        if n not in naive_times:
-            gigabytes = 8 * (6 * n * 2 * edges) * (6 * n) / 1e9
-            print(f"{'':6} * extrapolated; the naive O would need {gigabytes:,.1f} GB")
+    cpu_times = []
+    with tempfile.TemporaryDirectory(dir=".") as folder:
+        tiny = Path(folder) / "random-3d-10.yaml"
+        write_case(tiny, *connected_scene(10, rng))
+        startup = min(run(tiny, "--no-network-rank")[1] for _ in range(3))
+        cases = []
+        for n in args.sizes:
+            case = Path(folder) / f"random-3d-{n}.yaml"
+            write_case(case, *connected_scene(n, rng))
+            cases.append(case)
+        print("trackcert topology CASE --json --no-network-rank (default limits)")
+        print(f"{'N':>6} {'case':>8} {'wall':>8} {'CPU':>8} {'exit':>4} {'JSON':>9}")
+        for n, case in zip(args.sizes, cases, strict=True):
+            wall, cpu, code, size = run(case, "--no-network-rank")
+            cpu_times.append(cpu)
+            kb = case.stat().st_size / 1e3
+            print(f"{n:6d} {kb:6.0f}kB {wall:7.2f}s {cpu:7.2f}s {code:4d} {size / 1e6:7.2f}MB")
+        print(f"start-up (N = 10): {startup:.2f} s CPU")
+        growth(args.sizes, cpu_times, "whole process")
+        growth(args.sizes, [max(t - startup, 1e-3) for t in cpu_times], "above start-up")
+        print("trackcert topology CASE --json (with the network rank)")
+        for n, case in zip(args.sizes, cases, strict=True):
+            wall, cpu, code, _ = run(case)
+            print(f"{n:6d} wall {wall:6.2f}s CPU {cpu:6.2f}s exit {code}")
 
 
 if __name__ == "__main__":

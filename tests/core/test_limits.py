@@ -107,16 +107,20 @@ def test_pf_work_counts_exchange_rounds(monkeypatch) -> None:
     assert info.value.field == "pf.runs"
 
 
-def test_dense_tdoa_scene_is_refused_by_its_memory_estimate() -> None:
+def test_dense_tdoa_scene_is_refused_by_its_memory_estimate(monkeypatch) -> None:
+    """The parser counts what it keeps: links and weights, 9 B × steps·N² (9 MB here)."""
     agents = [[float(i % 10), float(i // 10 % 10), float(i // 100)] for i in range(1000)]
     data = {
         "name": "dense",
         "kind": "tdoa",
         "tdoa": {"T": 1, "agents": agents, "target": [0.5, 0.5, 0.5], "comm_range": 100},
     }
-    with pytest.raises(CaseError, match="M = 999000 TDOA rows") as info:
+    monkeypatch.setenv("TRACKCERT_MAX_MEMORY_BYTES", str(8_999_999))
+    with pytest.raises(CaseError, match=r"9e\+06 bytes \(9 B × steps·N²") as info:
         parse_case(data)
     assert info.value.field == "tdoa.agents"
+    monkeypatch.setenv("TRACKCERT_MAX_MEMORY_BYTES", str(9_000_000))
+    assert parse_case(data).spec.n_agents == 1000
 
 
 def test_dkf_dimension_is_checked_before_the_matrices() -> None:

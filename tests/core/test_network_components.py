@@ -1,5 +1,6 @@
-"""Graph components and strong connectivity, computed with scipy's csgraph (the commands that must
-not pay networkx's import), agree with networkx on random and on all three-node digraphs."""
+"""Graph components (hooking and pointer jumping in ``theory.core.network``) and strong
+connectivity (scipy's csgraph in seed 003's ISS), agree with networkx on random and on all
+three-node digraphs."""
 
 from __future__ import annotations
 

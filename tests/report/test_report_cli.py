@@ -54,7 +54,7 @@ def test_crashing_check_is_reported_and_exits_3(fakes, tmp_path) -> None:
     """The only observer of ``observable`` crashed: the expectation is unchecked, which the
     exit-code policy (theory.core.verdicts) reports as inconclusive, not as failed."""
     register_standard_fakes(fakes, crash=True)
-    done = _report(str(write_case(tmp_path)), "-o", str(tmp_path / "out"))
+    done = _report(str(write_case(tmp_path)), "-o", str(tmp_path / "out"), "--model-claims")
     assert done.exit_code == 3
     document = json.loads((tmp_path / "out" / "report.json").read_text())
     assert [e["verdict"] for e in document["expectations"]] == ["unchecked"]
@@ -102,3 +102,23 @@ def test_default_is_every_bundled_case_with_the_real_registry(tmp_path) -> None:
     verdicts = {e["verdict"] for e in document["expectations"]}
     assert verdicts == {"unchecked"}  # the two claims selected observe no expect key
     assert done.exit_code == 3, done.output
+
+
+def test_a_report_of_named_cases_runs_the_model_claims_only_when_asked(fakes, tmp_path) -> None:
+    """A case named: its own claims (``seed001.fake.observable``, ``seed003.fake.random``), the
+    case-independent ``seed000.fake.model`` only with --model-claims or an --only selecting it;
+    the full bundled report runs them by default (test above)."""
+    register_standard_fakes(fakes)
+    case = str(write_case(tmp_path))
+
+    def ran(*options: str) -> set[str]:
+        out = tmp_path / "-".join(("out", *options)).replace("*", "x")
+        done = _report(case, "-o", str(out), *options)
+        assert done.exit_code in (0, 3), done.output  # 3: no claim left observes the expect key
+        return {c["id"] for c in json.loads((out / "report.json").read_text())["claims"]}
+
+    own = {"seed001.fake.observable", "seed003.fake.random"}
+    assert ran() == own
+    assert ran("--model-claims") == own | {"seed000.fake.model"}
+    assert ran("--only", "seed000.*") == {"seed000.fake.model"}
+    assert ran("--only", "*", "--no-model-claims") == own

@@ -57,6 +57,40 @@ def test_json_has_the_design_keys_and_exit_code_follows_the_verdict(name: str) -
 
 
 @pytest.mark.parametrize("name", TDOA_CASES)
+def test_json_lists_components_and_reach_sets_once(name: str) -> None:
+    """O(N) record: members listed once per component and per reach set, agents point at them;
+    the reach set of agent i is R(i), which is its component when the network is undirected."""
+    data = json.loads(invoke(name, "--json", "--no-network-rank").stdout)
+    members, reach_sets = data["component_members"], data["reach_sets"]
+    assert sorted(i for part in members for i in part) == [a["id"] for a in data["agents"]]
+    for agent in data["agents"]:
+        assert "reach" not in agent
+        assert agent["id"] in members[agent["component"] - 1]
+        reach = reach_sets[agent["reach_set"] - 1]
+        assert agent["id"] in reach and set(reach) <= set(members[agent["component"] - 1])
+    if data["information_flow"].startswith("undirected"):
+        assert reach_sets == members
+
+
+def test_network_rank_beyond_the_limits_is_refused_up_front_naming_the_option(
+    tmp_path, monkeypatch
+) -> None:
+    """The estimate counts the eigen-decomposition of the largest component's W (10 n³ for
+    n = 8 agents: 5,120) only when the rank is asked for."""
+    monkeypatch.setenv("TRACKCERT_MAX_WORK", "5000")
+    refused = invoke("seed000-sec44-ring", "--json")
+    assert refused.exit_code == 2
+    message = " ".join(refused.output.split())
+    assert "--no-network-rank" in message and "TRACKCERT_MAX_WORK" in message
+    assert "Traceback" not in refused.output
+    skipped = invoke("seed000-sec44-ring", "--json", "--no-network-rank")
+    assert skipped.exit_code == 0, skipped.output
+    assert json.loads(skipped.stdout)["network_method"] == "skipped"
+    monkeypatch.setenv("TRACKCERT_MAX_WORK", "5120")
+    assert invoke("seed000-sec44-ring", "--json").exit_code == 0
+
+
+@pytest.mark.parametrize("name", TDOA_CASES)
 def test_without_an_expect_block_the_exit_code_follows_the_verdict(name: str, tmp_path) -> None:
     data = yaml.safe_load(bundled_cases()[name].read_text())
     data.pop("expect")

@@ -101,6 +101,15 @@ def register(app: typer.Typer) -> None:
                 "(0: no limit); CPU, not wall-clock, so a busy machine changes no verdict.",
             ),
         ] = DEFAULT_TIME_LIMIT,
+        model_claims: Annotated[
+            bool | None,
+            typer.Option(
+                "--model-claims/--no-model-claims",
+                help="Also run the case-independent model claims (default: yes for the full "
+                "bundled report or with --only, no when CASES are named).",
+                show_default=False,
+            ),
+        ] = None,
         as_json: Annotated[
             bool, typer.Option("--json", help="Also print report.json to stdout.")
         ] = False,
@@ -112,7 +121,9 @@ def register(app: typer.Typer) -> None:
         Exit 0 when every expectation of every case is met, 1 when one is unmet, 3 when one is
         inconclusive or unchecked (and none unmet), 2 on bad input, 4 on a fault (a failed
         write, no worker). CASES are case files or bundled names; --seed seeds every randomized
-        check; --only keeps the claims whose id matches a pattern; --errata names the errata
+        check; --only keeps the claims whose id matches a pattern; --model-claims also runs the
+        claims that need no case (by default when no CASES are named, or with --only; a report of
+        named cases does only their work otherwise); --errata names the errata
         document; --time-limit bounds each check's CPU time; --json prints report.json; the
         folder is replaced whole, or left as it was; --workers and --scheduler
         say where the checks run (the report is the same whatever they say). The checks' times
@@ -123,11 +134,18 @@ def register(app: typer.Typer) -> None:
         check_folder_output(out, "-o/--out", MARKER)
         options = {"seed": seed, "seconds": time_limit or None, "errata_path": errata}
         paths = [resolve_case_path(c) for c in (cases or list(bundled_cases()))]
-        run, document = _run(paths, out, only or [], options, (workers, scheduler), as_json)
+        models = model_claims if model_claims is not None else not cases or bool(only)
+        selection = (only or [], models)
+        run, document = _run(paths, out, selection, options, (workers, scheduler), as_json)
         if as_json:
             console.file.write(dumps(document))
         else:
             _print_summary(document, out)
+            if not models:
+                console.print(
+                    "the case-independent model claims were not run (--model-claims runs them)",
+                    markup=False,
+                )
             _print_slowest(run)
         raise typer.Exit(exit_code(command_verdict(True, run.expectations)))
 
@@ -135,12 +153,13 @@ def register(app: typer.Typer) -> None:
 def _run(
     paths: list[Path],
     out: Path,
-    only: list[str],
+    selection: tuple[list[str], bool],
     options: dict[str, Any],
     where: tuple[int | None, str | None],
     quiet: bool,
 ) -> tuple[RunResult, dict]:
-    """The report on the engine (``where`` = workers, scheduler) behind a progress bar.
+    """The report on the engine (``where`` = workers, scheduler) behind a progress bar, of the
+    claims ``selection`` = (``--only`` patterns, whether the model claims run).
 
     The workers start first, in the background, while this process loads the case files
     ``paths`` and imports the claims (their forkserver imports the same modules: about 3 s that
@@ -152,7 +171,8 @@ def _run(
     with engine(*where, preload=worker_modules()) as runner:
         runner.start()
         loaded = [load_case(path) for path in paths]
-        claims = choose_claims(only)
+        only, models = selection
+        claims = [c for c in choose_claims(only) if models or c.kinds]
         with progress_bar(check_count(loaded, claims), "checking", quiet=quiet) as advance:
             return build_report(
                 loaded, out, claims=claims, progress=advance, runner=runner, **options

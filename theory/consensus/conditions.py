@@ -36,7 +36,6 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-import control
 import networkx as nx
 import numpy as np
 from flint import fmpq_mat
@@ -81,15 +80,15 @@ __all__ = [
 @dataclass(frozen=True)
 class KalmanSplit:
     """Orthogonal Kalman decomposition of ``(A, C)``: ``A_u = V_u' A V_u`` on the unobservable
-    subspace, the observability rank (its margin over ``rank_tol``, and python-control's rank as a
-    cross-check) and ``‖A V_u − V_u A_u‖ / ‖A‖`` (small iff the subspace is A-invariant)."""
+    subspace, the observability rank (its margin over ``rank_tol``; python-control's rank is the
+    cross-check in tests/consensus) and ``‖A V_u − V_u A_u‖ / ‖A‖`` (small iff the subspace is
+    A-invariant)."""
 
     A_u: np.ndarray
     V_u: np.ndarray
     V_o: np.ndarray
     rank: int
     rank_margin: float
-    control_rank: int
     invariance_residual: float
 
 
@@ -102,18 +101,17 @@ def unobservable_partition(
     C = np.asarray(C, dtype=float).reshape(-1, n)
     O = observability_matrix(A, C)
     if C.shape[0] == 0 or not np.any(O):
-        rank, margin, control_rank = 0, float("inf"), 0
+        rank, margin = 0, float("inf")
         V = np.eye(n)
     else:
         result = numeric_rank(O, rank_tol=rank_tol)
         rank, margin = result.rank, result.margin
-        control_rank = numeric_rank(np.asarray(control.obsv(A, C)), rank_tol=rank_tol).rank
         V = np.linalg.svd(O)[2].T
     V_o, V_u = V[:, :rank], V[:, rank:]
     A_u = V_u.T @ A @ V_u
     scale = max(float(np.linalg.norm(A, 2)), 1e-300)
     residual = float(np.linalg.norm(A @ V_u - V_u @ A_u, 2)) / scale if V_u.size else 0.0
-    return KalmanSplit(A_u, V_u, V_o, rank, float(margin), control_rank, residual)
+    return KalmanSplit(A_u, V_u, V_o, rank, float(margin), residual)
 
 
 @dataclass(frozen=True)

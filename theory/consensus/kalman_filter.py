@@ -33,10 +33,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 
 from theory.consensus.case import DkfSpec, Order, ch5_examples
@@ -309,6 +305,11 @@ def _growth_verdict(bounded: bool, unbounded: bool, expect_bounded: bool) -> boo
 
 def _norms_figure(curves: dict[str, np.ndarray], folder: Path) -> str:
     """``‖P_i(k)‖`` (log scale) of each example, weights and order (seed 000 Figs 5.2–5.3)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
     fig, ax = plt.subplots(figsize=(6.5, 4))
     for label, norms in curves.items():
         style = "-" if "W_g" in label else "--"

@@ -11,23 +11,25 @@ simulations use) and once in exact rationals (:func:`exact_metropolis_weights`,
 
 from __future__ import annotations
 
+import itertools
 import sys
+from collections.abc import Iterator
 from fractions import Fraction
 
 import numpy as np
-from scipy.sparse.csgraph import connected_components
-
-from theory.core.exact import exact_decimal
 
 __all__ = [
     "NAMED_WEIGHTS",
     "adjacency_from_edges",
     "adjacency_from_range",
+    "component_labels",
     "components",
     "exact_metropolis_weights",
     "exact_uniform_weights",
     "exact_weights",
+    "is_symmetric",
     "metropolis_weights",
+    "near_pairs",
     "uniform_weights",
     "weights_support",
 ]
@@ -50,22 +52,77 @@ def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray
     The rule is strict (``<``), as in seed 000 §4.4, and decided exactly on the numbers as
     written (:func:`theory.core.exact.exact_decimal`): pairs whose float squared distance
     lies within a rounding bound of ``comm_range²`` are re-compared in rationals, so an agent at
-    exactly the range is never linked and one a hair inside always is.
+    exactly the range is never linked and one a hair inside always is. Only pairs in
+    neighbouring cells of a grid are compared (:func:`near_pairs`).
     """
     positions = np.asarray(positions, dtype=float)
-    diff = positions[:, None, :] - positions[None, :, :]
-    squared = (diff**2).sum(axis=-1)
-    adjacency = squared < comm_range**2
-    for i, j in zip(
-        *np.nonzero(np.abs(squared - comm_range**2) <= _range_band(positions, comm_range)),
-        strict=True,
-    ):
-        if i < j:
-            adjacency[i, j] = adjacency[j, i] = _exactly_closer(
-                positions[i], positions[j], comm_range
-            )
-    np.fill_diagonal(adjacency, False)
+    n = positions.shape[0]
+    adjacency = np.zeros((n, n), dtype=bool)
+    band = _range_band(positions, comm_range)
+    for i, j in near_pairs(positions, float(np.sqrt(comm_range**2 + band))):
+        squared = ((positions[i] - positions[j]) ** 2).sum(axis=-1)
+        linked = squared < comm_range**2
+        for k in np.flatnonzero(np.abs(squared - comm_range**2) <= band):
+            linked[k] = _exactly_closer(positions[i[k]], positions[j[k]], comm_range)
+        adjacency[i[linked], j[linked]] = adjacency[j[linked], i[linked]] = True
     return adjacency
+
+
+def near_pairs(
+    points: np.ndarray, reach: float, *, chunk: int = 1 << 21
+) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """Every pair ``i < j`` of ``points`` (``N × d``) within distance ``reach`` of each other,
+    and possibly some farther ones, in chunks of about ``chunk`` pairs.
+
+    The points are binned in a grid of cubes of side slightly above ``reach`` (by a relative
+    ``10⁻⁶`` and the coordinates' rounding, so that no float error splits a close pair across
+    non-neighbouring cells), and at least ``2⁻⁴⁰`` of the points' span (cell indices stay far
+    from overflow; larger cells only list more pairs); only pairs in the same or neighbouring
+    cells are listed. Work and memory ``O(N + pairs listed)``.
+    """
+    points = np.asarray(points, dtype=float)
+    n, dim = points.shape
+    if n < 2:
+        return
+    low = points.min(axis=0)
+    span = float((points.max(axis=0) - low).max())
+    side = reach * (1 + 1e-6) + 64 * sys.float_info.epsilon * float(np.abs(points).max())
+    side = max(side, span * 2.0**-40)
+    cells, member_of = np.unique(
+        np.floor((points - low) / side).astype(np.int64), axis=0, return_inverse=True
+    )
+    member_of = member_of.reshape(-1)
+    order = np.argsort(member_of, kind="stable")
+    starts = np.searchsorted(member_of[order], np.arange(len(cells) + 1))
+    index = {tuple(c): k for k, c in enumerate(cells.tolist())}
+    for offset in itertools.product((-1, 0, 1), repeat=dim):
+        if offset < (0,) * dim:
+            continue  # its mirror image lists the same pairs
+        yield from _cell_pairs(order, starts, member_of, cells, index, offset, chunk)
+
+
+def _cell_pairs(order, starts, member_of, cells, index, offset, chunk):
+    """The pairs of :func:`near_pairs` between each cell and its neighbour at ``offset``."""
+    target = np.array(
+        [index.get(tuple(c), -1) for c in (cells + np.array(offset)).tolist()], dtype=np.int64
+    )
+    point_target = target[member_of]
+    count = np.where(point_target >= 0, starts[point_target + 1] - starts[point_target], 0)
+    ends = np.cumsum(count)
+    bounds = np.searchsorted(ends, np.arange(chunk, int(ends[-1]) + chunk, chunk), side="right")
+    first = 0
+    for last in (*bounds.tolist(), len(count)):
+        if last <= first:
+            continue
+        source = np.arange(first, last)
+        many = count[source]
+        i = np.repeat(source, many)
+        within = np.arange(int(many.sum())) - np.repeat(np.cumsum(many) - many, many)
+        j = order[np.repeat(starts[point_target[source]], many) + within]
+        keep = i < j if not any(offset) else np.ones(len(i), dtype=bool)
+        i, j = i[keep], j[keep]
+        first = last
+        yield np.minimum(i, j), np.maximum(i, j)
 
 
 def _range_band(positions: np.ndarray, comm_range: float) -> float:
@@ -81,6 +138,8 @@ def _range_band(positions: np.ndarray, comm_range: float) -> float:
 
 def _exactly_closer(p: np.ndarray, q: np.ndarray, comm_range: float) -> bool:
     """``‖p − q‖ < comm_range`` in exact rationals (coordinates read as written)."""
+    from theory.core.exact import exact_decimal  # python-flint: only near the boundary
+
     squared = sum((exact_decimal(a) - exact_decimal(b)) ** 2 for a, b in zip(p, q, strict=True))
     return squared < exact_decimal(comm_range) ** 2
 
@@ -88,15 +147,27 @@ def _exactly_closer(p: np.ndarray, q: np.ndarray, comm_range: float) -> bool:
 def metropolis_weights(adjacency: np.ndarray) -> np.ndarray:
     """Metropolis weights of the undirected graph ``adjacency`` (rows and columns sum to 1)."""
     degree = adjacency.sum(axis=1)
-    weights = np.where(adjacency, 1.0 / (1.0 + np.maximum(degree[:, None], degree[None, :])), 0.0)
-    np.fill_diagonal(weights, 1.0 - weights.sum(axis=1))
+    r, s = np.nonzero(adjacency)
+    n = adjacency.shape[0]
+    values = 1.0 / (1.0 + np.maximum(degree[r], degree[s]))
+    weights = _on_links(n, r, s, values)
+    np.fill_diagonal(weights, 1.0 - np.bincount(r, weights=values, minlength=n))
     return weights
 
 
 def uniform_weights(adjacency: np.ndarray) -> np.ndarray:
     """Uniform weights on ``adjacency``: each agent averages itself and its in-neighbours."""
-    closed = adjacency | np.eye(adjacency.shape[0], dtype=bool)
-    return closed / closed.sum(axis=1, keepdims=True)
+    n = adjacency.shape[0]
+    r, s = np.nonzero(adjacency | np.eye(n, dtype=bool))
+    return _on_links(n, r, s, 1.0 / np.bincount(r, minlength=n)[r])
+
+
+def _on_links(n: int, r: np.ndarray, s: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The ``n × n`` matrix with ``values`` at ``(r, s)`` and zeros elsewhere (written link by
+    link: ``O(N + E)`` writes, not an ``N²`` sweep)."""
+    weights = np.zeros((n, n))
+    weights[r, s] = values
+    return weights
 
 
 def exact_metropolis_weights(adjacency: np.ndarray) -> list[list[Fraction]]:
@@ -140,6 +211,13 @@ def _exact(adjacency: np.ndarray, weight) -> list[list[Fraction]]:
     return W
 
 
+def is_symmetric(adjacency: np.ndarray) -> bool:
+    """Whether every link of ``adjacency`` has its reverse (``O(N² / 8 + E)``: no transpose
+    of the whole matrix)."""
+    r, s = np.nonzero(adjacency)
+    return bool(np.all(adjacency[s, r] == adjacency[r, s]))
+
+
 def weights_support(weights: np.ndarray) -> np.ndarray:
     """Off-diagonal boolean support of ``weights`` (``w_ij > 0``)."""
     support = weights > 0
@@ -148,7 +226,28 @@ def weights_support(weights: np.ndarray) -> np.ndarray:
 
 
 def components(adjacency: np.ndarray) -> list[list[int]]:
-    """Weakly connected components of ``adjacency``: sorted lists of 0-based agents."""
-    count, labels = connected_components(adjacency, connection="weak")
-    parts = [np.flatnonzero(labels == c).tolist() for c in range(count)]
+    """Weakly connected components of ``adjacency``: sorted lists of 0-based agents, ordered by
+    their first agent."""
+    labels = component_labels(adjacency)
+    order = np.argsort(labels, kind="stable")
+    _, starts = np.unique(labels[order], return_index=True)
+    parts = [piece.tolist() for piece in np.split(order, starts[1:])]
     return sorted(parts, key=lambda c: c[0])
+
+
+def component_labels(adjacency: np.ndarray) -> np.ndarray:
+    """Each agent's weakly connected component, labelled by its smallest agent (``O((N + E)
+    log N)``: hooking of roots onto the smaller root, then pointer jumping, until no link joins
+    two trees)."""
+    r, s = np.nonzero(adjacency)
+    root = np.arange(adjacency.shape[0])
+    while True:
+        low = np.minimum(root[r], root[s])
+        hooked = root.copy()
+        np.minimum.at(hooked, root[r], low)
+        np.minimum.at(hooked, root[s], low)
+        while not np.array_equal(hooked[hooked], hooked):
+            hooked = hooked[hooked]
+        if np.array_equal(hooked, root):
+            return root
+        root = hooked

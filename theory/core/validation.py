@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.errors import ENVIRONMENT, CaseError
+from theory.core.network import near_pairs
 from theory.core.tolerances import COINCIDENCE_TOL, WEIGHT_SUM_TOL
 
 __all__ = [
@@ -94,7 +95,7 @@ LIMITS: dict[str, Limit] = {
             "nodes",
             "the YAML nodes of a case file, counted with every alias expanded (alias bombs)",
         ),
-        Limit("agents", 1_000, "agents", "agents or nodes of a tdoa, tdoa-sim, dkf or pf case"),
+        Limit("agents", 10_000, "agents", "agents or nodes of a tdoa, tdoa-sim, dkf or pf case"),
         Limit("trackers", 1_000, "trackers", "trackers of a pursuit case"),
         Limit(
             "particles", 1_000_000, "particles", "particles of each particle filter (pf.particles)"
@@ -177,8 +178,11 @@ def check_length(raw: Any, name: str, field: str) -> None:
         check_count(name, len(raw), field)
 
 
-def check_estimate(name: str, estimate: float, field: str, what: str) -> None:
-    """Refuse an estimated memory or work (``what``: its formula) above the limit ``name``."""
+def check_estimate(
+    name: str, estimate: float, field: str, what: str, *, alternative: str = ""
+) -> None:
+    """Refuse an estimated memory or work (``what``: its formula) above the limit ``name``;
+    ``alternative`` (a sentence) says how to ask for less instead of raising the limit."""
     entry = LIMITS[name]
     bound = entry.value()
     if estimate > bound:
@@ -186,7 +190,7 @@ def check_estimate(name: str, estimate: float, field: str, what: str) -> None:
             field,
             f"a case within the limit '{name}' of {bound:.3g} {entry.unit}",
             f"an estimated {estimate:.3g} {entry.unit} ({what})",
-            hint=entry.hint(),
+            hint=f"{alternative} {entry.hint()}".strip(),
         )
 
 
@@ -368,14 +372,19 @@ def distinct_points(
 
     Two points are one when their distance is at most ``coincidence_tol`` times their own
     magnitude (at least 1 m), so a far-away point does not make the others look coincident. The
-    message names the later point of the first pair (a ``noun``), ``where`` and ``why``.
+    message names the later point of the first pair (a ``noun``), ``where`` and ``why``. Only
+    pairs in neighbouring cells of a grid are compared (:func:`theory.core.network.near_pairs`).
     """
-    gaps = np.linalg.norm(points[:, None] - points[None], axis=-1)
-    size = np.maximum(1.0, np.abs(points).max(axis=1))
-    close = gaps <= COINCIDENCE_TOL * np.maximum(size[:, None], size[None])
-    close &= np.triu(np.ones_like(close), k=1)
-    if close.any():
-        i, j = (int(k) for k in np.argwhere(close)[0])
+    size = np.maximum(1.0, np.abs(points).max(axis=1, initial=0.0))
+    reach = COINCIDENCE_TOL * float(size.max(initial=1.0))
+    first: tuple[int, int] | None = None
+    for i, j in near_pairs(points, reach):
+        gaps = np.linalg.norm(points[i] - points[j], axis=-1)
+        close = np.flatnonzero(gaps <= COINCIDENCE_TOL * np.maximum(size[i], size[j]))
+        pairs = sorted(zip(i[close].tolist(), j[close].tolist(), strict=True))[:1]
+        first = min([*pairs, *([first] if first else [])], default=None)
+    if first is not None:
+        i, j = first
         raise CaseError(
             f"{field}[{j + 1}]",
             f"a position distinct from {noun} {i + 1}'s{where}{why}",

@@ -59,6 +59,7 @@ from theory.core.errors import CaseError
 from theory.core.network import (
     adjacency_from_edges,
     adjacency_from_range,
+    is_symmetric,
     metropolis_weights,
     uniform_weights,
     weights_support,
@@ -213,9 +214,8 @@ def parse_tdoa(block: Mapping[str, Any]) -> TdoaSpec:
     directed = block.get("directed", False)
     if not isinstance(directed, bool):
         raise CaseError("tdoa.directed", "true or false", directed)
-    _check_memory(agents.shape[0], agents.shape[1], 0)
+    _check_memory(agents.shape[0], agents.shape[1])
     hears, comm_range = _topology(block, agents, directed)
-    _check_memory(*hears.shape[:2], int(hears.sum(axis=(1, 2)).max()))
     weights, rule = _weights(block.get("weights", "metropolis"), hears, directed)
     return TdoaSpec(T, dim, agents, target, hears, weights, rule, directed, comm_range)
 
@@ -232,15 +232,15 @@ def _check_sizes(raw_agents: object, raw_target: object) -> None:
         check_length(raw_target, "steps", "tdoa.target")
 
 
-def _check_memory(steps: int, n: int, rows: int) -> None:
-    """Refuse a scene whose arrays would exceed the memory budget: ``O`` of seed 000 eq. (4.36)
-    has ``6N·M`` rows (``M`` TDOA rows) and ``6N`` columns, the parser keeps ``steps × N²``."""
-    estimate = 8.0 * (6 * n * rows) * (6 * n) + 9.0 * steps * n * n
+def _check_memory(steps: int, n: int) -> None:
+    """Refuse a scene whose arrays would exceed the memory budget: the parser keeps ``hears``
+    (1 B) and ``W`` (8 B) per step, ``steps × N²`` each. What a command computes beyond (the
+    network rank of ``trackcert topology``) is estimated by that command."""
     check_estimate(
         "memory_bytes",
-        estimate,
+        9.0 * steps * n * n,
         "tdoa.agents",
-        f"8 B × 6N·M × 6N for O (N = {n} agents, M = {rows} TDOA rows) + 9 B × steps·N²",
+        f"9 B × steps·N² for the links and weights (N = {n} agents, {steps} steps)",
     )
 
 
@@ -311,9 +311,9 @@ def _topology(
                 "tdoa.directed", "false with comm_range (the distance rule is symmetric)", True
             )
         comm_range = positive_number(block["comm_range"], "tdoa.comm_range")
-        return np.stack(
-            [adjacency_from_range(agents[k], comm_range) for k in range(steps)]
-        ), comm_range
+        return _stacked([adjacency_from_range(agents[k], comm_range) for k in range(steps)]), (
+            comm_range
+        )
     if has_edges:
         edges = _edges(block["edges"], n)
         hears = adjacency_from_edges(n, edges, directed=directed)
@@ -346,16 +346,16 @@ def _edges(raw: object, n: int) -> np.ndarray:
 
 def _weights(raw: object, hears: np.ndarray, directed: bool) -> tuple[np.ndarray, WeightRule]:
     if raw == WeightRule.METROPOLIS:
-        if directed or not all(np.array_equal(h, h.T) for h in hears):
+        if directed or not all(is_symmetric(h) for h in hears):
             raise CaseError(
                 "tdoa.weights",
                 "uniform or an explicit matrix for a directed network",
                 "metropolis",
                 hint="Metropolis weights are defined for undirected graphs.",
             )
-        return np.stack([metropolis_weights(h) for h in hears]), WeightRule.METROPOLIS
+        return _stacked([metropolis_weights(h) for h in hears]), WeightRule.METROPOLIS
     if raw == WeightRule.UNIFORM:
-        return np.stack([uniform_weights(h) for h in hears]), WeightRule.UNIFORM
+        return _stacked([uniform_weights(h) for h in hears]), WeightRule.UNIFORM
     if isinstance(raw, list):
         steps, n, _ = hears.shape
         if steps > 1 and not np.all(hears == hears[0]):
@@ -368,6 +368,11 @@ def _weights(raw: object, hears: np.ndarray, directed: bool) -> tuple[np.ndarray
         row_stochastic(matrix, "tdoa.weights", support=hears[0])
         return np.broadcast_to(matrix, (steps, n, n)).copy(), WeightRule.EXPLICIT
     raise CaseError("tdoa.weights", "metropolis, uniform, or an N × N row-stochastic matrix", raw)
+
+
+def _stacked(arrays: list[np.ndarray]) -> np.ndarray:
+    """The per-step arrays along a leading axis (one step: a view, no ``N²`` copy)."""
+    return arrays[0][None] if len(arrays) == 1 else np.stack(arrays)
 
 
 PER_AGENT_BOOLS = ("observable", "heuristic_4_noncoplanar", "mirror_ambiguous")

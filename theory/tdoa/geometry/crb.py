@@ -29,7 +29,6 @@ import numpy as np
 
 from theory.core.claims import ClaimResult, ClaimSet, Context, Method, Status
 from theory.core.tolerances import BOUND_RTOL, INFORMATION_TOL
-from theory.tdoa.geometry.exact import exact_direction_rank
 from theory.tdoa.model import tdoa_jacobians, unit_directions
 
 __all__ = [
@@ -87,6 +86,8 @@ def crb_trace(
         if eig[-1] <= 0 or eig[0] <= INFORMATION_TOL * eig[-1]:
             return float("inf")
         return float(np.sum(1.0 / eig))
+    from theory.tdoa.geometry.exact import exact_direction_rank  # python-flint: on use
+
     dim = len(target)
     if exact_direction_rank(list(target), [list(positions[j]) for j in nodes]) < dim:
         return float("inf")

@@ -25,15 +25,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import networkx as nx
 import numpy as np
-import scipy.sparse
-import scipy.sparse.csgraph
 
+from theory.core.network import component_labels, is_symmetric
 from theory.core.observability import RANK_TOL, RankResult, numeric_rank
 from theory.core.tolerances import CLUSTER_TOL, INCONCLUSIVE_FACTOR, UNIQUENESS_TOL
+from theory.core.validation import check_estimate
 from theory.tdoa.case import TdoaSpec
 from theory.tdoa.geometry.exact import (
     exact_affine_rank,
@@ -51,12 +50,16 @@ from theory.tdoa.observability.spectral import (
     symmetrizing_scale,
 )
 
+if TYPE_CHECKING:
+    import networkx as nx
+
 __all__ = [
     "DENSE_MAX_STATES",
     "AgentVerdict",
     "NetworkVerdict",
     "TopologyResult",
     "analyze_topology",
+    "check_topology_cost",
     "observed_values",
 ]
 
@@ -69,7 +72,8 @@ DENSE_MAX_STATES = 240
 class AgentVerdict:
     """What one agent can localize (1-based ``id`` and ``component`` as users see them).
 
-    ``reach`` are the agents whose rows enter ``O_i`` (``R(i)``); ``rank`` is ``rank O_i`` at the
+    ``reach`` are the agents whose rows enter ``O_i`` (``R(i)``, one tuple shared by the agents of
+    a reach set, ``reach_set`` its 1-based index in the record); ``rank`` is ``rank O_i`` at the
     actual geometry (``2d`` when ``observable``); ``sigma_min`` the smallest singular value of
     ``G_{R(i)}`` (zero-padded to ``d``) and ``margin`` how many times the rank decision clears
     ``rank_tol · σ_max``. ``heuristic_4_noncoplanar`` is the paper's condition and ``reason`` says
@@ -81,6 +85,7 @@ class AgentVerdict:
     id: int
     component: int
     reach: tuple[int, ...]
+    reach_set: int
     rank: int
     observable: bool
     sigma_min: float
@@ -137,12 +142,19 @@ class TopologyResult:
         return all(agent.localizes for agent in self.agents)
 
     def to_json(self) -> dict[str, Any]:
-        """The ``trackcert topology --json`` record of the step (plus evidence fields)."""
+        """The ``trackcert topology --json`` record of the step (plus evidence fields).
+
+        ``O(N)``: each component's members and each reach set are listed once, at the top
+        (``component_members``, ``reach_sets``); an agent names its ``component`` and
+        ``reach_set`` by 1-based index.
+        """
         net = self.network
         return {
             "step": self.step,
             "dim": self.dim,
             "agents": [_agent_json(a) for a in self.agents],
+            "component_members": _members(self.agents, lambda a: a.component),
+            "reach_sets": _reach_sets(self.agents),
             "network_rank": net.rank,
             "network_states": net.n_states,
             "network_observable": net.observable,
@@ -195,6 +207,44 @@ def analyze_topology(
     flow = _UNDIRECTED_FLOW if scene.symmetric else _DIRECTED_FLOW
     tolerances = {**tol, "uniqueness_tol": uniqueness_tol, "cluster_tol": cluster_tol}
     return TopologyResult(step + 1, spec.dim, agents, network, flow, tolerances, tuple(doubts))
+
+
+def check_topology_cost(spec: TdoaSpec, *, network_rank: bool = True) -> None:
+    """Refuse, before any work, a scene whose analysis exceeds the limits ``memory_bytes`` or
+    ``work`` (:mod:`theory.core.validation`), counting what it will compute.
+
+    The per-agent verdicts and detectability keep the TDOA rows: ``M`` rows of ``d`` floats and
+    two indices, ``8(d + 2)·M`` bytes (twice, for the rows grouped by component). The network
+    rank adds, per component of ``n`` agents, an eigen-decomposition of its ``W`` (seed 000
+    eq. (4.36) ranked by the spectrum, :mod:`~theory.tdoa.observability.spectral`): about
+    ``3·8·n²`` bytes and ``10·n³`` operations for the largest component of any step. The
+    refusal names ``--no-network-rank``, which skips that part.
+    """
+    rows = int(spec.hears.sum(axis=(1, 2)).max(initial=0))
+    memory = 16.0 * (spec.dim + 2) * rows
+    what = f"16 B × (d + 2)·M, M = {rows} TDOA rows"
+    check_estimate("memory_bytes", memory, "tdoa.agents", what)
+    if not network_rank:
+        return
+    largest = max(int(np.bincount(component_labels(h)).max(initial=0)) for h in spec.hears)
+    skip = (
+        "Pass --no-network-rank for every agent's verdict and the detectability without the "
+        "rank of the whole networked O (those are linear in N + E)."
+    )
+    check_estimate(
+        "memory_bytes",
+        memory + 24.0 * largest**2,
+        "tdoa.agents",
+        f"{what} + 24 B × n², n = {largest} in the largest component",
+        alternative=skip,
+    )
+    check_estimate(
+        "work",
+        10.0 * largest**3,
+        "tdoa.agents",
+        f"10 n³ to diagonalize W, n = {largest} in the largest component",
+        alternative=skip,
+    )
 
 
 _UNDIRECTED_FLOW = "undirected: O_i sees agent i's connected component"
@@ -292,12 +342,15 @@ class _Group:
     reason: str
     dim: int
 
-    def for_agent(self, agent: int, component: int, localizes: bool) -> AgentVerdict:
+    def for_agent(
+        self, agent: int, component: int, reach_set: int, localizes: bool
+    ) -> AgentVerdict:
         rank = 2 * self.decision.rank
         return AgentVerdict(
             agent + 1,
             component,
             self.reach,
+            reach_set,
             rank,
             rank == 2 * self.dim,
             self.sigma_min,
@@ -326,7 +379,7 @@ def _scene(spec: TdoaSpec, step: int) -> _Scene:
         parts,
         component_of,
         _rows_by_part(rows, component_of, len(parts)),
-        bool(np.array_equal(hears, hears.T)),
+        is_symmetric(hears),
         rational_points(positions),
         rational_points([target])[0],
     )
@@ -365,10 +418,10 @@ def _agent_verdicts(
     else:
         leaders = _upstream_leaders(scene, tol, doubts)
     agents: list[AgentVerdict | None] = [None] * scene.spec.n_agents
-    for members, group in groups:
+    for index, (members, group) in enumerate(groups, start=1):
         for i in members:
             ok = all(decision.rank == scene.dim for decision in leaders[i])
-            agents[i] = group.for_agent(i, int(scene.component_of[i]) + 1, ok)
+            agents[i] = group.for_agent(i, int(scene.component_of[i]) + 1, index, ok)
     return tuple(agents)  # type: ignore[arg-type]
 
 
@@ -400,22 +453,19 @@ def _tdoa_rows(positions: np.ndarray, target: np.ndarray, hears: np.ndarray) -> 
 def _components(hears: np.ndarray) -> tuple[list[list[int]], np.ndarray]:
     """Weakly connected components ordered by first agent, and each agent's component index.
 
-    The same partition as :func:`theory.core.network.components`, in ``O(N + E)`` via scipy.
+    The partition of :func:`theory.core.network.components`, in ``O((N + E) log N)``.
     """
-    count, labels = scipy.sparse.csgraph.connected_components(
-        scipy.sparse.csr_matrix(hears), directed=True, connection="weak"
-    )
-    order = np.argsort(labels, kind="stable")
-    pieces = np.split(order, np.cumsum(np.bincount(labels, minlength=count))[:-1])
-    parts = sorted((piece.tolist() for piece in pieces), key=lambda c: c[0])
-    component_of = np.empty(hears.shape[0], dtype=int)
-    for k, part in enumerate(parts):
-        component_of[part] = k
-    return parts, component_of
+    labels = component_labels(hears)
+    roots, component_of = np.unique(labels, return_inverse=True)  # roots: first agents, sorted
+    order = np.argsort(component_of, kind="stable")
+    pieces = np.split(order, np.cumsum(np.bincount(component_of, minlength=len(roots)))[:-1])
+    return [piece.tolist() for piece in pieces], component_of
 
 
 def _condensation(hears: np.ndarray) -> nx.DiGraph:
     """The strongly connected classes of the information flow (``s → r`` when ``r`` hears ``s``)."""
+    import networkx as nx  # directed networks only
+
     flow = nx.DiGraph()
     flow.add_nodes_from(range(hears.shape[0]))
     flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(hears), strict=True))
@@ -424,6 +474,8 @@ def _condensation(hears: np.ndarray) -> nx.DiGraph:
 
 def _reach_groups(hears: np.ndarray) -> list[tuple[list[int], list[int]]]:
     """Agents of a directed network sharing one reach set ``R(i)``: strongly connected classes."""
+    import networkx as nx
+
     condensed = _condensation(hears)
     groups = []
     for node in condensed.nodes:
@@ -594,6 +646,8 @@ def _upstream_leaders(
     localize iff its own stacked Jacobian has rank ``d``; every other agent's error is driven by
     the closed classes upstream of it through ``W_TT ⊗ A``, which is stable (``ρ(W_TT) < 1``).
     """
+    import networkx as nx
+
     condensed = _condensation(scene.hears)
     ranks = {}
     for node in condensed:
@@ -636,6 +690,8 @@ def _directed_detectable(W: np.ndarray, rows: _Rows, rank_tol: float) -> tuple[b
 
 def _unit_eigenvectors(W: np.ndarray) -> np.ndarray:
     """Right eigenvectors of a row-stochastic ``W`` (``w_ii > 0``) for eigenvalue 1."""
+    import networkx as nx
+
     graph = nx.DiGraph((int(r), int(s)) for r, s in zip(*np.nonzero(W), strict=True))
     graph.add_nodes_from(range(W.shape[0]))
     condensed = nx.condensation(graph)
@@ -714,7 +770,7 @@ def _agent_json(agent: AgentVerdict) -> dict[str, Any]:
         "sigma_min": agent.sigma_min,
         "mirror_ambiguous": agent.mirror_ambiguous,
         "mirror_point": agent.mirror_point,
-        "reach": list(agent.reach),
+        "reach_set": agent.reach_set,
         "margin": agent.margin,
         "agrees_with_heuristic": not agent.reason,
         "reason": agent.reason,
@@ -723,6 +779,25 @@ def _agent_json(agent: AgentVerdict) -> dict[str, Any]:
         "uniqueness_note": unique.note,
         "uniqueness_method": unique.method,
     }
+
+
+def _members(agents: tuple[AgentVerdict, ...], index: Any) -> list[list[int]]:
+    """The 1-based ids of the agents with ``index(agent)`` = 1, 2, …, in one pass."""
+    listed: list[list[int]] = []
+    for agent in agents:
+        k = index(agent)
+        listed.extend([] for _ in range(k - len(listed)))
+        listed[k - 1].append(agent.id)
+    return listed
+
+
+def _reach_sets(agents: tuple[AgentVerdict, ...]) -> list[list[int]]:
+    """Each reach set ``R(i)`` once (1-based ids), in ``reach_set`` order."""
+    sets: dict[int, list[int]] = {}
+    for agent in agents:
+        if agent.reach_set not in sets:
+            sets[agent.reach_set] = list(agent.reach)
+    return [sets[k] for k in sorted(sets)]
 
 
 def _ids(agents: list[int] | tuple[int, ...]) -> str:

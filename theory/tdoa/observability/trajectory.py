@@ -27,7 +27,12 @@ from theory.core.claims import ClaimResult, ClaimSet, Context, Method, Status
 from theory.core.errors import CaseError, SolverError
 from theory.core.expectations import Expectation, Observed, judge
 from theory.tdoa.case import TdoaSpec, rank_tolerances
-from theory.tdoa.observability.topology import TopologyResult, analyze_topology, observed_values
+from theory.tdoa.observability.topology import (
+    TopologyResult,
+    analyze_topology,
+    check_topology_cost,
+    observed_values,
+)
 
 __all__ = [
     "TopologyReport",
@@ -104,7 +109,8 @@ def run_topology(case: Case, *, network_rank: bool = True, **tolerances: float) 
     """Analyze a ``kind: tdoa`` case at every step with its tolerances (``rank_tol`` /
     ``inconclusive_factor`` overridden unless ``None``).
 
-    ``CaseError`` for another kind or a tolerance out of range; ``SolverError`` when a
+    ``CaseError`` for another kind, a tolerance out of range or an analysis beyond the limits
+    (:func:`~theory.tdoa.observability.topology.check_topology_cost`); ``SolverError`` when a
     linear-algebra routine fails (reported as inconclusive)."""
     if case.kind != "tdoa":
         raise CaseError("kind", "tdoa (trackcert topology checks TDOA cases)", case.kind)
@@ -114,6 +120,10 @@ def run_topology(case: Case, *, network_rank: bool = True, **tolerances: float) 
         raise CaseError("--rank-tol", "a relative tolerance in (0, 1)", chosen["rank_tol"])
     if chosen["inconclusive_factor"] < 1:
         raise CaseError("--inconclusive-factor", "a factor ≥ 1", chosen["inconclusive_factor"])
+    try:
+        check_topology_cost(case.spec, network_rank=network_rank)
+    except CaseError as error:
+        raise error.in_file(case.file) from None
     try:
         return analyze_trajectory(case.spec, network_rank=network_rank, **chosen)
     except np.linalg.LinAlgError as error:
