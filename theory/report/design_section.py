@@ -4,15 +4,14 @@ breaks observability (:func:`theory.tdoa.design.design_summary`); pursuit: the I
 over the default gain box, the certified gain at the case's own gains and its infimum
 (:func:`theory.pursuit.design.design_summary`).
 
-:data:`SUMMARIES` maps a kind to its summary function (a ``module:function`` path, imported
-when a case of that kind is in the report) and to the headline the page prints plainly; a kind
+:data:`SUMMARIES` maps a kind to its summary function (which imports its domain only when a
+case of that kind is in the report) and to the headline the page prints plainly; a kind
 gains a design section by one line there. A summary that raises is reported (type and message)
 in place of its answers: the report still completes.
 """
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -24,16 +23,27 @@ __all__ = ["SUMMARIES", "Summary", "design_sections", "headline"]
 
 @dataclass(frozen=True)
 class Summary:
-    """A kind's design summary: ``function`` (``module:function``, ``(case) -> dict``) and
+    """A kind's design summary: ``name`` (the library function that answers, as report.json
+    records it), ``function`` (``(case) -> dict``, importing its domain when called) and
     ``headline`` (that dict → the lines printed plainly on the case page)."""
 
-    function: str
+    name: str
+    function: Callable[[Case], dict[str, Any]]
     headline: Callable[[dict[str, Any]], list[str]]
 
-    def run(self, case: Case) -> dict[str, Any]:
-        """The summary of ``case``."""
-        module, name = self.function.split(":")
-        return getattr(importlib.import_module(module), name)(case)
+
+def _tdoa_summary(case: Case) -> dict[str, Any]:
+    """seed 000 ch. 4: the tdoa design answers (lazy import)."""
+    from theory.tdoa.design import design_summary
+
+    return design_summary(case)
+
+
+def _pursuit_summary(case: Case) -> dict[str, Any]:
+    """seed 003: the pursuit design answers (lazy import)."""
+    from theory.pursuit.design import design_summary
+
+    return design_summary(case)
 
 
 def _tdoa_headline(answers: dict[str, Any]) -> list[str]:
@@ -79,8 +89,8 @@ def _pursuit_headline(answers: dict[str, Any]) -> list[str]:
 
 
 SUMMARIES: dict[str, Summary] = {
-    "tdoa": Summary("theory.tdoa.design:design_summary", _tdoa_headline),
-    "pursuit": Summary("theory.pursuit.design:design_summary", _pursuit_headline),
+    "tdoa": Summary("theory.tdoa.design:design_summary", _tdoa_summary, _tdoa_headline),
+    "pursuit": Summary("theory.pursuit.design:design_summary", _pursuit_summary, _pursuit_headline),
 }
 """Case kind → its design summary (dkf: add the self-weight summary here when it lands)."""
 
@@ -93,9 +103,9 @@ def design_sections(cases: Sequence[Case]) -> dict[str, dict[str, Any]]:
         summary = SUMMARIES.get(case.kind)
         if summary is None:
             continue
-        section: dict[str, Any] = {"kind": case.kind, "function": summary.function}
+        section: dict[str, Any] = {"kind": case.kind, "function": summary.name}
         try:
-            section["answers"] = summary.run(case)
+            section["answers"] = summary.function(case)
         except Exception as error:  # a summary's failure is reported, not fatal
             section["error"] = f"{type(error).__name__}: {error}"
         sections[case.name] = section
