@@ -132,7 +132,7 @@ def link_family(W: Matrix, links: Sequence[str]) -> Family:
     entries: dict[tuple[int, int], tuple[Fraction, Fraction]] = {}
     lo, hi = Fraction(-(10**18)), Fraction(10**18)
     for text in links:
-        link = parse_link_expr(text, (PARAMETER,))
+        link = parse_link_expr(text, (PARAMETER,), source="w, the family's parameter")
         parts = link.path.split(".")
         if (
             len(parts) != 3

@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.errors import COMMAND_LINE, CaseError
-from theory.core.links import LINK_EXPECTED, parse_link_expr
+from theory.core.links import LINK_EXPECTED, SWEPT, parse_link_expr
 
 __all__ = [
     "MAX_POINTS",
@@ -117,7 +117,7 @@ class Param:
 
 
 def _bad(given: str, why: str = "", *, field: str = "--param") -> CaseError:
-    expected = LINK_EXPECTED if field == "--link" else PARAM_EXPECTED
+    expected = LINK_EXPECTED.format(source=SWEPT) if field == "--link" else PARAM_EXPECTED
     return CaseError(field, expected, given, file=COMMAND_LINE, hint=why)
 
 
