@@ -45,3 +45,18 @@ def test_a_limited_cache_keeps_the_most_recent_problems() -> None:
         A, C, W = self_weight_examples("example 1", w)
         assert decide_s_detectability(A, C, W, problems=cache).verdict is (w < 0.25)
         assert len(cache) == 1
+
+
+@settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(w=st.sampled_from([0.1, 0.2, 0.24, 0.26]))
+def test_a_reused_problem_gives_the_same_bits_as_a_new_one(w: float) -> None:
+    """Results never depend on what the process solved before (a report is byte-identical
+    whatever the worker count): the solver keeps no warm start between re-solves."""
+    A, C, W = self_weight_examples("example 1", w)
+    new = decide_s_detectability(A, C, W, problems=LmiCache())
+    warm = LmiCache()
+    for other in (0.05, 0.3, 0.15):
+        decide_s_detectability(A, C, self_weight_examples("example 1", other)[2], problems=warm)
+    again = decide_s_detectability(A, C, W, problems=warm)
+    assert again.evidence() == new.evidence()
+    assert again.certificate == new.certificate

@@ -281,7 +281,7 @@ def _solve_lmi(
     try:
         with warnings.catch_warnings():  # inaccuracy is reported through the status table
             warnings.simplefilter("ignore", UserWarning)
-            problem.solve(solver=solver)
+            problem.solve(solver=solver, warm_start=False)  # no state kept between solves
         status = SOLVER_STATUS_TABLE.get(problem.status, "solver_error")
     except (cp.error.SolverError, ArithmeticError, ValueError):
         return LmiSolution(solver, "solver_error", rho)
