@@ -209,3 +209,12 @@ def test_case_figures_are_drawn_the_same_twice(name: str, tmp_path: Path) -> Non
     assert first == second and first
     for file, _ in first:
         assert (tmp_path / "one" / file).read_bytes() == (tmp_path / "two" / file).read_bytes()
+
+
+@pytest.mark.parametrize(
+    ("name", "exact"), [("ch5-example-1-wg", "1/4"), ("ch5-example-2-wg", "4000000/11840481")]
+)
+def test_a_dkf_case_page_gives_the_exact_self_weight_supremum(name: str, exact: str) -> None:
+    section = design_section.design_sections([load_case(name)])[name]
+    assert section["answers"]["supremum"]["rational"] == exact
+    assert f"exactly {exact}" in design_section.headline(section)[0]

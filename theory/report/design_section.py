@@ -2,7 +2,8 @@
 (issue 25) — tdoa: the certified displacement margin ρ and the fewest links/agents whose loss
 breaks observability (:func:`theory.tdoa.design.design_summary`); pursuit: the ISS conditions
 over the default gain box, the certified gain at the case's own gains and its infimum
-(:func:`theory.pursuit.design.design_summary`).
+(:func:`theory.pursuit.design.design_summary`); dkf: the supremum self-weight of the default
+agents (:func:`theory.consensus.design.self_weight_design`).
 
 :data:`SUMMARIES` maps a kind to its summary function (which imports its domain only when a
 case of that kind is in the report) and to the headline the page prints plainly; a kind
@@ -88,11 +89,38 @@ def _pursuit_headline(answers: dict[str, Any]) -> list[str]:
     return lines
 
 
+def _dkf_summary(case: Case) -> dict[str, Any]:
+    """seed 000 ch. 5: the supremum self-weight of the default agents (lazy import)."""
+    from theory.consensus.design import self_weight_design
+
+    return self_weight_design(case).to_json()
+
+
+def _dkf_headline(answers: dict[str, Any]) -> list[str]:
+    """seed 000 Thm 5.2.10: the self-weight supremum, exact or as a certified bracket."""
+    agents = ", ".join(str(a) for a in answers["agent"])
+    supremum = answers["supremum"]
+    if answers["status"] == "always":
+        return [f"Self-weight of agent(s) {agents}: S-detectable over the whole family (w ≤ 1)."]
+    if supremum is None:
+        return [f"Self-weight of agent(s) {agents}: {answers['status']} ({answers['note']})."]
+    exact = supremum.get("rational") or (
+        "root of " + " ".join(supremum["polynomial"]) if "polynomial" in supremum else None
+    )
+    told = f"exactly {exact}" if supremum["exact"] else "bracket " + ", ".join(supremum["interval"])
+    return [
+        f"Largest self-weight of agent(s) {agents} (row rescaled) keeping S-detectability: "
+        f"w* ≈ {supremum['value']:.6g} ({told}); certified S-detectable at "
+        f"{answers['below']['w'] if answers['below'] else 'no probed w'}."
+    ]
+
+
 SUMMARIES: dict[str, Summary] = {
     "tdoa": Summary("theory.tdoa.design:design_summary", _tdoa_summary, _tdoa_headline),
     "pursuit": Summary("theory.pursuit.design:design_summary", _pursuit_summary, _pursuit_headline),
+    "dkf": Summary("theory.consensus.design:self_weight_design", _dkf_summary, _dkf_headline),
 }
-"""Case kind → its design summary (dkf: add the self-weight summary here when it lands)."""
+"""Case kind → its design summary."""
 
 
 def design_sections(cases: Sequence[Case]) -> dict[str, dict[str, Any]]:
