@@ -84,52 +84,40 @@ def record(
     settings: Any,
     runaway: Callable[..., str],
 ) -> Recorded:
-    """Sample, then integrate to the next sampling instant in one kernel call, until ``steps``
-    records, a runaway (``runaway``: :func:`closed_loop.runaway_reason`) or a step below
-    ``settings.min_step`` (seed 003 §V; :func:`closed_loop._run` on the kernels)."""
+    """The run of :func:`closed_loop._run` in one kernel call (:func:`kernels.run`): ``steps``
+    records, or until a runaway (its reason from ``runaway``, :func:`closed_loop.runaway_reason`)
+    or a step below ``settings.min_step`` (seed 003 §V).
+
+    The range noise of every sampling instant is drawn from ``rng`` first, in the order the NumPy
+    engine draws it (one standard normal a tracker an instant), so both engines see the same
+    noise; ``rng`` ends after the last instant of the horizon even if the run stops early.
+    """
     from theory.pursuit import kernels
 
     n, d = loop.n, loop.dim
-    every, dt, arrays = round(settings.Ts / settings.dt), settings.dt, loop_arrays(loop)
-    z_rec = np.full((steps + 1, state.z.size), np.nan)
-    R_rec = np.full((steps + 1, *state.R.shape), np.nan)
-    estimates = np.full((steps + 1, n, 2 * d + 1), np.nan)
-    filter_arrays = [np.ascontiguousarray(dekf[k], dtype=float) for k in ("fusion", "F", "W")]
-    x_pred, Omega = (np.array(dekf[k], dtype=float) for k in ("x_pred", "Omega"))
-    z, R, h, counts = state.z.copy(), state.R.copy(), dt, [0, 0]
-    tolerances = (float(settings.rtol), float(settings.min_step))
-    m = 0
-    while True:
-        positions, truth = z[: n * d].reshape(n, d), target[m]
-        ranges = np.linalg.norm(positions - truth[:d], axis=1)
-        ranges = ranges + settings.sigma * rng.standard_normal(n)
-        x_hat, _, Omega, x_pred = kernels.dekf_step(
-            x_pred, Omega, positions, ranges, *filter_arrays, float(settings.V)
-        )
-        reason = runaway(loop, positions, x_hat, truth, Omega, settings.runaway_factor)
-        z_rec[m], R_rec[m] = z, R
-        last = min(m + every, steps)
-        if m == steps:
-            return z_rec, R_rec, _estimates(estimates, x_hat, m, m, dt), tuple(counts), None
-        if reason:
-            _estimates(estimates, x_hat, m, m, dt)
-            return z_rec, R_rec, estimates, tuple(counts), (m * dt, reason, True)
-        z, R, h, accepted, rejected, reached, failed = kernels.advance(
-            m, last, dt, z, R, x_hat, m * dt, h, tolerances, arrays, z_rec, R_rec
-        )
-        counts[0] += accepted
-        counts[1] += rejected
-        _estimates(estimates, x_hat, m, reached, dt)
-        if failed >= 0:
-            why = f"integration step below {settings.min_step} s at t = {failed:g} s"
-            return z_rec, R_rec, estimates, tuple(counts), (reached * dt, why, False)
-        if last == steps and last % every:  # no sampling instant at the last record
-            return z_rec, R_rec, estimates, tuple(counts), None
-        m = last
-
-
-def _estimates(estimates: np.ndarray, x_hat: np.ndarray, first: int, last: int, dt: float):
-    """Records ``first … last`` of x̂_{k|k} in force and its age t − t_k (sampled at ``first``)."""
-    estimates[first : last + 1, :, :-1] = x_hat
-    estimates[first : last + 1, :, -1] = (np.arange(first, last + 1) * dt - first * dt)[:, None]
-    return estimates
+    every, dt = round(settings.Ts / settings.dt), settings.dt
+    noise = settings.sigma * rng.standard_normal((steps // every + 1, n))
+    records = (
+        np.full((steps + 1, state.z.size), np.nan),
+        np.full((steps + 1, *state.R.shape), np.nan),
+        np.full((steps + 1, n, 2 * d + 1), np.nan),
+    )
+    filter_arrays = tuple(
+        np.array(dekf[k], dtype=float) for k in ("x_pred", "Omega", "fusion", "F", "W")
+    )
+    numbers = (
+        dt, every, float(settings.V), getattr(settings, "predictions", 1),  # f-seed003's field
+        settings.runaway_factor * loop.scale, float(settings.rtol), float(settings.min_step),
+    )  # fmt: skip
+    accepted, rejected, stop, cause, failed, x_hat, Omega = kernels.run(
+        np.ascontiguousarray(target, dtype=float), noise, state.z.copy(), state.R.copy(),
+        filter_arrays, numbers, loop_arrays(loop), records,
+    )  # fmt: skip
+    if cause == 0:
+        return *records, (accepted, rejected), None
+    if cause == 1:
+        positions = records[0][stop, : n * d].reshape(n, d)
+        why = runaway(loop, positions, x_hat, target[stop], Omega, settings.runaway_factor)
+        return *records, (accepted, rejected), (stop * dt, why, True)
+    why = f"integration step below {settings.min_step} s at t = {failed:g} s"
+    return *records, (accepted, rejected), (stop * dt, why, False)

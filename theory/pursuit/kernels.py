@@ -24,10 +24,10 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["advance", "dekf_step", "heun_step", "rates"]
+__all__ = ["dekf_step", "heun_step", "rates", "run"]
 
 FAILED = -1.0
-"""The failure time :func:`advance` returns when it did not fail (times are ≥ 0)."""
+"""The failure time :func:`_advance` returns when it did not fail (times are ≥ 0)."""
 
 
 def _kernel(function):
@@ -209,7 +209,7 @@ def _next_step(h, cap, step, error, accepted, reached_end):
 
 
 @_kernel
-def advance(first, last, dt, z, R, x_hat, t_hat, h, settings, loop, z_records, R_records):
+def _advance(first, last, dt, z, R, x_hat, t_hat, h, settings, loop, z_records, R_records):
     """Integrate from record ``first`` to record ``last`` (:func:`closed_loop.integrate_until`
     per record), writing records ``first + 1 …`` into ``z_records``, ``R_records``.
 
@@ -242,9 +242,69 @@ def advance(first, last, dt, z, R, x_hat, t_hat, h, settings, loop, z_records, R
 
 
 @_kernel
-def dekf_step(x_pred, Omega, positions, ranges, fusion, F, W, V):
+def _lost(positions, x_hat, truth, limit):
+    """Whether the worst localization error exceeds ``limit`` (:func:`closed_loop.runaway_reason`:
+    the first NaN counts as the worst, and a NaN exceeds nothing)."""
+    d = positions.shape[1]
+    errors = np.empty(x_hat.shape[0])
+    for i in range(errors.size):
+        errors[i] = math.sqrt(np.sum((x_hat[i, :d] - truth[:d]) ** 2))
+    return errors[np.argmax(errors)] > limit
+
+
+@_kernel
+def run(target, noise, z, R, filter_arrays, settings, loop, records):
+    """The DEC loop of :func:`closed_loop._run`: at each sampling instant the ranges (9)–(10)
+    with the given ``noise`` (σ times a standard normal a tracker), one DEKF step
+    (:func:`dekf_step`) and the runaway check, then :func:`_advance` to the next instant.
+
+    ``filter_arrays`` = (x̂_{1|0}, Ω_{1|0}, π, F, W); ``settings`` = (dt, every, V, predictions,
+    runaway limit (m), rtol, min_step); ``records`` = (z, R, estimates), NaN, filled in place.
+    Returns (accepted, rejected, the record of an early stop or −1, 1 runaway or 2 step floor,
+    the time of the step failure, x̂ and Ω_{k+1|k} of the last sampling instant).
+    """
+    x_pred, Omega, fusion, F, W = filter_arrays
+    dt, every, V, predictions, limit, rtol, min_step = settings
+    z_records, R_records, estimates = records
+    steps, n, d = z_records.shape[0] - 1, R.shape[0], R.shape[1]
+    h, accepted, rejected, m = dt, 0, 0, 0
+    while True:
+        positions = z[: n * d].reshape(n, d)
+        ranges = np.empty(n)
+        for i in range(n):
+            ranges[i] = math.sqrt(np.sum((positions[i] - target[m, :d]) ** 2))
+            ranges[i] += noise[m // every, i]
+        x_hat, _, Omega, x_pred = dekf_step(
+            x_pred, Omega, positions, ranges, fusion, F, W, V, predictions
+        )
+        z_records[m] = z
+        R_records[m] = R
+        last = min(m + every, steps)
+        reached, failed = m, FAILED
+        lost = m < steps and _lost(positions, x_hat, target[m], limit)
+        if m < steps and not lost:
+            z, R, h, ok, refused, reached, failed = _advance(
+                m, last, dt, z, R, x_hat, m * dt, h, (rtol, min_step), loop, z_records, R_records
+            )
+            accepted += ok
+            rejected += refused
+        for k in range(m, reached + 1):
+            estimates[k, :, :-1] = x_hat
+            estimates[k, :, -1] = k * dt - m * dt
+        if lost:
+            return accepted, rejected, m, 1, FAILED, x_hat, Omega
+        if failed >= 0:
+            return accepted, rejected, reached, 2, failed, x_hat, Omega
+        if m == steps or (last == steps and last % every):
+            return accepted, rejected, -1, 0, FAILED, x_hat, Omega
+        m = last
+
+
+@_kernel
+def dekf_step(x_pred, Omega, positions, ranges, fusion, F, W, V, predictions):
     """One sampling instant of Algorithm 2 (:func:`theory.pursuit.dekf.dekf_step`): correction
-    (41), one fusion round (43), prediction (44). Returns x̂_{k|k}, Ω_{k|k}, Ω_{k+1|k}, x̂_{k+1|k}."""
+    (41), one fusion round (43), ``predictions`` predictions (44) with F and W. Returns x̂_{k|k},
+    Ω_{k|k}, Ω_{k+1|k}, x̂_{k+1|k}."""
     n, d = positions.shape
     m = 2 * d
     z_tilde, Omega_tilde = np.empty((n, m)), np.empty((n, m, m))
@@ -266,5 +326,10 @@ def dekf_step(x_pred, Omega, positions, ranges, fusion, F, W, V):
             fused_z += fusion[i, j] * z_tilde[j]
         Omega_post[i] = fused
         x_hat[i] = np.linalg.solve(fused, fused_z)
-        Omega_next[i] = W - WF @ np.linalg.inv(fused + FtWF) @ FtW
-    return x_hat, Omega_post, Omega_next, x_hat @ F.T
+        for _ in range(predictions):
+            fused = W - WF @ np.linalg.inv(fused + FtWF) @ FtW
+        Omega_next[i] = fused
+    x_next = x_hat.copy()
+    for _ in range(predictions):
+        x_next = x_next @ F.T
+    return x_hat, Omega_post, Omega_next, x_next
