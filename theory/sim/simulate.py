@@ -100,12 +100,16 @@ def monte_carlo(
 
 def _batched(runner: TaskRunner, spec, simulate, sequences, progress) -> list[Any]:
     """The runs in batches (:func:`_batches`) on ``runner``, flattened in run order; ``progress``
-    gets the runs finished, batch by batch."""
+    gets 1, 2, … up to the runs finished as each batch finishes (a lower bound while the batches
+    differ in size: the smallest ones counted)."""
     batches = _batches(len(sequences), runner.size)
-    sizes = [len(b) for b in batches]  # within one run of each other
+    bounds = list(itertools.accumulate(sorted(len(b) for b in batches)))
+    reported = [0]
 
     def finished(count: int) -> None:
-        progress(sum(sizes[:count]))
+        for done in range(reported[0] + 1, bounds[count - 1] + 1):
+            progress(done)
+        reported[0] = max(reported[0], bounds[count - 1])
 
     task = functools.partial(_batch, simulate, spec)
     results = runner.map(
