@@ -18,8 +18,9 @@ Prints
   process) against the same process loading them from that cache;
 * **Monte Carlo**: ``trackcert simulate pursuit-table1-n3 --runs R --workers 2 --no-figures``
   with the numba engine, against ``--baseline-runs`` runs on the numpy engine: wall seconds and
-  the CPU seconds of the process tree (command and Dask workers), whose half is the wall time on
-  two idle cores, and the per-run CPU ratio (target: 1,000 runs in under a minute);
+  the CPU seconds of the process tree (command and Dask workers) and of the command alone
+  (command + workers / 2: the wall time on two idle cores, "idle wall"), and the per-run CPU
+  ratio (target: 1,000 runs in under a minute);
 * **sweep**: ``trackcert sweep pursuit-table1-n3`` over a ``k_c`` × ``k_gamma`` grid of
   ``--sweep-points`` points on 2 workers, its progress shown as it runs, wall and CPU seconds.
 
@@ -198,10 +199,10 @@ def _first_run() -> None:
     )
 
 
-def _timed(arguments: list[str], engine: str, show: bool = False) -> tuple[float, float]:
-    """Wall seconds of ``python -m theory.cli ARGUMENTS`` on ``engine`` and the CPU seconds of
-    its process tree (the Dask workers included: polled with psutil, each process's last reading
-    summed); stderr shown if ``show`` (the progress)."""
+def _timed(arguments: list[str], engine: str, show: bool = False) -> tuple[float, float, float]:
+    """Wall seconds of ``python -m theory.cli ARGUMENTS`` on ``engine``, the CPU seconds of its
+    process tree (the Dask workers included: polled with psutil, each process's last reading
+    summed) and of the command's own process; stderr shown if ``show`` (the progress)."""
     import psutil  # distributed's dependency
 
     command = [sys.executable, "-m", "theory.cli", *arguments]
@@ -222,7 +223,7 @@ def _timed(arguments: list[str], engine: str, show: bool = False) -> tuple[float
         time.sleep(0.2)
     if child.returncode not in (0, 1):
         raise RuntimeError(f"{' '.join(arguments)} exited {child.returncode}")
-    return time.perf_counter() - start, sum(seen.values())
+    return time.perf_counter() - start, sum(seen.values()), seen.get(child.pid, 0.0)
 
 
 def _monte_carlo(runs: int, baseline: int) -> None:
@@ -233,13 +234,21 @@ def _monte_carlo(runs: int, baseline: int) -> None:
             arguments = ["simulate", "pursuit-table1-n3", "--runs", str(count), "--workers", "2"]
             arguments += ["--no-figures", "-o", str(Path(folder) / engine)]
             walls[engine] = (count, *_timed(arguments, engine))
-    print(f"{'engine':6} {'runs':>5} {'wall':>7} {'CPU':>7} {'CPU/2':>7} {'CPU a run':>9}")
-    for engine, (count, wall, cpu) in walls.items():
-        print(f"{engine:6} {count:5d} {wall:7.1f} {cpu:7.1f} {cpu / 2:7.1f} {cpu / count:9.3f}")
-    (slow_runs, _, slow), (fast_runs, _, fast) = walls["numpy"], walls["numba"]
     print(
-        f"CPU a run, numpy / numba: {(slow / slow_runs) / (fast / fast_runs):.1f}; CPU/2 is the "
-        f"wall time two idle cores would need; load average {os.getloadavg()[0]:.1f}"
+        f"{'engine':6} {'runs':>5} {'wall':>7} {'CPU':>7} {'command':>7} {'idle wall':>9} "
+        f"{'CPU a run':>9}"
+    )
+    for engine, (count, wall, cpu, own) in walls.items():
+        idle = own + (cpu - own) / 2
+        print(
+            f"{engine:6} {count:5d} {wall:7.1f} {cpu:7.1f} {own:7.1f} {idle:9.1f} "
+            f"{cpu / count:9.3f}"
+        )
+    (slow_runs, _, slow, _), (fast_runs, _, fast, _) = walls["numpy"], walls["numba"]
+    print(
+        f"CPU a run, numpy / numba: {(slow / slow_runs) / (fast / fast_runs):.1f}; idle wall = "
+        "command CPU + workers' CPU / 2, the wall time two idle cores would need; load average "
+        f"{os.getloadavg()[0]:.1f}"
     )
 
 
@@ -249,10 +258,11 @@ def _sweep(points: int) -> None:
     print(f"\nsweep: trackcert sweep pursuit-table1-n3 {' '.join(grid)} --workers 2 (progress:)")
     with tempfile.TemporaryDirectory() as folder:
         arguments = ["sweep", "pursuit-table1-n3", *grid, "--workers", "2", "-o", folder]
-        wall, cpu = _timed(arguments, "numba", show=True)
+        wall, cpu, own = _timed(arguments, "numba", show=True)
     print(
-        f"{side * side} points: {wall:.1f} s wall, {cpu:.1f} s CPU (CPU/2 {cpu / 2:.1f} s; "
-        f"{1e3 * cpu / side**2:.1f} ms CPU a point); load average {os.getloadavg()[0]:.1f}"
+        f"{side * side} points: {wall:.1f} s wall, {cpu:.1f} s CPU, of which the command "
+        f"{own:.1f} s (idle wall {own + (cpu - own) / 2:.1f} s; {1e3 * cpu / side**2:.1f} ms CPU a "
+        f"point); load average {os.getloadavg()[0]:.1f}"
     )
 
 
