@@ -96,7 +96,7 @@ def test_dekf_kernel_equals_algorithm_2(n, dim, seed, weight) -> None:
     fusion = (1 - weight) * np.eye(n) + weight * np.roll(np.eye(n), 1, axis=1)
     F, W = transition_matrix(dim, 2.0), np.diag(rng.uniform(10, 1e4, m))
     want = dekf_step(x_pred, Omega, positions, ranges, fusion=fusion, F=F, W=W, V=4.0)
-    got = kernels.dekf_step(x_pred, Omega, positions, ranges, fusion, F, W, 4.0)
+    got = kernels.dekf_step(x_pred, Omega, positions, ranges, fusion, F, W, 4.0, 1)
     for name, a, b in zip(("x̂", "Ω", "Ω_next", "x̂_next"), got, want, strict=True):
         _close(a, b, name)
 
@@ -176,3 +176,14 @@ def test_engine_choice(monkeypatch) -> None:
         resolve_engine()
     with pytest.raises(CaseError, match=r"engine.*'numba' or 'numpy'.*'cuda'"):
         resolve_engine("cuda")
+
+
+def test_without_a_writable_cache_folder_the_kernels_compile_in_memory(monkeypatch) -> None:
+    """No cache locator applies (numba: "cannot cache function … no locator available"): the
+    kernel is compiled without the on-disk cache and computes the same."""
+    from numba.core.caching import CacheImpl
+
+    monkeypatch.setattr(CacheImpl, "_locator_classes", [])
+    compiled = kernels._kernel(kernels._etd_weights.py_func)
+    assert not compiled._cache.__class__.__name__ == "FunctionCache"
+    assert compiled(500.0, 0.01) == kernels._etd_weights(500.0, 0.01)

@@ -8,10 +8,11 @@ predictor–corrector step with its error estimate (:func:`closed_loop.heun_step
 steps from record to record (:func:`closed_loop.integrate_until`, :class:`closed_loop.StepControl`)
 and Algorithm 2's correction, fusion and prediction (:func:`dekf.dekf_step`, eqs. (41)–(44)).
 
-Compiled once per machine: ``cache=True`` writes the machine code beside this file
-(``__pycache__``), or, when that folder is read-only (an installed package), in numba's per-user
-cache folder (``NUMBA_CACHE_DIR`` if set); when neither can be written the kernels are compiled in
-each process instead (:func:`_kernel`), which costs the compile time (docs/simulation.md, engine).
+Compiled once per machine: ``cache=True`` writes the machine code in ``$NUMBA_CACHE_DIR`` if set,
+else beside this file (``__pycache__``), else, when that folder is read-only (an installed
+package), in numba's per-user cache folder (``~/.cache/numba``); when none can be written the
+kernels are compiled in each process instead (:func:`_kernel`), which costs the compile time
+(docs/simulation.md, *Engines*).
 
 ``loop`` below is the tuple of :func:`theory.pursuit.compiled_run.loop_arrays`: (state map, state
 offset, estimate map, G, g, ε, k_γ, scale) of :class:`closed_loop.DecLoop`.
