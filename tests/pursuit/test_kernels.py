@@ -187,3 +187,25 @@ def test_without_a_writable_cache_folder_the_kernels_compile_in_memory(monkeypat
     compiled = kernels._kernel(kernels._etd_weights.py_func)
     assert not compiled._cache.__class__.__name__ == "FunctionCache"
     assert compiled(500.0, 0.01) == kernels._etd_weights(500.0, 0.01)
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["simulate", "pursuit-table1-n3", "--steps", "10", "--runs", "2", "--workers", "2"],
+        ["sweep", "pursuit-table1-n3", "-p", "k_c=0.1,0.2", "--steps", "10", "--workers", "2"],
+    ],
+)
+def test_a_bad_engine_setting_is_bad_input_before_any_work(command, monkeypatch, tmp_path):
+    """``TRACKCERT_ENGINE=fortran``: exit 2 naming the setting, no traceback, nothing written."""
+    from typer.testing import CliRunner
+
+    from theory.cli import app
+
+    monkeypatch.setenv(ENGINE_SETTING, "fortran")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(app, [*command, "-o", str(out)])
+    assert result.exit_code == 2, result.output
+    assert f"'{ENGINE_SETTING}': expected numba or numpy, got 'fortran'" in result.output
+    assert "Traceback" not in result.output
+    assert not out.exists()

@@ -51,11 +51,11 @@ def resolve_engine(engine: str | None = None) -> str:
     """
     if engine is not None:
         if engine not in ENGINES:
-            raise CaseError("engine", " or ".join(map(repr, ENGINES)), repr(engine))
+            raise CaseError("engine", " or ".join(map(repr, ENGINES)), engine)
         return engine
     chosen = os.environ.get(ENGINE_SETTING, "").strip() or ENGINES[0]
     if chosen not in ENGINES:
-        raise CaseError(ENGINE_SETTING, " or ".join(ENGINES), repr(chosen), file=ENVIRONMENT)
+        raise CaseError(ENGINE_SETTING, " or ".join(ENGINES), chosen, file=ENVIRONMENT)
     return chosen
 
 
