@@ -38,7 +38,7 @@ from enum import StrEnum
 import numpy as np
 
 from theory.core.tolerances import RUNAWAY_FACTOR
-from theory.pursuit import model
+from theory.pursuit import compiled_run, model
 from theory.pursuit.dekf import dekf_step, transition_matrix
 
 __all__ = [
@@ -680,9 +680,14 @@ def _run(
             break
         counts[0] += accepted
         counts[1] += refused
+    return _dec_run(loop, target, steps, dt, (z, R, estimates), counts, stop)
+
+
+def _dec_run(loop, target, steps, dt, records, counts, stop) -> DecRun:
+    """The :class:`DecRun` of the recorded (z, R, estimates), step counts and stop fields."""
     times = dt * np.arange(steps + 1)
     return DecRun(
-        times, **_outputs(loop, times, z, R, estimates, target), target=target[: steps + 1],
+        times, **_outputs(loop, times, *records, target), target=target[: steps + 1],
         steps=counts[0], rejected=counts[1], **stop,
     )  # fmt: skip
 
@@ -727,6 +732,7 @@ def simulate_dec(
     fusion: np.ndarray | None = None,
     initial_gamma_errors: np.ndarray | None = None,
     field: Field | None = None,
+    engine: str | None = None,
 ) -> DecRun:
     """Simulate the DEC system of seed 003 §V (2-D or 3-D), recording every ``settings.dt``.
 
@@ -737,7 +743,10 @@ def simulate_dec(
     ``(r_x, r_y, r_z, c, γ0)`` (15) (default: ``settings.radii``, γ0^[i] = 2π(i−1)/N); ``fusion``
     the weights π^[i,j] (default ``settings.fusion_weight`` on each in-edge);
     ``initial_gamma_errors`` e_γ(0) (Type II, default 0); ``field`` replaces
-    :meth:`DecLoop.rates` (a reference implementation, for tests and benchmarks). ValueError if
+    :meth:`DecLoop.rates` (a reference implementation, for tests and benchmarks; it runs on the
+    NumPy engine). ``engine`` ``"numba"`` (compiled kernels, :mod:`theory.pursuit.kernels`) or
+    ``"numpy"`` (this module, the reference), default ``$TRACKCERT_ENGINE`` else ``"numba"``
+    (:func:`theory.pursuit.compiled_run.resolve_engine`; CaseError if unknown). ValueError if
     Δ of (22) is singular (ε₁ = 0), T_s/dt is not an integer or the controller is unknown.
     """
     n, d = initial_positions.shape
@@ -752,4 +761,11 @@ def simulate_dec(
     state = _initial_state(
         initial_positions, initial_headings, initial_gammas, initial_gamma_errors
     )
+    if field is None and compiled_run.resolve_engine(engine) == "numba":
+        *records, counts, stop = compiled_run.record(
+            loop, target, state, dekf, steps, rng, settings, runaway_reason
+        )
+        if stop:
+            stop = _stop(*stop[:2], StopCause.RUNAWAY if stop[2] else StopCause.STEP_FLOOR)
+        return _dec_run(loop, target, steps, settings.dt, records, counts, stop or {})
     return _run(loop, field or loop.rates, target, state, dekf, steps, rng, settings)

@@ -38,6 +38,7 @@ from theory.core.expectations import Observed
 from theory.core.tolerances import ISS_BOUND_RTOL, RUNAWAY_FACTOR
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.closed_loop import DecRun, DecSettings, StopCause, simulate_dec
+from theory.pursuit.compiled_run import resolve_engine
 from theory.pursuit.filter_metrics import dekf_metrics
 from theory.pursuit.model import desired_speed
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
@@ -245,8 +246,10 @@ def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
     """The simulator of a ``kind: pursuit`` case (:func:`theory.sim.simulate.simulate_case`).
 
     ``steps`` recorded 0.1 s steps (default :func:`default_steps`); CaseError naming the file if
-    the case cannot be simulated.
+    the case cannot be simulated, or naming ``TRACKCERT_ENGINE`` if it names no engine (checked
+    here, before any run).
     """
+    resolve_engine()
     try:
         check_pursuit_case(case.spec)
     except CaseError as error:

@@ -74,11 +74,12 @@ def save_figure(fig: Any, path: Path, *, layout: bool = True) -> Path:
 
 def write_runs_npz(runs: Sequence[Any], path: Path, **extra: np.ndarray) -> Path:
     """Write every field of the run dataclasses, stacked over runs, and the ``extra`` arrays
-    under their names, to an NPZ file; return ``path``."""
+    under their names, to an NPZ file (stored, not deflated: the recorded floats shrink by about
+    12 % for 20–30 times the CPU, 40 s for 1,000 seed 003 runs); return ``path``."""
     arrays = {
         f.name: np.stack([getattr(r, f.name) for r in runs]) for f in dataclasses.fields(runs[0])
     }
-    np.savez_compressed(path, **arrays, **extra)
+    np.savez(path, **arrays, **extra)
     return path
 
 

@@ -15,6 +15,7 @@ finish; it knows no model. :func:`simulate_case` judges the case's ``expect`` bl
 from __future__ import annotations
 
 import functools
+import itertools
 import json
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
@@ -52,8 +53,23 @@ def run_seeds(seed: int, runs: int) -> list[np.random.SeedSequence]:
     return np.random.SeedSequence(seed).spawn(runs)
 
 
-def _one(simulate: Callable, spec: Any, sequence: np.random.SeedSequence) -> Any:
-    return simulate(spec, np.random.default_rng(sequence))
+TASKS_PER_WORKER = 4
+"""Monte Carlo runs go to the engine in about this many batches per worker: a task per run cost
+Dask's per-task work (and the BLAS pinning) per run; a few batches a worker still balance runs
+of unequal length (a runaway stops early)."""
+
+
+def _batch(simulate: Callable, spec: Any, sequences: list[np.random.SeedSequence]) -> list:
+    """Runs of one task, in order (run ``i`` seeded by its own child sequence)."""
+    return [simulate(spec, np.random.default_rng(sequence)) for sequence in sequences]
+
+
+def _batches(runs: int, workers: int) -> list[range]:
+    """Consecutive ranges of run indices, about :data:`TASKS_PER_WORKER` per worker (one run each
+    on a single worker, the serial path's progress per run)."""
+    count = runs if workers <= 1 else min(runs, TASKS_PER_WORKER * workers)
+    edges = np.linspace(0, runs, count + 1).round().astype(int)
+    return [range(a, b) for a, b in itertools.pairwise(edges)]
 
 
 def monte_carlo(
@@ -70,17 +86,37 @@ def monte_carlo(
 
     ``simulate`` is a picklable module-level function (or a ``functools.partial`` of one); run
     ``i`` draws from child ``i`` of ``SeedSequence(seed)``. It runs on ``runner`` if given, else on
-    ``workers`` local processes (default all cores; 1: this process); ``progress`` is called with
-    the number of runs finished. ``ValueError`` if ``runs < 1``.
+    ``workers`` local processes (default all cores; 1: this process), in batches of consecutive
+    runs (about :data:`TASKS_PER_WORKER` a worker); ``progress`` is called with the number of runs
+    finished. ``ValueError`` if ``runs < 1``.
     """
     if runs < 1:
         raise ValueError(f"runs must be ≥ 1, got {runs}")
-    task = functools.partial(_one, simulate, spec)
-    sequences = run_seeds(seed, runs)
     if runner is not None:
-        return runner.map(task, sequences, progress=progress)
+        return _batched(runner, spec, simulate, run_seeds(seed, runs), progress)
     with engine(min(default_workers() if workers is None else workers, runs)) as local:
-        return local.map(task, sequences, progress=progress)
+        return _batched(local, spec, simulate, run_seeds(seed, runs), progress)
+
+
+def _batched(runner: TaskRunner, spec, simulate, sequences, progress) -> list[Any]:
+    """The runs in batches (:func:`_batches`) on ``runner``, flattened in run order; ``progress``
+    gets 1, 2, … up to the runs finished as each batch finishes (a lower bound while the batches
+    differ in size: the smallest ones counted)."""
+    batches = _batches(len(sequences), runner.size)
+    bounds = list(itertools.accumulate(sorted(len(b) for b in batches)))
+    reported = [0]
+
+    def finished(count: int) -> None:
+        for done in range(reported[0] + 1, bounds[count - 1] + 1):
+            progress(done)
+        reported[0] = max(reported[0], bounds[count - 1])
+
+    task = functools.partial(_batch, simulate, spec)
+    results = runner.map(
+        task, [sequences[b.start : b.stop] for b in batches],
+        progress=None if progress is None else finished,
+    )  # fmt: skip
+    return [run for batch in results for run in batch]
 
 
 @dataclass(frozen=True)

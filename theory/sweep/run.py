@@ -34,6 +34,7 @@ from theory.core.jsonable import plain
 from theory.core.parallel import engine
 from theory.core.verdicts import Verdict, exit_code
 from theory.kinds import SIMULATED, load_case
+from theory.pursuit.compiled_run import resolve_engine
 from theory.sweep.grid import (
     MAX_POINTS,
     Param,
@@ -218,7 +219,8 @@ def sweep_case(
     ------
     CaseError
         Bad case, ``--param``, ``--link``, ``--steps``, ``--max-points`` or ``--no-simulate``
-        for a kind judged by its simulation, or no point valid (exit 2).
+        for a kind judged by its simulation, no point valid, or a ``$TRACKCERT_ENGINE`` naming
+        no engine for a pursuit sweep (exit 2).
     """
     loaded = load_case(case)
     data = yaml.safe_load(resolve_case_path(case).read_text(encoding="utf-8"))
@@ -252,6 +254,8 @@ def _check_settings(kind: str, steps: int | None, simulate: bool) -> None:
             f"kind {kind}, judged by its simulation",
             file=COMMAND_LINE,
         )
+    if simulate and kind == "pursuit":
+        resolve_engine()  # a bad $TRACKCERT_ENGINE is bad input, not a row per point
 
 
 def _settings(setup: SweepSetup, max_points: int) -> dict[str, Any]:
