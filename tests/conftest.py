@@ -35,6 +35,7 @@ class _SlowTestNames:
     def pytest_runtest_logstart(self, nodeid: str) -> None:
         reporter = self.config.pluginmanager.get_plugin("terminalreporter")
         if reporter is not None and self.config.get_verbosity() <= 0 and nodeid in self.slow:
+            reporter.write("\n")  # off the line of dots (-q tracks no current file to end)
             reporter.write_line(f"slow test running: {nodeid}")
 
 
