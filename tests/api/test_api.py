@@ -11,7 +11,6 @@ import json
 import subprocess
 import sys
 
-import control
 import networkx as nx
 import numpy as np
 import pytest
@@ -90,6 +89,8 @@ def test_any_scene_round_trips_through_its_case_file(tmp_path_factory, scene, he
 
 
 def test_dkf_of_matrices_and_of_a_state_space_is_the_command(tmp_path) -> None:
+    import control  # 1.5 s of import: only the state-space tests need it
+
     result = trackcert.dkf(**EX1, self_weight=False)
     system = control.ss(EX1["A"], np.zeros((2, 1)), np.eye(2), 0, dt=True)
     by_system = trackcert.dkf(system, [[0], [1], [0, 1]], EX1["W"], EX1["Q"], 0.1 * np.eye(2),
@@ -111,6 +112,8 @@ def test_dkf_refutes_with_an_infeasibility_certificate() -> None:
 
 
 def test_dkf_refuses_a_continuous_state_space_and_a_bad_output() -> None:
+    import control
+
     continuous = control.ss(EX1["A"], np.zeros((2, 1)), np.eye(2), 0)
     with pytest.raises(ValueError, match="discrete-time"):
         trackcert.dkf(continuous, [[0], [1], [0, 1]], EX1["W"], EX1["Q"], 0.1 * np.eye(2))

@@ -11,7 +11,6 @@ from pathlib import Path
 import cloudpickle
 import numpy as np
 import pytest
-from distributed import LocalCluster
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -38,6 +37,8 @@ def _square_or_fail(x: int) -> int:
 @pytest.fixture(scope="module")
 def cluster():
     """Two single-threaded worker processes, started by the test."""
+    from distributed import LocalCluster  # imported here: 0.3 s off the collection
+
     with LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
     ) as started:

@@ -10,7 +10,6 @@ import time
 from pathlib import Path
 
 import pytest
-from distributed import LocalCluster
 from typer.testing import CliRunner
 
 from theory.cli import app
@@ -23,6 +22,8 @@ runner = CliRunner()
 
 @pytest.fixture(scope="module")
 def two_workers():
+    from distributed import LocalCluster  # imported here: 0.3 s off the collection
+
     with LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
     ) as cluster:
@@ -30,6 +31,8 @@ def two_workers():
 
 
 def test_a_scheduler_without_workers_is_a_fault_after_the_wait(tmp_path, monkeypatch) -> None:
+    from distributed import LocalCluster
+
     monkeypatch.setenv("TRACKCERT_WORKER_TIMEOUT", "1")
     out = tmp_path / "sim"
     with LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cluster:
