@@ -37,6 +37,7 @@ from theory.core.tolerances import ISS_BOUND_RTOL, RUNAWAY_FACTOR
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.closed_loop import DecRun, DecSettings, StopCause, simulate_dec
 from theory.pursuit.model import desired_speed
+from theory.pursuit.published import simulate_published
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
 from theory.sim.simulate import Finished, Simulator
 
@@ -71,9 +72,11 @@ RECORD_INTERVAL = 0.1
 (:mod:`theory.pursuit.closed_loop`) and lands on every record."""
 
 
-def default_steps() -> int:
-    """Records after the first in ``DEFAULT_DURATION``: 4500 of ``RECORD_INTERVAL``."""
-    return round(DEFAULT_DURATION / RECORD_INTERVAL)
+def default_steps(spec: PursuitSpec | None = None) -> int:
+    """Records after the first in the case's ``duration``, else ``DEFAULT_DURATION`` (4500 of
+    ``RECORD_INTERVAL``)."""
+    duration = DEFAULT_DURATION if spec is None or spec.duration is None else spec.duration
+    return round(duration / RECORD_INTERVAL)
 
 
 def check_pursuit_case(spec: PursuitSpec) -> None:
@@ -130,7 +133,7 @@ def dec_arguments(
     :func:`default_steps`); a run stops as a runaway beyond ``runaway_factor`` S-T curve sizes of
     localization error.
     """
-    steps = default_steps() if steps is None else steps
+    steps = default_steps(spec) if steps is None else steps
     dekf, d = spec.dekf, spec.dim
     target = _target_states(spec, steps)
     offset = np.array([5.0, -5.0, 0.0][:d])
@@ -145,6 +148,7 @@ def dec_arguments(
         V=dekf.V,
         Q=dekf.Q,
         Ts=dekf.Ts,
+        predictions=dekf.predictions,
         dt=RECORD_INTERVAL,
         sigma=dekf.sigma,
         runaway_factor=runaway_factor,
@@ -175,8 +179,20 @@ def run_pursuit_case(
     *,
     runaway_factor: float = RUNAWAY_FACTOR,
 ) -> DecRun:
-    """One run of the DEC loop for a pursuit case (``rng`` draws the range noise; seed 003 §V)."""
-    return simulate_dec(rng=rng, **dec_arguments(spec, steps, runaway_factor=runaway_factor))
+    """One run of the DEC loop for a pursuit case (``rng`` draws the range noise; seed 003 §V):
+    the analysed laws integrated as an ODE, or the ``published`` variant as the authors' scripts
+    run it (:func:`theory.pursuit.published.simulate_published`)."""
+    arguments = dec_arguments(spec, steps, runaway_factor=runaway_factor)
+    if spec.published is None:
+        return simulate_dec(rng=rng, **arguments)
+    errors = arguments.pop("initial_gamma_errors")
+    omega_d = desired_speed(
+        spec.omega_bar, spec.laplacian.astype(float), arguments["initial_gammas"], spec.k_c or 0.0
+    )
+    rates = omega_d if errors is None else omega_d + errors
+    return simulate_published(
+        rng=rng, initial_gamma_rates=rates, control=spec.published, **arguments
+    )
 
 
 def summarize_pursuit(
@@ -227,11 +243,19 @@ def _agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any] | None:
 
 def simulation_observed(summary: dict[str, Any]) -> Observed:
     """``simulation_bounded`` as run 0 of a :func:`summarize_pursuit` decides it (undecided when
-    ``trackcert iss`` certifies nothing: there is no estimate to stay within)."""
+    ``trackcert iss`` certifies nothing: there is no estimate to stay within); ``runaways`` (runs
+    stopped as runaways), and per tracker the ``final_localization_error`` and
+    ``mean_pursuit_error`` averaged over the runs (m), the statistics a published case bands."""
     agreement = summary["iss_agreement"]
     got = None if agreement is None else agreement["simulation_bounded"]
     undecided = frozenset() if got is not None else frozenset({"simulation_bounded"})
-    return Observed({"simulation_bounded": got}, undecided)
+    values = {
+        "simulation_bounded": got,
+        "runaways": sum(cause == StopCause.RUNAWAY for cause in summary["stop_causes"]),
+        "final_localization_error": [a["final_localization_error"] for a in summary["agents"]],
+        "mean_pursuit_error": [a["mean_pursuit_error"] for a in summary["agents"]],
+    }
+    return Observed(values, undecided)
 
 
 def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
@@ -244,7 +268,7 @@ def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
         check_pursuit_case(case.spec)
     except CaseError as error:
         raise error.in_file(case.file) from None
-    steps = steps or default_steps()
+    steps = steps or default_steps(case.spec)
     fields = {
         "controller": case.spec.controller,
         "dim": case.spec.dim,
