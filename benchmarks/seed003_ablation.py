@@ -75,22 +75,26 @@ def _copied(target: dict[str, Any], source: dict[str, Any], paths: Sequence[str]
     return changed
 
 
-def runaways(data: dict[str, Any], runs: int, seed: int, steps: int) -> tuple[int, float]:
-    """Runs stopped as runaways, and the median over completed runs of the largest final
-    localization error (m; NaN if none completed)."""
+def runaways(data: dict[str, Any], runs: int, seed: int, steps: int) -> tuple[int, int, float]:
+    """Runs stopped as runaways, runs whose state overflowed (non-finite records, e.g. γ̇ under
+    an unstable explicit update), and the median over the other runs of the largest final
+    localization error (m; NaN if there is none)."""
     spec = PURSUIT.parse_case(data).spec
-    stopped, finals = 0, []
+    stopped, overflowed, finals = 0, 0, []
     for sequence in np.random.SeedSequence(seed).spawn(runs):
         run = run_pursuit_case(spec, np.random.default_rng(sequence), steps)
+        final = run.localization_errors[-1]
         if run.stop_cause == StopCause.RUNAWAY:
             stopped += 1
+        elif not np.all(np.isfinite(run.gamma_rates[-1])) or not np.all(np.isfinite(final)):
+            overflowed += 1
         elif run.completed:
-            finals.append(float(np.max(run.localization_errors[-1])))
-    return stopped, float(np.median(finals)) if finals else float("nan")
+            finals.append(float(np.max(final)))
+    return stopped, overflowed, float(np.median(finals)) if finals else float("nan")
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    """Print one row per difference: name, runaways/runs, median final error."""
+    """Print one row per difference: name, runaways/runs, overflows, median final error."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("published")
     parser.add_argument("table")
@@ -111,8 +115,8 @@ def main(argv: Sequence[str] | None = None) -> None:
             rows.append((f"{name} as in {other['name']}", variant))
     for label, data in rows:
         data["expect"] = {}
-        stopped, final = runaways(data, args.runs, args.seed, steps)
-        print(f"| {label} | {stopped}/{args.runs} | {final:.3g} |", flush=True)
+        stopped, overflowed, final = runaways(data, args.runs, args.seed, steps)
+        print(f"| {label} | {stopped}/{args.runs} | {overflowed} | {final:.3g} |", flush=True)
 
 
 if __name__ == "__main__":

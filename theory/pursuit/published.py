@@ -63,21 +63,22 @@ class PublishedControl:
 def _kinematics(state: np.ndarray, u: np.ndarray, d: int) -> np.ndarray:
     """Rates of (p, yaw) (2-D) or (p, roll, pitch, yaw) (3-D), ``vehicle`` of the scripts,
     seed 003 eqs. (2)–(5) with v = [v₁, 0(, 0)]."""
-    speed = u[:, 0]
+    speed, rates = u[:, 0], np.empty_like(state)
     if d == 2:
         yaw = state[:, 2]
-        return np.column_stack([speed * np.cos(yaw), speed * np.sin(yaw), u[:, 1]])
+        rates[:, 0], rates[:, 1], rates[:, 2] = speed * np.cos(yaw), speed * np.sin(yaw), u[:, 1]
+        return rates
     roll, pitch, yaw = state[:, 3], state[:, 4], state[:, 5]
     p, q, r = u[:, 1], u[:, 2], u[:, 3]
-    sr, cr, tp, cp = np.sin(roll), np.cos(roll), np.tan(pitch), np.cos(pitch)
-    return np.column_stack([
-        speed * np.cos(yaw) * cp,
-        speed * np.sin(yaw) * cp,
-        -speed * np.sin(pitch),
-        p + (q * sr + r * cr) * tp,
-        q * cr - r * sr,
-        (q * sr + r * cr) / cp,
-    ])  # fmt: skip
+    sr, cr, cp = np.sin(roll), np.cos(roll), np.cos(pitch)
+    turn = q * sr + r * cr
+    rates[:, 0] = speed * np.cos(yaw) * cp
+    rates[:, 1] = speed * np.sin(yaw) * cp
+    rates[:, 2] = -speed * np.sin(pitch)
+    rates[:, 3] = p + turn * np.tan(pitch)
+    rates[:, 4] = q * cr - r * sr
+    rates[:, 5] = turn / cp
+    return rates
 
 
 def _vehicle_step(state: np.ndarray, u: np.ndarray, d: int) -> np.ndarray:
@@ -192,7 +193,7 @@ def simulate_published(
     stop: dict[str, object] = {}
     for m in range(steps + 1):
         u, new_rate, e_gamma = _control(loop, control, state, gamma, gamma_rate, x_prior)
-        records.store(m, loop, state, gamma, new_rate, e_gamma, x_prior, target[m])
+        records.store(m, state, gamma, new_rate, e_gamma, x_prior)
         if m % every == 0:
             truth = target[m]
             ranges = np.linalg.norm(state[:, :d] - truth[:d], axis=1)
@@ -213,45 +214,42 @@ def simulate_published(
         x_prior = x_prior @ F_step.T
         state = _vehicle_step(state, u, d)
         gamma, gamma_rate = gamma + STEP * new_rate, new_rate
-    return records.run(target[: steps + 1], **stop)
+    return records.run(loop, target[: steps + 1], **stop)
 
 
 class _Records:
-    """The arrays of a :class:`DecRun`, filled record by record (NaN after a stop)."""
+    """The states of every record (NaN after a stop), turned into a :class:`DecRun` at the end."""
 
     def __init__(self, steps: int, n: int, d: int) -> None:
-        shape = (steps + 1, n)
-        self.positions = np.full((*shape, d), np.nan)
-        self.series = {
-            name: np.full(shape, np.nan)
-            for name in (
-                "headings", "gammas", "gamma_rates", "gamma_errors", "pursuit_errors",
-                "localization_errors", "estimation_errors",
-            )
-        }  # fmt: skip
+        self.states = np.full((steps + 1, n, 3 if d == 2 else 6), np.nan)  # p, Euler angles
+        self.gammas, self.rates, self.e_gamma = (np.full((steps + 1, n), np.nan) for _ in range(3))
+        self.estimates = np.full((steps + 1, n, 2 * d), np.nan)
 
-    def store(self, m, loop, state, gamma, gamma_rate, e_gamma, x_prior, truth) -> None:
-        """Record m: the state, γ, the γ̇ just computed, e_γ and the errors (seed 003 (19))."""
+    def store(self, m, state, gamma, gamma_rate, e_gamma, x_prior) -> None:
+        """Record m: the state, γ, the γ̇ just computed, e_γ and the prior estimate in use."""
+        self.states[m], self.gammas[m], self.rates[m] = state, gamma, gamma_rate
+        self.e_gamma[m], self.estimates[m] = e_gamma, x_prior
+
+    def run(self, loop: DecLoop, target: np.ndarray, **stop: object) -> DecRun:
+        """The :class:`DecRun`: errors with the true target, e_p of seed 003 (19) (``steps``
+        counts the δ-steps taken, none rejected)."""
         d = loop.dim
-        p = state[:, :d]
+        p, truth = self.states[..., :d], target[:, None, :]
+        rotation = model.euler_rotation(self.states[..., d:])
         e_true = model.body_error(
-            _rotation(state, d), p, loop.paths.derivative(gamma), truth[:d], loop.epsilon
+            rotation, p, loop.paths.derivative(self.gammas), truth[..., :d], loop.epsilon
         )
-        self.positions[m] = p
-        values = {
-            "headings": state[:, -1],
-            "gammas": gamma,
-            "gamma_rates": gamma_rate,
-            "gamma_errors": e_gamma,
-            "pursuit_errors": np.linalg.norm(e_true, axis=1),
-            "localization_errors": np.linalg.norm(x_prior[:, :d] - truth[:d], axis=1),
-            "estimation_errors": np.linalg.norm(x_prior - truth, axis=1),
-        }
-        for name, value in values.items():
-            self.series[name][m] = value
-
-    def run(self, target: np.ndarray, **stop: object) -> DecRun:
-        """The :class:`DecRun` (``steps`` counts the δ-steps taken, none rejected)."""
-        taken = int(np.isfinite(self.series["gammas"][:, 0]).sum()) - 1
-        times = STEP * np.arange(len(target))
-        return DecRun(times, self.positions, **self.series, target=target, steps=taken, **stop)
+        return DecRun(
+            STEP * np.arange(len(target)),
+            p,
+            headings=self.states[..., -1],
+            gammas=self.gammas,
+            gamma_rates=self.rates,
+            gamma_errors=self.e_gamma,
+            pursuit_errors=np.linalg.norm(e_true, axis=-1),
+            localization_errors=np.linalg.norm(self.estimates[..., :d] - truth[..., :d], axis=-1),
+            estimation_errors=np.linalg.norm(self.estimates - truth, axis=-1),
+            target=target,
+            steps=int(np.isfinite(self.gammas[:, 0]).sum()) - 1,
+            **stop,
+        )
