@@ -22,9 +22,10 @@ from hypothesis import strategies as st
 
 from theory.core.case_file import read_case_data, resolve_case_path
 from theory.core.errors import CaseError
+from theory.core.expectations import judge
 from theory.pursuit import published
 from theory.pursuit.case import PURSUIT
-from theory.pursuit.simulation import run_pursuit_case
+from theory.pursuit.simulation import run_pursuit_case, simulation_observed, summarize_pursuit
 
 
 def _data(name: str = "pursuit-published-2d-n1") -> dict:
@@ -116,3 +117,19 @@ def test_the_published_one_tracker_run_localizes_and_pursues_the_target() -> Non
     assert 2.0 < np.mean(run.pursuit_errors) < 5.0
     speeds = np.linalg.norm(np.diff(run.positions[:, 0], axis=0), axis=1) / published.STEP
     assert speeds.max() <= 2.0 + 1e-9  # v₁ clamped to [0, 2] m/s
+
+
+def test_simulate_observes_runaways_and_the_banded_statistics() -> None:
+    """The expect keys of the published cases are what ``trackcert simulate`` observes: the
+    runaway count and, per tracker, the run-mean final localization and mean pursuit errors,
+    judged by the ``within`` rule (a 5 s run is far outside the 2-D bands)."""
+    case = PURSUIT.parse_case(_data("pursuit-published-2d-n3"))
+    runs = [run_pursuit_case(case.spec, np.random.default_rng(seed), 50) for seed in (0, 1)]
+    summary = summarize_pursuit(case.spec, runs)
+    observed = simulation_observed(summary)
+    assert observed.values["runaways"] == 0
+    assert len(observed.values["final_localization_error"]) == 3
+    verdicts = {e.key: e for e in judge(case, observed, source="trackcert simulate")}
+    assert verdicts["runaways"].met
+    assert verdicts["final_localization_error"].rule == "within"
+    assert not verdicts["final_localization_error"].met  # x̂(0) is 15–25 m off at 5 s
