@@ -30,6 +30,7 @@ DIFFERENCES: dict[str, tuple[str, ...]] = {
     "V": ("dekf.V",),
     "prediction": ("dekf.predict_every",),
     "P0": ("dekf.P0", "dekf.x0"),
+    "covariance": ("dekf.P0",),
     "epsilon": ("epsilon",),
     "gains": ("K_p", "k_gamma", "k_c"),
     "initial": ("trackers",),
