@@ -133,3 +133,18 @@ def test_simulate_observes_runaways_and_the_banded_statistics() -> None:
     assert verdicts["runaways"].met
     assert verdicts["final_localization_error"].rule == "within"
     assert not verdicts["final_localization_error"].met  # x̂(0) is 15–25 m off at 5 s
+
+
+def test_the_published_statistics_claim_judges_runaways_and_bands() -> None:
+    """``seed003.sec6.published-statistics`` on the one-tracker published case: no runaway in
+    10 runs and both bands met (the report's observer of the published cases' expect keys); it
+    says nothing about a Table case (the analysed laws)."""
+    from theory.core.claims import NotApplicable
+    from theory.pursuit.simulation import check_published_statistics
+
+    case = PURSUIT.parse_case(_data())
+    (result,) = check_published_statistics(case, None)
+    assert result.status == "verified", result.message
+    assert result.evidence["expectations"]["runaways"] == 0 and result.margin > 0
+    with pytest.raises(NotApplicable, match="analysed laws"):
+        check_published_statistics(PURSUIT.parse_case(_data("pursuit-table1-n1")), None)

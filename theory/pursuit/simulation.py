@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.case_file import Case
-from theory.core.claims import ClaimResult, ClaimSet, Context, NotApplicable
+from theory.core.claims import ClaimResult, ClaimSet, Context, Method, NotApplicable, Status
 from theory.core.errors import CaseError, PropertyFails
 from theory.core.expectations import Observed
 from theory.core.tolerances import ISS_BOUND_RTOL, RUNAWAY_FACTOR
@@ -590,6 +590,69 @@ def check_simulation_agrees(case: Case, ctx: Context) -> list[ClaimResult]:
             figures=figures,
         )
     ]  # fmt: skip
+
+
+PUBLISHED_RUNS = 10
+"""Runs of the claim ``seed003.sec6.published-statistics``: children 0–9 of
+``SeedSequence(SIMULATION_SEED)``, as ``trackcert simulate --runs 10``."""
+
+PUBLISHED_KEYS = ("runaways", "final_localization_error", "mean_pursuit_error")
+"""The expect keys a published-variant case bands (:func:`simulation_observed`)."""
+
+
+@claims.register(
+    "seed003.sec6.published-statistics",
+    source="seed 003 §VI as the authors' scripts run it (github.com/hungrepo/"
+    "cooperative-distributed-range-based-SLAP, SLAP_*.m; docs/simulation.md)",
+    statement="A case of the published variant, simulated over 10 seeds (trackcert simulate "
+    "--runs 10), never runs away, and its per-tracker run-mean final localization and mean "
+    "pursuit errors lie in the bands its expect block states (measured on the authors' code).",
+    kinds=("pursuit",),
+)
+def check_published_statistics(case: Case, ctx: Context) -> list[ClaimResult]:
+    """The published statistics of seed 003 §VI reproduced (issue 27): ``verified`` when no run
+    runs away and every stated band holds, else ``refuted``; the margin is the smallest distance
+    of a statistic inside its band (m; negative outside). Not applicable to the analysed laws."""
+    from theory.core.expectations import judge
+    from theory.sim.simulate import run_seeds
+
+    if case.spec.published is None:
+        raise NotApplicable("the case runs the analysed laws, not the published scripts")
+    try:
+        check_pursuit_case(case.spec)
+    except CaseError as error:
+        raise NotApplicable(f"nothing to simulate: {error.field} is not {error.expected}") from None
+    factor = runaway_factor_of(case)
+    runs = [
+        run_pursuit_case(case.spec, np.random.default_rng(sequence), runaway_factor=factor)
+        for sequence in run_seeds(SIMULATION_SEED, PUBLISHED_RUNS)
+    ]
+    values = simulation_observed(summarize_pursuit(case.spec, runs, runaway_factor=factor)).values
+    observed = Observed({key: values[key] for key in PUBLISHED_KEYS})
+    verdicts = judge(case, observed, source="seed003.sec6.published-statistics")
+    failed = [v.describe() for v in verdicts if not v.met] + (
+        [f"{values['runaways']} of {PUBLISHED_RUNS} runs ran away"] if values["runaways"] else []
+    )
+    return [
+        ClaimResult(
+            Status.REFUTED if failed else Status.VERIFIED, Method.SIMULATION,
+            {**observed.evidence(), "runs": PUBLISHED_RUNS, "seed": SIMULATION_SEED},
+            margin=_band_margin(case.expect, values), tolerance={"runaway_factor": factor},
+            message="; ".join(failed) or f"no runaway in {PUBLISHED_RUNS} runs, every band met",
+        )
+    ]  # fmt: skip
+
+
+def _band_margin(expect: dict[str, Any], values: dict[str, Any]) -> float | None:
+    """The smallest distance (m) of a banded statistic to its band's nearer edge (negative
+    outside); ``None`` when the case states no band."""
+    distances = [
+        min(value - band[0], band[1] - value)
+        for key in PUBLISHED_KEYS[1:]
+        if isinstance(band := expect.get(key), list)
+        for value in values[key]
+    ]
+    return float(min(distances)) if distances else None
 
 
 def _figure(times: np.ndarray, along: IssMargin, folder: Path) -> str:
