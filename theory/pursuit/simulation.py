@@ -271,6 +271,7 @@ def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
     steps = steps or default_steps(case.spec)
     fields = {
         "controller": case.spec.controller,
+        "variant": "analysed" if case.spec.published is None else "published",
         "dim": case.spec.dim,
         "steps": steps,
         "dt": RECORD_INTERVAL,
