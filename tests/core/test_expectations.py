@@ -118,6 +118,18 @@ def test_bound_rules_compare_as_their_names_say(bound: float, value: float) -> N
     assert not matches(bound, True, "at_most")  # a boolean is not a number here
 
 
+@given(st.floats(-1e6, 1e6), st.floats(0, 1e6), st.lists(st.floats(-1e6, 1e6), max_size=4))
+def test_within_holds_exactly_when_every_value_lies_in_the_band(
+    low: float, width: float, values: list[float]
+) -> None:
+    band = [low, low + width]
+    inside = bool(values) and all(low <= v <= low + width for v in values)
+    assert matches(band, values, "within") is inside
+    if values:
+        assert matches(band, values[0], "within") is (low <= values[0] <= low + width)
+    assert not matches(band, True, "within") and not matches([low], low, "within")
+
+
 def test_unknown_rule_is_refused() -> None:
     with pytest.raises(ValueError, match="rule"):
         matches(1.0, 1.0, "about")

@@ -53,6 +53,7 @@ def test_one_tracker_seed_2_is_stopped_as_a_runaway_with_its_cause() -> None:
     assert "tracker 1's localization error" in run.stop_reason
     assert f"runaway_factor {RUNAWAY_FACTOR:g} × 80 m" in run.stop_reason
     assert "bearing error" in run.stop_reason and "λ_min(Ω)" in run.stop_reason
+    assert 'docs/errata.md, "What makes the Table cases run away"' in run.stop_reason
     stop = round(run.stopped_at / 0.1)
     limit = RUNAWAY_FACTOR * 80.0  # Table II: the largest semi-axis is r_x = r_y = 80 m
     assert run.localization_errors[stop, 0] > limit

@@ -19,7 +19,9 @@ Values match by type (:func:`matches`): booleans, integers, strings and ``None``
 expected float matches an observed number within half a unit of its last printed digit
 (``0.975`` matches ``[0.9745, 0.9755]``: how a case states the digits a paper printed); lists and
 mappings element by element. A kind may give a key another :class:`Rule`: ``at_most`` (the
-observed number is at most the expected one) or ``at_least``.
+observed number is at most the expected one), ``at_least``, or ``within`` (the expected value
+is a band ``[low, high]``; the observed number, or every number of an observed list, lies in it:
+how a case states a Monte Carlo statistic's band, e.g. a published simulation's error range).
 """
 
 from __future__ import annotations
@@ -55,7 +57,6 @@ UNDECIDED_KEY = "undecided_expectations"
 """Evidence key listing the expect keys whose reported value the claim could not decide."""
 
 
-
 class ExpectationVerdict(StrEnum):
     """The verdict on one expected key (module docstring, 3)."""
 
@@ -71,6 +72,7 @@ class Rule(StrEnum):
     EQUAL = "equal"
     AT_MOST = "at_most"
     AT_LEAST = "at_least"
+    WITHIN = "within"
 
 
 Source = tuple[str, Mapping[str, Any], str]
@@ -264,6 +266,8 @@ def matches(expected: Any, observed: Any, rule: str = Rule.EQUAL) -> bool:
     docstring); ``ValueError`` for an unknown rule."""
     if rule not in _RULES:
         raise ValueError(f"rule {rule!r} is not one of {[r.value for r in Rule]}")
+    if rule == Rule.WITHIN:
+        return _within(expected, observed)
     if rule != Rule.EQUAL:
         return _bound(expected, observed, rule)
     if isinstance(expected, bool) or isinstance(observed, bool):
@@ -296,6 +300,19 @@ def _bound(expected: Any, observed: Any, rule: str) -> bool:
         isinstance(x, int | float) and not isinstance(x, bool) for x in (expected, observed)
     )
     return numbers and _BOUNDS[rule](float(expected), float(observed))
+
+
+def _number(value: Any) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def _within(band: Any, observed: Any) -> bool:
+    """Whether ``observed`` (a number, or every number of a list) lies in ``band = [low, high]``."""
+    if not (isinstance(band, list) and len(band) == 2 and all(_number(b) for b in band)):
+        return False
+    values = observed if isinstance(observed, list) else [observed]
+    low, high = float(band[0]), float(band[1])
+    return bool(values) and all(_number(v) and low <= float(v) <= high for v in values)
 
 
 def _half_last_digit(number: float) -> float:

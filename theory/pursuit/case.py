@@ -4,7 +4,10 @@ Block fields::
 
     pursuit:
       dim: 2                        # 2 or 3
-      controller: II                # I (eq. 49) or II (eq. 50)
+      controller: II                # I (eq. 49) or II (eq. 50): the analysed law, or
+      # controller: {law: II, variant: published, inputs_min: [0, -0.4], inputs_max: [2, 0.4],
+      #              gamma_ddot: [-0.001, 0.01]}   # as the authors' scripts run it (published.py)
+      duration: 450                 # optional, simulated seconds (default 450)
       omega_bar: 0.05               # ω̄ (rad/s), eq. (18), (46)
       epsilon: [-0.5, 0]            # ε of eq. (19), dim numbers
       K_p: [0.4, 0.2]               # diagonal of K_p, or a dim × dim symmetric PD matrix
@@ -26,6 +29,9 @@ Block fields::
         V: 10                       # inverse measurement-noise weight V^[i]
         Q: [[...]]                  # 2·dim × 2·dim positive-definite process-noise weight
         weights: uniform            # or N × N row-stochastic fusion weights π^[i,j] (in-edges)
+        edges: [[1, 2], ...]        # optional fusion graph (default: pursuit.edges)
+        predict_every: 2            # optional prediction period (s) dividing Ts (default Ts);
+                                    # Q is the process noise of one prediction
         x0: [[...], ...]            # optional initial estimates, N × 2·dim
         P0: [[...]]                 # optional initial covariance, 2·dim × 2·dim (or N of them)
 
@@ -60,6 +66,7 @@ from theory.core.validation import (
     require,
     row_stochastic,
 )
+from theory.pursuit.published import PublishedControl
 
 __all__ = [
     "PURSUIT",
@@ -74,6 +81,7 @@ __all__ = [
 FIELDS = (
     "dim",
     "controller",
+    "duration",
     "omega_bar",
     "epsilon",
     "K_p",
@@ -88,8 +96,19 @@ TRACKER_FIELDS_2D = ("r_x", "r_y", "gamma0", "initial")
 TRACKER_FIELDS_3D = ("r_x", "r_y", "r_z", "c", "gamma0", "initial")
 INITIAL_FIELDS = ("position", "euler", "gamma", "gamma_dot")
 TARGET_FIELDS = ("offset", "velocity", "amplitude", "frequency", "phase")
-DEKF_FIELDS = ("Ts", "sigma", "V", "Q", "weights", "x0", "P0")
-EXPECT_KEYS = ("iss", "delta_full_rank", "strongly_connected", "simulation_bounded")
+DEKF_FIELDS = ("Ts", "sigma", "V", "Q", "weights", "edges", "predict_every", "x0", "P0")
+CONTROLLER_FIELDS = ("law", "variant", "inputs_min", "inputs_max", "gamma_ddot")
+VARIANTS = ("analysed", "published")
+EXPECT_KEYS = (
+    "iss",
+    "delta_full_rank",
+    "strongly_connected",
+    "simulation_bounded",
+    "runaways",
+    "final_localization_error",
+    "mean_pursuit_error",
+)
+EXPECT_RULES = {"final_localization_error": "within", "mean_pursuit_error": "within"}
 TOLERANCE_KEYS = ("margin_tol", "weight_sum_tol", "runaway_factor")
 
 
@@ -149,9 +168,10 @@ class DekfSettings:
     """Settings of the distributed EKF (seed 003 Algorithm 2) for the simulation.
 
     ``Ts`` sampling period (s), ``sigma`` range-noise deviation (m, eq. (10)), ``V`` inverse
-    measurement-noise weight, ``Q`` process-noise weight (2·dim square), ``weights`` fusion
-    weights π^[i,j] on the in-edges; ``x0`` (N × 2·dim) and ``P0`` (N stacked covariances) are
-    ``None`` for the simulation's defaults.
+    measurement-noise weight, ``Q`` process-noise weight (2·dim square) of one prediction,
+    ``weights`` fusion weights π^[i,j] on the in-edges of the fusion graph; ``x0`` (N × 2·dim)
+    and ``P0`` (N stacked covariances) are ``None`` for the simulation's defaults;
+    ``predictions`` per ``Ts`` (1: Algorithm 2 as printed).
     """
 
     Ts: float
@@ -161,6 +181,7 @@ class DekfSettings:
     weights: np.ndarray
     x0: np.ndarray | None
     P0: np.ndarray | None
+    predictions: int = 1
 
 
 @dataclass(frozen=True, eq=False)
@@ -168,7 +189,9 @@ class PursuitSpec:
     """A validated cooperative-pursuit case (seed 003).
 
     ``K_p`` is the symmetric positive-definite position gain (dim × dim), ``k_gamma`` is set for
-    controller II, ``k_c`` for N > 1; ``adjacency[i, j]``: tracker i receives from tracker j.
+    controller II, ``k_c`` for N > 1; ``adjacency[i, j]``: tracker i receives from tracker j;
+    ``published`` the clamps of the authors' scripts when the case simulates their variant
+    (:mod:`theory.pursuit.published`), ``duration`` the simulated seconds (``None``: default).
     """
 
     dim: int
@@ -182,6 +205,8 @@ class PursuitSpec:
     adjacency: np.ndarray
     target: TargetMotion | None
     dekf: DekfSettings | None
+    published: PublishedControl | None = None
+    duration: float | None = None
 
     @property
     def n_trackers(self) -> int:
@@ -201,8 +226,7 @@ def parse_pursuit(block: Mapping[str, Any]) -> PursuitSpec:
     dim = require(block, "dim", "pursuit")
     if dim not in (2, 3) or isinstance(dim, bool):
         raise CaseError("pursuit.dim", "2 or 3", dim)
-    named = str(require(block, "controller", "pursuit"))
-    controller = Controller(one_of(named, [c.value for c in Controller], "pursuit.controller"))
+    controller, published = _controller(require(block, "controller", "pursuit"), dim)
     omega_bar = finite_number(require(block, "omega_bar", "pursuit"), "pursuit.omega_bar")
     epsilon = finite_vector(require(block, "epsilon", "pursuit"), "pursuit.epsilon", length=dim)
     K_p = _gain_matrix(require(block, "K_p", "pursuit"), dim)
@@ -213,9 +237,48 @@ def parse_pursuit(block: Mapping[str, Any]) -> PursuitSpec:
     adjacency = _adjacency(block.get("edges", []), n)
     target = _target(block["target"], dim) if "target" in block else None
     dekf = _dekf(block["dekf"], dim, adjacency) if "dekf" in block else None
-    return PursuitSpec(
-        dim, controller, omega_bar, epsilon, K_p, k_gamma, k_c, trackers, adjacency, target, dekf
+    duration = (
+        positive_number(block["duration"], "pursuit.duration") if "duration" in block else None
     )
+    return PursuitSpec(
+        dim, controller, omega_bar, epsilon, K_p, k_gamma, k_c, trackers, adjacency, target, dekf,
+        published, duration,
+    )  # fmt: skip
+
+
+def _law(raw: object, field: str) -> Controller:
+    return Controller(one_of(str(raw), [c.value for c in Controller], field))
+
+
+def _controller(raw: object, dim: int) -> tuple[Controller, PublishedControl | None]:
+    """The law and, for ``variant: published``, the scripts' clamps (module docstring)."""
+    if not isinstance(raw, Mapping):
+        return _law(raw, "pursuit.controller"), None
+    prefix = "pursuit.controller"
+    check_keys(raw, CONTROLLER_FIELDS, prefix)
+    law = _law(require(raw, "law", prefix), f"{prefix}.law")
+    variant = one_of(str(raw.get("variant", "analysed")), list(VARIANTS), f"{prefix}.variant")
+    clamps = [key for key in CONTROLLER_FIELDS[2:] if key in raw]
+    if variant == "analysed":
+        if clamps:
+            raise CaseError(
+                f"{prefix}.{clamps[0]}", "no clamp with variant: analysed", raw[clamps[0]]
+            )
+        return law, None
+    size = 2 if dim == 2 else 4
+    bounds = {
+        key: finite_vector(raw[key], f"{prefix}.{key}", length=size) if key in raw else None
+        for key in ("inputs_min", "inputs_max")
+    }
+    low, high = bounds["inputs_min"], bounds["inputs_max"]
+    if low is not None and high is not None and np.any(low > high):
+        raise CaseError(f"{prefix}.inputs_max", "entries ≥ those of inputs_min", raw["inputs_max"])
+    gamma_ddot = None
+    if "gamma_ddot" in raw:
+        gamma_ddot = tuple(finite_vector(raw["gamma_ddot"], f"{prefix}.gamma_ddot", length=2))
+        if gamma_ddot[0] > gamma_ddot[1]:
+            raise CaseError(f"{prefix}.gamma_ddot", "[min, max] with min ≤ max", raw["gamma_ddot"])
+    return law, PublishedControl(low, high, gamma_ddot)
 
 
 def _gain_matrix(raw: object, dim: int) -> np.ndarray:
@@ -274,8 +337,7 @@ def _initial(raw: object, dim: int, prefix: str) -> dict[str, Any]:
     return initial
 
 
-def _adjacency(raw: object, n: int) -> np.ndarray:
-    field = "pursuit.edges"
+def _adjacency(raw: object, n: int, field: str = "pursuit.edges") -> np.ndarray:
     if not isinstance(raw, list) or not all(isinstance(e, list) and len(e) == 2 for e in raw):
         raise CaseError(field, "a list of directed pairs [s, r] of 1-based tracker ids", raw)
     for index, (s, r) in enumerate(raw):
@@ -313,17 +375,30 @@ def _dekf(raw: object, dim: int, adjacency: np.ndarray) -> DekfSettings:
     Q = positive_definite(
         finite_matrix(require(raw, "Q", prefix), f"{prefix}.Q", rows=size, cols=size), f"{prefix}.Q"
     )
+    graph = _adjacency(raw["edges"], n, f"{prefix}.edges") if "edges" in raw else adjacency
     weights_raw = raw.get("weights", "uniform")
     if weights_raw == "uniform":
-        weights = uniform_weights(adjacency)
+        weights = uniform_weights(graph)
     else:
         weights = finite_matrix(weights_raw, f"{prefix}.weights", rows=n, cols=n)
-        row_stochastic(weights, f"{prefix}.weights", support=adjacency)
+        row_stochastic(weights, f"{prefix}.weights", support=graph)
+    predictions = _predictions(raw, Ts, prefix)
     x0 = None
     if "x0" in raw:
         x0 = finite_matrix(raw["x0"], f"{prefix}.x0", rows=n, cols=size)
     P0 = _initial_covariances(raw["P0"], n, size, f"{prefix}.P0") if "P0" in raw else None
-    return DekfSettings(Ts, sigma, V, Q, weights, x0, P0)
+    return DekfSettings(Ts, sigma, V, Q, weights, x0, P0, predictions)
+
+
+def _predictions(raw: Mapping[str, Any], Ts: float, prefix: str) -> int:
+    """Predictions per ``Ts`` from ``predict_every`` (s), which must divide ``Ts``."""
+    if "predict_every" not in raw:
+        return 1
+    period = positive_number(raw["predict_every"], f"{prefix}.predict_every")
+    count = round(Ts / period)
+    if count < 1 or abs(count * period - Ts) > 1e-9 * Ts:
+        raise CaseError(f"{prefix}.predict_every", f"a period dividing Ts = {Ts:g} s", period)
+    return count
 
 
 def _initial_covariances(raw: object, n: int, size: int, field: str) -> np.ndarray:
@@ -343,5 +418,11 @@ def _initial_covariances(raw: object, n: int, size: int, field: str) -> np.ndarr
     return np.broadcast_to(matrix, (n, size, size)).copy()
 
 
-PURSUIT = KindSpec("pursuit", parse_pursuit, expect_keys=EXPECT_KEYS, tolerance_keys=TOLERANCE_KEYS)
+PURSUIT = KindSpec(
+    "pursuit",
+    parse_pursuit,
+    expect_keys=EXPECT_KEYS,
+    tolerance_keys=TOLERANCE_KEYS,
+    expect_rules=EXPECT_RULES,
+)
 """The ``pursuit`` case kind."""

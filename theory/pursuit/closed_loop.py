@@ -42,6 +42,7 @@ from theory.pursuit import compiled_run, model
 from theory.pursuit.dekf import dekf_step, transition_matrix
 
 __all__ = [
+    "RUNAWAY_ERRATUM",
     "DecLoop",
     "DecRun",
     "DecSettings",
@@ -54,6 +55,13 @@ __all__ = [
     "runaway_reason",
     "simulate_dec",
 ]
+
+
+RUNAWAY_ERRATUM = (
+    "what makes a loop run away, and the published configuration that does not: docs/errata.md, "
+    '"What makes the Table cases run away"'
+)
+"""Where the runaway message sends the reader (the ablation of seed 003's published scripts)."""
 
 
 class StopCause(StrEnum):
@@ -71,10 +79,12 @@ class DecSettings:
     ``Kp`` and ``Q`` are matrices or their diagonals (W = Q⁻¹); ``V`` the DEKF's inverse range
     variance, ``fusion_weight`` π^[i,j] for the self and the in-neighbour, ``Ts`` the range
     sampling period and ``dt`` the recording interval (s; Ts/dt an integer), ``sigma`` the range
-    noise (m). ``rtol`` is the local error per step (positions relative to the largest path
-    semi-axis, attitude and γ absolute); a step below ``min_step`` (s) stops the run, and so
-    does a localization error above ``runaway_factor`` S-T curve sizes at a sampling instant
-    (``math.inf``: never).
+    noise (m); the DEKF predicts ``predictions`` times per ``Ts`` with F(Ts/predictions) and
+    W = Q⁻¹ per prediction (1: the paper's Algorithm 2; Ts/0.1 s: the authors' scripts, where Q
+    is the process noise of 0.1 s). ``rtol`` is the local error per step (positions relative
+    to the largest path semi-axis, attitude and γ absolute); a step below ``min_step`` (s) stops
+    the run, and so does a localization error above ``runaway_factor`` S-T curve sizes at a
+    sampling instant (``math.inf``: never).
     """
 
     omega_bar: float = 0.05
@@ -88,6 +98,7 @@ class DecSettings:
     Q: tuple[float, ...] | np.ndarray = (1e-3, 1e-3, 1e-4, 1e-4)
     fusion_weight: float = 0.5
     Ts: float = 2.0
+    predictions: int = 1
     dt: float = 0.1
     sigma: float = 0.5
     rtol: float = 3e-4
@@ -597,7 +608,7 @@ def _sample(loop, state, truth, filter_state, dekf, rng, settings):
     ranges = ranges + settings.sigma * rng.standard_normal(loop.n)
     x_hat, _, Omega, x_pred = dekf_step(
         x_pred, Omega, state.p, ranges, fusion=dekf["fusion"], F=dekf["F"], W=dekf["W"],
-        V=settings.V,
+        V=settings.V, predictions=settings.predictions,
     )  # fmt: skip
     return x_hat, (x_pred, Omega)
 
@@ -631,7 +642,7 @@ def runaway_reason(
         f"runaway: tracker {worst + 1}'s localization error {errors[worst]:.4g} m exceeds "
         f"runaway_factor {factor:g} × {loop.scale:g} m (the DEKF lost the target: "
         f"{_bearing_error(to_estimate, to_target)}, estimated range "
-        f"{np.linalg.norm(to_estimate):.4g} m, λ_min(Ω) = {smallest:.3g})"
+        f"{np.linalg.norm(to_estimate):.4g} m, λ_min(Ω) = {smallest:.3g}); {RUNAWAY_ERRATUM}"
     )
 
 
@@ -708,7 +719,7 @@ def _filter_setup(
         weight = settings.fusion_weight
         fusion = np.diag(1 - weight * adjacency.sum(axis=1)) + weight * adjacency
     return {
-        "F": transition_matrix(d, settings.Ts),
+        "F": transition_matrix(d, settings.Ts / settings.predictions),
         "W": np.linalg.inv(_matrix(settings.Q)),
         "fusion": fusion,
         "Omega": np.linalg.inv(np.broadcast_to(P0, (n, 2 * d, 2 * d))),

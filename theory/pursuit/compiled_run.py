@@ -106,7 +106,7 @@ def record(
         np.array(dekf[k], dtype=float) for k in ("x_pred", "Omega", "fusion", "F", "W")
     )
     numbers = (
-        dt, every, float(settings.V), getattr(settings, "predictions", 1),  # f-seed003's field
+        dt, every, float(settings.V), int(settings.predictions),
         settings.runaway_factor * loop.scale, float(settings.rtol), float(settings.min_step),
     )  # fmt: skip
     accepted, rejected, stop, cause, failed, x_hat, Omega = kernels.run(

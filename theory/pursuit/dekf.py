@@ -27,6 +27,7 @@ __all__ = [
     "RangeDekfRun",
     "dekf_step",
     "encircling_paths",
+    "predict",
     "range_dekf",
     "st_curve",
     "table_target",
@@ -159,6 +160,7 @@ def dekf_step(
     F: np.ndarray,
     W: np.ndarray,
     V: float,
+    predictions: int = 1,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """One sampling instant of Algorithm 2 for every tracker: correction, fusion, prediction.
 
@@ -167,6 +169,9 @@ def dekf_step(
     Ω_{k|k} = Σ_j π^[i,j] Ω̃^[j]; prediction (44) Ω_{k+1|k} = W − WF(Ω_{k|k} + FᵀWF)⁻¹FᵀW,
     x̂_{k+1|k} = F x̂_{k|k} (seed 003 Algorithm 2). Returns x̂_{k|k}, Ω_{k|k}, Ω_{k+1|k}, x̂_{k+1|k}
     from the priors x̂_{k|k−1}, Ω_{k|k−1}, the positions and the measured ranges y_k (10).
+    The prediction (44) is applied ``predictions`` times with the given F and W: 1 for the
+    paper's F(T_s), or T_s/δ with F(δ) and W per δ as the authors' scripts predict every δ
+    between ranges (docs/errata.md, "What makes the Table cases run away").
     """
     d = positions.shape[1]
     diff = x_pred[:, :d] - positions
@@ -177,6 +182,16 @@ def dekf_step(
     Omega_tilde = Omega + V * (C[:, :, None] * C[:, None, :])
     Omega_post = np.einsum("ij,jkl->ikl", fusion, Omega_tilde)
     x_hat = np.linalg.solve(Omega_post, (fusion @ z_tilde)[..., None])[..., 0]
-    inner = np.linalg.inv(Omega_post + F.T @ W @ F)
-    Omega_next = W - W @ F @ inner @ F.T @ W
-    return x_hat, Omega_post, Omega_next, x_hat @ F.T
+    Omega_next, x_next = predict(Omega_post, x_hat, F=F, W=W, steps=predictions)
+    return x_hat, Omega_post, Omega_next, x_next
+
+
+def predict(
+    Omega: np.ndarray, x_hat: np.ndarray, *, F: np.ndarray, W: np.ndarray, steps: int = 1
+) -> tuple[np.ndarray, np.ndarray]:
+    """``steps`` predictions (44) Ω ← W − WF(Ω + FᵀWF)⁻¹FᵀW, x̂ ← F x̂ (seed 003 Algorithm 2)."""
+    lifted = F.T @ W @ F
+    for _ in range(steps):
+        Omega = W - W @ F @ np.linalg.inv(Omega + lifted) @ F.T @ W
+        x_hat = x_hat @ F.T
+    return Omega, x_hat

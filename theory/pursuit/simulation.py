@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from theory.core.case_file import Case
-from theory.core.claims import ClaimResult, ClaimSet, Context, NotApplicable
+from theory.core.claims import ClaimResult, ClaimSet, Context, Method, NotApplicable, Status
 from theory.core.consistency import agent_columns
 from theory.core.consistency import evidence as metrics_evidence
 from theory.core.errors import CaseError, PropertyFails
@@ -41,6 +41,7 @@ from theory.pursuit.closed_loop import DecRun, DecSettings, StopCause, simulate_
 from theory.pursuit.compiled_run import resolve_engine
 from theory.pursuit.filter_metrics import dekf_metrics
 from theory.pursuit.model import desired_speed
+from theory.pursuit.published import simulate_published
 from theory.sim.outputs import write_agents_csv, write_runs_npz, write_timeseries_csv
 from theory.sim.simulate import Finished, Simulator
 
@@ -75,9 +76,11 @@ RECORD_INTERVAL = 0.1
 (:mod:`theory.pursuit.closed_loop`) and lands on every record."""
 
 
-def default_steps() -> int:
-    """Records after the first in ``DEFAULT_DURATION``: 4500 of ``RECORD_INTERVAL``."""
-    return round(DEFAULT_DURATION / RECORD_INTERVAL)
+def default_steps(spec: PursuitSpec | None = None) -> int:
+    """Records after the first in the case's ``duration``, else ``DEFAULT_DURATION`` (4500 of
+    ``RECORD_INTERVAL``)."""
+    duration = DEFAULT_DURATION if spec is None or spec.duration is None else spec.duration
+    return round(duration / RECORD_INTERVAL)
 
 
 def check_pursuit_case(spec: PursuitSpec) -> None:
@@ -134,7 +137,7 @@ def dec_arguments(
     :func:`default_steps`); a run stops as a runaway beyond ``runaway_factor`` S-T curve sizes of
     localization error.
     """
-    steps = default_steps() if steps is None else steps
+    steps = default_steps(spec) if steps is None else steps
     dekf, d = spec.dekf, spec.dim
     target = _target_states(spec, steps)
     offset = np.array([5.0, -5.0, 0.0][:d])
@@ -149,6 +152,7 @@ def dec_arguments(
         V=dekf.V,
         Q=dekf.Q,
         Ts=dekf.Ts,
+        predictions=dekf.predictions,
         dt=RECORD_INTERVAL,
         sigma=dekf.sigma,
         runaway_factor=runaway_factor,
@@ -179,8 +183,20 @@ def run_pursuit_case(
     *,
     runaway_factor: float = RUNAWAY_FACTOR,
 ) -> DecRun:
-    """One run of the DEC loop for a pursuit case (``rng`` draws the range noise; seed 003 §V)."""
-    return simulate_dec(rng=rng, **dec_arguments(spec, steps, runaway_factor=runaway_factor))
+    """One run of the DEC loop for a pursuit case (``rng`` draws the range noise; seed 003 §V):
+    the analysed laws integrated as an ODE, or the ``published`` variant as the authors' scripts
+    run it (:func:`theory.pursuit.published.simulate_published`)."""
+    arguments = dec_arguments(spec, steps, runaway_factor=runaway_factor)
+    if spec.published is None:
+        return simulate_dec(rng=rng, **arguments)
+    errors = arguments.pop("initial_gamma_errors")
+    omega_d = desired_speed(
+        spec.omega_bar, spec.laplacian.astype(float), arguments["initial_gammas"], spec.k_c or 0.0
+    )
+    rates = omega_d if errors is None else omega_d + errors
+    return simulate_published(
+        rng=rng, initial_gamma_rates=rates, control=spec.published, **arguments
+    )
 
 
 def summarize_pursuit(
@@ -235,11 +251,19 @@ def _agreement(spec: PursuitSpec, run: DecRun) -> dict[str, Any] | None:
 
 def simulation_observed(summary: dict[str, Any]) -> Observed:
     """``simulation_bounded`` as run 0 of a :func:`summarize_pursuit` decides it (undecided when
-    ``trackcert iss`` certifies nothing: there is no estimate to stay within)."""
+    ``trackcert iss`` certifies nothing: there is no estimate to stay within); ``runaways`` (runs
+    stopped as runaways), and per tracker the ``final_localization_error`` and
+    ``mean_pursuit_error`` averaged over the runs (m), the statistics a published case bands."""
     agreement = summary["iss_agreement"]
     got = None if agreement is None else agreement["simulation_bounded"]
     undecided = frozenset() if got is not None else frozenset({"simulation_bounded"})
-    return Observed({"simulation_bounded": got}, undecided)
+    values = {
+        "simulation_bounded": got,
+        "runaways": sum(cause == StopCause.RUNAWAY for cause in summary["stop_causes"]),
+        "final_localization_error": [a["final_localization_error"] for a in summary["agents"]],
+        "mean_pursuit_error": [a["mean_pursuit_error"] for a in summary["agents"]],
+    }
+    return Observed(values, undecided)
 
 
 def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
@@ -254,9 +278,10 @@ def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
         check_pursuit_case(case.spec)
     except CaseError as error:
         raise error.in_file(case.file) from None
-    steps = steps or default_steps()
+    steps = steps or default_steps(case.spec)
     fields = {
         "controller": case.spec.controller,
+        "variant": "analysed" if case.spec.published is None else "published",
         "dim": case.spec.dim,
         "steps": steps,
         "dt": RECORD_INTERVAL,
@@ -578,6 +603,69 @@ def check_simulation_agrees(case: Case, ctx: Context) -> list[ClaimResult]:
             figures=figures,
         )
     ]  # fmt: skip
+
+
+PUBLISHED_RUNS = 10
+"""Runs of the claim ``seed003.sec6.published-statistics``: children 0–9 of
+``SeedSequence(SIMULATION_SEED)``, as ``trackcert simulate --runs 10``."""
+
+PUBLISHED_KEYS = ("runaways", "final_localization_error", "mean_pursuit_error")
+"""The expect keys a published-variant case bands (:func:`simulation_observed`)."""
+
+
+@claims.register(
+    "seed003.sec6.published-statistics",
+    source="seed 003 §VI as the authors' scripts run it (github.com/hungrepo/"
+    "cooperative-distributed-range-based-SLAP, SLAP_*.m; docs/simulation.md)",
+    statement="A case of the published variant, simulated over 10 seeds (trackcert simulate "
+    "--runs 10), never runs away, and its per-tracker run-mean final localization and mean "
+    "pursuit errors lie in the bands its expect block states (measured on the authors' code).",
+    kinds=("pursuit",),
+)
+def check_published_statistics(case: Case, ctx: Context) -> list[ClaimResult]:
+    """The published statistics of seed 003 §VI reproduced (issue 27): ``verified`` when no run
+    runs away and every stated band holds, else ``refuted``; the margin is the smallest distance
+    of a statistic inside its band (m; negative outside). Not applicable to the analysed laws."""
+    from theory.core.expectations import judge
+    from theory.sim.simulate import run_seeds
+
+    if case.spec.published is None:
+        raise NotApplicable("the case runs the analysed laws, not the published scripts")
+    try:
+        check_pursuit_case(case.spec)
+    except CaseError as error:
+        raise NotApplicable(f"nothing to simulate: {error.field} is not {error.expected}") from None
+    factor = runaway_factor_of(case)
+    runs = [
+        run_pursuit_case(case.spec, np.random.default_rng(sequence), runaway_factor=factor)
+        for sequence in run_seeds(SIMULATION_SEED, PUBLISHED_RUNS)
+    ]
+    values = simulation_observed(summarize_pursuit(case.spec, runs, runaway_factor=factor)).values
+    observed = Observed({key: values[key] for key in PUBLISHED_KEYS})
+    verdicts = judge(case, observed, source="seed003.sec6.published-statistics")
+    failed = [v.describe() for v in verdicts if not v.met] + (
+        [f"{values['runaways']} of {PUBLISHED_RUNS} runs ran away"] if values["runaways"] else []
+    )
+    return [
+        ClaimResult(
+            Status.REFUTED if failed else Status.VERIFIED, Method.SIMULATION,
+            {**observed.evidence(), "runs": PUBLISHED_RUNS, "seed": SIMULATION_SEED},
+            margin=_band_margin(case.expect, values), tolerance={"runaway_factor": factor},
+            message="; ".join(failed) or f"no runaway in {PUBLISHED_RUNS} runs, every band met",
+        )
+    ]  # fmt: skip
+
+
+def _band_margin(expect: dict[str, Any], values: dict[str, Any]) -> float | None:
+    """The smallest distance (m) of a banded statistic to its band's nearer edge (negative
+    outside); ``None`` when the case states no band."""
+    distances = [
+        min(value - band[0], band[1] - value)
+        for key in PUBLISHED_KEYS[1:]
+        if isinstance(band := expect.get(key), list)
+        for value in values[key]
+    ]
+    return float(min(distances)) if distances else None
 
 
 def _figure(times: np.ndarray, along: IssMargin, folder: Path) -> str:

@@ -1,0 +1,72 @@
+"""Seed 003: the authors' published scripts under GNU Octave, for the reference numbers of the
+``pursuit-published-*`` cases (issue 27; docs/simulation.md, the published cases).
+
+Needs ``octave-cli`` (``apt-get install -y octave``; never a dependency of trackcert) and a
+checkout of github.com/hungrepo/cooperative-distributed-range-based-SLAP. Each ``SLAP_*.m`` is
+copied as ``SLAP_*_run.m`` with the seed set (``randn('state', seed)``), the animation and
+``save_to_base`` removed and one ``RESULT`` line per tracker printed: the final position error
+‖q − q̂‖, the mean and final pursuit error ‖[e_p; e_γ]‖ (the scripts' ``E_Pursuit``) and the
+largest localization error::
+
+    python benchmarks/seed003_octave.py CHECKOUT OUTPUT --seeds 1 2 3 [--scripts SLAP_2D_1Tracker]
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import shutil
+import subprocess
+from collections.abc import Sequence
+from pathlib import Path
+
+SCRIPTS = ("SLAP_2D_1Tracker", "SLAP_2D_3Trackers", "SLAP_3D_1Tracker", "SLAP_3D_3Trackers")
+
+ONE = (
+    'printf("RESULT final_pos_err %.6f mean_pursuit %.6f final_pursuit %.6f max_loc %.6f\\n", '
+    "norm(q(end,:) - x_hat(end,1:{d})), mean(E_Pursuit), E_Pursuit(end), max(E_Loc));"
+)
+THREE = (
+    "for T = {{Tracker1, Tracker2, Tracker3}}\n  Tr = T{{1}};\n"
+    '  printf("RESULT final_pos_err %.6f mean_pursuit %.6f final_pursuit %.6f max_loc %.6f\\n", '
+    "norm(Target.q(end,:) - Tr.q_hat(end,:)), mean(Tr.E_Pursuit), Tr.E_Pursuit(end), "
+    "max(Tr.E_Loc));\nend"
+)
+
+
+def patched(source: str, name: str) -> str:
+    """The script ``name`` seeded, without figures, printing its statistics."""
+    d = 3 if "_3D_" in name else 2
+    report = (THREE if "3Trackers" in name else ONE).format(d=d)
+    text = source.replace(
+        "function Main", f"function {name}_run(seed)\n    randn('state', seed);", 1
+    )
+    text = text.replace("save_to_base(1);", report, 1)
+    return re.sub(r"^\s*animation_\w+\s*$", "", text, flags=re.M)
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    """Write the patched scripts into OUTPUT and print each run's RESULT lines."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("checkout", type=Path)
+    parser.add_argument("output", type=Path)
+    parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
+    parser.add_argument("--scripts", nargs="+", default=list(SCRIPTS), choices=SCRIPTS)
+    args = parser.parse_args(argv)
+    args.output.mkdir(parents=True, exist_ok=True)
+    for path in args.checkout.glob("*.m"):
+        shutil.copy(path, args.output / path.name)
+    for name in args.scripts:
+        source = (args.checkout / f"{name}.m").read_text(encoding="utf-8")
+        (args.output / f"{name}_run.m").write_text(patched(source, name), encoding="utf-8")
+        for seed in args.seeds:
+            done = subprocess.run(
+                ["octave-cli", "--no-window-system", "--eval", f"{name}_run({seed})"],
+                cwd=args.output, capture_output=True, text=True, check=False,
+            )  # fmt: skip
+            results = [line for line in done.stdout.splitlines() if line.startswith("RESULT")]
+            print(f"{name} seed={seed}", *results, sep="\n", flush=True)
+
+
+if __name__ == "__main__":
+    main()
