@@ -83,9 +83,9 @@ def test_rates_and_step_equal_the_numpy_loop(case, seed) -> None:
 @SLOW_CASES
 @given(
     n=st.integers(1, 4), dim=st.sampled_from([2, 3]), seed=st.integers(0, 2**32 - 1),
-    weight=st.floats(0.1, 0.9),
+    weight=st.floats(0.1, 0.9), predictions=st.integers(1, 3),
 )  # fmt: skip
-def test_dekf_kernel_equals_algorithm_2(n, dim, seed, weight) -> None:
+def test_dekf_kernel_equals_algorithm_2(n, dim, seed, weight, predictions) -> None:
     """kernels.dekf_step is dekf.dekf_step (seed 003 Algorithm 2, eqs. (41)–(44)) to rounding."""
     rng = np.random.default_rng(seed)
     m = 2 * dim
@@ -95,8 +95,10 @@ def test_dekf_kernel_equals_algorithm_2(n, dim, seed, weight) -> None:
     ranges = np.abs(rng.normal(40, 10, n))
     fusion = (1 - weight) * np.eye(n) + weight * np.roll(np.eye(n), 1, axis=1)
     F, W = transition_matrix(dim, 2.0), np.diag(rng.uniform(10, 1e4, m))
-    want = dekf_step(x_pred, Omega, positions, ranges, fusion=fusion, F=F, W=W, V=4.0)
-    got = kernels.dekf_step(x_pred, Omega, positions, ranges, fusion, F, W, 4.0, 1)
+    want = dekf_step(
+        x_pred, Omega, positions, ranges, fusion=fusion, F=F, W=W, V=4.0, predictions=predictions
+    )
+    got = kernels.dekf_step(x_pred, Omega, positions, ranges, fusion, F, W, 4.0, predictions)
     for name, a, b in zip(("x̂", "Ω", "Ω_next", "x̂_next"), got, want, strict=True):
         _close(a, b, name)
 
@@ -148,6 +150,17 @@ def test_engines_agree_on_table_cases_and_a_runaway(name, seed, cause) -> None:
     _assert_same_run(fast, slow, loop.scale, arguments["settings"].rtol)
     assert fast.stop_reason == slow.stop_reason
     np.testing.assert_equal(fast.stopped_at, slow.stopped_at)
+
+
+def test_engines_agree_when_the_dekf_predicts_every_step() -> None:
+    """The published cases' DEKF predicts 20 times per T_s (F and W per 0.1 s): both engines."""
+    arguments, loop = _loop(load_case("pursuit-table1-n3").spec, steps=300)
+    arguments["settings"] = dataclasses.replace(arguments["settings"], predictions=20)
+    fast, slow = (
+        simulate_dec(rng=np.random.default_rng(3), engine=engine, **arguments)
+        for engine in ("numba", "numpy")
+    )
+    _assert_same_run(fast, slow, loop.scale, arguments["settings"].rtol)
 
 
 def test_a_step_floor_stops_both_engines_alike() -> None:
