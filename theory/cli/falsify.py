@@ -1,7 +1,9 @@
 """``trackcert falsify CLAIM``: search for a counterexample to a claim, in each of its wordings.
 
 A shell over :func:`theory.falsify.falsify`; exit code (:mod:`theory.core.verdicts`) 0 when no
-wording has a counterexample in the budget, 1 when one has, 2 on bad input.
+wording has a counterexample in the budget, 1 when one has, 2 on bad input. Each result shows its
+finding (``counterexample``, :class:`~theory.core.claims.Finding`); ``--list`` lists the
+properties and the claims about one fixed instance, with the reason none can be searched.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from theory.core.errors import CaseError
 from theory.core.parallel import default_workers, engine
 from theory.core.validation import check_count
 from theory.core.verdicts import exit_code
-from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, falsify_each
+from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, falsify_each, fixed_instances
 from theory.registry import all_properties, properties_for
 
 __all__ = ["register"]
@@ -83,6 +85,7 @@ def _record(result: FalsifyResult) -> dict:
         "examples": result.examples,
         "seed": result.seed,
         "found": result.found,
+        "finding": None if result.finding is None else str(result.finding),
         "case": result.case,
     }
 
@@ -93,7 +96,10 @@ def _show(result: FalsifyResult) -> None:
     if not result.found:
         console.print(f"  no counterexample in {result.examples} examples (seed {result.seed})\n")
         return
-    console.print(f"  counterexample (shrunk; seed {result.seed}), as a case file:")
+    console.print(
+        f"  finding: {result.finding} to the {prop.wording} wording "
+        f"(shrunk; seed {result.seed}); rerun it as this case file:"
+    )
     console.print(
         yaml.safe_dump(result.case, sort_keys=False, default_flow_style=None),
         markup=False,
@@ -102,14 +108,15 @@ def _show(result: FalsifyResult) -> None:
 
 
 def _list(as_json: bool) -> None:
-    props = all_properties()
+    props, fixed = all_properties(), fixed_instances()
     if as_json:
         print_json(
             {
                 "properties": [
                     {"id": p.id, "claim": p.claim, "wording": p.wording, "statement": p.statement}
                     for p in props
-                ]
+                ],
+                "fixed_instances": [{"claim": f.claim, "reason": f.reason} for f in fixed],
             }
         )
         return
@@ -119,3 +126,9 @@ def _list(as_json: bool) -> None:
     for prop in props:
         table.add_row(prop.id, prop.wording, prop.statement)
     console.print(table)
+    instances = Table(title="claims about one fixed instance (nothing to search)")
+    for column in ("claim", "why not falsifiable"):
+        instances.add_column(column)
+    for mark in fixed:
+        instances.add_row(mark.claim, mark.reason)
+    console.print(instances)

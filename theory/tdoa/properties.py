@@ -1,0 +1,313 @@
+"""Falsifiable wordings of the TDOA domain's claims about the model (seed 000 ch. 4, App. A; seed
+003 Result 3), and the domain's claims about one fixed instance.
+
+Each strategy draws from the class the paper's statement quantifies over:
+
+* **Lemma A.1.1** (App. A, "Let ζ_k be a stochastic process and V_k … with (A.9)–(A.10)"):
+  linear processes ``ζ_{k+1} = a ζ_k ± s`` (exact laws, :func:`rademacher_law`) with
+  ``V = c ζ²`` and any rational constants ``v̲, v̄, μ > 0``, ``0 < α ≤ 1``; the hypotheses (A.9)
+  and (A.10) are checked exactly at every atom, and an example that fails them says nothing.
+* **Lemma 4.2.2** ("for a stochastic W with w_ii > 0"): any row-stochastic ``W`` with positive
+  diagonal on any directed support (:func:`~theory.tdoa.strategies.stochastic_weights`).
+* **Metropolis weights** (§4.2.2): any undirected network, connected or not.
+* **Optimal formations** (§4.3.1 after eq. (4.43); seed 003 Result 3, "N ≥ 3 trackers"): every
+  formation of ``N ≥ 3`` directions (:func:`~theory.tdoa.strategies.formations`), in general
+  position, uniform, unions of uniform ones, and degenerate (collinear, coplanar, repeated).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+from hypothesis import strategies as st
+
+from theory.core.claims import FixedInstance, Property, Wording
+from theory.core.network import exact_metropolis_weights
+from theory.core.tolerances import BOUND_RTOL
+from theory.strategy_helpers import example_record
+from theory.tdoa.estimation.stability import corrected_bound, printed_bound, rademacher_law
+from theory.tdoa.geometry.crb import (
+    crb_trace,
+    optimal_crb_trace,
+    platonic_solids,
+    range_crb_trace,
+)
+from theory.tdoa.observability.weights import path_lemma_failures
+from theory.tdoa.strategies import formations, networks, stochastic_weights
+
+__all__ = [
+    "FIXED_INSTANCES",
+    "PROPERTIES",
+    "LinearProcess",
+    "frame_deviation",
+    "is_platonic",
+    "is_uniform_array",
+    "lemma_a11_holds",
+    "linear_processes",
+    "metropolis_conditions",
+]
+
+STEPS = 6
+"""Steps ``k = 0 … STEPS`` of a process at which (A.11) is checked (``2^k`` atoms at most)."""
+
+
+@dataclass(frozen=True)
+class LinearProcess:
+    """``ζ_{k+1} = a ζ_k ± s`` (probability ½ each) from ``ζ_0 = z0``, ``V(ζ) = c ζ²``, and the
+    constants ``v̲, v̄, μ, α`` of seed 000 (A.9)–(A.11), all exact."""
+
+    a: Fraction
+    s: Fraction
+    z0: Fraction
+    c: Fraction
+    v_min: Fraction
+    v_max: Fraction
+    mu: Fraction
+    alpha: Fraction
+
+
+def _fractions(low: int, high: int, denominator: int = 4) -> st.SearchStrategy[Fraction]:
+    return st.integers(low, high).map(lambda n: Fraction(n, denominator))
+
+
+def linear_processes() -> st.SearchStrategy[LinearProcess]:
+    """Linear processes and constants of Lemma A.1.1 (module docstring); ``α`` and ``μ`` near
+    the values (A.10) needs, ``α = 1 − a²`` and ``μ = c s²``, on either side."""
+
+    def build(a: Fraction, s: Fraction, z0: Fraction, c: Fraction, k: tuple) -> LinearProcess:
+        low, high, extra_mu, alpha_cut = k
+        alpha = min(Fraction(1), max(Fraction(1, 8), (1 - a * a) * alpha_cut))
+        return LinearProcess(a, s, z0, c, c * low, c * high, c * s * s + extra_mu, alpha)
+
+    return st.builds(
+        build,
+        _fractions(-3, 3),
+        _fractions(1, 8),
+        _fractions(-8, 8),
+        _fractions(1, 8),
+        st.tuples(_fractions(1, 4), _fractions(4, 8), _fractions(0, 4), _fractions(2, 5)),
+    )
+
+
+def _mean_squares(process: LinearProcess) -> list[tuple[Fraction, dict[Fraction, Fraction]]]:
+    laws = [rademacher_law(process.a, process.s, process.z0, k) for k in range(STEPS + 1)]
+    return [(sum((p * z * z for z, p in law.items()), Fraction(0)), law) for law in laws]
+
+
+def _a10_holds(process: LinearProcess, laws: list[dict[Fraction, Fraction]]) -> bool:
+    """(A.10) at every atom the process reaches: ``E{V(aζ ± s)} − V(ζ) ≤ μ − α V(ζ)``."""
+    a, s, c = process.a, process.s, process.c
+    return all(
+        c * ((a * z + s) ** 2 + (a * z - s) ** 2) / 2 - c * z * z
+        <= process.mu - process.alpha * c * z * z
+        for law in laws
+        for z in law
+    )
+
+
+def lemma_a11_holds(process: LinearProcess, bound: Callable[..., Fraction]) -> bool:
+    """Whether ``E‖ζ_k‖² ≤ bound(k)`` for ``k ≤ STEPS`` when (A.9)–(A.10) hold (vacuously true
+    otherwise); seed 000 Lemma A.1.1, eqs. (A.9)–(A.11)."""
+    p = process
+    if not (0 < p.v_min <= p.c <= p.v_max and p.mu > 0 and 0 < p.alpha <= 1):
+        return True  # (A.9) fails for V = c ζ², or the constants are outside the lemma
+    moments = _mean_squares(p)
+    if not _a10_holds(p, [law for _, law in moments[:-1]]):
+        return True
+    constants = {"v_min": p.v_min, "v_max": p.v_max, "mu": p.mu, "alpha": p.alpha}
+    m0 = moments[0][0]
+    return all(m <= bound(k, mean_square_0=m0, **constants) for k, (m, _) in enumerate(moments))
+
+
+def _process_record(process: LinearProcess) -> dict[str, Any]:
+    fields = ("a", "s", "z0", "c", "v_min", "v_max", "mu", "alpha")
+    example = {f: str(getattr(process, f)) for f in fields}
+    example["process"] = "zeta_{k+1} = a zeta_k ± s (prob. 1/2), V = c zeta^2"
+    return example_record("seed000.lemA.1.1", example)
+
+
+@st.composite
+def stochastic_networks(draw: st.DrawFn) -> np.ndarray:
+    """Any row-stochastic ``W`` with positive diagonal on a directed or undirected network of
+    1–6 agents, connected or not (seed 000 Lemma 4.2.2)."""
+    directed = draw(st.booleans())
+    hears = draw(networks(min_agents=1, max_agents=6, connected=None, directed=directed))
+    return draw(stochastic_weights(hears))
+
+
+def metropolis_conditions(hears: np.ndarray) -> bool:
+    """Whether the exact Metropolis weights of ``hears`` are stochastic and symmetric, with
+    ``w_ii > 0`` and ``w_ij > 0`` exactly on the links (seed 000 §4.2.2, before eq. (4.26))."""
+    W = exact_metropolis_weights(hears)
+    n = len(W)
+    pairs = [(i, j) for i in range(n) for j in range(n)]
+    return (
+        all(sum(row) == 1 for row in W)
+        and all(W[i][j] == W[j][i] and W[i][j] >= 0 for i, j in pairs)
+        and all(W[i][i] > 0 for i in range(n))
+        and all((W[i][j] > 0) == bool(hears[i, j]) for i, j in pairs if i != j)
+    )
+
+
+def _weights_record(claim: str, W: np.ndarray) -> dict[str, Any]:
+    return example_record(claim, {"W": np.asarray(W, float).tolist()})
+
+
+# ------------------------------------------------------------------------- optimal formations
+FRAME_TOL = 1e-9
+"""Deviation (relative to ``N``) below which a formation is a balanced tight frame; the draws
+that reach the bound are exact frames up to rounding, ~1e-15."""
+
+
+def frame_deviation(directions: np.ndarray, *, tdoa: bool = True) -> float:
+    """How far ``directions`` are from reaching the CRB bound, over ``N``: TDOA (eq. (4.43))
+    ``max(‖Σ g_i‖, ‖Σ g_ig_iᵀ − (N/d) I‖)``; range (seed 003 Result 3) ``|Σ e^{2iθ_k}|``."""
+    n, d = directions.shape
+    if not tdoa:
+        return float(abs(np.sum(np.exp(2j * np.arctan2(directions[:, 1], directions[:, 0]))))) / n
+    frame = np.linalg.norm(directions.T @ directions - n / d * np.eye(d), 2)
+    return float(max(np.linalg.norm(directions.sum(axis=0)), frame)) / n
+
+
+def is_uniform_array(directions: np.ndarray) -> bool:
+    """Whether 2-D ``directions`` are a uniform angular array (adjacent angle ``2π/N``)."""
+    bearings = np.sort(np.arctan2(directions[:, 1], directions[:, 0]) % (2 * np.pi))
+    gaps = np.diff([*bearings, bearings[0] + 2 * np.pi])
+    return bool(np.allclose(gaps, 2 * np.pi / len(bearings), atol=1e-9))
+
+
+def _signature(points: np.ndarray) -> np.ndarray:
+    """The sorted inner products of the points: invariant under rotations and relabelling."""
+    return np.sort((points @ points.T).ravel())
+
+
+def is_platonic(directions: np.ndarray) -> bool:
+    """Whether 3-D ``directions`` are the vertices of a Platonic solid (equal inner-product
+    signature to one of the five, which determines the solid up to rotation)."""
+    return any(
+        len(v) == len(directions) and np.allclose(_signature(v), _signature(directions), atol=1e-9)
+        for v in platonic_solids().values()
+    )
+
+
+def _ratio(directions: np.ndarray, tdoa: bool) -> float:
+    n, d = directions.shape
+    if tdoa:
+        return crb_trace(np.zeros(d), directions) / optimal_crb_trace(n, dim=d)
+    return range_crb_trace(directions) / (4 / n)
+
+
+def _optimal_iff(named: Callable[[np.ndarray], bool], tdoa: bool) -> Callable[[np.ndarray], bool]:
+    def holds(directions: np.ndarray) -> bool:
+        """The paper's wording: a formation is optimal iff it is the named one."""
+        return (abs(_ratio(directions, tdoa) - 1) <= BOUND_RTOL) == named(directions)
+
+    return holds
+
+
+def _bound_and_frames(tdoa: bool) -> Callable[[np.ndarray], bool]:
+    def holds(directions: np.ndarray) -> bool:
+        """The corrected wording: the bound holds, and every balanced tight frame attains it."""
+        ratio = _ratio(directions, tdoa)
+        attained = abs(ratio - 1) <= BOUND_RTOL
+        return ratio >= 1 - BOUND_RTOL and (
+            frame_deviation(directions, tdoa=tdoa) > FRAME_TOL or attained
+        )
+
+    return holds
+
+
+def _formations(dim: int) -> st.SearchStrategy[np.ndarray]:
+    families = ("general", "uniform", "union", "degenerate")
+    return st.sampled_from(families).flatmap(lambda f: formations(dim=dim, family=f))
+
+
+def _formation_record(claim: str) -> Callable[[np.ndarray], dict[str, Any]]:
+    return lambda directions: example_record(claim, {"directions": directions.tolist()})
+
+
+def _formation_properties(
+    claim: str, dim: int, named: str, is_named: Callable[[np.ndarray], bool], tdoa: bool
+) -> tuple[Property, Property]:
+    bound = "tr J⁻¹ ≥ d²σ²/N² (eq. (4.43))" if tdoa else "tr J⁻¹ ≥ 4σ²/N (range)"
+    frame = "Σ g_i = 0 and Σ g_ig_iᵀ = (N/d) I" if tdoa else "Σ e^{2iθ_k} = 0"
+    examples, record = _formations(dim), _formation_record(claim)
+    return (
+        Property(
+            f"{claim}/paper", claim, Wording.PAPER,
+            f"A formation of N ≥ 3 is optimal ({bound} with equality) iff it is {named}.",
+            examples, _optimal_iff(is_named, tdoa), record, expected_to_hold=False,
+        ),
+        Property(
+            f"{claim}/corrected", claim, Wording.CORRECTED,
+            f"Every formation of N ≥ 3 has {bound}, and every formation with {frame} attains "
+            f"it ({named} among them, but not only).",
+            examples, _bound_and_frames(tdoa), record,
+        ),
+    )  # fmt: skip
+
+
+PROPERTIES = (
+    Property(
+        "seed000.lemA.1.1/paper", "seed000.lemA.1.1", Wording.PAPER,
+        "(A.9)–(A.10) imply E‖ζ_k‖² ≤ (v̄/v̲) E‖ζ_0‖² (1 − α)^k + (μ/v̲) Σ_{l=1}^{k−1} (1 − α)^l "
+        "for every k ≥ 0 (A.11).",
+        linear_processes(), lambda p: lemma_a11_holds(p, printed_bound), _process_record,
+        expected_to_hold=False,
+    ),
+    Property(
+        "seed000.lemA.1.1/corrected", "seed000.lemA.1.1", Wording.CORRECTED,
+        "(A.9)–(A.10) imply (A.11) with the sum from l = 0: E‖ζ_k‖² ≤ (v̄/v̲) E‖ζ_0‖² (1 − α)^k "
+        "+ (μ/v̲) Σ_{l=0}^{k−1} (1 − α)^l.",
+        linear_processes(), lambda p: lemma_a11_holds(p, corrected_bound), _process_record,
+    ),
+    Property(
+        "seed000.lem4.2.2/paper", "seed000.lem4.2.2", Wording.PAPER,
+        "For a stochastic W with w_ii > 0, [W^l]_ij > 0 iff a (directed) path of length ≤ l "
+        "joins i and j.",
+        stochastic_networks(), lambda W: not path_lemma_failures(W, range(len(W) + 1)),
+        lambda W: _weights_record("seed000.lem4.2.2", W),
+    ),
+    Property(
+        "seed000.sec4.2.2.metropolis/paper", "seed000.sec4.2.2.metropolis", Wording.PAPER,
+        "On every undirected network, Metropolis weights are stochastic and symmetric with "
+        "w_ii > 0 and w_ij > 0 exactly on the links.",
+        networks(min_agents=1, max_agents=8, connected=None), metropolis_conditions,
+        lambda hears: example_record(
+            "seed000.sec4.2.2.metropolis", {"hears": np.asarray(hears, int).tolist()}
+        ),
+    ),
+    *_formation_properties("seed003.result3", 2, "the uniform formation", is_uniform_array, False),
+    *_formation_properties(
+        "seed000.sec4.3.1.uniform-array", 2, "the uniform angular array", is_uniform_array, True
+    ),
+    *_formation_properties("seed000.sec4.3.1.platonic", 3, "a Platonic solid", is_platonic, True),
+)  # fmt: skip
+"""The domain's new wordings (ids ``<claim>/<wording>``)."""
+
+FIXED_INSTANCES = (
+    FixedInstance(
+        "case.expect.tdoa",
+        "about the expect block one tdoa case file states; the topology claims it observes are "
+        "searched as seed000.thm4.2.3",
+    ),
+    FixedInstance(
+        "case.expect.tdoa-sim",
+        "about the expect block one tdoa-sim case file states (what trackcert simulate finds)",
+    ),
+    FixedInstance(
+        "seed000.eq4.36.certified",
+        "a certificate of one case's generic rank; the rank claim is searched as "
+        "seed000.eq4.36.rank-sum",
+    ),
+    FixedInstance(
+        "seed000.sec4.4.b-tradeoff",
+        "the trend of Figs 4.9–4.10 on the paper's scenario, a Monte Carlo observation about "
+        "that run, not a statement over a class",
+    ),
+)
+"""The domain's claims about one fixed instance, with the reason."""
