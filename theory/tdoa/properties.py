@@ -22,8 +22,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
+import flint
 import numpy as np
 from hypothesis import strategies as st
+from scipy.linalg import expm
 
 from theory.core.claims import FixedInstance, Property, Wording
 from theory.core.network import exact_metropolis_weights
@@ -36,6 +38,7 @@ from theory.tdoa.geometry.crb import (
     platonic_solids,
     range_crb_trace,
 )
+from theory.tdoa.model import cv_continuous, cv_discrete
 from theory.tdoa.observability.weights import path_lemma_failures
 from theory.tdoa.strategies import formations, networks, stochastic_weights
 
@@ -251,6 +254,104 @@ def _formation_properties(
     )  # fmt: skip
 
 
+# ------------------------------------------------------------------ one agent's TDOA rows (§4.2.1)
+@dataclass(frozen=True, eq=False)
+class SingleAgentRows:
+    """An integer ``k × d`` matrix ``Λ`` of one agent's TDOA rows (eqs. (4.17), (4.19)), possibly
+    rank-deficient, an integer period ``T ≥ 1`` and a ``2d``-subset of the rows of ``O``."""
+
+    Lambda: np.ndarray
+    T: int
+    rows: tuple[int, ...]
+
+
+def single_agent_matrix(Lambda: np.ndarray, T: int) -> flint.fmpz_mat:
+    """``O = [H_λ; H_λA; …; H_λA^{2d−1}]`` with ``H_λ = [Λ 0]``, ``A = [[I, TI], [0, I]]``: the
+    rows ``[Λ, jTΛ]``, exactly (seed 000 eqs. (4.6), (4.18))."""
+    k, d = Lambda.shape
+    rows = [
+        [*map(int, row), *(j * T * int(x) for x in row)] for j in range(2 * d) for row in Lambda
+    ]
+    return flint.fmpz_mat(2 * d * k, 2 * d, [x for row in rows for x in row])
+
+
+def _minor(Lambda: np.ndarray, T: int, rows: tuple[int, ...]) -> int:
+    O = single_agent_matrix(Lambda, T)
+    n = O.ncols()
+    return int(flint.fmpz_mat(n, n, [O[r, c] for r in rows for c in range(n)]).det())
+
+
+@st.composite
+def single_agent_rows(draw: st.DrawFn, *, dim: int, rows: tuple[int, ...]) -> SingleAgentRows:
+    """``Λ`` with a row count drawn from ``rows``, entries in {−3, …, 3} (any rank, some rows
+    repeated or combined to reach the degenerate ones), ``T`` in 1–4, a row subset of ``O``."""
+    k = draw(st.sampled_from(rows))
+    entries = st.lists(st.integers(-3, 3), min_size=dim, max_size=dim)
+    Lambda = np.array([draw(entries) for _ in range(k)], dtype=int)
+    if k > 1 and draw(st.booleans()):
+        Lambda[-1] = draw(st.integers(-2, 2)) * Lambda[0] + draw(st.integers(-2, 2)) * Lambda[1 % k]
+    subset = draw(
+        st.lists(st.integers(0, 2 * dim * k - 1), min_size=2 * dim, max_size=2 * dim, unique=True)
+    )
+    return SingleAgentRows(Lambda, draw(st.integers(1, 4)), tuple(sorted(subset)))
+
+
+def minor_scales(example: SingleAgentRows) -> bool:
+    """Square ``Λ``: the minor of ``O`` on the chosen rows is ``α T^d det(Λ)²`` with ``α`` that
+    minor at ``Λ = I``, ``T = 1`` (seed 000 eq. (4.20); §4.2.1 in the plane)."""
+    d = example.Lambda.shape[1]
+    alpha = _minor(np.eye(d, dtype=int), 1, example.rows)
+    exact_det = int(flint.fmpz_mat(d, d, [int(x) for x in example.Lambda.ravel()]).det())
+    return _minor(example.Lambda, example.T, example.rows) == alpha * example.T**d * exact_det**2
+
+
+def rank_of_o(example: SingleAgentRows) -> tuple[int, int]:
+    """``(rank O, rank Λ)`` exactly."""
+    k, d = example.Lambda.shape
+    Lambda = flint.fmpz_mat(k, d, [int(x) for x in example.Lambda.ravel()])
+    return single_agent_matrix(example.Lambda, example.T).rank(), Lambda.rank()
+
+
+def _rows_record(claim: str) -> Callable[[SingleAgentRows], dict[str, Any]]:
+    def record(example: SingleAgentRows) -> dict[str, Any]:
+        rank_o, rank_l = rank_of_o(example)
+        data = {"Lambda": example.Lambda.tolist(), "T": example.T, "rows_of_O": list(example.rows)}
+        return example_record(claim, data | {"rank_O": rank_o, "rank_Lambda": rank_l})
+
+    return record
+
+
+def _rows_property(
+    claim: str, statement: str, dim: int, rows: tuple[int, ...], holds: Callable[..., bool]
+) -> Property:
+    examples = single_agent_rows(dim=dim, rows=rows)
+    return Property(
+        f"{claim}/paper", claim, Wording.PAPER, statement, examples, holds, _rows_record(claim)
+    )
+
+
+def _discretization_matches(example: tuple[float, int]) -> bool:
+    """``cv_discrete(T)`` against ``exp(F T)`` and ``∫₀ᵀ exp(F s) G ds`` computed independently
+    (Van Loan: the exponential of ``[[F, G], [0, 0]] T``), within ``DISCRETIZATION_RTOL``; seed
+    000 eqs. (4.1), (4.5)–(4.6)."""
+    T, dim = example
+    F, G = cv_continuous(dim)
+    n, m = F.shape[0], G.shape[1]
+    block = np.zeros((n + m, n + m))
+    block[:n, :n], block[:n, n:] = F, G
+    exact = expm(block * T)
+    A, B = cv_discrete(T, dim)
+    scale = 1.0 + T * T
+    return bool(
+        np.abs(A - exact[:n, :n]).max() <= DISCRETIZATION_RTOL * scale
+        and np.abs(B - exact[:n, n:]).max() <= DISCRETIZATION_RTOL * scale
+    )
+
+
+DISCRETIZATION_RTOL = 1e-12
+"""Relative agreement of two float evaluations of eq. (4.6) (both are a few roundings off)."""
+
+
 PROPERTIES = (
     Property(
         "seed000.lemA.1.1/paper", "seed000.lemA.1.1", Wording.PAPER,
@@ -286,6 +387,34 @@ PROPERTIES = (
         "seed000.sec4.3.1.uniform-array", 2, "the uniform angular array", is_uniform_array, True
     ),
     *_formation_properties("seed000.sec4.3.1.platonic", 3, "a Platonic solid", is_platonic, True),
+    _rows_property(
+        "seed000.eq4.20",
+        "With 3 TDOA rows every 6×6 minor of O is α·T³·det(Λ)² (α an integer of the minor).",
+        3, (3,), minor_scales,
+    ),
+    _rows_property(
+        "seed000.sec4.2.1.planar",
+        "In the plane every 4×4 minor of O is 0 with 1 TDOA row and α·T²·det(Λ)² with 2.",
+        2, (1, 2),
+        lambda e: rank_of_o(e)[0] < 4 if len(e.Lambda) == 1 else minor_scales(e),
+    ),
+    _rows_property(
+        "seed000.sec4.2.1.two-rows",
+        "With 1 or 2 TDOA rows every 6×6 minor of O vanishes (rank O < 6), whatever Λ and T.",
+        3, (1, 2), lambda e: rank_of_o(e)[0] < 6,
+    ),
+    _rows_property(
+        "seed000.fn2",
+        "With more than 3 TDOA rows, rank O = 6 iff rank Λ ≥ 3.",
+        3, (4, 5, 6), lambda e: (rank_of_o(e)[0] == 6) == (rank_of_o(e)[1] >= 3),
+    ),
+    Property(
+        "seed000.eq4.6/paper", "seed000.eq4.6", Wording.PAPER,
+        "A = exp(F T) and B = ∫₀ᵀ exp(F s) G ds as printed in (4.6), for every T > 0, 2-D and 3-D.",
+        st.tuples(st.floats(-3, 3).map(lambda e: float(10.0**e)), st.sampled_from((2, 3))),
+        _discretization_matches,
+        lambda ex: example_record("seed000.eq4.6", {"T": ex[0], "dim": ex[1]}),
+    ),
 )  # fmt: skip
 """The domain's new wordings (ids ``<claim>/<wording>``)."""
 
