@@ -569,6 +569,17 @@ PROPERTIES = (
         dkf_case,
     ),
     _property(
+        "seed000.thm5.2.10.blindset/paper",
+        "Every S-detectable consensus filter has |λ|² r_σ(W_SS) < 1 for every eigenvalue λ of A "
+        "and every set S of agents blind to a common eigenvector (any row-stochastic W on a "
+        "directed support; docs/theory/s-detectability.md Theorem 4).",
+        dkf_problems(max_states=2, max_agents=3, a_bound=2.0, integer_data=True).map(
+            lambda p: SmallDkf(p.A, p.C, p.W)
+        ),
+        _necessary("blind_set_condition"),
+        dkf_case,
+    ),
+    _property(
         "seed000.appC.2/paper",
         "P*_i(k+1) − P_i(k+1) = (A − L*_iC_i)E_i(P*(k) − P(k))(A − L*_iC_i)' − (L_i − L*_i)"
         "(R_i + C_iE_i(P(k))C_i')(L_i − L*_i)' for every step with P(k) ⪰ P*(k) (display before "

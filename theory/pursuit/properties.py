@@ -43,7 +43,8 @@ import proofs_check
 from theory.core.case_file import Case, bundled_cases
 from theory.core.claims import FixedInstance, Property
 from theory.core.errors import InconclusiveError, PropertyFails
-from theory.core.tolerances import INEQUALITY_RTOL, KINEMATICS_RTOL
+from theory.core.observability import RankResult, numeric_rank
+from theory.core.tolerances import INEQUALITY_RTOL, KINEMATICS_RTOL, RANK_TOL
 from theory.pursuit.case import PURSUIT, PursuitSpec
 from theory.pursuit.certificates import iss_certificate
 from theory.pursuit.derivations import (
@@ -60,7 +61,7 @@ from theory.pursuit.iss import (
     r_perp_connectivity_positive,
 )
 from theory.pursuit.model import left_eigenvector
-from theory.pursuit.observability import helix_fim_rank
+from theory.pursuit.observability import helix_fim_rank, o_matrix, range_jacobian
 from theory.pursuit.strategies import (
     TrackerState,
     digraph_laplacians,
@@ -84,6 +85,7 @@ __all__ = [
     "PursuitExample",
     "RegionPoint",
     "StackedPursuit",
+    "TrackerPair",
     "agreement_case",
     "agreement_examples",
     "agreement_verdict",
@@ -95,6 +97,7 @@ __all__ = [
     "epsilons",
     "gram_determinant",
     "identity_residual",
+    "pair_ranks",
     "phi_case",
     "phi_examples",
     "phi_terms",
@@ -104,6 +107,7 @@ __all__ = [
     "region_case",
     "region_sound",
     "stacked_dissipation",
+    "tracker_pairs",
     "weighted_coordination_examples",
 ]
 
@@ -985,6 +989,77 @@ def weighted_coordination_examples(draw: st.DrawFn) -> CoordinationExample:
     return replace(example, laplacian=np.diag(weights.sum(axis=1)) - weights)
 
 
+@dataclass(frozen=True)
+class TrackerPair:
+    """Two trackers and a constant-velocity target sampled at ``times`` (seed 003 Result 2):
+    tracker 1 on a circle (radius, rate, phase) around a centre, tracker 2 offset from it by a
+    fixed vector or by one rotating at ``offset_rate``; target ``q₀ + t v``."""
+
+    radius: float
+    rate: float
+    phase: float
+    offset: tuple[float, float]
+    offset_rate: float
+    q0: tuple[float, float]
+    v: tuple[float, float]
+
+    times = np.arange(60) * 2.0
+
+    def paths(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Tracker 1, tracker 2 and target positions at :attr:`times`."""
+        angle = self.rate * self.times + self.phase
+        p1 = self.radius * np.column_stack([np.cos(angle), np.sin(angle)])
+        turn = self.offset_rate * self.times
+        ox, oy = self.offset
+        offset = np.column_stack(
+            [ox * np.cos(turn) - oy * np.sin(turn), ox * np.sin(turn) + oy * np.cos(turn)]
+        )
+        target = np.asarray(self.q0) + self.times[:, None] * np.asarray(self.v)
+        return p1, p1 + offset, target
+
+
+@st.composite
+def tracker_pairs(draw: st.DrawFn) -> TrackerPair:
+    """Circle radius 5–40 m, rate 0.01–0.2 rad/s, integer offset ≠ 0 fixed (often) or rotating,
+    a target at rest (often) or slowly moving."""
+    small = st.integers(-3, 3).map(float)
+    offset = draw(st.tuples(small, small).filter(any))
+    return TrackerPair(
+        float(draw(st.integers(5, 40))),
+        draw(st.integers(1, 20)) / 100,
+        draw(st.integers(0, 6)) / 2,
+        offset,
+        draw(st.sampled_from((0.0, 0.0, 0.03, -0.07))),
+        (draw(small) * 3, draw(small) * 3),
+        draw(st.sampled_from(((0.0, 0.0), (0.1, 0.05), (-0.05, 0.02)))),
+    )
+
+
+def pair_ranks(pair: TrackerPair) -> tuple[RankResult, RankResult]:
+    """Rank of (13) sampled, and of both trackers' stacked range Jacobian (their FIM), seed 003
+    eqs. (9)–(10), (13)."""
+    p1, p2, target = pair.paths()
+    both = np.vstack([range_jacobian(p - target, pair.times) for p in (p1, p2)])
+    o = o_matrix(p2 - p1, pair.times)
+    return numeric_rank(o, rank_tol=RANK_TOL), numeric_rank(both, rank_tol=RANK_TOL)
+
+
+def _result2(paper: bool):
+    def holds(pair: TrackerPair) -> bool:
+        o, fim = pair_ranks(pair)
+        if not (o.conclusive() and fim.conclusive()):
+            return True
+        independent, observes = o.rank == 4, fim.rank == 4
+        return observes == independent if paper else observes or not independent
+
+    return holds
+
+
+def _pair_record(pair: TrackerPair) -> dict[str, Any]:
+    data = {k: list(v) if isinstance(v, tuple) else v for k, v in vars(pair).items()}
+    return example_record("seed003.result2", data | {"times": "0, 2, …, 118 s"})
+
+
 MODEL_PROPERTIES = (
     _identity(
         "seed003.eq4", "paper",
@@ -1035,6 +1110,18 @@ MODEL_PROPERTIES = (
         "Every c ∈ ℝ∖{0, 1, −1} makes the helix observe the target (c = −1 keeps the orbit in "
         "a plane through it).",
         HELIX_C, lambda c: _helix_observes(c, (-1.0,)), _helix_record,
+    ),
+    Property(
+        "seed003.result2/paper", "seed003.result2", "paper",
+        "Two trackers observe a constant-velocity target's state iff the columns of O(t) of "
+        "(13) are linearly independent on [t₀, t].",
+        tracker_pairs(), _result2(True), _pair_record, expected_to_hold=False,
+    ),
+    Property(
+        "seed003.result2/corrected", "seed003.result2", "corrected",
+        "If the columns of O(t) of (13) are linearly independent, the two trackers observe "
+        "the state (sufficient, not necessary).",
+        tracker_pairs(), _result2(False), _pair_record,
     ),
     Property(
         "seed003.lem3/paper", "seed003.lem3", "paper",

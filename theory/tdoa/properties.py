@@ -29,9 +29,17 @@ from scipy.linalg import expm
 
 from theory.core.claims import FixedInstance, Property, Wording
 from theory.core.network import exact_metropolis_weights
-from theory.core.tolerances import BOUND_RTOL
+from theory.core.observability import RankResult, numeric_rank
+from theory.core.tolerances import BOUND_RTOL, RANK_TOL
+from theory.kinds import parse_case
 from theory.strategy_helpers import example_record
-from theory.tdoa.estimation.stability import corrected_bound, printed_bound, rademacher_law
+from theory.tdoa.estimation.scenario import run_tdoa_scenario
+from theory.tdoa.estimation.stability import (
+    corrected_bound,
+    lemma_a12_along,
+    printed_bound,
+    rademacher_law,
+)
 from theory.tdoa.geometry.crb import (
     crb_trace,
     optimal_crb_trace,
@@ -40,6 +48,7 @@ from theory.tdoa.geometry.crb import (
 )
 from theory.tdoa.model import cv_continuous, cv_discrete
 from theory.tdoa.observability.weights import path_lemma_failures
+from theory.tdoa.observability.window import PERIOD, PINGS, window_observability
 from theory.tdoa.strategies import formations, networks, stochastic_weights
 
 __all__ = [
@@ -352,6 +361,109 @@ DISCRETIZATION_RTOL = 1e-12
 """Relative agreement of two float evaluations of eq. (4.6) (both are a few roundings off)."""
 
 
+@dataclass(frozen=True, eq=False)
+class FewReceivers:
+    """2 or 3 static receivers (1 or 2 TDOA rows, centralized) and a constant-velocity target
+    (start, velocity), seed 000 §4.2.1 before Def. 4.2.1."""
+
+    receivers: np.ndarray
+    start: np.ndarray
+    velocity: np.ndarray
+
+
+@st.composite
+def few_receivers(draw: st.DrawFn) -> FewReceivers:
+    """Receivers with integer coordinates in [−20, 20]³ (distinct), target start in [−30, 30]³
+    and velocity in [−2, 2]³ (zero allowed: a target at rest)."""
+    n = draw(st.integers(2, 3))
+    point = st.tuples(*[st.integers(-20, 20)] * 3)
+    receivers = np.array(draw(st.lists(point, min_size=n, max_size=n, unique=True)), float)
+    start = np.array(draw(st.tuples(*[st.integers(-30, 30)] * 3)), float)
+    velocity = np.array(draw(st.tuples(*[st.integers(-2, 2)] * 3)), float)
+    return FewReceivers(receivers, start, velocity)
+
+
+def window_ranks(example: FewReceivers) -> tuple[RankResult, int]:
+    """Rank of the window matrix ``𝒪_K`` and the largest frozen-pair rank (seed 000 (4.16))."""
+    window, frozen = window_observability(
+        lambda t: example.receivers, start=example.start, velocity=example.velocity
+    )
+    return numeric_rank(window, rank_tol=RANK_TOL), frozen
+
+
+def _meets_a_receiver(example: FewReceivers) -> bool:
+    """Whether the target sits on a receiver at a ping (a range is not differentiable there)."""
+    path = example.start + np.arange(PINGS)[:, None] * PERIOD * example.velocity
+    return bool(np.any(np.all(path[:, None, :] == example.receivers[None], axis=2)))
+
+
+def _window_paper(example: FewReceivers) -> bool:
+    """Fewer than 3 TDOA rows: not localizable even centrally (window rank < 6)."""
+    if _meets_a_receiver(example):
+        return True
+    window, _ = window_ranks(example)
+    return not window.conclusive() or window.rank < 6
+
+
+def _window_corrected(example: FewReceivers) -> bool:
+    """Every frozen pair ``(A, H(k))`` with fewer than 3 TDOA rows has rank ≤ 4."""
+    if _meets_a_receiver(example):
+        return True
+    return window_ranks(example)[1] <= 4
+
+
+def _window_record(example: FewReceivers) -> dict[str, Any]:
+    window, frozen = window_ranks(example)
+    data = {
+        "receivers": example.receivers.tolist(),
+        "target_start": example.start.tolist(),
+        "target_velocity": example.velocity.tolist(),
+        "window_rank": window.rank,
+        "frozen_pair_rank_max": frozen,
+    }
+    return example_record("seed000.eq4.16.window", data)
+
+
+LEMMA_A12_STEPS = 8
+"""Pings of a drawn run checked against (A.24) (each costs a generalized eigenproblem)."""
+
+
+@st.composite
+def averaged_filter_cases(draw: st.DrawFn) -> dict[str, Any]:
+    """``kind: tdoa-sim`` cases running the averaged EKF with one averaging per ping (τ = T, the
+    setting of App. A): 4–6 agents at integer positions, any connected undirected network
+    (Metropolis weights), target anywhere in [−25, 25]³, noise levels Q, R and prior P0 over
+    three decades each (seed 000 Lemma A.1.2, (A.18)–(A.23))."""
+    n = draw(st.integers(4, 6))
+    point = st.lists(st.integers(-10, 10), min_size=3, max_size=3)
+    agents = draw(st.lists(point, min_size=n, max_size=n, unique_by=tuple))
+    hears = draw(networks(min_agents=n, max_agents=n))
+    edges = [[i + 1, j + 1] for i in range(n) for j in range(i + 1, n) if hears[i, j]]
+    decades = st.sampled_from((0.01, 0.1, 1.0, 10.0))
+    block = {
+        "agents": agents,
+        "target": draw(st.lists(st.integers(-25, 25), min_size=3, max_size=3)),
+        "Q": draw(decades), "R": draw(decades), "T": 1.0, "tau": 1.0,
+        "P0": draw(st.sampled_from((1.0, 10.0, 100.0))), "x0": [0] * 6, "b": 5,
+        "edges": edges, "weights": "metropolis", "filter": "averaged",
+        "steps": LEMMA_A12_STEPS, "formation": "crown",
+    }  # fmt: skip
+    return {
+        "name": f"falsify-lemA.1.2-{n}-agents",
+        "source": "trackcert falsify (seed 000 Lemma A.1.2)",
+        "kind": "tdoa-sim",
+        "tdoa-sim": block,
+    }
+
+
+def lemma_a12_holds(case: dict[str, Any]) -> bool:
+    """(A.24) at every ping of the case's run (seed 0) with ``1 − α`` of (A.35); seed 000
+    Lemma A.1.2."""
+    spec = parse_case(case).spec
+    out = lemma_a12_along(spec, run_tdoa_scenario(spec, np.random.default_rng(0)))
+    return bool(out["holds"].all())
+
+
 PROPERTIES = (
     Property(
         "seed000.lemA.1.1/paper", "seed000.lemA.1.1", Wording.PAPER,
@@ -407,6 +519,24 @@ PROPERTIES = (
         "seed000.fn2",
         "With more than 3 TDOA rows, rank O = 6 iff rank Λ ≥ 3.",
         3, (4, 5, 6), lambda e: (rank_of_o(e)[0] == 6) == (rank_of_o(e)[1] >= 3),
+    ),
+    Property(
+        "seed000.eq4.16.window/paper", "seed000.eq4.16.window", Wording.PAPER,
+        "With fewer than 3 TDOA rows (fewer than 4 receivers) the target cannot be localized "
+        "even centrally: the window observability matrix of (4.16) is rank-deficient.",
+        few_receivers(), _window_paper, _window_record, expected_to_hold=False,
+    ),
+    Property(
+        "seed000.eq4.16.window/corrected", "seed000.eq4.16.window", Wording.CORRECTED,
+        "With fewer than 3 TDOA rows every frozen pair (A, H(k)) is unobservable (rank ≤ 4); "
+        "a moving target is localized over a window when the window matrix has rank 6.",
+        few_receivers(), _window_corrected, _window_record,
+    ),
+    Property(
+        "seed000.lemA.1.2/paper", "seed000.lemA.1.2", Wording.PAPER,
+        "Along the averaged EKF (τ = T), under (A.18)–(A.23), (A.24) holds at every k with α of "
+        "(A.35).",
+        averaged_filter_cases(), lemma_a12_holds, lambda case: case,
     ),
     Property(
         "seed000.eq4.6/paper", "seed000.eq4.6", Wording.PAPER,
