@@ -101,7 +101,16 @@ def falsify(prop: Property, *, examples: int = DEFAULT_EXAMPLES, seed: int = 0) 
         )
     except NoSuchExample:
         return FalsifyResult(prop, examples, seed)
-    return FalsifyResult(prop, examples, seed, example, prop.to_case(example))
+    return FalsifyResult(prop, examples, seed, example, _rerunnable(prop, example, examples, seed))
+
+
+def _rerunnable(prop: Property, example: Any, examples: int, seed: int) -> dict[str, Any]:
+    """The example's case file; a record of a claim about the model alone (no case ``kind``)
+    says how to reproduce it: the same search, which is deterministic given its seed."""
+    case = prop.to_case(example)
+    if "kind" not in case:
+        case["rerun"] = f"trackcert falsify {prop.id} --seed {seed} --examples {examples}"
+    return case
 
 
 def falsify_each(

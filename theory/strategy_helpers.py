@@ -80,11 +80,11 @@ def flush_tiny(values: np.ndarray) -> np.ndarray:
 
 def example_record(claim: str, example: dict[str, Any]) -> dict[str, Any]:
     """The plain-data record of a counterexample to a claim about the model alone (no case kind
-    holds it): the claim, how to rerun the search, and the example's data."""
+    holds it): the claim and the example's data (:func:`theory.falsify.falsify` adds how to rerun
+    the search that found it)."""
     return {
         "name": f"falsify-{claim}",
         "source": "trackcert falsify (shrunk counterexample)",
         "claim": claim,
-        "rerun": f"trackcert falsify {claim} --seed SEED (the seed printed with it)",
         "example": example,
     }
