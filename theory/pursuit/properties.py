@@ -109,6 +109,7 @@ __all__ = [
     "stacked_dissipation",
     "tracker_pairs",
     "weighted_coordination_examples",
+    "weighted_coordination_record",
 ]
 
 TABLE_I = {"omega_bar": 0.05, "epsilon": [-0.5, 0], "K_p": [0.4, 0.2], "k_gamma": 500}
@@ -989,6 +990,19 @@ def weighted_coordination_examples(draw: st.DrawFn) -> CoordinationExample:
     return replace(example, laplacian=np.diag(weights.sum(axis=1)) - weights)
 
 
+def weighted_coordination_record(example: CoordinationExample) -> dict[str, Any]:
+    """The example as plain data: a ``kind: pursuit`` case has unweighted edges, so it cannot
+    hold a weighted Laplacian."""
+    data = {
+        "laplacian": example.laplacian.tolist(),
+        "k_c": example.k_c,
+        "gamma": example.gamma.tolist(),
+        "e_gamma": example.e_gamma.tolist(),
+        "omega_bar": example.omega_bar,
+    }
+    return example_record("seed003.lem3", data)
+
+
 @dataclass(frozen=True)
 class TrackerPair:
     """Two trackers and a constant-velocity target sampled at ``times`` (seed 003 Result 2):
@@ -1128,7 +1142,7 @@ MODEL_PROPERTIES = (
         "On every strongly connected weighted digraph ξ is ISS w.r.t. e_γ: a(L) > 0 and "
         "V̇_c ≤ −k_c a(L)‖ξ‖²_R + ‖ξ‖_R b‖e_γ‖ (Lemma 3 with the constants of "
         "docs/theory/pursuit-iss.md).",
-        weighted_coordination_examples(), coordination_iss_holds, coordination_case,
+        weighted_coordination_examples(), coordination_iss_holds, weighted_coordination_record,
     ),
     Property(
         "seed003.lem4/paper", "seed003.lem4", "paper",
