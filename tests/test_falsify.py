@@ -287,3 +287,13 @@ def test_report_records_carry_the_finding() -> None:
     record = Record(result, "src", "statement", "000")
     assert "finding" in RESULT_FIELDS and record.finding == Finding.PROPERTY_FAILS
     assert record.to_json()["finding"] == "property-fails"
+
+
+def test_iss_shows_the_finding_of_each_claim() -> None:
+    shown = runner.invoke(app, ["iss", "pursuit-not-strongly-connected"])
+    assert "hypotheses-unmet" in shown.stdout
+    record = json.loads(
+        runner.invoke(app, ["iss", "pursuit-not-strongly-connected", "--json"]).stdout
+    )
+    findings = {c["id"]: c["finding"] for c in record["claims"]}
+    assert findings["seed003.thm2"] == findings["seed003.lem3"] == "hypotheses-unmet"
