@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import typer
 import yaml
+from rich.markup import escape
 from rich.table import Table
 
 from theory.cli.common import (
@@ -92,7 +93,7 @@ def _record(result: FalsifyResult) -> dict:
 
 def _show(result: FalsifyResult) -> None:
     prop = result.property
-    console.print(f"[bold]{prop.id}[/bold] ({prop.wording} wording): {prop.statement}")
+    console.print(f"[bold]{prop.id}[/bold] ({prop.wording} wording): {escape(prop.statement)}")
     if not result.found:
         console.print(f"  no counterexample in {result.examples} examples (seed {result.seed})\n")
         return
@@ -101,7 +102,7 @@ def _show(result: FalsifyResult) -> None:
         f"(shrunk; seed {result.seed}); rerun it as this case file:"
     )
     console.print(
-        yaml.safe_dump(result.case, sort_keys=False, default_flow_style=None),
+        yaml.safe_dump(result.case, sort_keys=False, default_flow_style=None, allow_unicode=True),
         markup=False,
         highlight=False,
     )
@@ -124,11 +125,11 @@ def _list(as_json: bool) -> None:
     for column in ("property", "wording", "statement"):
         table.add_column(column)
     for prop in props:
-        table.add_row(prop.id, prop.wording, prop.statement)
+        table.add_row(prop.id, prop.wording, escape(prop.statement))
     console.print(table)
     instances = Table(title="claims about one fixed instance (nothing to search)")
     for column in ("claim", "why not falsifiable"):
         instances.add_column(column)
     for mark in fixed:
-        instances.add_row(mark.claim, mark.reason)
+        instances.add_row(mark.claim, escape(mark.reason))
     console.print(instances)
