@@ -318,8 +318,9 @@ class Property:
     ``id`` is ``<claim id>/<wording>``; ``wording`` is ``paper`` or ``corrected``; ``examples``
     is where to search; ``holds(example)`` must be true on each (vacuously on an example outside
     the statement's hypotheses); ``to_case(example)`` is a case file (plain data) reproducing the
-    example, or for a claim about the model alone a record of its data without a ``kind``. ``expected_to_hold`` is False for a paper wording
-    known to be wrong: the default budget must find its counterexample.
+    example, or for a claim about the model alone a record of its data without a ``kind``.
+    ``expected_to_hold`` is False for a paper wording known to be wrong: the default budget must
+    find its counterexample.
     """
 
     id: str
