@@ -348,7 +348,9 @@ def _progress_seconds() -> float:
 
 
 @contextlib.contextmanager
-def _progress_lines(total: int, description: str, seconds: float) -> Iterator[Callable[..., None]]:
+def _progress_lines(
+    total: int, description: str, seconds: float
+) -> Iterator[Callable[..., None]]:
     """Plain progress lines on stderr: first, every ``seconds`` (if > 0) from a timer thread,
     and last (when the block ends without an error)."""
     state = {"done": 0, "total": total, "label": ""}

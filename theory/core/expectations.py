@@ -55,6 +55,7 @@ UNDECIDED_KEY = "undecided_expectations"
 """Evidence key listing the expect keys whose reported value the claim could not decide."""
 
 
+
 class ExpectationVerdict(StrEnum):
     """The verdict on one expected key (module docstring, 3)."""
 

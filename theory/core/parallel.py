@@ -126,7 +126,9 @@ def worker_timeout() -> float:
     except ValueError:
         seconds = 0.0
     if not 0 < seconds < float("inf"):
-        raise CaseError(WORKER_TIMEOUT_SETTING, "a number of seconds > 0", text, file=ENVIRONMENT)
+        raise CaseError(
+            WORKER_TIMEOUT_SETTING, "a number of seconds > 0", text, file=ENVIRONMENT
+        )
     return seconds
 
 

@@ -138,7 +138,9 @@ class Sweep:
             "points": len(self.rows),
             "status": dict(sorted(Counter(r.status for r in self.rows).items())),
             "agreement": dict(sorted(Counter(r.agreement for r in self.rows).items())),
-            "disagreeing_points": [r.point for r in self.rows if r.agreement == Agreement.DISAGREE],
+            "disagreeing_points": [
+                r.point for r in self.rows if r.agreement == Agreement.DISAGREE
+            ],
             "verdict": self.verdict,
             "exit_code": self.exit_code,
         }
