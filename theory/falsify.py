@@ -8,7 +8,12 @@ ready-to-run case file. A property stating a claim the papers get wrong is regis
 a corrected property must survive.
 
 Each domain lists its properties in its registry (``PROPERTIES``, read by
-:func:`theory.registry.all_properties`).
+:func:`theory.registry.all_properties`) and the claims no search can falsify, because they are
+about one fixed instance, with the reason (``FIXED_INSTANCES``, read by :func:`fixed_instances`).
+Every registered claim is one or the other (:func:`unsearched_claims` is empty; tests check it).
+
+What a search finds is a :class:`~theory.core.claims.Finding`: a shrunk example that meets the
+wording's hypotheses and fails its conclusion is a ``counterexample`` to that statement.
 """
 
 from __future__ import annotations
@@ -22,11 +27,18 @@ from typing import Any
 from hypothesis import HealthCheck, Phase, find, settings
 from hypothesis.errors import NoSuchExample
 
-from theory.core.claims import Property
+from theory.core.claims import Finding, FixedInstance, Property
 from theory.core.parallel import TaskRunner, engine
-from theory.registry import properties_for
+from theory.registry import all_claims, all_properties, domains, properties_for
 
-__all__ = ["DEFAULT_EXAMPLES", "FalsifyResult", "falsify", "falsify_each"]
+__all__ = [
+    "DEFAULT_EXAMPLES",
+    "FalsifyResult",
+    "falsify",
+    "falsify_each",
+    "fixed_instances",
+    "unsearched_claims",
+]
 
 DEFAULT_EXAMPLES = 200
 
@@ -47,6 +59,29 @@ class FalsifyResult:
         """Whether a counterexample was found."""
         return self.case is not None
 
+    @property
+    def finding(self) -> Finding | None:
+        """``counterexample`` when one was found (it meets the wording's hypotheses and fails its
+        conclusion), else ``None``: the search found nothing."""
+        return Finding.COUNTEREXAMPLE if self.found else None
+
+
+def fixed_instances() -> tuple[FixedInstance, ...]:
+    """Every claim about one fixed instance (the domains' ``FIXED_INSTANCES``), sorted by claim;
+    ``ValueError`` if one is marked twice or also has a property."""
+    marked = sorted((f for d in domains() for f in d.FIXED_INSTANCES), key=lambda f: f.claim)
+    claims = [f.claim for f in marked]
+    searched = {p.claim for p in all_properties()}
+    if len(set(claims)) != len(claims) or searched & set(claims):
+        raise ValueError("a claim is marked as a fixed instance twice, or also has a property")
+    return tuple(marked)
+
+
+def unsearched_claims() -> list[str]:
+    """Registered claims with neither a property nor a fixed-instance mark (should be none)."""
+    covered = {p.claim for p in all_properties()} | {f.claim for f in fixed_instances()}
+    return [c.id for c in all_claims() if c.id not in covered]
+
 
 def falsify(prop: Property, *, examples: int = DEFAULT_EXAMPLES, seed: int = 0) -> FalsifyResult:
     """Search ``examples`` examples (deterministically from ``seed``) for a counterexample."""
@@ -66,7 +101,16 @@ def falsify(prop: Property, *, examples: int = DEFAULT_EXAMPLES, seed: int = 0) 
         )
     except NoSuchExample:
         return FalsifyResult(prop, examples, seed)
-    return FalsifyResult(prop, examples, seed, example, prop.to_case(example))
+    return FalsifyResult(prop, examples, seed, example, _rerunnable(prop, example, examples, seed))
+
+
+def _rerunnable(prop: Property, example: Any, examples: int, seed: int) -> dict[str, Any]:
+    """The example's case file; a record of a claim about the model alone (no case ``kind``)
+    says how to reproduce it: the same search, which is deterministic given its seed."""
+    case = prop.to_case(example)
+    if "kind" not in case:
+        case["rerun"] = f"trackcert falsify {prop.id} --seed {seed} --examples {examples}"
+    return case
 
 
 def falsify_each(

@@ -8,6 +8,7 @@ impossible request is refused the same way everywhere (``InvalidArgument`` namin
 from __future__ import annotations
 
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 from hypothesis import strategies as st
@@ -19,6 +20,7 @@ __all__ = [
     "boundary_values",
     "case_floats",
     "check_range",
+    "example_record",
     "flush_tiny",
     "generators",
     "orthonormal_matrix",
@@ -74,3 +76,15 @@ def flush_tiny(values: np.ndarray) -> np.ndarray:
     """
     smallest = 10.0 ** -limit("exponent")
     return np.where(np.abs(values) < smallest, 0.0, values)
+
+
+def example_record(claim: str, example: dict[str, Any]) -> dict[str, Any]:
+    """The plain-data record of a counterexample to a claim about the model alone (no case kind
+    holds it): the claim and the example's data (:func:`theory.falsify.falsify` adds how to rerun
+    the search that found it)."""
+    return {
+        "name": f"falsify-{claim}",
+        "source": "trackcert falsify (shrunk counterexample)",
+        "claim": claim,
+        "example": example,
+    }

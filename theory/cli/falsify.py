@@ -1,13 +1,16 @@
 """``trackcert falsify CLAIM``: search for a counterexample to a claim, in each of its wordings.
 
 A shell over :func:`theory.falsify.falsify`; exit code (:mod:`theory.core.verdicts`) 0 when no
-wording has a counterexample in the budget, 1 when one has, 2 on bad input.
+wording has a counterexample in the budget, 1 when one has, 2 on bad input. Each result shows its
+finding (``counterexample``, :class:`~theory.core.claims.Finding`); ``--list`` lists the
+properties and the claims about one fixed instance, with the reason none can be searched.
 """
 
 from __future__ import annotations
 
 import typer
 import yaml
+from rich.markup import escape
 from rich.table import Table
 
 from theory.cli.common import (
@@ -21,7 +24,7 @@ from theory.core.errors import CaseError
 from theory.core.parallel import default_workers, engine
 from theory.core.validation import check_count
 from theory.core.verdicts import exit_code
-from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, falsify_each
+from theory.falsify import DEFAULT_EXAMPLES, FalsifyResult, falsify_each, fixed_instances
 from theory.registry import all_properties, properties_for
 
 __all__ = ["register"]
@@ -83,33 +86,38 @@ def _record(result: FalsifyResult) -> dict:
         "examples": result.examples,
         "seed": result.seed,
         "found": result.found,
+        "finding": None if result.finding is None else str(result.finding),
         "case": result.case,
     }
 
 
 def _show(result: FalsifyResult) -> None:
     prop = result.property
-    console.print(f"[bold]{prop.id}[/bold] ({prop.wording} wording): {prop.statement}")
+    console.print(f"[bold]{prop.id}[/bold] ({prop.wording} wording): {escape(prop.statement)}")
     if not result.found:
         console.print(f"  no counterexample in {result.examples} examples (seed {result.seed})\n")
         return
-    console.print(f"  counterexample (shrunk; seed {result.seed}), as a case file:")
     console.print(
-        yaml.safe_dump(result.case, sort_keys=False, default_flow_style=None),
+        f"  finding: {result.finding} to the {prop.wording} wording "
+        f"(shrunk; seed {result.seed}); rerun it as this case file:"
+    )
+    console.print(
+        yaml.safe_dump(result.case, sort_keys=False, default_flow_style=None, allow_unicode=True),
         markup=False,
         highlight=False,
     )
 
 
 def _list(as_json: bool) -> None:
-    props = all_properties()
+    props, fixed = all_properties(), fixed_instances()
     if as_json:
         print_json(
             {
                 "properties": [
                     {"id": p.id, "claim": p.claim, "wording": p.wording, "statement": p.statement}
                     for p in props
-                ]
+                ],
+                "fixed_instances": [{"claim": f.claim, "reason": f.reason} for f in fixed],
             }
         )
         return
@@ -117,5 +125,11 @@ def _list(as_json: bool) -> None:
     for column in ("property", "wording", "statement"):
         table.add_column(column)
     for prop in props:
-        table.add_row(prop.id, prop.wording, prop.statement)
+        table.add_row(prop.id, prop.wording, escape(prop.statement))
     console.print(table)
+    instances = Table(title="claims about one fixed instance (nothing to search)")
+    for column in ("claim", "why not falsifiable"):
+        instances.add_column(column)
+    for mark in fixed:
+        instances.add_row(mark.claim, escape(mark.reason))
+    console.print(instances)

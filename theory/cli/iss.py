@@ -46,10 +46,10 @@ def _print_table(report: Any) -> None:
         highlight=False,
     )
     claims = Table(title="claims")
-    for column in ("id", "status", "message"):
+    for column in ("id", "status", "finding", "message"):
         claims.add_column(column)
     for claim in record["claims"]:
-        claims.add_row(claim["id"], claim["status"], claim["message"])
+        claims.add_row(claim["id"], claim["status"], claim["finding"] or "", claim["message"])
     console.print(claims)
     for e in report.expectations:
         console.print(f"expectation {e.describe()}", markup=False, highlight=False)

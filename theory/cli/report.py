@@ -192,6 +192,10 @@ def _print_summary(document: dict, out: Path) -> None:
     for claim, seen in counts.items():
         table.add_row(claim, *(str(seen[s]) if seen[s] else "" for s in statuses))
     console.print(table)
+    findings = Counter(r["finding"] for r in document["claims"] if r.get("finding"))
+    if findings:
+        found = ", ".join(f"{n} {finding}" for finding, n in sorted(findings.items()))
+        console.print(f"findings of the non-verified results: {found}", markup=False)
     unmet = [e for e in document["expectations"] if e["verdict"] != ExpectationVerdict.MET]
     for e in unmet:
         console.print(f"{e['verdict']}: {e['case']} expect.{e['key']}", markup=False)

@@ -61,8 +61,14 @@ from hypothesis import strategies as st
 
 from theory.consensus.case import Order, ch5_examples
 from theory.consensus.conditions import necessary_conditions
-from theory.consensus.operators import gains_stabilize
-from theory.consensus.riccati import bound_iteration, coupled_riccati, coupled_riccati_step
+from theory.consensus.operators import J_matrix, closed_loop, float_lyapunov, gains_stabilize
+from theory.consensus.riccati import (
+    bound_iteration,
+    check_averaged_bound,
+    check_covariance_bound,
+    coupled_riccati,
+    coupled_riccati_step,
+)
 from theory.consensus.s_detectability import decide_s_detectability
 from theory.consensus.strategies import (
     SELF_WEIGHT_THRESHOLDS,
@@ -70,19 +76,38 @@ from theory.consensus.strategies import (
     dkf_problems,
     self_weight_examples,
 )
-from theory.core.claims import Property
+from theory.consensus.suboptimal_gains import (
+    bound_step,
+    corrected_gap,
+    is_psd,
+    optimal_gain,
+    printed_gap,
+    random_instance,
+)
+from theory.core.claims import FixedInstance, Property
 from theory.core.exact import exact_decimal
 from theory.core.observability import unobservable_eigenvalues
-from theory.core.tolerances import BLOWUP, EXACT_DIM, PSD_TOL, RICCATI_HORIZON, UNIT_CIRCLE_TOL
-from theory.strategy_helpers import boundary_values
+from theory.core.tolerances import (
+    BLOWUP,
+    EXACT_DIM,
+    PSD_TOL,
+    RADIUS_TOL,
+    RICCATI_HORIZON,
+    UNIT_CIRCLE_TOL,
+)
+from theory.strategy_helpers import boundary_values, example_record
 
 __all__ = [
+    "FIXED_INSTANCES",
     "PROPERTIES",
     "RICCATI_EXAMPLES",
     "RiccatiAgreement",
     "ScaledProblem",
     "SelfWeightPoint",
     "SmallDkf",
+    "SuboptimalGainStep",
+    "averaged_bound_holds",
+    "covariance_bound_holds",
     "dkf_case",
     "jointly_detectable",
     "projected_self_weight",
@@ -92,6 +117,7 @@ __all__ = [
     "self_weight_truth",
     "small_dkf_problems",
     "strongly_connected",
+    "suboptimal_gain_step",
     "unit_circle_problem",
 ]
 
@@ -387,6 +413,74 @@ RICCATI_EXAMPLES = dkf_problems(max_states=2, max_agents=3, a_bound=2.0, integer
 """Small integer problems, so that exact verdicts (both ways) are common."""
 
 
+@dataclass(frozen=True)
+class SuboptimalGainStep:
+    """Sizes and seed of one exact App. C.2 step: agent 1 of ``agents`` with ``n`` states, ``p``
+    outputs, ``P_j(k) ⪰ P*_j(k)`` (:func:`~theory.consensus.suboptimal_gains.random_instance`)."""
+
+    n: int
+    p: int
+    agents: int
+    seed: int
+
+
+def suboptimal_gain_step(step: SuboptimalGainStep) -> dict[str, bool]:
+    """On the exact instance: the printed identity of App. C.2, the corrected one, and the
+    monotonicity ``P(k+1) ⪰ P*(k+1)`` it yields (seed 000 App. C.2, eqs. (5.15), (C.2)–(C.3))."""
+    d = random_instance(np.random.default_rng(step.seed), step.n, step.p, step.agents)
+    A, C, R, Q, L, Pi, Ps = (d[k] for k in ("A", "C", "R", "Q", "L", "Pi", "Pi_star"))
+    gap = bound_step(A, C, R, Q, L, Pi) - bound_step(A, C, R, Q, optimal_gain(A, C, R, Ps), Ps)
+    return {
+        "printed": -gap == printed_gap(A, C, R, L, Pi, Ps),
+        "corrected": gap == corrected_gap(A, C, R, L, Pi, Ps) and is_psd(gap),
+    }
+
+
+def _gain_step_case(step: SuboptimalGainStep) -> dict[str, Any]:
+    return example_record("seed000.appC.2", {"instance": "random_instance", **vars(step)})
+
+
+SUBOPTIMAL_GAIN_STEPS = st.builds(
+    SuboptimalGainStep,
+    st.integers(1, 3),
+    st.integers(1, 2),
+    st.integers(1, 4),
+    st.integers(0, 2**32 - 1),
+)
+"""Exact App. C.2 steps of every size drawn (the identity is about one agent's step)."""
+
+
+def covariance_bound_holds(problem: DkfProblem) -> bool:
+    """Lemma 5.2.3 on ``problem`` with its fixed gains ``L``, ``Q = I``, ``R_i = I`` and a random
+    ``P0 ⪰ 0`` from its seed: the exact covariances ``Σ(k) ⪯ P(k)`` of (5.15) (seed 000
+    Lemma 5.2.3, App. C.1)."""
+    n = problem.A.shape[0]
+    F = np.random.default_rng(problem.seed).standard_normal((n, n))
+    R = [np.eye(c.shape[0]) for c in problem.C]
+    check = check_covariance_bound(
+        problem.A, problem.C, problem.W, np.eye(n), R, problem.L, F @ F.T, steps=12, samples=4
+    )
+    return check.holds
+
+
+def averaged_bound_holds(problem: DkfProblem) -> bool:
+    """Lemma A.2.1 with ``M^j = A − L_jC_j`` and ``X`` solving ``X − f_1(M, X) = I``: when ``X ≻ 0``
+    and ``r < 1`` (the hypothesis, outside ``radius_tol``), ``f_k(M, P_0) ⪯ α r^k X`` and
+    ``P_k ⪯ (α + μ/(1 − r)) X``; vacuously true otherwise (seed 000 eqs. (A.53)–(A.54))."""
+    n, N = problem.A.shape[0], problem.W.shape[0]
+    M = closed_loop(problem.A, problem.C, problem.L)
+    try:
+        X = float_lyapunov(J_matrix(problem.W, M), N, n)
+    except np.linalg.LinAlgError:
+        return True
+    if np.linalg.eigvalsh(X).min() <= 0:
+        return True
+    F = np.random.default_rng(problem.seed).standard_normal((N, n, n))
+    U = np.stack([np.eye(n) + Li @ Li.T for Li in problem.L])
+    check = check_averaged_bound(problem.W, M, X, F @ F.transpose(0, 2, 1), U, steps=60)
+    return check.r >= 1 - RADIUS_TOL or (check.decay_ok and check.bound_ok)
+
+
 def _property(
     id_: str, statement: str, examples: st.SearchStrategy, holds: Callable, to_case: Callable,
     *, claim: str | None = None, expected_to_hold: bool = True,
@@ -474,5 +568,73 @@ PROPERTIES = (
         lambda problem: all(riccati_agreement(problem, order=o).holds for o in Order),
         dkf_case,
     ),
+    _property(
+        "seed000.thm5.2.10.blindset/paper",
+        "Every S-detectable consensus filter has |λ|² r_σ(W_SS) < 1 for every eigenvalue λ of A "
+        "and every set S of agents blind to a common eigenvector (any row-stochastic W on a "
+        "directed support; docs/theory/s-detectability.md Theorem 4).",
+        dkf_problems(max_states=2, max_agents=3, a_bound=2.0, integer_data=True).map(
+            lambda p: SmallDkf(p.A, p.C, p.W)
+        ),
+        _necessary("blind_set_condition"),
+        dkf_case,
+    ),
+    _property(
+        "seed000.appC.2/paper",
+        "P*_i(k+1) − P_i(k+1) = (A − L*_iC_i)E_i(P*(k) − P(k))(A − L*_iC_i)' − (L_i − L*_i)"
+        "(R_i + C_iE_i(P(k))C_i')(L_i − L*_i)' for every step with P(k) ⪰ P*(k) (display before "
+        "(C.3)).",
+        SUBOPTIMAL_GAIN_STEPS,
+        lambda step: suboptimal_gain_step(step)["printed"],
+        _gain_step_case,
+        expected_to_hold=False,
+    ),
+    _property(
+        "seed000.appC.2/corrected",
+        "P(k) ⪰ P*(k) ⇒ P(k+1) − P*(k+1) equals the corrected identity of App. C.2 "
+        "(docs/errata.md) and is ⪰ 0.",
+        SUBOPTIMAL_GAIN_STEPS,
+        lambda step: suboptimal_gain_step(step)["corrected"],
+        _gain_step_case,
+    ),
+    _property(
+        "seed000.lem5.2.3/paper",
+        "With any fixed gains, any row-stochastic W and any P(0) = Σ(0) ⪰ 0, the error "
+        "covariances of (5.5) satisfy Σ_i(k) ⪯ P_i(k) of (5.15).",
+        dkf_problems(max_states=3, max_agents=4, gain_bound=1.5),
+        covariance_bound_holds,
+        dkf_case,
+    ),
+    _property(
+        "seed000.lemA.2.1/paper",
+        "If X^i ≻ f_1^i(M, X) for some X ≻ 0, then f_k(M, P_0) ⪯ α r^k X → 0 and "
+        "P_{k+1} = f_1(M, P_k) + U stays ⪯ (α + μ/(1 − r)) X.",
+        dkf_problems(max_states=3, max_agents=4, a_bound=1.2, gain_bound=1.0),
+        averaged_bound_holds,
+        dkf_case,
+    ),
 )
 """Every falsifiable wording of the domain (ids ``<claim>/<wording>``)."""
+
+FIXED_INSTANCES = (
+    FixedInstance(
+        "case.expect.dkf",
+        "about the expect block one dkf case file states; S-detectability itself is searched as "
+        "seed000.def5.2.4",
+    ),
+    FixedInstance(
+        "seed000.counterexample5.2",
+        "one printed example (n = 1, N = 2, L = (0.3, −0.25)), itself a counterexample",
+    ),
+    FixedInstance(
+        "seed000.def5.2.4.certified",
+        "a certificate of one case; S-detectability is searched as seed000.def5.2.4",
+    ),
+    FixedInstance("seed000.ex5.1", "the printed Example 1 of §5.3.1 (its W_g, W_c, W_b)"),
+    FixedInstance("seed000.ex5.2", "the printed Example 2 of §5.3.2 (its W_g, W_b)"),
+    FixedInstance(
+        "seed000.sec5.3.sim-examples",
+        "simulations of the printed W_g and W_b of §5.3 (Figs 5.2–5.3)",
+    ),
+)
+"""The domain's claims about one fixed instance, with the reason."""

@@ -28,12 +28,15 @@ __all__ = [
     "ClaimResult",
     "ClaimSet",
     "Context",
+    "Finding",
+    "FixedInstance",
     "Method",
     "NotApplicable",
     "Property",
     "RunCache",
     "Status",
     "Wording",
+    "finding_of",
     "status_of",
 ]
 
@@ -47,6 +50,18 @@ class Status(StrEnum):
     REFUTED = "refuted"  # it fails, with a counterexample in the evidence
     CORRECTED = "corrected"  # the paper's wording fails, the corrected statement holds
     INCONCLUSIVE = "inconclusive"  # a margin lies inside tolerance or a solver failed
+
+
+class Finding(StrEnum):
+    """What a result that is not ``verified`` found (report.json's ``finding``; issue 27 part 3).
+
+    ``status`` keeps its four values; the finding tells a reader which of three different things
+    a ``refuted`` or ``corrected`` result says.
+    """
+
+    COUNTEREXAMPLE = "counterexample"  # the paper's statement is false: hypotheses met, claim fails
+    HYPOTHESES_UNMET = "hypotheses-unmet"  # the system fails the hypotheses: the theorem is silent
+    PROPERTY_FAILS = "property-fails"  # this system fails the property (evidence says how)
 
 
 class Wording(StrEnum):
@@ -82,6 +97,16 @@ def status_of(verdict: bool | None) -> Status:
     return _STATUS_OF[verdict]
 
 
+def finding_of(status: Status, *, about_model: bool) -> Finding | None:
+    """The finding a result gets when its check states none: ``corrected`` (the paper's wording
+    fails) and ``refuted`` about the model alone are counterexamples to the paper's statement; a
+    ``refuted`` result on a case says that this system fails the property; ``verified`` and
+    ``inconclusive`` find nothing (``None``)."""
+    if status == Status.CORRECTED or (status == Status.REFUTED and about_model):
+        return Finding.COUNTEREXAMPLE
+    return Finding.PROPERTY_FAILS if status == Status.REFUTED else None
+
+
 class NotApplicable(Exception):  # noqa: N818 (a verdict, not a failure)
     """Raised by a check whose claim says nothing about the case; the message says why."""
 
@@ -91,7 +116,9 @@ class ClaimResult:
     """The outcome of one claim on one case (``claim``, ``case`` stamped by :meth:`Claim.run`).
 
     ``margin`` is the distance of the deciding quantity from its threshold (in the unit the
-    evidence states), ``tolerance`` the named tolerances used.
+    evidence states), ``tolerance`` the named tolerances used. ``finding`` says what a result
+    that is not verified found (:class:`Finding`); a check that leaves it ``None`` gets
+    :func:`finding_of` its status from :meth:`Claim.run`. A ``verified`` result finds nothing.
     """
 
     status: Status
@@ -103,10 +130,15 @@ class ClaimResult:
     figures: tuple[str, ...] = ()
     claim: str = ""
     case: str = ""
+    finding: Finding | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "status", Status(self.status))
         object.__setattr__(self, "method", Method(self.method))
+        if self.finding is not None:
+            object.__setattr__(self, "finding", Finding(self.finding))
+            if self.status == Status.VERIFIED:
+                raise ValueError(f"a verified result finds nothing; got finding {self.finding!r}")
 
     def to_json(self, source: str = "") -> dict[str, Any]:
         """The report record ``{"id","source","case","method","status","evidence",…}``."""
@@ -116,6 +148,7 @@ class ClaimResult:
             "case": self.case,
             "method": str(self.method),
             "status": str(self.status),
+            "finding": None if self.finding is None else str(self.finding),
             "margin": self.margin,
             "tolerance": dict(self.tolerance),
             "message": self.message,
@@ -209,7 +242,15 @@ class Claim:
                 returned = type(result).__name__
                 raise TypeError(f"{self.id}: the check returned a {returned}, not a ClaimResult")
         name = MODEL_CASE if case is None else case.name
-        return [replace(r, claim=self.id, case=name) for r in results]
+        return [
+            replace(
+                r,
+                claim=self.id,
+                case=name,
+                finding=r.finding or finding_of(r.status, about_model=case is None),
+            )
+            for r in results
+        ]
 
     def results(self, case: Case | None, ctx: Context | None = None) -> list[ClaimResult]:
         """:meth:`run`, with :class:`NotApplicable` read as no result."""
@@ -261,13 +302,25 @@ class ClaimSet:
 
 
 @dataclass(frozen=True)
+class FixedInstance:
+    """A registered claim about one fixed instance (a printed example, a figure's experiment, one
+    case's certificate), which no counterexample search can falsify: ``reason`` says which
+    instance, and where the claim it instantiates is searched (``trackcert falsify --list``)."""
+
+    claim: str
+    reason: str
+
+
+@dataclass(frozen=True)
 class Property:
     """One wording of a claim for a counterexample search (``trackcert falsify``).
 
     ``id`` is ``<claim id>/<wording>``; ``wording`` is ``paper`` or ``corrected``; ``examples``
-    is where to search; ``holds(example)`` must be true on each; ``to_case(example)`` is a case
-    file (plain data) reproducing the example. ``expected_to_hold`` is False for a paper wording
-    known to be wrong: the default budget must find its counterexample.
+    is where to search; ``holds(example)`` must be true on each (vacuously on an example outside
+    the statement's hypotheses); ``to_case(example)`` is a case file (plain data) reproducing the
+    example, or for a claim about the model alone a record of its data without a ``kind``.
+    ``expected_to_hold`` is False for a paper wording known to be wrong: the default budget must
+    find its counterexample.
     """
 
     id: str

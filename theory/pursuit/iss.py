@@ -49,7 +49,7 @@ from scipy.sparse.csgraph import connected_components
 
 from proofs_check.linalg import positive_definite
 from theory.core.case_file import Case
-from theory.core.claims import ClaimResult, ClaimSet, Context
+from theory.core.claims import ClaimResult, ClaimSet, Context, Finding
 from theory.core.errors import CaseError
 from theory.core.exact import Matrix, exact_decimal, fractions_of, to_fmpq
 from theory.core.expectations import Expectation, Observed, judge
@@ -611,7 +611,10 @@ def _with_status(case: Case, status: ConditionStatus) -> list[str]:
 
 def _refuted_delta(case: Case) -> ClaimResult:
     evidence = {"epsilon": case.spec.epsilon.tolist(), "reason": "ε₁ = 0: Δ̄ does not exist"}
-    return ClaimResult("refuted", "exact", evidence, message="controller (26) undefined")
+    return ClaimResult(
+        "refuted", "exact", evidence, message="controller (26) undefined",
+        finding=Finding.HYPOTHESES_UNMET,
+    )  # fmt: skip
 
 
 @claims.register(
@@ -696,14 +699,16 @@ def check_lemma3(case: Case, ctx: Context) -> list[ClaimResult]:
     if not coordination.zero_eigenvalue_simple:
         evidence["reason"] = "L has a repeated zero eigenvalue: ξ̇ = −k_cLξ does not decay"
         message = "no spanning tree: the coordination error does not converge"
-        return [ClaimResult("refuted", "exact", evidence, message=message)]
+        unmet = Finding.HYPOTHESES_UNMET  # not strongly connected: Lemma 3 says nothing
+        return [ClaimResult("refuted", "exact", evidence, message=message, finding=unmet)]
     if coordination.a_L is None:
         evidence["reason"] = (
             "not strongly connected but the zero eigenvalue is simple: ξ still decays at the "
             "spectral rate, though r has zero entries and V_c = ½ξᵀRξ is not a Lyapunov function"
         )
         message = "hypothesis stronger than needed: a spanning tree suffices"
-        return [ClaimResult("corrected", "numeric", evidence, message=message)]
+        unmet = Finding.HYPOTHESES_UNMET  # ξ decays, but Lemma 3 as stated says nothing here
+        return [ClaimResult("corrected", "numeric", evidence, message=message, finding=unmet)]
     evidence.update(
         {
             "a_L": coordination.a_L,
@@ -736,8 +741,12 @@ def check_theorem2(case: Case, ctx: Context) -> list[ClaimResult]:
     failing = _with_status(case, ConditionStatus.FAILS)
     if failing:
         evidence = {"failing_conditions": failing}
-        message = f"conditions {failing} fail: no ISS estimate for the cascade"
-        return [ClaimResult("refuted", "numeric", evidence, message=message)]
+        message = (
+            f"hypotheses unmet, conditions {failing} fail: Theorem 2 says nothing about this "
+            "system (no ISS estimate for the cascade)"
+        )
+        unmet = Finding.HYPOTHESES_UNMET
+        return [ClaimResult("refuted", "numeric", evidence, message=message, finding=unmet)]
     undecided = _with_status(case, ConditionStatus.INCONCLUSIVE)
     if undecided:
         evidence = {"inconclusive_conditions": undecided}

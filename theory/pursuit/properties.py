@@ -33,24 +33,35 @@ from fractions import Fraction
 from functools import cache
 from typing import Any, Literal
 
+import mpmath
 import numpy as np
+import sympy as sp
 import yaml
 from hypothesis import strategies as st
 
 import proofs_check
 from theory.core.case_file import Case, bundled_cases
-from theory.core.claims import Property
+from theory.core.claims import FixedInstance, Property
 from theory.core.errors import InconclusiveError, PropertyFails
-from theory.core.tolerances import INEQUALITY_RTOL, KINEMATICS_RTOL
+from theory.core.observability import RankResult, numeric_rank
+from theory.core.tolerances import INEQUALITY_RTOL, KINEMATICS_RTOL, RANK_TOL
 from theory.pursuit.case import PURSUIT, PursuitSpec
 from theory.pursuit.certificates import iss_certificate
+from theory.pursuit.derivations import (
+    delta_matrix,
+    error_dynamics_check,
+    lyapunov_derivative_check,
+    rotation_rate_check,
+)
 from theory.pursuit.iss import (
     ConditionStatus,
     generalized_algebraic_connectivity,
     iss_conditions,
     pursuit_iss,
+    r_perp_connectivity_positive,
 )
 from theory.pursuit.model import left_eigenvector
+from theory.pursuit.observability import helix_fim_rank, o_matrix, range_jacobian
 from theory.pursuit.strategies import (
     TrackerState,
     digraph_laplacians,
@@ -58,24 +69,35 @@ from theory.pursuit.strategies import (
     simulated_pursuit_blocks,
     tracker_states,
 )
-from theory.strategy_helpers import boundary_values
+from theory.strategy_helpers import boundary_values, example_record
 
 __all__ = [
     "AGREEMENT_RECORDS",
+    "FIXED_INSTANCES",
+    "IDENTITIES",
+    "MODEL_PROPERTIES",
     "PROPERTIES",
     "AgreementExample",
     "CertificatePoint",
     "CoordinationExample",
+    "IdentityPoint",
     "PhiExample",
     "PursuitExample",
     "RegionPoint",
+    "StackedPursuit",
+    "TrackerPair",
     "agreement_case",
     "agreement_examples",
     "agreement_verdict",
     "certificate_sound",
     "coordination_case",
     "coordination_examples",
+    "coordination_iss_holds",
     "coordination_terms",
+    "epsilons",
+    "gram_determinant",
+    "identity_residual",
+    "pair_ranks",
     "phi_case",
     "phi_examples",
     "phi_terms",
@@ -84,6 +106,10 @@ __all__ = [
     "pursuit_terms",
     "region_case",
     "region_sound",
+    "stacked_dissipation",
+    "tracker_pairs",
+    "weighted_coordination_examples",
+    "weighted_coordination_record",
 ]
 
 TABLE_I = {"omega_bar": 0.05, "epsilon": [-0.5, 0], "K_p": [0.4, 0.2], "k_gamma": 500}
@@ -778,3 +804,354 @@ PROPERTIES = tuple(
     for i, c, s, e, h, t in BOUNDARY_WORDINGS
 )
 """The pursuit domain's falsifiable properties."""
+
+FIXED_INSTANCES = (
+    FixedInstance(
+        "case.expect.pursuit",
+        "about the expect block one pursuit case file states; the ISS claims it observes are "
+        "searched as seed003.thm1 and seed003.thm2",
+    ),
+    FixedInstance(
+        "seed003.thm2.certified",
+        "a certificate of one case; the corrected Theorem 2 is searched as "
+        "seed003.thm2.certificate-boundary and seed003.thm2.sim-trajectories",
+    ),
+)
+"""The domain's claims about one fixed instance, with the reason."""
+
+
+# ---------------------------------------------------------------------------------------------
+# identities of the model (eqs. (4), (21), (70), Lemma 2), Remark 6, the helix, Lemmas 3–4
+
+IDENTITIES = {
+    "eq4-printed-S-3d": lambda: rotation_rate_check(3, printed=True),
+    "eq4-2d": lambda: rotation_rate_check(2),
+    "eq4-3d": lambda: rotation_rate_check(3),
+    "eq21-2d": lambda: error_dynamics_check(2),
+    "eq21-3d": lambda: error_dynamics_check(3),
+    **{
+        f"{name}-{d}d-type-{c}": (
+            lambda d=d, c=c, estimated=estimated: lyapunov_derivative_check(d, c, estimated)
+        )
+        for name, estimated in (("lem2", False), ("eq70", True))
+        for d in (2, 3)
+        for c in ("I", "II")
+    },
+}
+"""The exact identities of :mod:`theory.pursuit.derivations`, by name (both sides unsimplified)."""
+
+IDENTITY_DIGITS = 50
+"""Digits of the evaluation of an identity at a rational point; the residual must be below
+``10^(10 − IDENTITY_DIGITS)`` relative to the sides (sin, cos of rational angles are not
+rational; everything else is exact)."""
+
+
+@dataclass(frozen=True)
+class IdentityPoint:
+    """An identity of :data:`IDENTITIES` and the seed of the rational point (every state,
+    rotation, gain and rate a rational in [−5, 5]) where both sides are compared."""
+
+    identity: str
+    seed: int
+
+
+@cache
+def _compiled(identity: str) -> tuple[list[sp.Symbol], Any, Any]:
+    """The identity's symbols and both sides compiled for mpmath (once per process)."""
+    check = IDENTITIES[identity]()
+    lhs, rhs = sp.Matrix([check.lhs]), sp.Matrix([check.rhs])
+    symbols = sorted(lhs.free_symbols | rhs.free_symbols, key=str)
+    return symbols, sp.lambdify(symbols, lhs, "mpmath"), sp.lambdify(symbols, lhs - rhs, "mpmath")
+
+
+def identity_residual(point: IdentityPoint) -> float:
+    """``max |lhs − rhs| / (1 + max |lhs|)`` at the point, to :data:`IDENTITY_DIGITS` digits
+    (seed 003 eqs. (3)–(4), (21), (70), Lemma 2)."""
+    symbols, lhs, diff = _compiled(point.identity)
+    rng = np.random.default_rng(point.seed)
+    with mpmath.workdps(IDENTITY_DIGITS):
+        values = [
+            mpmath.mpf(int(rng.integers(-50, 51))) / int(rng.integers(1, 11)) for _ in symbols
+        ]
+        left = max(abs(x) for x in np.asarray(lhs(*values), dtype=object).ravel())
+        gap = max(abs(x) for x in np.asarray(diff(*values), dtype=object).ravel())
+        return float(gap / (1 + left))
+
+
+def _identity_examples(names: list[str]) -> st.SearchStrategy[IdentityPoint]:
+    return st.builds(IdentityPoint, st.sampled_from(names), st.integers(0, 2**32 - 1))
+
+
+def _identity_record(claim: str):
+    return lambda point: example_record(claim, {"identity": point.identity, "seed": point.seed})
+
+
+def _identity_holds(point: IdentityPoint) -> bool:
+    return identity_residual(point) <= 10.0 ** (10 - IDENTITY_DIGITS)
+
+
+def _identity(claim: str, wording: str, statement: str, names: list[str], hold: bool) -> Property:
+    return Property(
+        f"{claim}/{wording}", claim, wording, statement, _identity_examples(names),
+        _identity_holds, _identity_record(claim), expected_to_hold=hold,
+    )  # fmt: skip
+
+
+def _of(prefix: str) -> list[str]:
+    return [name for name in IDENTITIES if name.startswith(prefix)]
+
+
+@st.composite
+def epsilons(draw: st.DrawFn) -> tuple[int, ...]:
+    """Non-zero offsets ε (seed 003 eq. (19)) in 2-D or 3-D, integer entries, often with zeros."""
+    dim = draw(st.sampled_from((2, 3)))
+    entries = st.one_of(st.just(0), st.integers(-3, 3))
+    return tuple(draw(st.lists(entries, min_size=dim, max_size=dim).filter(any)))
+
+
+def gram_determinant(epsilon: tuple[int, ...]) -> sp.Expr:
+    """``det(ΔΔᵀ)`` of eq. (22) at ``ε``, exactly (Δ̄ = Δᵀ(ΔΔᵀ)⁻¹ exists iff it is non-zero)."""
+    delta = delta_matrix(sp.Matrix(epsilon))
+    return (delta * delta.T).det()
+
+
+def _delta_record(epsilon: tuple[int, ...]) -> dict[str, Any]:
+    det = gram_determinant(epsilon)
+    return example_record("seed003.eq22.delta-bar", {"epsilon": list(epsilon), "det": str(det)})
+
+
+HELIX_C = st.one_of(
+    st.integers(-4, 4).filter(lambda c: c not in (0, 1)),
+    st.fractions(-4, 4, max_denominator=8).filter(lambda c: c not in (0, 1)),
+).map(float)
+"""Every constant ``c ∈ ℝ∖{0, 1}`` of eq. (15) (integers, so ±1 and the other degenerate
+values are drawn, and rationals)."""
+
+
+def _helix_observes(c: float, excluded: tuple[float, ...]) -> bool:
+    """Whether a tracker on the helix of eq. (15) with ``c`` sees rank 6 (vacuous for the
+    excluded ``c`` and for rank decisions inside the inconclusive band)."""
+    if c in excluded:
+        return True
+    result = helix_fim_rank(c)
+    return result.rank == 6 or not result.conclusive()
+
+
+def _helix_record(c: float) -> dict[str, Any]:
+    return example_record("seed003.eq15.helix", {"c": c, "path": "Table II (eq. (17))"})
+
+
+@dataclass(frozen=True, eq=False)
+class StackedPursuit:
+    """Trackers' pursuit examples stacked as in Lemma 4 (eqs. (76)–(78))."""
+
+    trackers: tuple[PursuitExample, ...]
+
+
+def stacked_dissipation(example: StackedPursuit) -> bool:
+    """Lemma 4: ``Σ_i V̇_i ≤ −λ‖e‖² + c‖e‖‖x̃‖`` with ``λ = min_i λ_min(K_i)``, ``c = max_i c_i``
+    and the stacked errors (Cauchy–Schwarz on the per-tracker bounds of (72)); seed 003 (78)."""
+    terms = [pursuit_terms(t) for t in example.trackers]
+    e = math.sqrt(sum(t["e_norm"] ** 2 for t in terms))
+    x = math.sqrt(sum(t["x_norm"] ** 2 for t in terms))
+    lam, c = min(t["lambda_min"] for t in terms), max(t["c"] for t in terms)
+    v_dot = sum(t["v_dot"] for t in terms)
+    return v_dot <= -lam * e * e + c * e * x + KINEMATICS_RTOL * sum(t["scale"] for t in terms)
+
+
+def _stacked_record(example: StackedPursuit) -> dict[str, Any]:
+    return pursuit_example_case(example.trackers[0]) | {
+        "description": f"{len(example.trackers)} trackers stacked (Lemma 4); the first is shown"
+    }
+
+
+def coordination_iss_holds(example: CoordinationExample) -> bool:
+    """Lemma 3 (corrected constants): for a strongly connected weighted digraph ``a(L) > 0``
+    (exact) and ``V̇_c ≤ −k_c a(L)‖ξ‖²_R + ‖ξ‖_R b ‖e_γ‖``; seed 003 Lemmas 1, 3, eq. (74)."""
+    r = left_eigenvector(example.laplacian)
+    if r is None or not r_perp_connectivity_positive(example.laplacian, r):
+        return False
+    terms = coordination_terms(example)
+    return terms["v_dot"] <= terms["corrected"] + INEQUALITY_RTOL * terms["scale"]
+
+
+@st.composite
+def weighted_coordination_examples(draw: st.DrawFn) -> CoordinationExample:
+    """:func:`coordination_examples` on weighted digraphs: every edge weight an integer 1–5
+    (seed 003 §II-B allows any a_ij > 0 on the edges)."""
+    example = draw(coordination_examples())
+    L = example.laplacian
+    weights = np.array(
+        [
+            [draw(st.integers(1, 5)) if L[i, j] < 0 else 0 for j in range(len(L))]
+            for i in range(len(L))
+        ]
+    )
+    return replace(example, laplacian=np.diag(weights.sum(axis=1)) - weights)
+
+
+def weighted_coordination_record(example: CoordinationExample) -> dict[str, Any]:
+    """The example as plain data: a ``kind: pursuit`` case has unweighted edges, so it cannot
+    hold a weighted Laplacian."""
+    data = {
+        "laplacian": example.laplacian.tolist(),
+        "k_c": example.k_c,
+        "gamma": example.gamma.tolist(),
+        "e_gamma": example.e_gamma.tolist(),
+        "omega_bar": example.omega_bar,
+    }
+    return example_record("seed003.lem3", data)
+
+
+@dataclass(frozen=True)
+class TrackerPair:
+    """Two trackers and a constant-velocity target sampled at ``times`` (seed 003 Result 2):
+    tracker 1 on a circle (radius, rate, phase) around a centre, tracker 2 offset from it by a
+    fixed vector or by one rotating at ``offset_rate``; target ``q₀ + t v``."""
+
+    radius: float
+    rate: float
+    phase: float
+    offset: tuple[float, float]
+    offset_rate: float
+    q0: tuple[float, float]
+    v: tuple[float, float]
+
+    times = np.arange(60) * 2.0
+
+    def paths(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Tracker 1, tracker 2 and target positions at :attr:`times`."""
+        angle = self.rate * self.times + self.phase
+        p1 = self.radius * np.column_stack([np.cos(angle), np.sin(angle)])
+        turn = self.offset_rate * self.times
+        ox, oy = self.offset
+        offset = np.column_stack(
+            [ox * np.cos(turn) - oy * np.sin(turn), ox * np.sin(turn) + oy * np.cos(turn)]
+        )
+        target = np.asarray(self.q0) + self.times[:, None] * np.asarray(self.v)
+        return p1, p1 + offset, target
+
+
+@st.composite
+def tracker_pairs(draw: st.DrawFn) -> TrackerPair:
+    """Circle radius 5–40 m, rate 0.01–0.2 rad/s, integer offset ≠ 0 fixed (often) or rotating,
+    a target at rest (often) or slowly moving."""
+    small = st.integers(-3, 3).map(float)
+    offset = draw(st.tuples(small, small).filter(any))
+    return TrackerPair(
+        float(draw(st.integers(5, 40))),
+        draw(st.integers(1, 20)) / 100,
+        draw(st.integers(0, 6)) / 2,
+        offset,
+        draw(st.sampled_from((0.0, 0.0, 0.03, -0.07))),
+        (draw(small) * 3, draw(small) * 3),
+        draw(st.sampled_from(((0.0, 0.0), (0.1, 0.05), (-0.05, 0.02)))),
+    )
+
+
+def pair_ranks(pair: TrackerPair) -> tuple[RankResult, RankResult]:
+    """Rank of (13) sampled, and of both trackers' stacked range Jacobian (their FIM), seed 003
+    eqs. (9)–(10), (13)."""
+    p1, p2, target = pair.paths()
+    both = np.vstack([range_jacobian(p - target, pair.times) for p in (p1, p2)])
+    o = o_matrix(p2 - p1, pair.times)
+    return numeric_rank(o, rank_tol=RANK_TOL), numeric_rank(both, rank_tol=RANK_TOL)
+
+
+def _result2(paper: bool):
+    def holds(pair: TrackerPair) -> bool:
+        o, fim = pair_ranks(pair)
+        if not (o.conclusive() and fim.conclusive()):
+            return True
+        independent, observes = o.rank == 4, fim.rank == 4
+        return observes == independent if paper else observes or not independent
+
+    return holds
+
+
+def _pair_record(pair: TrackerPair) -> dict[str, Any]:
+    data = {k: list(v) if isinstance(v, tuple) else v for k, v in vars(pair).items()}
+    return example_record("seed003.result2", data | {"times": "0, 2, …, 118 s"})
+
+
+MODEL_PROPERTIES = (
+    _identity(
+        "seed003.eq4", "paper",
+        "Ṙ = R S(ω) with S(ω) as printed in eq. (4), for every Z-Y-X Euler angle and body rate.",
+        _of("eq4-printed"), False,
+    ),
+    _identity(
+        "seed003.eq4", "corrected",
+        "Ṙ = R [ω]ₓ for every Euler angle and body rate, in 2-D and 3-D.",
+        ["eq4-2d", "eq4-3d"], True,
+    ),
+    _identity(
+        "seed003.eq21", "paper",
+        "ė_p = −S(ω)e_p + Δu − Rᵀ(r′(γ)γ̇ + v) along (2)–(5) for every state, in 2-D and 3-D.",
+        _of("eq21"), True,
+    ),
+    _identity(
+        "seed003.lem2", "paper",
+        "With the true target V̇ = −eᵀKe for controllers (24)/(25) and (28)/(29), every "
+        "symmetric K_p, every state, in 2-D and 3-D.",
+        _of("lem2"), True,
+    ),
+    _identity(
+        "seed003.eq70", "paper",
+        "V̇₂ = −eᵀKe + e_pᵀRᵀṽ + e_pᵀK_pRᵀq̃ − e_γq̃ᵀr′(γ) with the estimated target, every "
+        "state and gain, in 2-D and 3-D.",
+        _of("eq70"), True,
+    ),
+    Property(
+        "seed003.eq22.delta-bar/paper", "seed003.eq22.delta-bar", "paper",
+        "Every non-zero ε makes Δ̄ = Δᵀ(ΔΔᵀ)⁻¹ well defined (det ΔΔᵀ ≠ 0), Remark 6.",
+        epsilons(), lambda eps: gram_determinant(eps) != 0, _delta_record,
+        expected_to_hold=False,
+    ),
+    Property(
+        "seed003.eq22.delta-bar/corrected", "seed003.eq22.delta-bar", "corrected",
+        "Δ̄ is well defined iff ε₁ ≠ 0 (det ΔΔᵀ = ε₁² in 2-D, ε₁²‖ε‖² in 3-D).",
+        epsilons(), lambda eps: (gram_determinant(eps) != 0) == (eps[0] != 0), _delta_record,
+    ),
+    Property(
+        "seed003.eq15.helix/paper", "seed003.eq15.helix", "paper",
+        "Every c ∈ ℝ∖{0, 1} in (15) makes the helix observe a constant-velocity target "
+        "(range FIM of rank 6 along Table II's path).",
+        HELIX_C, lambda c: _helix_observes(c, ()), _helix_record, expected_to_hold=False,
+    ),
+    Property(
+        "seed003.eq15.helix/corrected", "seed003.eq15.helix", "corrected",
+        "Every c ∈ ℝ∖{0, 1, −1} makes the helix observe the target (c = −1 keeps the orbit in "
+        "a plane through it).",
+        HELIX_C, lambda c: _helix_observes(c, (-1.0,)), _helix_record,
+    ),
+    Property(
+        "seed003.result2/paper", "seed003.result2", "paper",
+        "Two trackers observe a constant-velocity target's state iff the columns of O(t) of "
+        "(13) are linearly independent on [t₀, t].",
+        tracker_pairs(), _result2(True), _pair_record, expected_to_hold=False,
+    ),
+    Property(
+        "seed003.result2/corrected", "seed003.result2", "corrected",
+        "If the columns of O(t) of (13) are linearly independent, the two trackers observe "
+        "the state (sufficient, not necessary).",
+        tracker_pairs(), _result2(False), _pair_record,
+    ),
+    Property(
+        "seed003.lem3/paper", "seed003.lem3", "paper",
+        "On every strongly connected weighted digraph ξ is ISS w.r.t. e_γ: a(L) > 0 and "
+        "V̇_c ≤ −k_c a(L)‖ξ‖²_R + ‖ξ‖_R b‖e_γ‖ (Lemma 3 with the constants of "
+        "docs/theory/pursuit-iss.md).",
+        weighted_coordination_examples(), coordination_iss_holds, weighted_coordination_record,
+    ),
+    Property(
+        "seed003.lem4/paper", "seed003.lem4", "paper",
+        "For N trackers the stacked pursuit error is ISS w.r.t. the stacked estimation error: "
+        "V̇_e ≤ −λ_min(K)‖e‖² + (√μ + ‖K‖)‖e‖‖x̃‖ (eqs. (76)–(78)).",
+        st.lists(pursuit_examples(), min_size=1, max_size=4).map(
+            lambda t: StackedPursuit(tuple(t))
+        ),
+        stacked_dissipation, _stacked_record,
+    ),
+)  # fmt: skip
+"""Wordings of seed 003's model claims and of Lemmas 3–4 (ids ``<claim>/<wording>``)."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 from theory.core.expectations import expectation_claim
 from theory.pursuit import certificates, derivations, iss, observability, properties, simulation
 
-__all__ = ["CERTIFIERS", "CLAIMS", "PROPERTIES"]
+__all__ = ["CERTIFIERS", "CLAIMS", "FIXED_INSTANCES", "PROPERTIES"]
 
 CLAIMS = (
     *derivations.claims,
@@ -15,5 +15,6 @@ CLAIMS = (
     *simulation.claims,
     expectation_claim("pursuit", command="iss", observe=iss.observe_iss),
 )
-PROPERTIES = properties.PROPERTIES
+PROPERTIES = (*properties.PROPERTIES, *properties.MODEL_PROPERTIES)
+FIXED_INSTANCES = properties.FIXED_INSTANCES
 CERTIFIERS = {"pursuit": (certificates.pursuit_certificates,)}

@@ -131,6 +131,7 @@ RESULT_FIELDS = (
     "case",
     "method",
     "status",
+    "finding",
     "message",
     "margin",
     "tolerance",

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from theory.core.expectations import expectation_claim
 from theory.tdoa import model
+from theory.tdoa import properties as model_properties
 from theory.tdoa.estimation import averaged, simulation, stability
 from theory.tdoa.geometry import crb, directions
 from theory.tdoa.observability import (
@@ -16,7 +17,7 @@ from theory.tdoa.observability import (
     window,
 )
 
-__all__ = ["CERTIFIERS", "CLAIMS", "PROPERTIES"]
+__all__ = ["CERTIFIERS", "CLAIMS", "FIXED_INSTANCES", "PROPERTIES"]
 
 CLAIMS = (
     *model.claims,
@@ -35,5 +36,6 @@ CLAIMS = (
         "tdoa-sim", command="simulate", observe=simulation.observe_tdoa_sim, method="simulation"
     ),
 )
-PROPERTIES = (*properties.PROPERTIES, *averaged.PROPERTIES)
+PROPERTIES = (*properties.PROPERTIES, *averaged.PROPERTIES, *model_properties.PROPERTIES)
+FIXED_INSTANCES = model_properties.FIXED_INSTANCES
 CERTIFIERS = {"tdoa": (certificates.tdoa_certificates,)}

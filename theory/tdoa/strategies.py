@@ -29,13 +29,16 @@ from theory.core.network import metropolis_weights, uniform_weights
 from theory.strategy_helpers import check_range, generators, orthonormal_matrix
 
 __all__ = [
+    "FORMATION_FAMILIES",
     "SCENE_FAMILIES",
     "WEIGHT_KINDS",
     "TdoaScene",
+    "formations",
     "is_connected",
     "networks",
     "rational_rotations",
     "similarity_image",
+    "stochastic_weights",
     "tdoa_scenes",
     "weight_matrices",
 ]
@@ -44,6 +47,8 @@ SCENE_FAMILIES = ("general", "coplanar", "cone", "target-in-plane")
 """The ``family`` values of :func:`tdoa_scenes`."""
 WEIGHT_KINDS = ("metropolis", "uniform", "random", "singular")
 """The ``kind`` values of :func:`weight_matrices`."""
+FORMATION_FAMILIES = ("general", "uniform", "union", "degenerate")
+"""The ``family`` values of :func:`formations`."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -272,3 +277,78 @@ def similarity_image(
         ]
         for p in rows
     ]
+
+
+@st.composite
+def stochastic_weights(draw: st.DrawFn, hears: np.ndarray, *, decades: int = 4) -> np.ndarray:
+    """Any row-stochastic ``W`` with ``w_ii > 0`` and ``w_ij > 0`` exactly on the links
+    ``hears[i, j]`` (directed or not): the class seed 000 §4.2.2 allows (before eq. (4.26)).
+
+    The raw weights are log-uniform over ``decades`` decades before normalisation, or one of the
+    named rules (Metropolis on a symmetric support, uniform); ``InvalidArgument`` for
+    ``decades < 0``."""
+    if decades < 0:
+        raise InvalidArgument(f"decades={decades} must be ≥ 0")
+    support = np.asarray(hears, bool) | np.eye(len(hears), dtype=bool)
+    rule = draw(st.sampled_from(("any", "uniform", "metropolis")))
+    if rule == "metropolis" and np.array_equal(hears, np.asarray(hears).T):
+        return metropolis_weights(np.asarray(hears, bool))
+    if rule == "uniform":
+        return uniform_weights(np.asarray(hears, bool))
+    rng = draw(generators())
+    raw = np.where(support, 10.0 ** rng.uniform(-decades, 0, support.shape), 0.0)
+    return raw / raw.sum(axis=1, keepdims=True)
+
+
+def _uniform_bearings(rng: np.random.Generator, n: int) -> np.ndarray:
+    angles = rng.uniform(0, 2 * np.pi) + 2 * np.pi * np.arange(n) / n
+    return np.column_stack([np.cos(angles), np.sin(angles)])
+
+
+def _solid(rng: np.random.Generator, draw: st.DrawFn) -> np.ndarray:
+    from theory.tdoa.geometry.crb import platonic_solids
+
+    solids = platonic_solids()
+    return solids[draw(st.sampled_from(sorted(solids)))] @ orthonormal_matrix(rng, 3).T
+
+
+@st.composite
+def formations(
+    draw: st.DrawFn, *, dim: int = 2, family: str = "general", max_agents: int = 12
+) -> np.ndarray:
+    """Unit directions (N, ``dim``) from a target to ``N ≥ 3`` receivers (seed 000 §4.3.1, seed
+    003 Result 3): every formation, since only the bearings enter the CRB.
+
+    ``family`` (:data:`FORMATION_FAMILIES`): ``general`` (random directions), ``uniform`` (a
+    rotated uniform angular array in 2-D, a rotated Platonic solid in 3-D), ``union`` (two or
+    three of those, rotated independently), ``degenerate`` (every direction on one line through
+    the target in 2-D, in one plane in 3-D; directions may repeat). ``InvalidArgument`` for
+    another ``dim`` or ``family``, or ``max_agents < 4``."""
+    if dim not in (2, 3) or family not in FORMATION_FAMILIES or max_agents < 4:
+        raise InvalidArgument(
+            f"dim={dim!r}, family={family!r}, max_agents={max_agents}: expected dim 2 or 3, a "
+            f"family of {FORMATION_FAMILIES}, max_agents ≥ 4"
+        )
+    rng = draw(generators())
+    if family == "uniform":
+        return (
+            _uniform_bearings(rng, draw(st.integers(3, max_agents)))
+            if dim == 2
+            else _solid(rng, draw)
+        )
+    if family == "union":
+        parts = draw(st.integers(2, 3))
+        if dim == 2:
+            return np.vstack(
+                [_uniform_bearings(rng, draw(st.integers(3, 6))) for _ in range(parts)]
+            )
+        return np.vstack([_solid(rng, draw) for _ in range(parts)])
+    n = draw(st.integers(3, max_agents))
+    directions = rng.standard_normal((n, dim))
+    if family == "degenerate":
+        directions[:, 1 if dim == 2 else 2] = 0.0
+        repeats = draw(st.integers(0, n - 1))
+        directions[:repeats] = directions[n - 1]
+        if dim == 3:
+            directions = directions @ orthonormal_matrix(rng, 3).T
+    return directions / np.linalg.norm(directions, axis=1, keepdims=True)

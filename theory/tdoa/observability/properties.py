@@ -52,8 +52,10 @@ from theory.tdoa.observability.topology import TopologyResult, analyze_topology
 from theory.tdoa.strategies import (
     WEIGHT_KINDS,
     TdoaScene,
+    networks,
     rational_rotations,
     similarity_image,
+    stochastic_weights,
     tdoa_scenes,
     weight_matrices,
 )
@@ -605,6 +607,90 @@ def _scene_property(
     )
 
 
+SCENES_2D_3D = st.one_of(SCENES_3D, tdoa_scenes(dim=2, family="general"))
+"""Scenes in 3-D (every family) and in the plane: Thm 4.2.3's heuristic is stated for both."""
+
+
+@st.composite
+def networked_scenes(draw: st.DrawFn, *, max_agents: int = 6) -> WeightedScene:
+    """A 2-D or 3-D scene of any family with any row-stochastic ``W`` (``w_ii > 0``,
+    ``w_ij > 0`` exactly on the links) of an undirected network, connected or not: the class of
+    seed 000 §4.2.2 (before eq. (4.26)) behind Thm 4.2.3 and Cor. 4.2.4."""
+    scene = draw(st.one_of(SCENES_3D, tdoa_scenes(dim=2, family="general")))
+    n = len(scene.agents)
+    hears = draw(networks(min_agents=n, max_agents=n, connected=None))
+    if n > max_agents:
+        scene = TdoaScene(scene.target, scene.agents[:max_agents], scene.family)
+        hears = hears[:max_agents, :max_agents]
+    return WeightedScene(scene, draw(stochastic_weights(hears)), "explicit")
+
+
+def _heuristic_met(example: WeightedScene) -> bool:
+    """Every agent is in a connected component of ≥ d + 1 agents not in one hyperplane."""
+    agents, d = example.scene.agents, example.scene.agents.shape[1]
+    parts = components(weights_support(example.weights))
+    return all(len(part) >= d + 1 and not _coplanar(agents[part]) for part in parts)
+
+
+def _network_paper(example: WeightedScene) -> bool:
+    """Thm 4.2.3 (network): observable iff the heuristic holds for every agent."""
+    net = analyze_weighted_scene(example)
+    return not net.conclusive or net.observable == _heuristic_met(example)
+
+
+def _network_corrected(example: WeightedScene) -> bool:
+    """Detectable iff every component's stacked position Jacobian has full rank."""
+    return _rank_sum_corrected(example)
+
+
+@dataclass(frozen=True, eq=False)
+class SwitchingScene:
+    """A scene and the networks it switches between (one W per step), seed 000 Cor. 4.2.4."""
+
+    steps: tuple[WeightedScene, ...]
+
+
+@st.composite
+def switching_scenes(draw: st.DrawFn) -> SwitchingScene:
+    """2–3 networks with any weights on one scene (:func:`networked_scenes`' class)."""
+    first = draw(networked_scenes())
+    n = len(first.scene.agents)
+    others = [
+        WeightedScene(first.scene, draw(stochastic_weights(draw(networks(
+            min_agents=n, max_agents=n, connected=None)))), "explicit")
+        for _ in range(draw(st.integers(1, 2)))
+    ]  # fmt: skip
+    return SwitchingScene((first, *others))
+
+
+def _switching_paper(example: SwitchingScene) -> bool:
+    """Cor. 4.2.4: the heuristic at every step ⇒ observable at every step."""
+    if not all(_heuristic_met(step) for step in example.steps):
+        return True
+    nets = [analyze_weighted_scene(step) for step in example.steps]
+    return not all(n.conclusive for n in nets) or all(n.observable for n in nets)
+
+
+def switching_case(example: SwitchingScene) -> dict[str, Any]:
+    """The case of the first step that is not observable (else of the first step)."""
+    steps = example.steps
+    worst = next((s for s in steps if not analyze_weighted_scene(s).observable), steps[0])
+    return weighted_scene_case(worst)
+
+
+def _switching_corrected(example: SwitchingScene) -> bool:
+    """Every step: detectable iff every component's stacked Jacobian has full rank."""
+    return all(_rank_sum_corrected(step) for step in example.steps)
+
+
+def _network_property(claim: str, wording: str, statement: str, examples, holds, to_case,
+                      expected_to_hold: bool = True) -> Property:  # fmt: skip
+    return Property(
+        f"{claim}/{wording}", claim, wording, statement, examples, holds, to_case,
+        expected_to_hold,
+    )  # fmt: skip
+
+
 def _boundary_property(family: str) -> Property:
     return Property(
         id=f"seed000.thm4.2.3.boundary-{family}/corrected",
@@ -669,6 +755,63 @@ PROPERTIES = (
         to_case=weighted_scene_case,
     ),
     *(_boundary_property(family) for family in FAMILIES),
+    _network_property(
+        "seed000.thm4.2.3.heuristic",
+        "paper",
+        "An agent can localize the target iff it belongs to a connected (sub)network of ≥ 4 "
+        "non-coplanar agents (3 non-collinear in 2-D).",
+        SCENES_2D_3D,
+        _heuristic_paper,
+        scene_case,
+        expected_to_hold=False,
+    ),
+    _network_property(
+        "seed000.thm4.2.3.heuristic",
+        "corrected",
+        "A connected (sub)network localizes the target iff the unit directions from its agents "
+        "to the target do not lie on one circle (2-D: one line) of the unit sphere.",
+        SCENES_2D_3D,
+        _heuristic_corrected,
+        scene_case,
+    ),
+    _network_property(
+        "seed000.thm4.2.3.network",
+        "paper",
+        "For any stochastic W with w_ij > 0 exactly on the links, (W ⊗ A, D_H) is observable iff "
+        "every agent is part of a connected (sub)network of ≥ 4 non-coplanar agents.",
+        networked_scenes(),
+        _network_paper,
+        weighted_scene_case,
+        expected_to_hold=False,
+    ),
+    _network_property(
+        "seed000.thm4.2.3.network",
+        "corrected",
+        "For any such W, (W ⊗ A, D_H) is detectable iff every connected component's stacked "
+        "position Jacobian has full rank d (observability also needs W nonsingular).",
+        networked_scenes(),
+        _network_corrected,
+        weighted_scene_case,
+    ),
+    _network_property(
+        "seed000.cor4.2.4",
+        "paper",
+        "On a time-varying undirected network, if at every step every agent is part of a "
+        "connected network of ≥ 4 non-coplanar agents, the networked system is observable.",
+        switching_scenes(),
+        _switching_paper,
+        switching_case,
+        expected_to_hold=False,
+    ),
+    _network_property(
+        "seed000.cor4.2.4",
+        "corrected",
+        "On a time-varying network, at every step (W_k ⊗ A, D_H(k)) is detectable iff every "
+        "connected component's stacked position Jacobian has full rank.",
+        switching_scenes(),
+        _switching_corrected,
+        switching_case,
+    ),
     Property(
         id="seed000.thm4.2.3.invariance/corrected",
         claim="seed000.thm4.2.3.invariance",
