@@ -71,14 +71,19 @@ def _reading_order(claim: dict[str, Any]) -> tuple:
     return (not numbers, numbers, claim["id"])
 
 
-def contents_view(document: dict[str, Any], pages: dict[str, str]) -> list[dict[str, Any]]:
-    """Per paper, its registered claims with one verdict line each and a link per result."""
+def results_by_claim(document: dict[str, Any]) -> dict[str, list[dict[str, Any]]]:
+    """report.json's result records grouped by claim id, in report order."""
     by_id: dict[str, list[dict[str, Any]]] = {}
     for record in document["claims"]:
         by_id.setdefault(record["id"], []).append(record)
-    papers = [*document["papers"], "other"]
+    return by_id
+
+
+def contents_view(document: dict[str, Any], pages: dict[str, str]) -> list[dict[str, Any]]:
+    """Per paper, its registered claims with one verdict line each and a link per result."""
+    by_id = results_by_claim(document)
     sections = []
-    for paper in papers:
+    for paper in [*document["papers"], "other"]:
         claims = []
         mine = [c for c in document["registered"] if c["paper"] == paper]
         for claim in sorted(mine, key=_reading_order):

@@ -56,7 +56,13 @@ from theory.report.document import (
 )
 from theory.report.evidence_table import evidence_rows
 from theory.report.glossary import STATUS_LEGEND, margin_table
-from theory.report.pages import case_pages, page_views, result_view, search_file
+from theory.report.pages import (
+    case_pages,
+    page_views,
+    result_view,
+    results_by_claim,
+    search_file,
+)
 from theory.report.runner import (
     ProgressHook,
     RunResult,
@@ -426,12 +432,9 @@ def _environment(*, autoescape: bool) -> jinja2.Environment:
 
 def _views(document: dict[str, Any]) -> dict[str, Any]:
     """Groupings the templates need: per paper, each registered claim with its results."""
-    by_id: dict[str, list[dict[str, Any]]] = {}
-    for record in document["claims"]:
-        by_id.setdefault(record["id"], []).append(record)
-    papers = [*document["papers"], "other"]
+    by_id = results_by_claim(document)
     sections = []
-    for paper in papers:
+    for paper in [*document["papers"], "other"]:
         claims = [
             {**claim, "results": [result_view(r) for r in by_id.get(claim["id"], [])]}
             for claim in document["registered"]
