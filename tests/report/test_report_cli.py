@@ -33,7 +33,8 @@ def test_met_expectations_exit_0(fakes, tmp_path) -> None:
         "search-index.js",
         "timings.json",
     ]
-    assert sorted(p.name for p in (out / "cases").iterdir()) == ["four-path.html"]  # named: no model claims
+    # cases named: no model claims, so no model page
+    assert sorted(p.name for p in (out / "cases").iterdir()) == ["four-path.html"]
     assert "every expectation is met" in done.stdout
     assert json.loads((out / "report.json").read_text())["seed"] == 3
 
