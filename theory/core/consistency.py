@@ -22,8 +22,6 @@ from enum import StrEnum
 from typing import Any
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
-from scipy.stats import chi2
 
 from theory.core.tolerances import (
     CONSISTENCY_PROBABILITY,
@@ -167,7 +165,7 @@ def chi2_band(dof: int, samples: int, probability: float = CONSISTENCY_PROBABILI
         raise ValueError(f"dof and samples must be ≥ 1, got dof={dof}, samples={samples}")
     if not 0 < probability < 1:
         raise ValueError(f"probability must be in (0, 1), got {probability}")
-    low, high = chi2.ppf([(1 - probability) / 2, (1 + probability) / 2], dof)
+    low, high = _chi2_quantile(np.array([(1 - probability) / 2, (1 + probability) / 2]), dof)
     return Band(float(low / samples), float(high / samples), int(dof), int(samples), probability)
 
 
@@ -287,8 +285,19 @@ def _steps_in_band(
     tested = valid.any(axis=0)
     sums = np.where(valid, values, 0.0).sum(axis=0)[tested]
     dof = np.where(valid, dims, 0).sum(axis=0)[tested]
-    low, high = chi2.ppf((1 - probability) / 2, dof), chi2.ppf((1 + probability) / 2, dof)
+    low, high = (
+        _chi2_quantile((1 - probability) / 2, dof),
+        _chi2_quantile((1 + probability) / 2, dof),
+    )
     return float(np.mean((low <= sums) & (sums <= high)))
+
+
+def _chi2_quantile(q: Any, dof: Any) -> Any:
+    """The ``χ²_dof`` quantile at ``q``: scipy.special's inverse survival function (scipy.stats's
+    ``chi2.ppf`` computes the same, for half a second of import)."""
+    from scipy.special import chdtri
+
+    return chdtri(dof, 1 - np.asarray(q))
 
 
 def _cutoff_costs(X: np.ndarray, Y: np.ndarray, cutoff: float, order: float) -> np.ndarray:
@@ -377,6 +386,8 @@ def _assigned_cost(X: np.ndarray, Y: np.ndarray, cutoff: float, order: float) ->
     """``min_π Σ min(c, d)^p`` over the assignments of the smaller set (linear_sum_assignment)."""
     if min(len(X), len(Y)) == 0:
         return 0.0
+    from scipy.optimize import linear_sum_assignment  # imported when positions are compared
+
     costs = _cutoff_costs(X, Y, cutoff, order)
     rows, cols = linear_sum_assignment(costs)
     return float(costs[rows, cols].sum())
