@@ -21,6 +21,7 @@ from theory.core.schema import (
     block,
     choice,
     list_of,
+    mapping_of,
     nullable,
     one_of,
     tolerance_fields,
@@ -315,6 +316,7 @@ def _dkf() -> KindSchema:
 def _pursuit() -> KindSchema:
     """seed 003 §IV–VI: trackers on S-T curves around a target, coupled by a network."""
     from theory.pursuit.case import (
+        CONTROLLER_FIELDS,
         DEKF_FIELDS,
         EXPECT_KEYS,
         FIELDS,
@@ -322,6 +324,7 @@ def _pursuit() -> KindSchema:
         TARGET_FIELDS,
         TOLERANCE_KEYS,
         TRACKER_FIELDS_3D,
+        VARIANTS,
         Controller,
     )
 
@@ -373,6 +376,21 @@ def _pursuit() -> KindSchema:
             "N × N row-stochastic fusion weights π^[i,j] on the in-edges",
             default="uniform",
         ),
+        Field(
+            "edges",
+            EDGES,
+            "directed 1-based pairs [s, r] of the fusion graph, when it differs from the "
+            "coordination graph (the authors' 2-D three-tracker script)",
+            default="pursuit.edges",
+        ),
+        Field(
+            "predict_every",
+            POSITIVE,
+            "prediction period dividing Ts (the authors' scripts: 0.1); Q is the process noise "
+            "of one prediction",
+            "s",
+            "Ts (Algorithm 2 as printed)",
+        ),
         Field("x0", MATRIX, "initial estimates, N × 2·dim", "m, m/s", "the true states"),
         Field(
             "P0",
@@ -381,6 +399,34 @@ def _pursuit() -> KindSchema:
             default="the filter's",
         ),
         where="pursuit.dekf",
+    )
+    laws = choice([c.value for c in Controller])
+    published = block(
+        CONTROLLER_FIELDS,
+        Field("law", laws, "path-following law: I (eq. (49)) or II (eq. (50))", required=True),
+        Field(
+            "variant",
+            choice(list(VARIANTS)),
+            "analysed: the law as seed 003 analyses it; published: as the authors' scripts run "
+            "it (0.1 s steps, clamps, theory/pursuit/published.py)",
+            default="analysed",
+        ),
+        Field(
+            "inputs_min",
+            VECTOR,
+            "lower clamps of the inputs (v, r) (published only)",
+            "m/s, rad/s",
+            "none",
+        ),
+        Field(
+            "inputs_max",
+            VECTOR,
+            "upper clamps of the inputs (v, r) (published only)",
+            "m/s, rad/s",
+            "none",
+        ),
+        Field("gamma_ddot", VECTOR, "[min, max] clamp of γ̈ (published only)", "rad/s²", "none"),
+        where="pursuit.controller",
     )
     return KindSchema(
         "pursuit",
@@ -393,9 +439,17 @@ def _pursuit() -> KindSchema:
             Field("dim", {"enum": [2, 3]}, "space dimension", required=True),
             Field(
                 "controller",
-                choice([c.value for c in Controller]),
-                "path-following law: I (eq. (49)) or II (eq. (50))",
+                one_of(laws, mapping_of(*published)),
+                "path-following law: I (eq. (49)) or II (eq. (50)); or a mapping choosing the "
+                "variant: {law, variant, inputs_min, inputs_max, gamma_ddot}",
                 required=True,
+            ),
+            Field(
+                "duration",
+                POSITIVE,
+                "simulated time",
+                "s",
+                "450",
             ),
             Field("omega_bar", POSITIVE, "ω̄ of eqs. (18), (46)", "rad/s", required=True),
             Field("epsilon", VECTOR, "ε of eq. (19), dim numbers", "m", required=True),
@@ -442,6 +496,19 @@ def _pursuit() -> KindSchema:
             Field("delta_full_rank", BOOL, "Δ has full row rank"),
             Field("strongly_connected", BOOL, "the network is strongly connected"),
             Field("simulation_bounded", BOOL, "simulated runs stay bounded (no runaway)"),
+            Field("runaways", {"type": "integer", "minimum": 0}, "runs stopped as runaways"),
+            Field(
+                "final_localization_error",
+                VECTOR,
+                "band [low, high] holding every tracker's final position error, mean over the runs",
+                "m",
+            ),
+            Field(
+                "mean_pursuit_error",
+                VECTOR,
+                "band [low, high] holding every tracker's mean pursuit error, mean over the runs",
+                "m",
+            ),
             where="pursuit expect",
         ),
         tolerance_fields(TOLERANCE_KEYS),

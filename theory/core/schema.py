@@ -35,6 +35,7 @@ __all__ = [
     "json_schema",
     "json_text",
     "list_of",
+    "mapping_of",
     "markdown",
     "nullable",
     "one_of",
@@ -139,6 +140,12 @@ def tolerance_fields(
         if k in TOLERANCES
     ]
     return block(loader_keys, *named, *local, where=where)
+
+
+def mapping_of(*fields: Field) -> dict[str, Any]:
+    """The closed JSON Schema object of ``fields``, for a value that may also take another form
+    (e.g. a name or a mapping)."""
+    return _object(fields)
 
 
 def _number(value: float) -> str:
