@@ -40,9 +40,11 @@ def test_paper_examples_verified(claim_id):
 def test_example_thresholds_equal_the_papers_bounds():
     (result,) = get_claim("seed000.ex5.1").run(None)
     joint = result.evidence["wg"]["lmi_thresholds"]["[1, 2]"]
-    assert joint["equals_paper_bound"] and joint["high"] - joint["low"] <= 1e-4
+    assert joint["equals_paper_bound"] and joint["supremum"]["rational"] == "1/4"
+    assert joint["status"] == "exact" and joint["low"] < 0.25 == joint["high"]
     (result,) = get_claim("seed000.ex5.2").run(None)
-    assert result.evidence["wg"]["lmi_thresholds"]["[3]"]["equals_paper_bound"]
+    agent3 = result.evidence["wg"]["lmi_thresholds"]["[3]"]
+    assert agent3["equals_paper_bound"] and agent3["supremum"]["rational"] == "4000000/11840481"
 
 
 @pytest.mark.parametrize(

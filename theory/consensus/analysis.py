@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -48,9 +48,7 @@ from theory.consensus.s_detectability import (
     CERT_TOL,
     LMI_MARGIN,
     SDetectability,
-    SelfWeightSearch,
     decide_s_detectability,
-    max_self_weight,
 )
 from theory.core.case_file import Case
 from theory.core.certificate_format import Certified, certificate_results
@@ -69,6 +67,9 @@ from theory.core.expectations import Expectation, Observed, expectation_claim, j
 from theory.core.observability import RANK_TOL
 from theory.core.tolerances import EXACT_DIM, MAP_RTOL, PSD_TOL, RADIUS_TOL
 from theory.core.verdicts import all_hold
+
+if TYPE_CHECKING:
+    from theory.consensus.design import SelfWeightDesign
 
 __all__ = [
     "ANALYSIS",
@@ -102,8 +103,8 @@ class DkfAnalysis:
 
     ``gains`` are those of the radii: the case's (``gains_source`` ``case``), else the exact
     certificate's (``certificate``), else eq. (5.8) at ``Π_i = I`` (``eq5.8_at_identity``);
-    ``searches`` pairs each self-weight bisection with the paper's bound; ``riccati`` starts from
-    ``P_i(0) = 10 I`` in the case's order.
+    ``searches`` pairs each self-weight supremum (exact or bracketed) with the paper's bound;
+    ``riccati`` starts from ``P_i(0) = 10 I`` in the case's order.
     """
 
     case: Case
@@ -114,7 +115,7 @@ class DkfAnalysis:
     radius_B: float
     radius_L: float
     radius_J: float
-    searches: list[tuple[SelfWeightSearch, float]] | None
+    searches: list[tuple[SelfWeightDesign, float]] | None
     riccati: RiccatiRun
     tolerances: dict[str, float]
 
@@ -142,18 +143,7 @@ class DkfAnalysis:
             "paper_conditions_ok": cond["paper_conditions"],
             "max_self_weight": None
             if self.searches is None
-            else [
-                {
-                    "agents": list(s.agents),
-                    "low": s.low,
-                    "high": s.high,
-                    "status": s.status,
-                    "paper_bound": bound,
-                    "equals_paper_bound": s.status == "found" and s.low <= bound <= s.high,
-                    "weight_tol": s.weight_tol,
-                }
-                for s, bound in self.searches
-            ],
+            else [self_weight_record(s, bound) for s, bound in self.searches],
             "riccati": {
                 "status": self.riccati.status,
                 "iterations": self.riccati.iterations,
@@ -164,6 +154,31 @@ class DkfAnalysis:
             },
             "tolerances": dict(self.tolerances),
         }
+
+
+def self_weight_record(design: SelfWeightDesign, paper_bound: float) -> dict[str, Any]:
+    """``max_self_weight``'s entry: the supremum of ``trackcert design self-weight`` (exact, or
+    its certified bracket ``[low, high]``) beside the paper's bound ``1/r_σ(A_aᵘ)²``."""
+    low = 0.0 if design.below is None else float(design.below.w)
+    high = 1.0 if design.at_or_above is None else float(design.at_or_above.w)
+    supremum = design.supremum
+    exact = supremum is not None and supremum.exact
+    equal = supremum is not None and (
+        abs(supremum.value - paper_bound) <= 1e-12 * max(1.0, paper_bound)
+        if exact
+        else low <= paper_bound <= high
+    )
+    return {
+        "agents": list(design.agents),
+        "low": low,
+        "high": high,
+        "status": design.status,
+        "exact": exact,
+        "supremum": None if supremum is None else supremum.to_json(),
+        "paper_bound": paper_bound,
+        "equals_paper_bound": equal,
+        "weight_tol": float(design.width),
+    }
 
 
 def analyze_dkf(
@@ -203,13 +218,13 @@ def analyze_dkf(
     ]
     searches = None
     if search_self_weight:
+        from theory.consensus.design import self_weight_design
+
         bounded = [b for b in conditions.self_weights if np.isfinite(b.bound) and b.weight < 1]
         groups = [[b] for b in bounded] + ([bounded] if len(bounded) > 1 else [])
         searches = [
             (
-                max_self_weight(
-                    spec.A, spec.C, spec.W, [b.agent - 1 for b in group], solver=solver
-                ),
+                self_weight_design(case, agents=[b.agent - 1 for b in group], solver=solver),
                 min(b.bound for b in group),
             )
             for group in groups
@@ -544,13 +559,7 @@ def _example_claim(
         bound_digits = {a: _printed(bounds[a].bound, round(1 / r**2, 4)) for a, r in radii.items()}
         verdict, expected = analysis.decision.verdict, analysis.case.expect.get("s_detectable")
         thresholds = {
-            str(list(s.agents)): {
-                "low": s.low,
-                "high": s.high,
-                "status": s.status,
-                "equals_paper_bound": s.status == "found" and s.low <= b <= s.high,
-            }
-            for s, b in analysis.searches or []
+            str(list(s.agents)): self_weight_record(s, b) for s, b in analysis.searches or []
         }
         evidence[variant] = {
             "radii": {a: bounds[a].radius for a in radii},
