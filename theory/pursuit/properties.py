@@ -816,6 +816,12 @@ FIXED_INSTANCES = (
         "a certificate of one case; the corrected Theorem 2 is searched as "
         "seed003.thm2.certificate-boundary and seed003.thm2.sim-trajectories",
     ),
+    FixedInstance(
+        "seed003.sec6.published-statistics",
+        "Monte Carlo statistics of the four published configurations against the authors' runs "
+        "(error bands, no runaway); the loop's boundedness is searched as "
+        "seed003.thm2.sim-trajectories",
+    ),
 )
 """The domain's claims about one fixed instance, with the reason."""
 
