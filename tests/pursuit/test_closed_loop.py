@@ -13,13 +13,13 @@ import math
 
 import numpy as np
 import pytest
+from dec_loops import dec_loop, random_state
 from dec_oracle import dop853_interval, per_tracker_field
 
 from theory.kinds import load_case, parse_case
 from theory.pursuit.closed_loop import (
     LoopState,
     StepControl,
-    build_loop,
     heun_step,
     integrate_until,
     simulate_dec,
@@ -36,21 +36,7 @@ def _type_i(spec):
 
 
 def _loop(spec, steps=20):
-    arguments = dec_arguments(spec, steps)
-    loop = build_loop(
-        arguments["settings"], arguments["paths"], arguments["in_neighbours"], spec.dim
-    )
-    return arguments, loop
-
-
-def _random_state(loop, rng):
-    n, d = loop.n, loop.dim
-    angles = rng.uniform(-np.pi, np.pi, (n, 1 if d == 2 else 3))
-    from theory.pursuit.model import exp_skew
-
-    return LoopState.of(
-        rng.uniform(-60, 60, (n, d)), exp_skew(angles), rng.uniform(-5, 5, n), rng.normal(0, 0.3, n)
-    )
+    return dec_loop(spec, steps)
 
 
 @pytest.mark.parametrize("name", TABLES)
@@ -62,7 +48,7 @@ def test_stacked_field_equals_per_tracker_model(name: str, controller: str) -> N
     reference = per_tracker_field(loop, arguments["paths"], controller)
     rng = np.random.default_rng(7)
     for _ in range(5):
-        state = _random_state(loop, rng)
+        state = random_state(loop, rng)
         if controller == "I":
             state.e_gamma[:] = 0.0
         x_hat = rng.normal(0, 20, (loop.n, 2 * loop.dim))
@@ -144,7 +130,7 @@ def test_a_nan_attitude_is_an_error_not_an_accepted_step() -> None:
     the largest finite difference, which would accept a NaN attitude."""
     spec = load_case("pursuit-table2-n3").spec
     _, loop = _loop(spec)
-    state = _random_state(loop, np.random.default_rng(3))
+    state = random_state(loop, np.random.default_rng(3))
     x_hat = np.zeros((loop.n, 2 * loop.dim))
 
     def field(t, current, x_hat, t_hat):

@@ -13,17 +13,16 @@ import dataclasses
 
 import numpy as np
 import pytest
+from dec_loops import dec_loop, random_state
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from theory.core.errors import CaseError
 from theory.kinds import load_case
 from theory.pursuit import kernels
-from theory.pursuit.closed_loop import LoopState, build_loop, heun_step, simulate_dec
+from theory.pursuit.closed_loop import heun_step, simulate_dec
 from theory.pursuit.compiled_run import ENGINE_SETTING, loop_arrays, resolve_engine
 from theory.pursuit.dekf import dekf_step, transition_matrix
-from theory.pursuit.model import exp_skew
-from theory.pursuit.simulation import dec_arguments
 from theory.pursuit.strategies import simulated_pursuit_cases
 
 ROUNDING = 1e-9
@@ -34,19 +33,7 @@ RECORDS = 150
 
 
 def _loop(spec, steps=RECORDS):
-    arguments = dec_arguments(spec, steps)
-    loop = build_loop(
-        arguments["settings"], arguments["paths"], arguments["in_neighbours"], spec.dim
-    )
-    return arguments, loop
-
-
-def _random_state(loop, rng):
-    n, d = loop.n, loop.dim
-    angles = rng.uniform(-np.pi, np.pi, (n, 1 if d == 2 else 3))
-    return LoopState.of(
-        rng.uniform(-60, 60, (n, d)), exp_skew(angles), rng.uniform(-5, 5, n), rng.normal(0, 0.3, n)
-    )
+    return dec_loop(spec, steps)
 
 
 def _close(got, want, what):
@@ -66,7 +53,7 @@ def test_rates_and_step_equal_the_numpy_loop(case, seed) -> None:
     closed_loop.heun_step, at random states and estimates, to rounding."""
     _, loop = _loop(case.spec)
     rng = np.random.default_rng(seed)
-    state = _random_state(loop, rng)
+    state = random_state(loop, rng)
     x_hat, t, t_hat, h = rng.normal(0, 20, (loop.n, 2 * loop.dim)), 3.7, 2.0, 0.05
     arrays = loop_arrays(loop)
     z_dot, omega = loop.rates(t, state, x_hat, t_hat)
