@@ -102,6 +102,19 @@ def test_pursuit_summary_reports_every_tracker(table1_runs: tuple) -> None:
         assert 0 <= agent["mean_ospa"] <= metrics["positions"]["tolerance"]["ospa_cutoff"]
 
 
+def test_the_metrics_are_the_same_on_both_engines(table1_runs: tuple) -> None:
+    """The compiled replay (theory.pursuit.compiled_replay) gives the NumPy replay's NEES, NIS
+    and OSPA, their bands and verdicts, to rounding."""
+    spec, runs = table1_runs
+    arguments = dec_arguments(spec, len(runs[0].times) - 1)
+    fast, slow = (dekf_metrics(runs, arguments, engine) for engine in ("numba", "numpy"))
+    for name in ("nees", "nis"):
+        for got, want in zip(fast[name], slow[name], strict=True):
+            assert got["verdict"] == want["verdict"] and got["band"] == want["band"]
+            assert got["value"] == pytest.approx(want["value"], rel=1e-9)
+    assert fast["positions"]["mean_ospa"] == pytest.approx(slow["positions"]["mean_ospa"], 1e-9)
+
+
 def test_a_stopped_run_counts_until_it_stopped(table1_runs: tuple) -> None:
     spec, runs = table1_runs
     positions = runs[1].positions.copy()

@@ -1,4 +1,5 @@
-"""The compiled engine (theory/pursuit/kernels.py, compiled_run.py) against the NumPy reference.
+"""The compiled engine (theory/pursuit/kernels.py, compiled_run.py, compiled_replay.py) against
+the NumPy reference.
 
 Each kernel computes the same formulas as the NumPy function it replaces, in another order of
 operations: the vector field and the DEKF step agree to rounding (relative 1e-9), and whole runs
@@ -21,8 +22,9 @@ from theory.core.errors import CaseError
 from theory.kinds import load_case
 from theory.pursuit import kernels
 from theory.pursuit.closed_loop import heun_step, simulate_dec
+from theory.pursuit.compiled_replay import replay_compiled
 from theory.pursuit.compiled_run import ENGINE_SETTING, loop_arrays, resolve_engine
-from theory.pursuit.dekf import dekf_step, transition_matrix
+from theory.pursuit.dekf import dekf_step, range_dekf, transition_matrix
 from theory.pursuit.strategies import simulated_pursuit_cases
 
 ROUNDING = 1e-9
@@ -88,6 +90,29 @@ def test_dekf_kernel_equals_algorithm_2(n, dim, seed, weight, predictions) -> No
     got = kernels.dekf_step(x_pred, Omega, positions, ranges, fusion, F, W, 4.0, predictions)
     for name, a, b in zip(("x̂", "Ω", "Ω_next", "x̂_next"), got, want, strict=True):
         _close(a, b, name)
+
+
+@SLOW_CASES
+@given(
+    n=st.integers(1, 4), dim=st.sampled_from([2, 3]), seed=st.integers(0, 2**32 - 1),
+    V=st.floats(0.1, 100), weight=st.floats(0.1, 0.9),
+)  # fmt: skip
+def test_compiled_replay_equals_range_dekf(n, dim, seed, V, weight) -> None:
+    """The compiled replay is dekf.range_dekf (Algorithm 2 on given geometry, innovations of (10),
+    (41)) on the same noise, to rounding, over 40 instants of random tracker and target paths."""
+    rng = np.random.default_rng(seed)
+    steps, m = 40, 2 * dim
+    target = np.cumsum(rng.normal(0, 2, (steps, m)), axis=0)
+    trackers = target[:, None, :dim] + rng.uniform(10, 60, (steps, n, dim))
+    arguments = {
+        "Ts": 2.0, "noise_var": 0.25, "V": V, "Q": np.diag(rng.uniform(1e-4, 1e-1, m)),
+        "fusion": (1 - weight) * np.eye(n) + weight * np.roll(np.eye(n), 1, axis=1),
+        "x0": target[0] + rng.normal(0, 3, m), "P0": rng.uniform(1, 50) * np.eye(m),
+    }  # fmt: skip
+    want = range_dekf(trackers, target, rng=np.random.default_rng(seed), **arguments)
+    got = replay_compiled(trackers, target, rng=np.random.default_rng(seed), **arguments)
+    for field in dataclasses.fields(want):
+        _close(getattr(got, field.name), getattr(want, field.name), field.name)
 
 
 def _assert_same_run(fast, slow, scale, rtol) -> None:

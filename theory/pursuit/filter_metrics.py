@@ -8,6 +8,8 @@ implementation :func:`theory.pursuit.dekf.range_dekf` and the run's own priors, 
 ``SeedSequence([REPLAY_KEY, i])``. The statistics are then those of the filter on the
 closed-loop geometry (:mod:`theory.core.consistency`); the range variance the filter assumes is
 ``1/V``, so a case whose ``V`` exceeds ``1/σ²`` trusts its ranges more than their noise allows.
+The replay runs on the simulation's engine (:func:`theory.pursuit.compiled_run.resolve_engine`):
+compiled (:mod:`theory.pursuit.compiled_replay`) or the NumPy reference.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ import numpy as np
 
 from theory.core.consistency import filter_metrics, nees, nis
 from theory.pursuit.closed_loop import DecRun, _filter_setup, build_loop
+from theory.pursuit.compiled_run import resolve_engine
 from theory.pursuit.dekf import RangeDekfRun, range_dekf
 
 __all__ = ["REPLAY_KEY", "dekf_metrics", "replay_dekf"]
@@ -27,9 +30,12 @@ REPLAY_KEY = 3
 """First word of the replays' seed sequences (seed 003)."""
 
 
-def replay_dekf(run: DecRun, arguments: dict[str, Any], index: int) -> RangeDekfRun:
+def replay_dekf(
+    run: DecRun, arguments: dict[str, Any], index: int, engine: str | None = None
+) -> RangeDekfRun:
     """Algorithm 2 on run ``index``'s recorded trajectories every ``T_s`` (module docstring;
-    ``arguments`` are :func:`theory.pursuit.simulation.dec_arguments`'); seed 003 (41)–(44)."""
+    ``arguments`` are :func:`theory.pursuit.simulation.dec_arguments`', ``engine`` as
+    :func:`~theory.pursuit.compiled_run.resolve_engine`'s); seed 003 (41)–(44)."""
     settings = arguments["settings"]
     every = round(settings.Ts / settings.dt)
     positions, target = run.positions[::every], run.target[::every]
@@ -38,7 +44,11 @@ def replay_dekf(run: DecRun, arguments: dict[str, Any], index: int) -> RangeDekf
     d = positions.shape[-1]
     loop = build_loop(settings, arguments["paths"], arguments["in_neighbours"], d)
     dekf = _filter_setup(loop, settings, arguments["x0"], arguments["P0"], arguments["fusion"])
-    return range_dekf(
+    if resolve_engine(engine) == "numba":
+        from theory.pursuit.compiled_replay import replay_compiled as replay
+    else:
+        replay = range_dekf
+    return replay(
         positions[:last],
         target[:last],
         Ts=settings.Ts,
@@ -52,10 +62,13 @@ def replay_dekf(run: DecRun, arguments: dict[str, Any], index: int) -> RangeDekf
     )
 
 
-def dekf_metrics(runs: Sequence[DecRun], arguments: dict[str, Any]) -> dict[str, Any]:
+def dekf_metrics(
+    runs: Sequence[DecRun], arguments: dict[str, Any], engine: str | None = None
+) -> dict[str, Any]:
     """NEES of ``x̂_{k|k}`` against ``Ω_{k|k}⁻¹``, NIS of every range correction and OSPA/GOSPA
-    of ``q̂_{k|k}`` per tracker over the replays (NaN after a run stopped)."""
-    replays = [replay_dekf(run, arguments, i) for i, run in enumerate(runs)]
+    of ``q̂_{k|k}`` per tracker over the replays (NaN after a run stopped), replayed on
+    ``engine``."""
+    replays = [replay_dekf(run, arguments, i, engine) for i, run in enumerate(runs)]
     settings = arguments["settings"]
     every = round(settings.Ts / settings.dt)
     truth = np.stack([run.target[::every] for run in runs])
