@@ -54,6 +54,31 @@ def test_serial_map_is_the_list_comprehension(items: list[int]) -> None:
     assert done == list(range(1, len(items) + 1))
 
 
+def test_a_task_inside_a_task_runs_pinned_and_pins_once(monkeypatch) -> None:
+    """Tasks run with the BLAS pools at one thread, a nested task too (a sweep point's own
+    Monte Carlo), without a second threadpoolctl call; the pools are restored afterwards."""
+    import scipy.linalg  # noqa: F401 (its BLAS loaded before the pools are read)
+    import threadpoolctl
+
+    calls: list[int] = []
+    original = threadpoolctl.threadpool_limits
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        return original(*args, **kwargs)
+
+    def threads(_: object = None) -> set[int]:
+        return {pool["num_threads"] for pool in threadpoolctl.threadpool_info()}
+
+    monkeypatch.setattr(threadpoolctl, "threadpool_limits", counted)
+    with original(limits=2), engine(1) as runner:
+        before = threads()
+        outer = runner.map(lambda _: (threads(), runner.map(threads, [0])[0]), [0])
+        after = threads()
+    assert outer == [({1}, {1})] and len(calls) == 1
+    assert after == before and 2 in before
+
+
 def test_monte_carlo_is_identical_on_one_and_two_workers(cluster) -> None:
     spec = {"steps": 50}
     serial = monte_carlo(spec, simulate=_walk, runs=12, seed=7, workers=1)

@@ -241,10 +241,12 @@ def dkf_simulator(case: Case, steps: int | None = None) -> Simulator:
     return Simulator(case.spec, functools.partial(run_dkf_case, steps=steps), fields, _finish)
 
 
-def _finish(case: Case, spec: DkfSpec, runs: list, folder: Path, figures: bool) -> Finished:
+def _finish(case: Case, spec: DkfSpec, runs: list, folder: Path | None, figures: bool) -> Finished:
     """``runs.npz`` (errors and covariances stacked over runs), ``agents.csv`` and the summary."""
     del case, figures
     summary = summarize_dkf(spec, runs)
+    if folder is None:
+        return Finished(summary, [])
     files = [
         write_runs_npz(runs, folder / "runs.npz"),
         write_agents_csv(summary["agents"], folder / "agents.csv"),

@@ -295,10 +295,10 @@ def runaway_factor_of(case: Case) -> float:
     return float(case.tolerances.get("runaway_factor", RUNAWAY_FACTOR))
 
 
-def _finish(case: Case, spec: Any, results: list, folder: Path, figures: bool) -> Finished:
+def _finish(case: Case, spec: Any, results: list, folder: Path | None, figures: bool) -> Finished:
     summary = summarize_pursuit(spec, results, runaway_factor=runaway_factor_of(case))
-    files = write_pursuit_data(results, summary, folder)
-    if figures:
+    files = [] if folder is None else write_pursuit_data(results, summary, folder)
+    if figures and folder is not None:
         files += write_pursuit_figures(results, folder)
     summary["warnings"] = [
         _stop_warning(i, stopped, cause, reason)

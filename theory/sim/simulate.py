@@ -134,12 +134,13 @@ class Finished:
 class Simulator:
     """One kind's simulation, ready for the engine: the ``spec`` each run receives, the picklable
     ``run(spec, rng)``, the record ``fields`` naming the settings, and ``finish(case, spec, runs,
-    folder, figures) -> Finished``."""
+    folder, figures) -> Finished`` (``folder`` ``None``: the summary alone, no file written, as a
+    sweep point needs it)."""
 
     spec: Any
     run: Callable[[Any, Any], Any]
     fields: dict[str, Any]
-    finish: Callable[[Case, Any, list, Path, bool], Finished]
+    finish: Callable[[Case, Any, list, Path | None, bool], Finished]
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,7 @@ any order; :func:`evaluate_batch` runs a batch of points as one engine task. A p
 the case loader (:func:`theory.kinds.parse_case`) or its analysis rejects is a row of status
 ``invalid`` with the loader's message; a solver failure makes the verdict inconclusive. The
 simulation is one run with root seed ``sim_seed`` (child 0 of ``SeedSequence(sim_seed)``, as
-``trackcert simulate --seed sim_seed``), summarised by the kind's simulator without figures.
+``trackcert simulate --seed sim_seed``), summarised by the kind's simulator without writing files.
 
 Each kind's verdict is the property its command decides, computed by the same library function:
 
@@ -32,11 +32,9 @@ convergence S-detectability does not decide).
 
 from __future__ import annotations
 
-import tempfile
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -303,8 +301,7 @@ def simulate_point(
     :class:`PropertyFails` if the case's controller does not exist (ε₁ = 0)."""
     chosen = simulator_for(case, steps)
     runs = monte_carlo(chosen.spec, runs=1, seed=seed, workers=1, simulate=chosen.run)
-    with tempfile.TemporaryDirectory(prefix="trackcert-sweep-") as folder:
-        finished = chosen.finish(case, chosen.spec, runs, Path(folder), False)
+    finished = chosen.finish(case, chosen.spec, runs, None, False)  # the summary, no files
     return finished.summary, finished.observed
 
 

@@ -256,10 +256,12 @@ def _summary(case: Case, spec: TdoaSimSpec, results: list) -> dict[str, Any]:
     return {"tolerances": {"error_bound": error_bound(case)}, **summarize_runs(spec, results)}
 
 
-def _finish(case: Case, spec: TdoaSimSpec, results: list, folder: Path, figures: bool) -> Finished:
+def _finish(
+    case: Case, spec: TdoaSimSpec, results: list, folder: Path | None, figures: bool
+) -> Finished:
     record = _summary(case, spec, results)
-    files = write_data(results, record, folder)
-    if figures:
+    files = [] if folder is None else write_data(results, record, folder)
+    if figures and folder is not None:
         files += write_figures(results, folder)
     return Finished(record, files, sim_observed(record))
 
