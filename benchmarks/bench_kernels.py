@@ -21,12 +21,21 @@ Prints
   the CPU seconds of the process tree (command and Dask workers) and of the command alone
   (command + workers / 2: the wall time on two idle cores, "idle wall"), and the per-run CPU
   ratio (target: 1,000 runs in under a minute);
+* **breakdown**: where one Monte Carlo run and one sweep point of ``pursuit-table1-n3`` spend
+  their CPU (ms, best of ``--repeat``, in this process): the run on the kernels, the DEKF
+  metrics of its summary (replay, NEES, NIS, OSPA) with the NumPy replay (the baseline, the
+  code path before the compiled replay) and the compiled one, the ISS agreement along the run,
+  the summary whole, and a sweep point whole (``evaluate_point``: the case re-validated, the
+  ISS verdict, the run, the summary without files) beside its verdict alone;
 * **sweep**: ``trackcert sweep pursuit-table1-n3`` over a ``k_c`` × ``k_gamma`` grid of
   ``--sweep-points`` points on 2 workers, its progress shown as it runs, wall and CPU seconds.
 
-CPU beside wall: the machine is shared, wall time includes waiting for a core.
+CPU beside wall: the machine is shared, wall time includes waiting for a core. On two idle
+cores the defaults take about 2 minutes before the Monte Carlo, 1 minute for its 1,000 runs (plus
+the 100-run NumPy baseline, about 1.5 minutes) and 5–6 minutes for the 10,000-point sweep
+(docs/simulation.md, *Speed of the kernels*).
 Usage: ``python benchmarks/bench_kernels.py [--repeat 3] [--seed 9] [--runs 1000]
-[--baseline-runs 100] [--sweep-points 10000] [--skip command first mc sweep]``
+[--baseline-runs 100] [--sweep-points 10000] [--skip steps command first breakdown mc sweep]``
 """
 
 from __future__ import annotations
@@ -53,7 +62,7 @@ from bench_pursuit import CASES, _best, _simulate  # noqa: E402
 from theory.kinds import load_case  # noqa: E402
 from theory.pursuit import kernels  # noqa: E402
 from theory.pursuit.closed_loop import build_loop, simulate_dec  # noqa: E402
-from theory.pursuit.compiled_run import ENGINE_SETTING, loop_arrays  # noqa: E402
+from theory.pursuit.compiled_run import ENGINE_SETTING, ENGINES, loop_arrays  # noqa: E402
 from theory.pursuit.simulation import dec_arguments  # noqa: E402
 
 OCTAVE_CPU = {
@@ -252,6 +261,45 @@ def _monte_carlo(runs: int, baseline: int) -> None:
     )
 
 
+def _ms(call, repeat: int) -> float:
+    """Best CPU ms of ``call()`` over ``repeat`` calls (after one call outside the timing)."""
+    call()
+    return 1e3 * _best(call, repeat)[1]
+
+
+def _breakdown(repeat: int) -> None:
+    from theory.core.case_file import read_case_data, resolve_case_path
+    from theory.pursuit.filter_metrics import dekf_metrics
+    from theory.pursuit.simulation import (
+        run_pursuit_case,
+        simulation_agreement,
+        summarize_pursuit,
+    )
+    from theory.sweep.points import SweepSetup, evaluate_point, pursuit_judgement
+
+    case = load_case("pursuit-table1-n3")
+    spec, rng = case.spec, np.random.default_rng
+    runs = [run_pursuit_case(spec, rng(0))]
+    arguments = dec_arguments(spec, len(runs[0].times) - 1)
+    replay = {e: _ms(lambda e=e: dekf_metrics(runs, arguments, e), repeat) for e in ENGINES}
+    parts = {
+        "the run (numba)": _ms(lambda: run_pursuit_case(spec, rng(0)), repeat),
+        "DEKF metrics, numpy (baseline)": replay["numpy"],
+        "DEKF metrics, compiled replay": replay["numba"],
+        "ISS agreement along the run": _ms(lambda: simulation_agreement(spec, runs[0]), repeat),
+        "summary whole (compiled replay)": _ms(lambda: summarize_pursuit(spec, runs), repeat),
+    }
+    data = read_case_data(resolve_case_path("pursuit-table1-n3"))
+    setup = SweepSetup(data, case.file, (), None, True)
+    parts["sweep point whole"] = _ms(lambda: evaluate_point(setup, 0, ()), repeat)
+    parts["its ISS verdict alone"] = _ms(lambda: pursuit_judgement(case), repeat)
+    print("\nbreakdown: one run / one sweep point of pursuit-table1-n3 (450 s), CPU ms")
+    for name, ms in parts.items():
+        print(f"  {name:34} {ms:8.1f}")
+    ratio = replay["numpy"] / replay["numba"]
+    print(f"  DEKF metrics (replay, NEES, NIS, OSPA) numpy / compiled: {ratio:.1f}")
+
+
 def _sweep(points: int) -> None:
     side = max(2, round(math.sqrt(points)))
     grid = ["-p", f"k_c=0.05:0.5:lin{side}", "-p", f"k_gamma=5:500:log{side}"]
@@ -277,8 +325,9 @@ def main() -> None:
     parser.add_argument("--baseline-runs", type=int, default=100, help="… on the numpy engine")
     parser.add_argument("--sweep-points", type=int, default=10_000, help="sweep grid size")
     parser.add_argument(
-        "--skip", nargs="*", default=[], choices=["steps", "command", "first", "mc", "sweep"]
-    )
+        "--skip", nargs="*", default=[],
+        choices=["steps", "command", "first", "breakdown", "mc", "sweep"],
+    )  # fmt: skip
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.1f} at the start")
     if "steps" not in args.skip:
@@ -287,6 +336,8 @@ def main() -> None:
         _command_rows(args.cases, args.seed, args.repeat)
     if "first" not in args.skip:
         _first_run()
+    if "breakdown" not in args.skip:
+        _breakdown(args.repeat)
     if "mc" not in args.skip:
         _monte_carlo(args.runs, args.baseline_runs)
     if "sweep" not in args.skip:
