@@ -31,8 +31,8 @@ Prints
   ``--sweep-points`` points on 2 workers, its progress shown as it runs, wall and CPU seconds.
 
 CPU beside wall: the machine is shared, wall time includes waiting for a core. On two idle
-cores the defaults take about 2 minutes before the Monte Carlo, 1 minute for its 1,000 runs (plus
-the 100-run NumPy baseline, about 1.5 minutes) and 5–6 minutes for the 10,000-point sweep
+cores (tree CPU / 2, measured under load) the 1,000 Monte Carlo runs take about 40 s, their
+100-run NumPy baseline about 50 s, and the 10,000-point sweep about 6 minutes
 (docs/simulation.md, *Speed of the kernels*).
 Usage: ``python benchmarks/bench_kernels.py [--repeat 3] [--seed 9] [--runs 1000]
 [--baseline-runs 100] [--sweep-points 10000] [--skip steps command first breakdown mc sweep]``
