@@ -29,8 +29,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from theory.core.network import component_labels, is_symmetric
 from theory.core.observability import RANK_TOL, RankResult, numeric_rank
+from theory.core.sparse_weights import SparseWeights
 from theory.core.tolerances import CLUSTER_TOL, INCONCLUSIVE_FACTOR, UNIQUENESS_TOL
 from theory.core.validation import check_estimate
 from theory.tdoa.case import TdoaSpec
@@ -220,13 +220,13 @@ def check_topology_cost(spec: TdoaSpec, *, network_rank: bool = True) -> None:
     ``3·8·n²`` bytes and ``10·n³`` operations for the largest component of any step. The
     refusal names ``--no-network-rank``, which skips that part.
     """
-    rows = int(spec.hears.sum(axis=(1, 2)).max(initial=0))
+    rows = max(links.count for links in spec.links)
     memory = 16.0 * (spec.dim + 2) * rows
     what = f"16 B × (d + 2)·M, M = {rows} TDOA rows"
     check_estimate("memory_bytes", memory, "tdoa.agents", what)
     if not network_rank:
         return
-    largest = max(int(np.bincount(component_labels(h)).max(initial=0)) for h in spec.hears)
+    largest = max(int(np.bincount(w.component_labels()).max(initial=0)) for w in spec.links)
     skip = (
         "Pass --no-network-rank for every agent's verdict and the detectability without the "
         "rank of the whole networked O (those are linear in N + E)."
@@ -297,8 +297,7 @@ class _Scene:
     spec: TdoaSpec
     positions: np.ndarray
     target: np.ndarray
-    hears: np.ndarray
-    W: np.ndarray
+    W: SparseWeights
     rows: _Rows
     parts: list[list[int]]
     component_of: np.ndarray
@@ -366,20 +365,19 @@ class _Group:
 
 def _scene(spec: TdoaSpec, step: int) -> _Scene:
     """The shared data of step ``step``: TDOA rows, components, exact coordinates."""
-    positions, target, hears = spec.agents[step], spec.target[step], spec.hears[step]
-    rows = _tdoa_rows(positions, target, hears)
-    parts, component_of = _components(hears)
+    positions, target, W = spec.agents[step], spec.target[step], spec.links[step]
+    rows = _tdoa_rows(positions, target, W)
+    parts, component_of = _components(W)
     return _Scene(
         spec,
         positions,
         target,
-        hears,
-        spec.weights[step],
+        W,
         rows,
         parts,
         component_of,
         _rows_by_part(rows, component_of, len(parts)),
-        is_symmetric(hears),
+        W.symmetric(),
         rational_points(positions),
         rational_points([target])[0],
     )
@@ -390,7 +388,7 @@ def _agent_groups(
 ) -> list[tuple[list[int], _Group]]:
     """Agents sharing a reach set ``R(i)`` (a component, or a strongly connected class) and the
     verdict on their stacked Jacobian."""
-    reach_groups = [(p, p) for p in scene.parts] if scene.symmetric else _reach_groups(scene.hears)
+    reach_groups = [(p, p) for p in scene.parts] if scene.symmetric else _reach_groups(scene.W)
     out = []
     for members, reach in reach_groups:
         k = int(scene.component_of[members[0]])
@@ -444,39 +442,39 @@ def _detectability(
     return detectable
 
 
-def _tdoa_rows(positions: np.ndarray, target: np.ndarray, hears: np.ndarray) -> _Rows:
+def _tdoa_rows(positions: np.ndarray, target: np.ndarray, W: SparseWeights) -> _Rows:
     units = unit_directions(target, positions)
-    agent, other = np.nonzero(hears)
+    agent, other = W.receiver, W.sender
     return _Rows(agent, other, units[agent] - units[other])
 
 
-def _components(hears: np.ndarray) -> tuple[list[list[int]], np.ndarray]:
+def _components(W: SparseWeights) -> tuple[list[list[int]], np.ndarray]:
     """Weakly connected components ordered by first agent, and each agent's component index.
 
     The partition of :func:`theory.core.network.components`, in ``O((N + E) log N)``.
     """
-    labels = component_labels(hears)
+    labels = W.component_labels()
     roots, component_of = np.unique(labels, return_inverse=True)  # roots: first agents, sorted
     order = np.argsort(component_of, kind="stable")
     pieces = np.split(order, np.cumsum(np.bincount(component_of, minlength=len(roots)))[:-1])
     return [piece.tolist() for piece in pieces], component_of
 
 
-def _condensation(hears: np.ndarray) -> nx.DiGraph:
+def _condensation(W: SparseWeights) -> nx.DiGraph:
     """The strongly connected classes of the information flow (``s → r`` when ``r`` hears ``s``)."""
     import networkx as nx  # directed networks only
 
     flow = nx.DiGraph()
-    flow.add_nodes_from(range(hears.shape[0]))
-    flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(hears), strict=True))
+    flow.add_nodes_from(range(W.n))
+    flow.add_edges_from(zip(W.sender.tolist(), W.receiver.tolist(), strict=True))
     return nx.condensation(flow)
 
 
-def _reach_groups(hears: np.ndarray) -> list[tuple[list[int], list[int]]]:
+def _reach_groups(W: SparseWeights) -> list[tuple[list[int], list[int]]]:
     """Agents of a directed network sharing one reach set ``R(i)``: strongly connected classes."""
     import networkx as nx
 
-    condensed = _condensation(hears)
+    condensed = _condensation(W)
     groups = []
     for node in condensed.nodes:
         members = sorted(condensed.nodes[node]["members"])
@@ -648,7 +646,7 @@ def _upstream_leaders(
     """
     import networkx as nx
 
-    condensed = _condensation(scene.hears)
+    condensed = _condensation(scene.W)
     ranks = {}
     for node in condensed:
         if condensed.in_degree(node) == 0:
@@ -661,7 +659,7 @@ def _upstream_leaders(
                 doubts.append(ranks[node].doubt)
     mapping = condensed.graph["mapping"]
     upstream: dict[int, list[_RankDecision]] = {}
-    for agent in range(scene.hears.shape[0]):
+    for agent in range(scene.W.n):
         node = mapping[agent]
         above = nx.ancestors(condensed, node) | {node}
         upstream[agent] = [ranks[c] for c in sorted(above) if c in ranks]
@@ -676,7 +674,7 @@ def _rows_by_part(rows: _Rows, component_of: np.ndarray, count: int) -> list[np.
     return [order[bounds[k] : bounds[k + 1]] for k in range(count)]
 
 
-def _directed_detectable(W: np.ndarray, rows: _Rows, rank_tol: float) -> tuple[bool, float]:
+def _directed_detectable(W: SparseWeights, rows: _Rows, rank_tol: float) -> tuple[bool, float]:
     """PBH at the eigenvalue 1 of ``W ⊗ A`` (the only one with ``|λ| ≥ 1``).
 
     Its eigenvectors are the absorption probabilities of the closed classes (agents that hear
@@ -688,42 +686,42 @@ def _directed_detectable(W: np.ndarray, rows: _Rows, rank_tol: float) -> tuple[b
     return defects[0] == 0, margin
 
 
-def _unit_eigenvectors(W: np.ndarray) -> np.ndarray:
+def _unit_eigenvectors(W: SparseWeights) -> np.ndarray:
     """Right eigenvectors of a row-stochastic ``W`` (``w_ii > 0``) for eigenvalue 1."""
     import networkx as nx
 
-    graph = nx.DiGraph((int(r), int(s)) for r, s in zip(*np.nonzero(W), strict=True))
-    graph.add_nodes_from(range(W.shape[0]))
+    graph = nx.DiGraph(zip(W.receiver.tolist(), W.sender.tolist(), strict=True))
+    graph.add_nodes_from(range(W.n))
     condensed = nx.condensation(graph)
     closed = [
         sorted(condensed.nodes[c]["members"]) for c in condensed if condensed.out_degree(c) == 0
     ]
-    in_closed = np.zeros(W.shape[0], dtype=bool)
+    in_closed = np.zeros(W.n, dtype=bool)
     for members in closed:
         in_closed[members] = True
     transient = np.flatnonzero(~in_closed)
-    basis = np.zeros((W.shape[0], len(closed)))
+    basis = np.zeros((W.n, len(closed)))
     for k, members in enumerate(closed):
         basis[members, k] = 1.0
         if transient.size:
-            rhs = W[np.ix_(transient, members)].sum(axis=1)
-            lhs = np.eye(transient.size) - W[np.ix_(transient, transient)]
+            rhs = W.block(transient, members).sum(axis=1)
+            lhs = np.eye(transient.size) - W.block(transient)
             basis[transient, k] = np.linalg.solve(lhs, rhs)
     return basis
 
 
 def _component_rank(
     spec: TdoaSpec,
-    W: np.ndarray,
+    W: SparseWeights,
     rows: _Rows,
     part: list[int],
     selected: np.ndarray,
     rank_tol: float,
     cluster_tol: float,
 ) -> tuple[int, list[complex], str, float] | None:
-    local = np.full(W.shape[0], -1)
+    local = np.full(W.n, -1)
     local[part] = np.arange(len(part))
-    W_part = W[np.ix_(part, part)]
+    W_part = W.block(part)
     scale = symmetrizing_scale(W_part)
     if scale is not None:
         result = spectral_network_rank(
