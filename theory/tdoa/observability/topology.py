@@ -12,8 +12,10 @@ directed one) and ``G_{R(i)}`` stacks the position blocks of their TDOA Jacobian
 ``w_ii > 0``. The networked pair is detectable iff its eigenvalue 1 (the only one on the unit
 circle) passes the PBH test, which for an undirected graph means every component's ``G`` has
 rank ``d``; the full rank of ``O`` comes from the spectrum of ``W`` per component
-(:mod:`~theory.tdoa.observability.spectral`) or, for weights that are not symmetrizable, from
-the dense matrix of :mod:`~theory.tdoa.observability.network`.
+(:mod:`~theory.tdoa.observability.spectral`), for components of more than
+:data:`SPECTRAL_MAX_AGENTS` agents from the blind agents' invariant subspace and the inertia of
+``W`` (:mod:`~theory.tdoa.observability.sparse_rank`), or, for weights that are not
+symmetrizable, from the dense matrix of :mod:`~theory.tdoa.observability.network`.
 
 Beside the exact verdict the paper's heuristic (a component of ≥ 4 non-coplanar agents; ≥ 3
 non-collinear in 2-D) is reported with a one-line reason wherever the two disagree; receivers in a
@@ -44,6 +46,7 @@ from theory.tdoa.geometry.exact import (
 from theory.tdoa.geometry.uniqueness import Uniqueness, tdoa_solutions
 from theory.tdoa.model import cv_discrete, unit_directions
 from theory.tdoa.observability.network import analyze_network
+from theory.tdoa.observability.sparse_rank import sparse_network_rank
 from theory.tdoa.observability.spectral import (
     eigenspace_defects,
     spectral_network_rank,
@@ -55,6 +58,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "DENSE_MAX_STATES",
+    "SPECTRAL_MAX_AGENTS",
     "AgentVerdict",
     "NetworkVerdict",
     "TopologyResult",
@@ -66,6 +70,10 @@ __all__ = [
 
 DENSE_MAX_STATES = 240
 """Largest component (in states 2·d·n) whose non-symmetrizable W is ranked densely."""
+
+SPECTRAL_MAX_AGENTS = 500
+"""Largest component whose symmetrizable W is ranked by its eigen-decomposition; larger ones
+by the blind agents' invariant subspace and the inertia of W (:mod:`.sparse_rank`)."""
 
 
 @dataclass(frozen=True)
@@ -215,9 +223,11 @@ def check_topology_cost(spec: TdoaSpec, *, network_rank: bool = True) -> None:
 
     The per-agent verdicts and detectability keep the TDOA rows: ``M`` rows of ``d`` floats and
     two indices, ``8(d + 2)·M`` bytes (twice, for the rows grouped by component). The network
-    rank adds, per component of ``n`` agents, an eigen-decomposition of its ``W`` (seed 000
-    eq. (4.36) ranked by the spectrum, :mod:`~theory.tdoa.observability.spectral`): about
-    ``3·8·n²`` bytes and ``10·n³`` operations for the largest component of any step. The
+    rank adds, per component of ``n ≤`` :data:`SPECTRAL_MAX_AGENTS` agents, an
+    eigen-decomposition of its ``W`` (:mod:`~theory.tdoa.observability.spectral`): about
+    ``3·8·n²`` bytes and ``10·n³`` operations for the largest such component of any step;
+    larger components are ranked by :mod:`~theory.tdoa.observability.sparse_rank`, whose
+    blind-agent matrices are checked against the limit when their size is known. Each
     refusal names ``--no-network-rank``, which skips that part.
     """
     rows = max(links.count for links in spec.links)
@@ -226,7 +236,8 @@ def check_topology_cost(spec: TdoaSpec, *, network_rank: bool = True) -> None:
     check_estimate("memory_bytes", memory, "tdoa.agents", what)
     if not network_rank:
         return
-    largest = max(int(np.bincount(w.component_labels()).max(initial=0)) for w in spec.links)
+    sizes = np.concatenate([np.bincount(w.component_labels()) for w in spec.links])
+    largest = int(sizes[sizes <= SPECTRAL_MAX_AGENTS].max(initial=0))
     skip = (
         "Pass --no-network-rank for every agent's verdict and the detectability without the "
         "rank of the whole networked O (those are linear in N + E)."
@@ -235,14 +246,14 @@ def check_topology_cost(spec: TdoaSpec, *, network_rank: bool = True) -> None:
         "memory_bytes",
         memory + 24.0 * largest**2,
         "tdoa.agents",
-        f"{what} + 24 B × n², n = {largest} in the largest component",
+        f"{what} + 24 B × n², n = {largest} in the largest component ranked by eigenvalues",
         alternative=skip,
     )
     check_estimate(
         "work",
         10.0 * largest**3,
         "tdoa.agents",
-        f"10 n³ to diagonalize W, n = {largest} in the largest component",
+        f"10 n³ to diagonalize W, n = {largest} in the largest component ranked by eigenvalues",
         alternative=skip,
     )
 
@@ -606,13 +617,12 @@ def _network_verdict(
     rank, eigenvalues, methods, notes = 0, [], set(), []
     margin = detectable[1]
     for part, selected in zip(scene.parts, scene.part_rows, strict=True):
-        piece = _component_rank(
-            spec, scene.W, scene.rows, part, selected, tol["rank_tol"], cluster_tol
-        )
+        piece = _component_rank(spec, scene.W, scene.rows, part, selected, tol, cluster_tol)
         if piece is None:
             notes.append(
                 f"component {_ids(part)}: W is not symmetrizable and has "
-                f"{2 * dim * len(part)} > {DENSE_MAX_STATES} states; rank not computed"
+                f"{2 * dim * len(part)} > {DENSE_MAX_STATES} states, or the factorization "
+                "counting dim ker W failed its backward-error check; rank not computed"
             )
             rank = None
             continue
@@ -716,27 +726,41 @@ def _component_rank(
     rows: _Rows,
     part: list[int],
     selected: np.ndarray,
-    rank_tol: float,
+    tol: dict[str, float],
     cluster_tol: float,
 ) -> tuple[int, list[complex], str, float] | None:
     local = np.full(W.n, -1)
     local[part] = np.arange(len(part))
-    W_part = W.block(part)
+    W_part = W.restrict(part)
     scale = symmetrizing_scale(W_part)
-    if scale is not None:
-        result = spectral_network_rank(
+    if scale is not None and len(part) > SPECTRAL_MAX_AGENTS:
+        result = sparse_network_rank(
             W_part,
             local[rows.agent[selected]],
             rows.vectors[selected],
             scale=scale,
-            rank_tol=rank_tol,
+            rank_tol=tol["rank_tol"],
+            cluster_tol=cluster_tol,
+            inconclusive_factor=tol["inconclusive_factor"],
+        )
+        if result is None:
+            return None
+        eigs = [complex(v) for v in result.unobservable_eigenvalues]
+        return result.rank, eigs, "sparse", result.margin
+    if scale is not None:
+        result = spectral_network_rank(
+            W_part.dense(),
+            local[rows.agent[selected]],
+            rows.vectors[selected],
+            scale=scale,
+            rank_tol=tol["rank_tol"],
             cluster_tol=cluster_tol,
         )
         eigs = [complex(v) for v in result.unobservable_eigenvalues]
         return result.rank, eigs, "spectral", result.margin
     if 2 * spec.dim * len(part) > DENSE_MAX_STATES:
         return None
-    return _dense_rank(spec, W_part, rows, part, rank_tol)
+    return _dense_rank(spec, W_part.dense(), rows, part, tol["rank_tol"])
 
 
 def _dense_rank(
