@@ -20,8 +20,9 @@ by their entries (``TdoaSpec.links``, ``O(N + E)``), against the same with the d
 and their ratio.
 
 It then runs the default command (with the network rank) on each size and prints its exit code
-and time: the rank of the whole ``O`` needs an eigen-decomposition per component (cubic), which
-the command refuses up front, naming ``--no-network-rank``, when its estimate exceeds the limits.
+and time: components of up to 500 agents are ranked by an eigen-decomposition of ``W`` (cubic),
+larger ones by the blind agents' invariant subspace and sparse factorizations of ``W``
+(``theory/tdoa/observability/sparse_rank.py``).
 
 No assertion: the numbers are the result (target: N = 10,000 in ≤ 10 s of wall time on 2 cores).
 """
