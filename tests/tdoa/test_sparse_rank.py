@@ -14,6 +14,7 @@ from theory.core.network import pairs_within_range
 from theory.core.sparse_weights import SparseWeights
 from theory.kinds import load_case
 from theory.tdoa.model import cv_discrete, unit_directions
+from theory.tdoa.observability import topology
 from theory.tdoa.observability.network import analyze_network
 from theory.tdoa.observability.sparse_rank import sparse_network_rank
 from theory.tdoa.observability.spectral import spectral_network_rank, symmetrizing_scale
@@ -74,3 +75,44 @@ def test_random_geometric_network_with_blind_agents_matches_the_spectral_rank() 
         assert _eigenvalues(result.unobservable_eigenvalues) == _eigenvalues(
             spectral.unobservable_eigenvalues
         )
+
+
+def _geometric(n: int, radius: float, seed: int):
+    """A seeded random geometric network of ``n`` agents in a cube of side 100 (3 decimals)."""
+    rng = np.random.default_rng(seed)
+    positions = np.round(rng.uniform(0, 100, size=(n, 3)), 3)
+    return spec_of(positions, [50.5, 50.5, 50.5], [], weights="metropolis"), positions, radius
+
+
+def test_a_component_of_600_agents_is_ranked_by_the_sparse_method_as_by_the_spectrum() -> None:
+    """The command's route for components > 500 agents, end to end, against the eigen-
+    decomposition of the dense W of the same network."""
+    spec, positions, radius = _geometric(600, 16.0, 7)
+    i, j = pairs_within_range(positions, radius)
+    W = SparseWeights.named(600, np.concatenate([i, j]), np.concatenate([j, i]), "metropolis")
+    spec = type(spec)(**{**vars(spec), "links": (W,)})
+    assert np.bincount(W.component_labels()).max() > topology.SPECTRAL_MAX_AGENTS
+    result = topology.analyze_topology(spec)
+    assert result.network.method.startswith("sparse")
+    units = unit_directions(spec.target[0], spec.agents[0])
+    vectors = units[W.receiver] - units[W.sender]
+    spectral = spectral_network_rank(W.dense(), W.receiver, vectors, scale=np.ones(600))
+    assert result.network.rank == spectral.rank
+
+
+def test_an_eigenvalue_of_w_inside_the_band_makes_the_kernel_count_inconclusive() -> None:
+    """With ``cluster_tol`` at the smallest |μ| of W (so t/F ≤ |μ| < t·F), the inertia counts at
+    ±t/F and ±t·F differ: margin below F, never a silent verdict."""
+    spec, positions, radius = _geometric(120, 24.0, 1)
+    i, j = pairs_within_range(positions, radius)
+    W = SparseWeights.named(120, np.concatenate([i, j]), np.concatenate([j, i]), "metropolis")
+    smallest = float(np.abs(np.linalg.eigvalsh(W.dense())).min())
+    assert smallest > 1e-6  # this W is nonsingular
+    units = unit_directions(spec.target[0], spec.agents[0])
+    vectors = units[W.receiver] - units[W.sender]
+    clear = sparse_network_rank(W, W.receiver, vectors, scale=np.ones(120))
+    assert clear is not None and clear.margin >= 1e3
+    inside = sparse_network_rank(
+        W, W.receiver, vectors, scale=np.ones(120), cluster_tol=smallest * 2.0
+    )
+    assert inside is not None and inside.margin < 1e3
