@@ -232,6 +232,7 @@ def parse_tdoa(block: Mapping[str, Any]) -> TdoaSpec:
     if not isinstance(directed, bool):
         raise CaseError("tdoa.directed", "true or false", directed)
     pairs, comm_range = _topology(block, agents, directed)
+    _check_memory(pairs, agents.shape[1])
     links, rule = _weights(block.get("weights", "metropolis"), pairs, agents.shape[1], directed)
     return TdoaSpec(T, dim, agents, target, links, rule, directed, comm_range)
 
@@ -249,16 +250,18 @@ def _check_sizes(raw_agents: object, raw_target: object) -> None:
 
 
 def _check_memory(pairs: list[tuple[np.ndarray, np.ndarray]], n: int) -> None:
-    """Refuse a scene whose links would exceed the memory budget: the parser keeps, per step,
-    each link's two indices and weight (24 B) and each agent's self-weight (8 B). What a command
-    computes beyond (the network rank of ``trackcert topology``) is estimated by that command."""
-    links = sum(int(r.size) for r, _ in pairs)
+    """Refuse a scene whose links would exceed the memory budget: the parser keeps, per
+    distinct network (a fixed network is one for every step), each link's two indices and
+    weight (24 B) and each agent's self-weight (8 B). What a command computes beyond (the network
+    rank of ``trackcert topology``) is estimated by that command."""
+    distinct = {id(r): int(r.size) for r, _ in pairs}
+    links = sum(distinct.values())
     check_estimate(
         "memory_bytes",
-        24.0 * links + 8.0 * n * len(pairs),
+        24.0 * links + 8.0 * n * len(distinct),
         "tdoa.agents",
-        f"24 B × E + 8 B × N per step for the links and weights (E = {links} links in all, "
-        f"N = {n} agents, {len(pairs)} steps)",
+        f"24 B × E + 8 B × N per network for the links and weights (E = {links} links in all, "
+        f"N = {n} agents, {len(distinct)} networks)",
     )
 
 
