@@ -8,6 +8,7 @@ characteristic polynomial (Faddeev–LeVerrier), the number of distinct real roo
 from __future__ import annotations
 
 from fractions import Fraction
+from itertools import pairwise
 
 from proofs_check import linalg as la
 from proofs_check.deadline import tick
@@ -97,7 +98,7 @@ def _quotient(p: Poly, q: Poly) -> Poly:
 
 def _sign_changes(chain: list[Poly], x: Fraction) -> int:
     signs = [v for v in (evaluate(p, x) for p in chain) if v != 0]
-    return sum(1 for a, b in zip(signs, signs[1:], strict=False) if (a > 0) != (b > 0))
+    return sum(1 for a, b in pairwise(signs) if (a > 0) != (b > 0))
 
 
 def real_roots_in(p: Poly, low: Fraction, high: Fraction) -> int:

@@ -111,10 +111,14 @@ def _family_checks(W0: Matrix, W1: Matrix, a: int, at: Fraction) -> list[Check]:
     where = f"w_{negative[0][0] + 1},{negative[0][1] + 1} < 0" if negative else "all w_ij ≥ 0"
     return [
         Check("data: W(w) = W0 + w·W1 row-stochastic for every w", not off, rows),
-        Check(f"data: w_{a + 1}{a + 1}(w) rises with w (W1_aa > 0)", W1[a][a] > 0,
-              f"W1_aa = {show(W1[a][a])}"),  # fmt: skip
-        Check(f"data: W(w) ≥ 0 at w = {show(at)} ≥ u (the claim is not vacuous)", not negative,
-              where),  # fmt: skip
+        Check(
+            f"data: w_{a + 1}{a + 1}(w) rises with w (W1_aa > 0)",
+            W1[a][a] > 0,
+            f"W1_aa = {show(W1[a][a])}",
+        ),
+        Check(
+            f"data: W(w) ≥ 0 at w = {show(at)} ≥ u (the claim is not vacuous)", not negative, where
+        ),
     ]
 
 
@@ -190,22 +194,27 @@ def _threshold_checks(Q: poly.Poly, mapped: poly.Poly, offset: Fraction, factor:
     def fails(x: Fraction, expected: bool) -> Check:
         t = offset + factor * x
         verb = "fails" if expected else "holds"
-        name = f"Thm 5.2.10 (2) {verb} at w = {show(x)}: w_aa·max|λ(M)|² {'≥' if expected else '<'} 1"
+        relation = "≥" if expected else "<"
+        name = f"Thm 5.2.10 (2) {verb} at w = {show(x)}: w_aa·max|λ(M)|² {relation} 1"
         return Check(name, _fails(Q, offset, factor, x) is expected,
                      f"w_aa = {show(t)}; Schur–Cohn on the roots w_aa·λ_iλ_j of M ⊗ M")  # fmt: skip
 
     if not exact:
         return [fails(u if u is not None else low, True)]
-    divides = (
-        poly.evaluate(mapped, u) == 0 if u is not None else not poly.remainder(mapped, P)
-    )
+    divides = poly.evaluate(mapped, u) == 0 if u is not None else not poly.remainder(mapped, P)
     count = poly.real_roots_in(mapped, low, high) if mapped else 0
     what = "Q̃(u) = 0" if u is not None else "P divides Q̃"
     return [
         fails(low, False),
         fails(high, True),
-        Check(f"exact: {what} (Q̃(w) = det((o + f w)⁻¹ I − M ⊗ M)·(o + f w)^d)", divides,
-              f"Q̃ of degree {len(mapped) - 1}"),  # fmt: skip
-        Check("exact: Q̃ has exactly one distinct real root in (l, r] (Sturm)", count == 1,
-              f"{count} roots in ({show(low)}, {show(high)}]"),  # fmt: skip
+        Check(
+            f"exact: {what} (Q̃(w) = det((o + f w)⁻¹ I − M ⊗ M)·(o + f w)^d)",
+            divides,
+            f"Q̃ of degree {len(mapped) - 1}",
+        ),
+        Check(
+            "exact: Q̃ has exactly one distinct real root in (l, r] (Sturm)",
+            count == 1,
+            f"{count} roots in ({show(low)}, {show(high)}]",
+        ),
     ]
