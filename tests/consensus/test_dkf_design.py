@@ -57,7 +57,9 @@ def test_examples_supremum_is_exact_with_certificates_both_sides(name: str, supr
     assert result.status == "exact" and data["supremum"]["rational"] == str(supremum)
     assert supremum - result.width <= result.below.w < supremum == result.at_or_above.w
     assert result.below.certificate["kind"] == "s-detectability"
-    assert result.at_or_above.certificate["kind"] == "s-detectability-infeasible"
+    above = result.at_or_above.certificate  # Thm 5.2.10 (2) for every w ≥ the supremum
+    assert above["kind"] == "self-weight-necessary-violated" and above["claim"]["exact"] is True
+    assert above["claim"]["threshold"] == str(supremum)
     assert all(_valid(c) for c in result.certificates) and result.verdict is True
     W_below = result.below.certificate["data"]["W"]
     agent = data["agent"][0] - 1
