@@ -18,10 +18,10 @@ __all__ = [
     "Poly",
     "add",
     "charpoly",
+    "divide",
     "evaluate",
     "mul",
     "real_roots_in",
-    "remainder",
     "schur_stable",
     "trim",
 ]
@@ -64,14 +64,16 @@ def evaluate(p: Poly, x: Fraction) -> Fraction:
     return value
 
 
-def remainder(p: Poly, q: Poly) -> Poly:
-    """The remainder of ``p`` divided by ``q ≠ 0``."""
+def divide(p: Poly, q: Poly) -> tuple[Poly, Poly]:
+    """``(quotient, remainder)`` of ``p`` divided by ``q ≠ 0``."""
     r, q = trim(p), trim(q)
+    out = [Fraction(0)] * max(len(r) - len(q) + 1, 0)
     while len(r) >= len(q):
         tick()
         factor, shift = r[-1] / q[-1], len(r) - len(q)
+        out[shift] = factor
         r = trim([c - (factor * q[k - shift] if k >= shift else 0) for k, c in enumerate(r)])
-    return r
+    return trim(out), r
 
 
 def _derivative(p: Poly) -> Poly:
@@ -81,19 +83,8 @@ def _derivative(p: Poly) -> Poly:
 def _gcd(p: Poly, q: Poly) -> Poly:
     p, q = trim(p), trim(q)
     while q:
-        p, q = q, remainder(p, q)
+        p, q = q, divide(p, q)[1]
     return p
-
-
-def _quotient(p: Poly, q: Poly) -> Poly:
-    """``p / q`` for a ``q`` that divides ``p`` exactly."""
-    p, q = trim(p), trim(q)
-    out = [Fraction(0)] * (len(p) - len(q) + 1)
-    while len(p) >= len(q):
-        shift, factor = len(p) - len(q), p[-1] / q[-1]
-        out[shift] = factor
-        p = trim([c - (factor * q[k - shift] if k >= shift else 0) for k, c in enumerate(p)])
-    return out
 
 
 def _sign_changes(chain: list[Poly], x: Fraction) -> int:
@@ -104,10 +95,10 @@ def _sign_changes(chain: list[Poly], x: Fraction) -> int:
 def real_roots_in(p: Poly, low: Fraction, high: Fraction) -> int:
     """The number of distinct real roots of ``p ≠ 0`` in ``(low, high]`` (Sturm's theorem on the
     square-free part ``p / gcd(p, p′)``, ``low < high``)."""
-    free = _quotient(p, _gcd(p, _derivative(p)))
+    free = divide(p, _gcd(p, _derivative(p)))[0]
     chain = [free, _derivative(free)]
     while chain[-1]:
-        chain.append([-c for c in remainder(chain[-2], chain[-1])])
+        chain.append([-c for c in divide(chain[-2], chain[-1])[1]])
     chain.pop()
     return _sign_changes(chain, low) - _sign_changes(chain, high)
 

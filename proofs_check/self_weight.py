@@ -201,7 +201,7 @@ def _threshold_checks(Q: poly.Poly, mapped: poly.Poly, offset: Fraction, factor:
 
     if not exact:
         return [fails(u if u is not None else low, True)]
-    divides = poly.evaluate(mapped, u) == 0 if u is not None else not poly.remainder(mapped, P)
+    divides = poly.evaluate(mapped, u) == 0 if u is not None else not poly.divide(mapped, P)[1]
     count = poly.real_roots_in(mapped, low, high) if mapped else 0
     what = "Q̃(u) = 0" if u is not None else "P divides Q̃"
     return [
