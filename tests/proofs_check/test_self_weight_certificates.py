@@ -34,8 +34,7 @@ def _certificate(case_name: str, agent: int = 0) -> dict:
     case = load_case(str(path) if path.exists() else case_name)
     A, C, W = exact_system(case)
     family = self_weight_family_exact(W, [agent])
-    W0, W1 = family.at(Fraction(0)), family.at(Fraction(1))
-    slope = [[y - x for x, y in zip(r0, r1, strict=True)] for r0, r1 in zip(W0, W1, strict=True)]
+    W0, slope = family.affine()
     offset, factor = W0[agent][agent], slope[agent][agent]
     threshold = self_weight_threshold(A, C[agent], agent, offset, factor)
     cert = threshold.certificate(A, C, W0, slope, case.name)

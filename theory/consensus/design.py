@@ -104,6 +104,13 @@ class Family:
             out[i][j] = offset + factor * w
         return out
 
+    def affine(self) -> tuple[Matrix, Matrix]:
+        """``(W0, W1)`` with ``W(w) = W0 + w·W1``."""
+        W0, W1 = self.at(Fraction(0)), self.at(Fraction(1))
+        return W0, [
+            [y - x for x, y in zip(r0, r1, strict=True)] for r0, r1 in zip(W0, W1, strict=True)
+        ]
+
     def rising_diagonal(self) -> list[tuple[int, Fraction, Fraction]]:
         """``(a, offset, factor)`` of each self-weight that grows with ``w``."""
         return [(i, o, f) for (i, j), (o, f) in self.entries.items() if i == j and f > 0]
@@ -453,10 +460,7 @@ class _Decider:
         recorded at the rational ``w ≥ u``."""
         if bound.threshold is None:
             return None
-        W0, W1 = self.family.at(Fraction(0)), self.family.at(Fraction(1))
-        slope = [
-            [y - x for x, y in zip(r0, r1, strict=True)] for r0, r1 in zip(W0, W1, strict=True)
-        ]
+        W0, slope = self.family.affine()
         cert = bound.threshold.certificate(self.A, self.C, W0, slope, self.case)
         if cert is None:
             return None
