@@ -51,9 +51,7 @@ class SelfWeightThreshold:
 
     def fails(self, x: Fraction) -> bool:
         """Whether ``w_aa(x) max|λ(M)|² ≥ 1`` (Schur–Cohn on the roots ``w_aa λ_iλ_j``)."""
-        t = self.offset + self.factor * x
-        d = len(self.Q) - 1
-        return t > 0 and not schur_stable([q * t ** (d - j) for j, q in enumerate(self.Q)])
+        return _fails(self.Q, self.offset + self.factor * x)
 
     def certificate(self, A: np.ndarray, C: list[np.ndarray], W0: Matrix, W1: Matrix,
                     case: str | None = None) -> dict[str, Any] | None:  # fmt: skip
@@ -120,6 +118,13 @@ def isolated_root(poly: sympy.Poly, left: Fraction, right: Fraction) -> Root | N
     return None
 
 
+def _fails(Q: tuple[Fraction, ...], t: Fraction) -> bool:
+    """``t > 0`` and some root ``t λ_iλ_j`` of ``Σ_j q_j t^{d−j} z^j`` is outside the open unit
+    disk: ``t max|λ(M)|² ≥ 1``."""
+    d = len(Q) - 1
+    return t > 0 and not schur_stable([q * t ** (d - j) for j, q in enumerate(Q)])
+
+
 def _kron(M: Matrix) -> Matrix:
     k = len(M)
     return [[M[i][p] * M[j][q] for p in range(k) for q in range(k)]
@@ -134,10 +139,7 @@ def self_weight_threshold(A: np.ndarray, C_a: np.ndarray, agent: int, offset: Fr
     if not V or factor <= 0:
         return None
     M = fractions_of(A_u)
-    Q = tuple(
-        Fraction(int(c.p), int(c.q))
-        for c in to_fmpq(_kron(M)).charpoly().coeffs()  # type: ignore[union-attr]
-    )
+    Q = tuple(Fraction(int(c.p), int(c.q)) for c in to_fmpq(_kron(M)).charpoly().coeffs())
     w = sympy.Symbol("w")
     d = len(Q) - 1
     mapped = sympy.Poly(
@@ -146,17 +148,20 @@ def self_weight_threshold(A: np.ndarray, C_a: np.ndarray, agent: int, offset: Fr
     )
     if mapped.degree() < 1:
         return None
-    probe = SelfWeightThreshold(agent, offset, factor, V, M, Q, None, None, (EPS, EPS), EPS)
+
+    def fails(x: Fraction) -> bool:
+        return _fails(Q, offset + factor * x)
+
     previous = None
     for (a, b), _ in mapped.sqf_part().intervals(eps=_sympy(EPS)):
         left, right = _fraction(a), _fraction(b)
-        if not probe.fails(right):
+        if not fails(right):
             previous = right
             continue
         below = left if left < right else left - EPS
         if previous is not None and previous >= below:
             below = (previous + right) / 2
-        if probe.fails(below):
+        if fails(below):
             return None
         root = isolated_root(mapped, below if left == right else left, right)
         if root is None:
