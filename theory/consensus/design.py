@@ -7,23 +7,24 @@ the user's links ``W.i.j = A + B·w`` (:func:`theory.core.links.parse_link_expr`
 sweep`` reads them), ``w`` ranging where every linked weight lies in ``[0, 1]``, every row summing
 to 1 for every ``w``. Every ``W(w)`` is exact (rows of Fractions from the data as written).
 
-**Exact supremum.** Two necessary conditions are decided exactly along the family. (1) A
-linked self-weight ``w_aa(w) = A + B·w`` with ``B > 0`` must satisfy Thm 5.2.10 (2),
-``w_aa r_σ(A_aᵘ)² < 1``: with ``μ_a`` the largest ``|λ²|`` over the roots of
-:func:`~theory.consensus.conditions.squared_unobservable_polynomial`, it fails for every
-``w ≥ u_a = (1/μ_a − A)/B`` (monotone in ``w``). (2) The blind-set condition (Theorem 4 of
+**Exact supremum.** Two necessary conditions are decided exactly along the family. (1) A linked
+self-weight ``w_aa(w) = A + B·w`` with ``B > 0`` must satisfy Thm 5.2.10 (2), ``w_aa r_σ(A_aᵘ)² <
+1``: with ``μ_a = r_σ(A_aᵘ)²`` (a real or a complex largest eigenvalue), it fails for every ``w ≥
+u_a = (1/μ_a − A)/B`` (monotone in ``w``); ``u_a`` is exact and certified for every ``w ≥ u_a`` by
+:mod:`theory.consensus.self_weight_bound`. (2) The blind-set condition (Theorem 4 of
 ``docs/theory/s-detectability.md``) for a rational eigenvalue λ and a blind set S the family
 changes: ``λ² r_σ(W_SS(w)) < 1`` iff every leading principal minor of ``I − λ² W_SS(w)`` is
 positive; ``u_S`` is the first root of a minor in ``(lo, hi]``, kept only when the condition fails
-at rational points between every later root, so on all of ``[u_S, hi]``. ``u`` is the least
-bound: a rational, or an algebraic number given by its minimal polynomial and an isolating
-interval (sympy, exact), re-checked by the condition's exact test at the interval's upper end.
-It is reported as the supremum when an ``s-detectability`` certificate holds at a rational ``w``
-within ``width`` below it (and an ``s-detectability-infeasible`` certificate at ``u`` or a
-rational just above, when a rational blind set gives one). What is then proven: ``sup ∈
-[below.w, u]`` for the width asked, which any width makes as narrow as one likes; that every
-``w < u`` is S-detectable is the paper's tightness (``docs/theory/s-detectability.md`` §8
-proves it for Examples 1 and 2, Theorem 6 for scalar systems).
+at rational points between every later root, so on all of ``[u_S, hi]``. ``u`` is the least bound: a
+rational, or an algebraic number given by its minimal polynomial and an isolating interval (sympy,
+exact), re-checked by the condition's exact test at the interval's upper end. It is reported as the
+supremum when an ``s-detectability`` certificate holds at a rational ``w`` within ``width`` below
+it; the refuted side carries the bound's ``self-weight-necessary-violated`` certificate (1), or an
+``s-detectability-infeasible`` certificate at ``u`` or a rational just above when a rational blind
+set gives one (2). What is then proven: ``sup ∈ [below.w, u]`` for the width asked, which any width
+makes as narrow as one likes; that every ``w < u`` is S-detectable is the paper's tightness
+(``docs/theory/s-detectability.md`` §8 proves it for Examples 1 and 2, Theorem 6 for scalar
+systems).
 
 **Otherwise a bracket.** Exact decisions
 (:func:`~theory.consensus.s_detectability.decide_s_detectability`) at rational points, bisected
