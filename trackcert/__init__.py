@@ -1294,7 +1294,7 @@ def simulate(
     for option, value in (("runs", runs), ("steps", steps)):
         if value is not None:
             check_count(option, positive_int(value, option), option)
-    chosen = simulator_for(loaded, steps)
+    chosen = simulator_for(loaded, steps, runs or 1)
     where = Path(folder) if folder is not None else Path(tempfile.mkdtemp(prefix="trackcert-"))
     simulation = simulate_case(
         loaded,

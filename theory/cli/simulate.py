@@ -82,7 +82,7 @@ def register(app: typer.Typer) -> None:
             raise typer.Exit(code)
         check_folder_output(output, "-o/--output", MARKER)
         runs, seed = runs or 1, seed or 0
-        chosen = simulator_for(loaded, steps)
+        chosen = simulator_for(loaded, steps, runs)
         workers = workers or default_workers()
         with progress_bar(runs, f"simulating {loaded.name}", quiet=as_json) as advance:
             simulation = simulate_case(
