@@ -77,7 +77,14 @@ def register(app: typer.Typer) -> None:
             from theory.cli.pf import run_pf_case
 
             code = run_pf_case(
-                loaded, runs, seed, output, as_json, workers=workers, scheduler=scheduler
+                loaded,
+                runs,
+                seed,
+                output,
+                as_json,
+                workers=workers,
+                scheduler=scheduler,
+                figures=figures,
             )
             raise typer.Exit(code)
         check_folder_output(output, "-o/--output", MARKER)
