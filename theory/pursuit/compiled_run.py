@@ -38,10 +38,10 @@ NUMBA_MIN_RECORDS = 1000
 """A job of fewer records (runs × 0.1 s records) than this runs on the NumPy engine by default.
 
 Importing numba and loading the cached kernels costs a process about 0.5 s of CPU once; the NumPy
-engine costs about 0.1–0.2 ms more a record (``benchmarks/bench_startup.py``, docs/simulation.md):
-below 1,000 records the NumPy engine finishes first (0.14–0.19 s for 1,000 records of the Table
-cases), above a few thousand the kernels do. Both engines agree within the integrator's
-tolerance (``tests/pursuit/test_kernels.py``)."""
+engine costs about 0.1–0.2 ms more a record (docs/simulation.md, *Speed of the kernels*): below
+1,000 records the NumPy engine finishes first (0.14–0.19 s for 1,000 records of the Table cases,
+measured in one process), above a few thousand the kernels do. Both engines agree within the
+integrator's tolerance (``tests/pursuit/test_kernels.py``)."""
 
 Recorded = tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, int], tuple | None]
 """(z, R, estimates, (steps, rejected), stop): the records of :func:`closed_loop._run` and, for a
