@@ -56,6 +56,7 @@ from theory.particle.case import (
     ReceivedHeading,
 )
 from theory.particle.dcrw import fit_dcrw, movement_samples, sample_weibull, sample_wrapped_cauchy
+from theory.pursuit.compiled_run import resolve_engine
 from theory.tdoa.model import range_differences
 
 __all__ = [
@@ -435,6 +436,8 @@ class OnlineLearner:
 
     ``history`` holds the estimates seen, each ``(F, 2)``; ``params`` ``(F, 4)`` the fitted
     ``(μ, γ, κ, λ)``, ``nan`` rows for nodes not yet fitted (module docstring for the guards).
+    ``engine``: the refits by the compiled kernel (``"numba"``, :mod:`theory.particle.kernels`)
+    or by the NumPy reference (``"numpy"``), equal to rounding.
     """
 
     prior: UniformMotion
@@ -442,6 +445,7 @@ class OnlineLearner:
     gamma_max: float = 0.95
     kappa_bounds: tuple[float, float] = (0.5, 10.0)
     burn_in: int = 5
+    engine: str = "numba"
     history: tuple[np.ndarray, ...] = ()
     params: np.ndarray | None = None
 
@@ -455,13 +459,35 @@ class OnlineLearner:
         history = (*self.history, np.asarray(estimates, dtype=float))
         tracks = np.asarray(history[self.burn_in :])
         params = np.full((len(estimates), 4), np.nan)
+        refit = self._fit_compiled if self.engine == "numba" else self._fit_reference
         for f in range(len(estimates)) if tracks.shape[0] >= 3 else ():
-            turns, steps = movement_samples(tracks[:, f])
-            if turns.size >= self.min_samples and steps.size:
-                fit = fit_dcrw(turns, steps, gamma_max=self.gamma_max)
-                kappa = float(np.clip(fit.kappa, *self.kappa_bounds))
-                params[f] = (fit.mu, fit.gamma, kappa, _scale_for(steps, kappa))
+            fit = refit(np.ascontiguousarray(tracks[:, f]))
+            if fit is not None:
+                params[f] = fit
         return replace(self, history=history, params=params)
+
+    def _fit_reference(self, track: np.ndarray) -> tuple[float, ...] | None:
+        """``(μ, γ, κ, λ)`` of one node's track by eqs. (3.17)–(3.19) and the ML fits of
+        :mod:`~theory.particle.dcrw`, ``κ`` clamped; ``None`` with too few samples."""
+        turns, steps = movement_samples(track)
+        if turns.size < self.min_samples or not steps.size:
+            return None
+        fit = fit_dcrw(turns, steps, gamma_max=self.gamma_max)
+        kappa = float(np.clip(fit.kappa, *self.kappa_bounds))
+        return fit.mu, fit.gamma, kappa, _scale_for(steps, kappa)
+
+    def _fit_compiled(self, track: np.ndarray) -> tuple[float, ...] | None:
+        """:meth:`_fit_reference` by the compiled kernel (:func:`kernels.fit_track`), the
+        reference where the kernel hands the node back."""
+        from theory.particle import kernels
+
+        out = np.empty(4)
+        status = kernels.fit_track(
+            track, self.min_samples, self.gamma_max, *map(float, self.kappa_bounds), out
+        )
+        if status == kernels.FALLBACK:
+            return self._fit_reference(track)
+        return None if status == kernels.TOO_FEW else tuple(out.tolist())
 
     def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
         """Turns and steps of ``shape`` ``(F, P)``, drawn from ``rng``: the learned DCRW where
@@ -481,13 +507,16 @@ def _scale_for(steps: np.ndarray, kappa: float) -> float:
     return float(np.mean(steps**kappa) ** (1.0 / kappa))
 
 
-def build_motion(spec: PfSpec, model: Model) -> Motion:
+def build_motion(spec: PfSpec, model: Model, engine: str | None = None) -> Motion:
     """The propagation model ``model`` of ``spec``: its true DCRW, the Gaussian baseline, or an
-    online learner over the uniform prior with the case's learning settings."""
+    online learner over the uniform prior with the case's learning settings, refitting on
+    ``engine`` (:func:`theory.pursuit.compiled_run.resolve_engine`: ``"numba"``, ``"numpy"``,
+    ``None`` for ``$TRACKCERT_ENGINE`` or ``"numba"``)."""
     match Model(model):
         case Model.DCRW:
             return DcrwMotion(spec.target)
         case Model.GAUSSIAN:
             return GaussianMotion()
         case Model.LEARNED:
-            return OnlineLearner(UniformMotion(spec.uniform_max_step), **spec.learning)
+            prior = UniformMotion(spec.uniform_max_step)
+            return OnlineLearner(prior, **spec.learning, engine=resolve_engine(engine))
