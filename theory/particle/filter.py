@@ -57,7 +57,7 @@ from theory.particle.case import (
 )
 from theory.particle.dcrw import fit_dcrw, movement_samples, sample_weibull, sample_wrapped_cauchy
 from theory.pursuit.compiled_run import resolve_engine
-from theory.tdoa.model import range_differences
+from theory.tdoa.model import range_differences, ranges
 
 __all__ = [
     "DcrwMotion",
@@ -76,6 +76,7 @@ __all__ = [
     "measure",
     "multinomial_resample",
     "normalise_log_weights",
+    "particle_tdoa",
     "pf_step",
     "pf_update",
     "predicted_measurements",
@@ -152,13 +153,21 @@ def simulate_measurements(
     return np.asarray([measure(p, network, noise_sigma, rng) for p in path])
 
 
+def particle_tdoa(positions: np.ndarray, network: PfNetwork) -> np.ndarray:
+    """``d_i^n`` ``(F, Q, N)`` of ``Q`` positions per filtering node ``(F, Q, 2)`` (eq. (3.9)):
+    :func:`theory.tdoa.model.range_differences` with the node's own range picked by indexing
+    (the same numbers, without its broadcasting of the agents per call)."""
+    distances = ranges(positions, network.nodes)
+    own = distances[np.arange(len(network.filters)), :, network.filter_array][..., None]
+    return own - distances
+
+
 def log_likelihood(
     positions: np.ndarray, y: np.ndarray, network: PfNetwork, sigma: float
 ) -> np.ndarray:
     """``−‖y_i − d_i^n‖² / (2σ²)`` ``(F, Q)`` of ``Q`` positions per node ``(F, Q, 2)``, up to a
     constant (eqs. (3.9)–(3.11))."""
-    filters = np.asarray(network.filters, dtype=int)[:, None]
-    predicted = range_differences(positions, network.nodes, filters)
+    predicted = particle_tdoa(positions, network)
     mask = network.measurement_mask[:, None, :]
     residual = np.where(mask, y[:, None, :] - predicted, 0.0)
     return -0.5 * np.sum(residual**2, axis=-1) / sigma**2
@@ -241,8 +250,8 @@ def estimate(state: PfState, fraction: float = 0.2) -> np.ndarray:
     """
     count = max(1, int(np.ceil(fraction * state.weights.shape[1])))
     top = np.argpartition(-state.weights, count - 1, axis=1)[:, :count]
-    w = np.take_along_axis(state.weights, top, axis=1)
-    c = np.take_along_axis(state.positions, top[..., None], axis=1)
+    rows = np.arange(top.shape[0])[:, None]
+    w, c = state.weights[rows, top], state.positions[rows, top]
     return np.einsum("fq,fqd->fd", w, c) / w.sum(axis=1, keepdims=True)
 
 
@@ -261,7 +270,7 @@ def predicted_measurements(
     particles: ``ŷ = Σ w h(x)``, ``S = Σ w (h − ŷ)(h − ŷ)ᵀ + σ²I`` on the measured rows (the
     others 0 and identity, :func:`theory.core.consistency.padded`); eqs. (3.6)–(3.9)."""
     mask = network.measurement_mask
-    h = range_differences(state.positions, network.nodes, np.asarray(network.filters)[:, None])
+    h = particle_tdoa(state.positions, network)
     mean = np.einsum("fp,fpn->fn", state.weights, h)
     spread = (h - mean[:, None]) * mask[:, None]
     S = np.einsum("fp,fpn,fpm->fnm", state.weights, spread, spread)
@@ -282,9 +291,10 @@ def multinomial_resample(state: PfState, rng: np.random.Generator) -> PfState:
     draws = rng.random((n_filters, P)) + offsets
     flat = np.searchsorted((cumulative + offsets).ravel(), draws.ravel(), side="right")
     index = np.minimum(flat.reshape(n_filters, P) - offsets * P, P - 1)
+    rows = np.arange(n_filters)[:, None]
     return PfState(
-        np.take_along_axis(state.positions, index[..., None], axis=1),
-        np.take_along_axis(state.headings, index, axis=1),
+        state.positions[rows, index],
+        state.headings[rows, index],
         np.full((n_filters, P), 1.0 / P),
     )
 
