@@ -163,11 +163,17 @@ def particle_tdoa(positions: np.ndarray, network: PfNetwork) -> np.ndarray:
 
 
 def log_likelihood(
-    positions: np.ndarray, y: np.ndarray, network: PfNetwork, sigma: float
+    positions: np.ndarray,
+    y: np.ndarray,
+    network: PfNetwork,
+    sigma: float,
+    *,
+    predicted: np.ndarray | None = None,
 ) -> np.ndarray:
     """``−‖y_i − d_i^n‖² / (2σ²)`` ``(F, Q)`` of ``Q`` positions per node ``(F, Q, 2)``, up to a
-    constant (eqs. (3.9)–(3.11))."""
-    predicted = particle_tdoa(positions, network)
+    constant (eqs. (3.9)–(3.11)); ``predicted``: their :func:`particle_tdoa`, if already known."""
+    if predicted is None:
+        predicted = particle_tdoa(positions, network)
     mask = network.measurement_mask[:, None, :]
     residual = np.where(mask, y[:, None, :] - predicted, 0.0)
     return -0.5 * np.sum(residual**2, axis=-1) / sigma**2
@@ -264,13 +270,19 @@ def cloud_moments(state: PfState) -> tuple[np.ndarray, np.ndarray]:
 
 
 def predicted_measurements(
-    state: PfState, y: np.ndarray, network: PfNetwork, sigma: float
+    state: PfState,
+    y: np.ndarray,
+    network: PfNetwork,
+    sigma: float,
+    *,
+    predicted: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Innovations ``y − ŷ`` ``(F, N)`` and their covariances ``(F, N, N)`` from the prior
     particles: ``ŷ = Σ w h(x)``, ``S = Σ w (h − ŷ)(h − ŷ)ᵀ + σ²I`` on the measured rows (the
-    others 0 and identity, :func:`theory.core.consistency.padded`); eqs. (3.6)–(3.9)."""
+    others 0 and identity, :func:`theory.core.consistency.padded`); eqs. (3.6)–(3.9);
+    ``predicted``: the particles' :func:`particle_tdoa`, if already known."""
     mask = network.measurement_mask
-    h = particle_tdoa(state.positions, network)
+    h = particle_tdoa(state.positions, network) if predicted is None else predicted
     mean = np.einsum("fp,fpn->fn", state.weights, h)
     spread = (h - mean[:, None]) * mask[:, None]
     S = np.einsum("fp,fpn,fpm->fnm", state.weights, spread, spread)
@@ -322,10 +334,18 @@ def pf_step(
 
 
 def pf_update(
-    state: PfState, y: np.ndarray, network: PfNetwork, config: PfConfig, rng: np.random.Generator
+    state: PfState,
+    y: np.ndarray,
+    network: PfNetwork,
+    config: PfConfig,
+    rng: np.random.Generator,
+    *,
+    predicted: np.ndarray | None = None,
 ) -> tuple[PfState, np.ndarray]:
-    """Steps 1–4 of seed 002 §3.2.1: weights, consensus exchange, estimate ``χ_i(k)``."""
-    weights = normalise_log_weights(log_likelihood(state.positions, y, network, config.sigma))
+    """Steps 1–4 of seed 002 §3.2.1: weights, consensus exchange, estimate ``χ_i(k)``
+    (``predicted``: the particles' :func:`particle_tdoa`, if already known)."""
+    log_weights = log_likelihood(state.positions, y, network, config.sigma, predicted=predicted)
+    weights = normalise_log_weights(log_weights)
     weighted = consensus_exchange(replace(state, weights=weights), network, config, rng, y=y)
     return weighted, estimate(weighted, config.estimate_fraction)
 
@@ -347,8 +367,9 @@ def run_filter(
     state = initial_state(len(network.filters), config.particles, bounds, rng)
     estimates, snapshots, moments, innovations = [], {}, [], []
     for k, y in enumerate(measurements):
-        innovations.append(predicted_measurements(state, y, network, config.sigma))
-        weighted, chi = pf_update(state, y, network, config, rng)
+        h = particle_tdoa(state.positions, network)
+        innovations.append(predicted_measurements(state, y, network, config.sigma, predicted=h))
+        weighted, chi = pf_update(state, y, network, config, rng, predicted=h)
         moments.append(cloud_moments(weighted))
         motion = motion.observe(chi)
         state = propagate(multinomial_resample(weighted, rng), motion, rng)
