@@ -383,3 +383,13 @@ def test_particle_tdoa_is_range_differences_bit_for_bit(name: str):
     filters = np.asarray(network.filters)[:, None]
     expected = range_differences(positions, network.nodes, filters)
     np.testing.assert_array_equal(particle_tdoa(positions, network), expected)
+
+
+def test_simulate_measurements_is_measure_step_by_step_bit_for_bit():
+    """One draw of the whole path's noise equals the draws of each step's (eqs. (3.6)–(3.8))."""
+    spec = load_case("pf-topology-b").spec
+    path = sample_dcrw_path(spec.target, 30, np.random.default_rng(6), start=np.zeros(2))
+    batched = simulate_measurements(path, spec.network, 1.0, np.random.default_rng(7))
+    rng = np.random.default_rng(7)
+    stepwise = np.asarray([measure(p, spec.network, 1.0, rng) for p in path])
+    np.testing.assert_array_equal(batched, stepwise)

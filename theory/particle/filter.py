@@ -149,8 +149,13 @@ def measure(
 def simulate_measurements(
     path: np.ndarray, network: PfNetwork, noise_sigma: float, rng: np.random.Generator
 ) -> np.ndarray:
-    """:func:`measure` at every point of ``path``: an ``(K + 1, F, N)`` array."""
-    return np.asarray([measure(p, network, noise_sigma, rng) for p in path])
+    """:func:`measure` at every point of ``path``: an ``(K + 1, F, N)`` array (the same numbers:
+    one draw of all the noise is the successive draws of each step's)."""
+    points = np.asarray(path, dtype=float)[:, None, :]
+    clean = range_differences(points, network.nodes, network.filter_array[None, :])
+    mask = network.measurement_mask
+    noise = noise_sigma * rng.standard_normal((len(points), *mask.shape))
+    return np.where(mask, clean + noise, 0.0)
 
 
 def particle_tdoa(positions: np.ndarray, network: PfNetwork) -> np.ndarray:
