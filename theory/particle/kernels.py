@@ -21,8 +21,9 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from theory.pursuit.kernels import _kernel  # njit(cache=True), uncached if no folder is writable
 
 __all__ = ["FALLBACK", "FITTED", "TOO_FEW", "fit_track"]
 
@@ -30,14 +31,6 @@ FITTED, TOO_FEW, FALLBACK = 0, 1, 2
 """The statuses of :func:`fit_track`: ``out`` holds the fit; too few samples; run the reference."""
 
 TINY = np.finfo(float).tiny
-
-
-def _kernel(function):
-    """``numba.njit(cache=True)``, or without the on-disk cache when no cache folder is writable."""
-    try:
-        return numba.njit(cache=True)(function)
-    except RuntimeError:  # numba: "cannot cache function …: no locator available"
-        return numba.njit(function)
 
 
 @_kernel
