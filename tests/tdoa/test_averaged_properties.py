@@ -211,3 +211,35 @@ def test_case_of_the_fixed_scene() -> None:
     case = filter_example_case(FIXED)
     assert case["kind"] == "tdoa" and case["expect"]["observable"] == [True] * 4 + [False] * 2
     assert "rank 3" in case["description"] and "rank 1" in case["description"]
+
+
+def test_slowly_mixing_weights_are_certified_late() -> None:
+    """Bundled case ``seed000-averaged-filter-slow-weights`` (docs/errata.md): row-stochastic
+    weights over four decades; the gains of pings 40–160 do not contract (ρ(𝓛) > 1), those of
+    ping 320 certify the bound, and the sandwich holds."""
+    from theory.kinds import load_case
+
+    example = example_from_spec(load_case("seed000-averaged-filter-slow-weights").spec)
+    verdict = check_example(example)
+    assert verdict.holds
+    (component,) = verdict.components
+    assert component.observable and component.certified and component.burn_in == 320
+    geometry = example.geometry()
+    early = certify_boundedness(
+        geometry, (0, 1, 2, 3), linearized_run(geometry, BURN_IN).gains[BURN_IN],
+        linearized_run(geometry, BURN_IN).covariances[BURN_IN],
+    )  # fmt: skip
+    assert not early.valid
+
+
+def test_examples_reach_weights_beyond_metropolis() -> None:
+    """The strategy draws W from seed 000 §4.2.2's whole class, not only Metropolis weights."""
+    from hypothesis import find
+
+    example = find(
+        filter_examples(),
+        lambda e: e.hears.any() and not np.allclose(e.weights(), metropolis_weights(e.hears)),
+    )
+    W = example.weights()
+    support = example.hears | np.eye(len(W), dtype=bool)
+    assert np.allclose(W.sum(axis=1), 1) and np.all((W > 0) == support)
