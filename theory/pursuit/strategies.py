@@ -88,8 +88,8 @@ def digraph_laplacians(
     cycle, then directed paths from a placed vertex through new ones back to a placed one until
     every vertex is placed, then at most ``max_extra_edges`` random edges (default 2n).
     ``a_ij > 0`` means i receives from j: ``a_ij = 1`` (seed 003 §II-B; an integer ``L``), or
-    with ``weighted`` a decimal ``k·10^e`` (``k`` = 1…99, ``e`` = −2…0) as a case file writes it
-    (the weighted digraphs of Lemma 1's reference [28]; a float ``L``).
+    with ``weighted`` a decimal ``k·10^e`` (``k`` = 1…99 per edge, ``e`` = −2…0 per digraph) as
+    a case file writes it (the weighted digraphs of Lemma 1's reference [28]; a float ``L``).
     """
     check_range("min_agents", min_agents, "max_agents", max_agents, 2)
     if max_extra_edges is not None and max_extra_edges < 0:
@@ -111,7 +111,8 @@ def digraph_laplacians(
         if i != j:
             adjacency[i, j] = 1
     if weighted:
-        decimals = st.builds(lambda k, e: float(f"{k}e{e}"), st.integers(1, 99), st.integers(-2, 0))
+        exponent = draw(st.integers(-2, 0))  # one scale per digraph: a(L) scales with it
+        decimals = st.integers(1, 99).map(lambda k: float(f"{k}e{exponent}"))
         adjacency = np.array([[draw(decimals) if a else 0.0 for a in row] for row in adjacency])
     return np.diag(adjacency.sum(axis=1)) - adjacency
 
