@@ -409,6 +409,10 @@ BURN_INS = tuple(BURN_IN * 2**m for m in range(6))
 ``K … 2K``): with weights spread over decades the covariances settle over hundreds of pings and
 the gains of ping 40 need not contract (docs/errata.md, "The averaged filter with slowly mixing
 weights")."""
+SETTLE_RTOL = 1e-3
+"""Relative growth of the largest position-covariance trace from ping 1280 to 2560 above which
+an uncertified observable component is still in its transient: the example is not counted
+(inconclusive), since weights can be arbitrarily small and the transient arbitrarily long."""
 NOISES = {"T": 1.0, "p0": 100.0, "q": 0.01, "r": 1.0}
 """Seed 000 §4.4: ping period, ``P_0 = p_0 I``, ``Q = q I``, ``R_i = r I``."""
 
@@ -438,7 +442,8 @@ class ComponentVerdict:
     """What one component (1-based ``agents``) shows: the exact rank of ``G_C``, whether it is
     observable (rank 3) and meets the paper's condition (≥ 4 agents, not coplanar); observable:
     whether the fixed-gain certificate holds along the run and the ping ``burn_in`` of
-    :data:`BURN_INS` whose gains it froze, its ``decay`` bound on ``ρ(𝓛)``,
+    :data:`BURN_INS` whose gains it froze (uncertified: whether the covariances had
+    ``settled``), its ``decay`` bound on ``ρ(𝓛)``,
     ``max_i tr Z_i`` and ``max_i tr P_∞,i`` over the position block (m²); always the CRB floor
     ``max_i tr P_C(HORIZON)``; unobservable: the largest relative gap along ``ker G_C`` between
     ``Π`` and the three second moments."""
@@ -449,6 +454,7 @@ class ComponentVerdict:
     paper_condition: bool
     certified: bool | None
     burn_in: int | None
+    settled: bool | None
     decay: float | None
     mse_bound: float | None
     mse_limit: float | None
@@ -459,8 +465,9 @@ class ComponentVerdict:
 @dataclass(frozen=True)
 class ExampleVerdict:
     """The corrected wording on one example: ``counted`` is False when a component is numerically
-    unsafe; ``crb_violation`` and ``consistency_violation`` are the worst
-    ``psd_violation(P_C, Σ_ii)`` and ``psd_violation(Σ_ii, P̄_i)`` over agents and pings."""
+    unsafe or an uncertified observable one has not settled by ping 2560; ``crb_violation`` and
+    ``consistency_violation`` are the worst ``psd_violation(P_C, Σ_ii)`` and
+    ``psd_violation(Σ_ii, P̄_i)`` over agents and pings."""
 
     counted: bool
     crb_violation: float = 0.0
@@ -500,11 +507,12 @@ def check_example(example: FilterExample) -> ExampleVerdict:
         return ExampleVerdict(counted=False)
     run = linearized_run(geometry, HORIZON)
     prior = prior_propagation(geometry, HORIZON)
+    components = [_component_verdict(example, geometry, part, run, prior) for part in parts]
     return ExampleVerdict(
-        counted=True,
+        counted=not any(c.settled is False for c in components),
         crb_violation=psd_violation(run.crb, run.mse),
         consistency_violation=psd_violation(run.mse, run.covariances),
-        components=[_component_verdict(example, geometry, part, run, prior) for part in parts],
+        components=components,
     )
 
 
@@ -530,13 +538,14 @@ def _component_verdict(
         "crb_floor": floor,
         "certified": None,
         "burn_in": None,
+        "settled": None,
         "decay": None,
         "mse_bound": None,
         "mse_limit": None,
         "kernel_deviation": None,
     }
     if verdict["observable"]:
-        cert, verdict["burn_in"] = _first_certificate(geometry, part, run)
+        cert, verdict["burn_in"], verdict["settled"] = _first_certificate(geometry, part, run)
         verdict["certified"] = verdict["burn_in"] is not None
         verdict["decay"] = cert.decay
         verdict["mse_bound"] = float(np.trace(cert.Z[:, :d, :d], axis1=-2, axis2=-1).max())
@@ -548,9 +557,10 @@ def _component_verdict(
 
 def _first_certificate(
     geometry: FrozenGeometry, part: ComponentGeometry, run: LinearizedRun
-) -> tuple[FixedGainCertificate, int | None]:
+) -> tuple[FixedGainCertificate, int | None, bool | None]:
     """The certificate from the first ping ``K`` of :data:`BURN_INS` whose bound ``Z`` holds on
-    the filter's ``P̄_i(K … 2K)``, and ``K`` (``None`` and the last attempt if none does)."""
+    the filter's ``P̄_i(K … 2K)``, and ``K``; if none does, the last attempt, ``None`` and
+    whether the covariances had settled (:func:`_settled`; else the run is inconclusive)."""
     covariances, gains = run.covariances, run.gains
     members = list(part.agents)
     for burn_in in BURN_INS:
@@ -561,8 +571,15 @@ def _first_certificate(
         cert = certify_boundedness(geometry, part.agents, gains[burn_in], covariances[burn_in])
         later = psd_violation(covariances[burn_in : 2 * burn_in + 1, members], cert.Z[None])
         if cert.valid and later <= PSD_RTOL:
-            return cert, burn_in
-    return cert, None
+            return cert, burn_in, None
+    return cert, None, _settled(covariances[:, members, :3, :3], BURN_INS[-1])
+
+
+def _settled(positions: np.ndarray, ping: int) -> bool:
+    """Whether the largest position-covariance trace grew by at most :data:`SETTLE_RTOL` from
+    ping ``K`` to ``2K`` (a longer transient leaves boundedness undecided at this horizon)."""
+    trace = np.trace(positions, axis1=-2, axis2=-1).max(axis=1)
+    return bool(trace[2 * ping] <= (1 + SETTLE_RTOL) * trace[ping])
 
 
 def _kernel_deviation(part: ComponentGeometry, run: LinearizedRun, prior: np.ndarray) -> float:
@@ -664,7 +681,8 @@ PROPERTIES = (
         "On a frozen geometry, for every agent i of component C and every ping k: "
         "P_C(k) ⪯ E[e_i e_iᵀ](k) ⪯ P̄_i(k) (posterior CRB of C ⪯ mean-square error ⪯ filter "
         "covariance); if rank G_C = 3 the gains at one of the pings K = 40, 80, …, 1280 "
-        "certify E[e_i e_iᵀ](k) ⪯ Z_i for all k ≥ K; if rank G_C < 3 nothing is learnt along "
+        "certify E[e_i e_iᵀ](k) ⪯ Z_i for all k ≥ K (or the covariances are still growing at "
+        "ping 2560: inconclusive); if rank G_C < 3 nothing is learnt along "
         "ker G_C, where the position variance is p₀(1 + (kT)²) + q Σ_{l<k} ((l + ½)T²)² for "
         "every estimator.",
         _corrected,
