@@ -416,6 +416,9 @@ def riccati_agreement(
     return RiccatiAgreement(False, worst <= PSD_TOL and not stabilizing, worst, stabilizing)
 
 
+WEIGHT_DECADES = 4
+"""Decades over which the float-valued properties (Lemmas 5.2.3, A.2.1) draw the raw consensus
+weights: (5.3) allows any positive w_ij on the links, not only ratios ≤ 10."""
 RICCATI_EXAMPLES = dkf_problems(max_states=2, max_agents=3, a_bound=2.0, integer_data=True)
 """Small integer problems, so that exact verdicts (both ways) are common."""
 
@@ -672,7 +675,7 @@ PROPERTIES = (
         "seed000.lem5.2.3/paper",
         "With any fixed gains, any row-stochastic W and any P(0) = Σ(0) ⪰ 0, the error "
         "covariances of (5.5) satisfy Σ_i(k) ⪯ P_i(k) of (5.15).",
-        dkf_problems(max_states=3, max_agents=4, gain_bound=1.5),
+        dkf_problems(max_states=3, max_agents=4, gain_bound=1.5, weight_decades=WEIGHT_DECADES),
         covariance_bound_holds,
         dkf_case,
     ),
@@ -680,7 +683,9 @@ PROPERTIES = (
         "seed000.lemA.2.1/paper",
         "If X^i ≻ f_1^i(M, X) for some X ≻ 0, then f_k(M, P_0) ⪯ α r^k X → 0 and "
         "P_{k+1} = f_1(M, P_k) + U stays ⪯ (α + μ/(1 − r)) X.",
-        dkf_problems(max_states=3, max_agents=4, a_bound=1.2, gain_bound=1.0),
+        dkf_problems(
+            max_states=3, max_agents=4, a_bound=1.2, gain_bound=1.0, weight_decades=WEIGHT_DECADES
+        ),
         averaged_bound_holds,
         dkf_case,
     ),

@@ -166,7 +166,7 @@ def dec_arguments(
     return {
         "target": target,
         **_initial_trackers(spec, target[0, :d]),
-        "in_neighbours": [list(np.flatnonzero(row)) for row in spec.adjacency],
+        "in_neighbours": spec.weighted_adjacency.astype(float),
         "x0": x0,
         "P0": dekf.P0 if dekf.P0 is not None else 10.0 * np.eye(2 * d),
         "steps": steps,
