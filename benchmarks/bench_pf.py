@@ -4,22 +4,32 @@ Seed 002 §4.3.2 reports 2.73e-1 s per PF iteration and 2.68e-4 s per EKF iterat
 P = 1000, three nodes, complete graph, top 5 % shared). The target here is < 5 ms per PF
 iteration (all nodes, vectorised numpy). Also the online learner's wrapped-Cauchy ML fit
 (seed 002 §3.2.2), damped Newton against the BFGS it replaced, CPU time in the same run.
-Run from the repository root: ``python -m benchmarks.bench_pf``.
+
+And the Monte Carlo of every bundled ``kind: pf`` case (CPU seconds per run, the learned
+model, which refits every node at every step) on the ``"numpy"`` engine (the NumPy reference
+fits, the path before the kernels) against the ``"numba"`` engine
+(:mod:`theory.particle.kernels`), in the same run, plus eq. (3.9) per step as
+:func:`theory.tdoa.model.range_differences` against the filter's :func:`particle_tdoa`.
+Run from the repository root: ``python -m benchmarks.bench_pf [RUNS]``.
 """
 
 from __future__ import annotations
 
+import sys
 import time
 import timeit
 
 import numpy as np
 
+from theory.core.case_file import bundled_cases
+from theory.kinds import load_case
 from theory.particle import dcrw
-from theory.particle.case import DcrwParams, PfConfig, PfNetwork
+from theory.particle.case import DcrwParams, Model, PfConfig, PfNetwork
 from theory.particle.dcrw import sample_wrapped_cauchy
-from theory.particle.filter import DcrwMotion, initial_state, measure, pf_step
+from theory.particle.experiments import monte_carlo
+from theory.particle.filter import DcrwMotion, initial_state, measure, particle_tdoa, pf_step
 from theory.particle.pf_vs_ekf import EkfConfig, consensus_weights, ekf_step
-from theory.tdoa.model import cv_discrete
+from theory.tdoa.model import cv_discrete, range_differences
 
 TARGET_S = 5e-3
 THESIS_PF_S, THESIS_EKF_S = 2.73e-1, 2.68e-4
@@ -78,6 +88,39 @@ def time_wrapped_cauchy_fits(samples: int = 300) -> tuple[float, float]:
     return seconds[0], seconds[1]
 
 
+def _cpu_per_run(spec, runs: int, engine: str) -> float:
+    """CPU seconds per run of the learned model's Monte Carlo on ``engine``."""
+    start = time.process_time()
+    monte_carlo(spec, runs=runs, model=Model.LEARNED, engine=engine)
+    return (time.process_time() - start) / runs
+
+
+def time_monte_carlo(runs: int) -> None:
+    """Print CPU per run of every bundled pf case, NumPy reference fits against the kernel,
+    the two engines alternated (best of two each) so that load affects both alike."""
+    names = sorted(n for n in bundled_cases() if n.startswith("pf-") and "tdoa" not in n)
+    monte_carlo(load_case(names[0]).spec, runs=1, model=Model.LEARNED, engine="numba")  # compile
+    print(f"{'case':>22} {'numpy s/run':>12} {'numba s/run':>12} {'numpy/numba':>12}")
+    for name in names:
+        spec = load_case(name).spec
+        seconds = {"numpy": [], "numba": []}
+        for _ in range(2):
+            for engine, times in seconds.items():
+                times.append(_cpu_per_run(spec, runs, engine))
+        old, new = min(seconds["numpy"]), min(seconds["numba"])
+        print(f"{name:>22} {old:>12.4f} {new:>12.4f} {old / new:>12.2f}")
+
+
+def time_tdoa_model() -> tuple[float, float]:
+    """Seconds per eq. (3.9) of a filter step (3 nodes × 100 particles): the shared TDOA model's
+    ``range_differences`` and the filter's ``particle_tdoa`` (the same numbers)."""
+    network = load_case("pf-learning").spec.network
+    positions = np.random.default_rng(5).uniform(-60, 60, (len(network.filters), 100, 2))
+    filters = np.asarray(network.filters)[:, None]
+    old = _best_of(lambda: range_differences(positions, network.nodes, filters))
+    return old, _best_of(lambda: particle_tdoa(positions, network))
+
+
 def main() -> None:
     """Print PF and EKF seconds per iteration for 3, 4 and 5 nodes (complete graphs)."""
     header = ("nodes", "PF s/iter", "EKF s/iter", "PF/EKF", "PF/target", "thesis/PF")
@@ -104,6 +147,12 @@ def main() -> None:
         f"wrapped-Cauchy ML fit (95 angles): Newton {newton:.3e} s, BFGS {bfgs:.3e} s CPU, "
         f"BFGS/Newton {bfgs / newton:.1f}"
     )
+    old, new = time_tdoa_model()
+    print(
+        f"eq. (3.9) per step: range_differences {old:.2e} s, "
+        f"particle_tdoa {new:.2e} s, {old / new:.1f}x"
+    )
+    time_monte_carlo(int(sys.argv[1]) if len(sys.argv) > 1 else 10)
 
 
 if __name__ == "__main__":

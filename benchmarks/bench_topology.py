@@ -11,11 +11,18 @@ agent's exact verdict, detectability and the JSON record. It prints the wall and
 the process, the size of the JSON, and the growth exponent ``log(t₂/t₁)/log(N₂/N₁)`` of the
 CPU time between consecutive sizes and from the first size to the last: of the whole process,
 and of the work above start-up (the CPU of the same command on a 10-agent network, measured in
-the same run, subtracted).
+the same run, subtracted), and the least-squares slope of log CPU against log N over all sizes.
+
+Same-run baseline: in this process, for each N, the CPU seconds of reading the case and deciding
+every agent (``load_case`` + ``analyze_topology(..., network_rank=False)``) with the weights held
+by their entries (``TdoaSpec.links``, ``O(N + E)``), against the same with the dense ``N × N``
+``hears`` and ``W`` made as well (what the parser built for every case before, ``9 B × N²``),
+and their ratio.
 
 It then runs the default command (with the network rank) on each size and prints its exit code
-and time: the rank of the whole ``O`` needs an eigen-decomposition per component (cubic), which
-the command refuses up front, naming ``--no-network-rank``, when its estimate exceeds the limits.
+and time: components of up to 500 agents are ranked by an eigen-decomposition of ``W`` (cubic),
+larger ones by the blind agents' invariant subspace and sparse factorizations of ``W``
+(``theory/tdoa/observability/sparse_rank.py``).
 
 No assertion: the numbers are the result (target: N = 10,000 in ≤ 10 s of wall time on 2 cores).
 """
@@ -37,6 +44,8 @@ from pathlib import Path
 import numpy as np
 
 from theory.core.network import adjacency_from_range, component_labels
+from theory.kinds import load_case
+from theory.tdoa.observability.topology import analyze_topology
 
 SIDE = 100.0
 MEAN_DEGREE = 8.0
@@ -94,17 +103,47 @@ def run(case: Path, *options: str) -> tuple[float, float, int, int]:
 
 
 def growth(sizes: list[int], seconds: list[float], label: str) -> None:
-    """Print the growth exponents of ``seconds`` between consecutive sizes and end to end."""
+    """Print the growth exponents of ``seconds`` between consecutive sizes, end to end, and the
+    least-squares slope in log-log over all sizes."""
     pairs = list(zip(sizes, seconds, strict=True))
     for (n1, t1), (n2, t2) in [*itertools.pairwise(pairs), (pairs[0], pairs[-1])]:
         exponent = math.log(t2 / t1) / math.log(n2 / n1)
         print(f"growth ({label}) N = {n1} → {n2}: exponent {exponent:.2f}")
+    if len(pairs) > 2:
+        slope = np.polyfit(np.log(sizes), np.log(seconds), 1)[0]
+        print(f"growth ({label}) log-log fit over N = {sizes[0]} … {sizes[-1]}: {slope:.2f}")
+
+
+def in_process(case: Path, *, dense: bool) -> float:
+    """CPU seconds of reading ``case`` and every agent's verdict, in this process; ``dense``
+    also makes the ``N × N`` ``hears`` and ``W`` (the baseline)."""
+    start = time.process_time()
+    spec = load_case(str(case)).spec
+    if dense:
+        _ = spec.hears, spec.weights
+    analyze_topology(spec, 0, network_rank=False)
+    return time.process_time() - start
+
+
+def baseline(sizes: list[int], cases: list[Path]) -> None:
+    """Print the entry-held against the dense path, measured alternately in this process (best
+    of three each, after one warm-up run)."""
+    print("same run, in process: load + every agent's verdict (CPU s)")
+    print(f"{'N':>6} {'entries':>8} {'dense':>8} {'dense/entries':>14}")
+    sparse_times = []
+    in_process(cases[0], dense=True)  # warm-up: imports and first-call costs out of the figures
+    for n, case in zip(sizes, cases, strict=True):
+        pairs = [(in_process(case, dense=False), in_process(case, dense=True)) for _ in range(3)]
+        sparse, dense = min(p[0] for p in pairs), min(p[1] for p in pairs)
+        sparse_times.append(sparse)
+        print(f"{n:6d} {sparse:7.3f}s {dense:7.3f}s {dense / sparse:13.1f}×")
+    growth(sizes, sparse_times, "in process, entries")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seed", type=int, default=20261207)
-    parser.add_argument("--sizes", type=int, nargs="+", default=[100, 1000, 3000, 10000])
+    parser.add_argument("--sizes", type=int, nargs="+", default=[100, 300, 1000, 3000, 10000])
     args = parser.parse_args()
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     rng = np.random.default_rng(args.seed)
@@ -128,6 +167,7 @@ def main() -> None:
         print(f"start-up (N = 10): {startup:.2f} s CPU")
         growth(args.sizes, cpu_times, "whole process")
         growth(args.sizes, [max(t - startup, 1e-3) for t in cpu_times], "above start-up")
+        baseline(args.sizes, cases)
         print("trackcert topology CASE --json (with the network rank)")
         for n, case in zip(args.sizes, cases, strict=True):
             wall, cpu, code, _ = run(case)

@@ -37,7 +37,8 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from theory.core.network import adjacency_from_range, metropolis_weights  # noqa: E402
+from theory.core.network import adjacency_from_range  # noqa: E402
+from theory.core.sparse_weights import SparseWeights  # noqa: E402
 from theory.tdoa.case import TdoaSpec  # noqa: E402
 from theory.tdoa.model import cv_discrete, unit_directions  # noqa: E402
 from theory.tdoa.observability.topology import analyze_topology  # noqa: E402
@@ -57,8 +58,7 @@ def random_geometric_scene(n: int, rng: np.random.Generator) -> TdoaSpec:
         3,
         positions[None],
         target[None],
-        hears[None],
-        metropolis_weights(hears)[None],
+        (SparseWeights.named(n, *np.nonzero(hears), "metropolis"),),
         "metropolis",
         False,
         radius,

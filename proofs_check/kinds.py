@@ -23,6 +23,7 @@ from proofs_check.claims import claimed
 from proofs_check.linalg import Matrix
 from proofs_check.observability import loss_tolerance, observability_margin
 from proofs_check.operators import OPERATORS, apply_operator
+from proofs_check.self_weight import self_weight_necessary_violated
 
 __all__ = ["KINDS", "WORK_LIMIT", "Check"]
 
@@ -480,5 +481,6 @@ KINDS = {
     "tdoa-observability-margin": observability_margin,
     "tdoa-loss-tolerance": loss_tolerance,
     "iss-box": iss_box,
+    "self-weight-necessary-violated": self_weight_necessary_violated,
 }
 """Each kind's checker."""

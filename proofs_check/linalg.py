@@ -22,6 +22,7 @@ __all__ = [
     "identity",
     "matmul",
     "positive_definite",
+    "rank",
     "scale",
     "sub",
     "trace",
@@ -145,3 +146,21 @@ def determinant(a: Matrix) -> Fraction:
                 m[i][j] = (m[i][j] * m[k][k] - m[i][k] * m[k][j]) // previous
         previous = m[k][k]
     return Fraction(sign * m[n - 1][n - 1], prod(d)) if n else Fraction(1)
+
+
+def rank(a: Matrix) -> int:
+    """Exact rank (Gaussian elimination over the rationals)."""
+    rows = [list(row) for row in a]
+    found = 0
+    for c in range(len(rows[0]) if rows else 0):
+        tick()
+        pivot = next((r for r in range(found, len(rows)) if rows[r][c] != 0), None)
+        if pivot is None:
+            continue
+        rows[found], rows[pivot] = rows[pivot], rows[found]
+        for r in range(found + 1, len(rows)):
+            factor = rows[r][c] / rows[found][c]
+            if factor:
+                rows[r] = [x - factor * y for x, y in zip(rows[r], rows[found], strict=True)]
+        found += 1
+    return found

@@ -37,6 +37,18 @@ EDGES = list_of(
 )
 PER_AGENT_BOOLS = list_of(BOOL)
 NODE_ID = {"type": "integer", "minimum": 1}
+WEIGHTED_EDGES = list_of(
+    one_of(
+        EDGES["items"],
+        {
+            "type": "array",
+            "prefixItems": [NODE_ID, NODE_ID, POSITIVE],
+            "items": POSITIVE,
+            "minItems": 3,
+            "maxItems": 3,
+        },
+    )
+)
 
 
 def _tdoa() -> KindSchema:
@@ -474,8 +486,9 @@ def _pursuit() -> KindSchema:
             ),
             Field(
                 "edges",
-                EDGES,
-                "directed 1-based pairs [s, r]: tracker s sends to tracker r",
+                WEIGHTED_EDGES,
+                "directed 1-based pairs [s, r]: tracker s sends to tracker r; or triples "
+                "[s, r, a] with the weight a_rs = a > 0 of L = D_in − A (default 1)",
                 default="[] (no links)",
             ),
             Field(

@@ -1280,7 +1280,7 @@ def simulate(
     if loaded.kind == "pf":
         if steps is not None:
             raise TypeError("simulate() of a pf case takes no steps (the case sets them)")
-        return pf(case, runs=runs, seed=seed, folder=folder, workers=workers)
+        return pf(case, runs=runs, seed=seed, folder=folder, workers=workers, figures=figures)
     if loaded.kind == "tdoa":
         from theory.tdoa.case import scene_simulation
 
@@ -1294,7 +1294,7 @@ def simulate(
     for option, value in (("runs", runs), ("steps", steps)):
         if value is not None:
             check_count(option, positive_int(value, option), option)
-    chosen = simulator_for(loaded, steps)
+    chosen = simulator_for(loaded, steps, runs or 1)
     where = Path(folder) if folder is not None else Path(tempfile.mkdtemp(prefix="trackcert-"))
     simulation = simulate_case(
         loaded,
@@ -1315,6 +1315,7 @@ def pf(
     seed: int | None = None,
     folder: str | os.PathLike[str] | None = None,
     workers: int = 1,
+    figures: bool = True,
 ) -> PfResult:
     """Run seed 002's distributed TDOA particle filter on a ``kind: pf`` case, with its claims.
 
@@ -1335,6 +1336,8 @@ def pf(
         Where ``pf.json`` and the figures go (replaced whole); default: write nothing.
     workers : int
         Local worker processes (the results are the same for any count).
+    figures : bool
+        Draw the PNG figures into ``folder``.
 
     Returns
     -------
@@ -1363,6 +1366,7 @@ def pf(
             seed=seed,
             out=None if folder is None else Path(folder),
             runner=runner,
+            figures=figures,
         )
     return PfResult(report, loaded, data)
 

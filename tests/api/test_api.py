@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import networkx as nx
 import numpy as np
@@ -273,3 +274,13 @@ def test_pf_refuses_another_kind_before_any_run() -> None:
         trackcert.pf("seed002-fig32-split", runs=4)
     result = CliRunner().invoke(app, ["pf", "seed002-fig32-split", "--runs", "4"])
     assert result.exit_code == 2 and "expected pf" in result.output  # was a traceback
+
+
+def test_simulate_of_a_pf_case_draws_figures_only_when_asked(tmp_path) -> None:
+    """``figures=False`` writes ``pf.json`` and no PNG, as ``simulate --no-figures`` does."""
+    bare = trackcert.simulate("pf-path3", runs=1, folder=tmp_path / "bare", figures=False)
+    assert (tmp_path / "bare" / "pf.json").is_file()
+    assert not list((tmp_path / "bare").glob("*.png")) and bare.to_json()["figures"] == []
+    drawn = trackcert.simulate("pf-path3", runs=1, folder=tmp_path / "drawn")
+    written = sorted(p.name for p in (tmp_path / "drawn").glob("*.png"))
+    assert written and written == sorted(Path(f).name for f in drawn.to_json()["figures"])

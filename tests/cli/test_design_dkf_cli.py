@@ -5,6 +5,7 @@ the plain answer printed for reading."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 from typer.testing import CliRunner
@@ -34,6 +35,21 @@ def test_self_weight_prints_the_exact_value_plainly() -> None:
     result = RUN.invoke(app, ["design", "self-weight", "ch5-example-2-wg", "--agent", "3"])
     assert result.exit_code == 0 and "4000000/11840481" in result.stdout
     assert "0.337824" in result.stdout
+
+
+def test_self_weight_of_a_complex_largest_root_is_exact_and_both_certificates_check(
+    tmp_path: Path,
+) -> None:
+    """Agent 1 blind to the rotation·scale block ``[[1, −1], [1, 1]]`` (``|λ|² = 2``): the
+    supremum is exactly 1/2 (a bracket before), and ``trackcert check`` accepts both ends."""
+    case = Path(__file__).resolve().parents[1] / "data" / "dkf" / "self-weight-complex-root.yaml"
+    code, data = _json("self-weight", str(case), "--agent", "1")
+    assert code == 0 and data["status"] == "exact" and data["supremum"]["rational"] == "1/2"
+    for end in ("below", "at_or_above"):
+        path = tmp_path / f"{end}.json"
+        path.write_text(json.dumps(data[end]["certificate"]), encoding="utf-8")
+        assert RUN.invoke(app, ["check", str(path)]).exit_code == 0
+    assert data["at_or_above"]["certificate"]["kind"] == "self-weight-necessary-violated"
 
 
 def test_self_weight_never_exits_1() -> None:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
+from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
@@ -57,7 +58,9 @@ def test_examples_supremum_is_exact_with_certificates_both_sides(name: str, supr
     assert result.status == "exact" and data["supremum"]["rational"] == str(supremum)
     assert supremum - result.width <= result.below.w < supremum == result.at_or_above.w
     assert result.below.certificate["kind"] == "s-detectability"
-    assert result.at_or_above.certificate["kind"] == "s-detectability-infeasible"
+    above = result.at_or_above.certificate  # Thm 5.2.10 (2) for every w ≥ the supremum
+    assert above["kind"] == "self-weight-necessary-violated" and above["claim"]["exact"] is True
+    assert above["claim"]["threshold"] == str(supremum)
     assert all(_valid(c) for c in result.certificates) and result.verdict is True
     W_below = result.below.certificate["data"]["W"]
     agent = data["agent"][0] - 1
@@ -211,3 +214,35 @@ def test_without_an_exact_bound_the_bracket_is_bisected_between_certificates() -
         "s-detectability", "s-detectability-infeasible",
     ]  # fmt: skip
     assert all(_valid(c) for c in result.certificates)
+
+
+HAND_WRITTEN = Path(__file__).resolve().parents[1] / "data" / "dkf"
+"""Agent 1 blind to a block of ``A`` whose largest ``|λ|²`` is ``(1 + √2)²`` (real), ``2``
+(the complex pair ``1 ± i``) or that of the complex pair of ``x³ + x² − x − 3`` (irrational);
+agent 2 sees everything, so ``L_2 = A`` gives ``Γ_2 = 0`` and ``r_σ(L) = w r_σ(Γ_1)²``: the
+paper's bound ``1/|λ|²`` is the supremum."""
+
+
+@pytest.mark.parametrize(
+    ("name", "polynomial", "rational"),
+    [
+        ("self-weight-irrational-real", ["1", "-6", "1"], None),  # 3 − 2√2
+        ("self-weight-complex-root", None, "1/2"),
+        ("self-weight-complex-irrational", ["-1", "-1", "3", "9"], None),
+    ],
+)
+def test_an_irrational_or_complex_bound_is_exact_with_certificates_both_sides(
+    name: str, polynomial: list[str] | None, rational: str | None
+) -> None:
+    result = self_weight_design(load_case(str(HAND_WRITTEN / f"{name}.yaml")), agents=[0])
+    sup = result.to_json()["supremum"]
+    assert result.status == "exact" and sup.get("polynomial") == polynomial
+    assert sup.get("rational") == rational
+    low, high = (Fraction(x) for x in sup["interval"])
+    assert high - low <= Fraction(1, 10**20) and low - result.width <= result.below.w < low
+    kinds = [c["kind"] for c in result.certificates]
+    assert kinds == ["s-detectability", "self-weight-necessary-violated"]
+    assert all(_valid(c) for c in result.certificates)
+    claim = result.at_or_above.certificate["claim"]
+    assert claim["exact"] is True
+    assert claim.get("threshold_polynomial") == polynomial and claim.get("threshold") == rational

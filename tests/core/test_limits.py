@@ -108,19 +108,25 @@ def test_pf_work_counts_exchange_rounds(monkeypatch) -> None:
 
 
 def test_dense_tdoa_scene_is_refused_by_its_memory_estimate(monkeypatch) -> None:
-    """The parser counts what it keeps: links and weights, 9 B × steps·N² (9 MB here)."""
+    """The parser counts what it keeps: per link two indices and a weight, per agent a self-
+    weight, 24 B × E + 8 B × N (E = 999,000 links here: every pair, both directions)."""
     agents = [[float(i % 10), float(i // 10 % 10), float(i // 100)] for i in range(1000)]
     data = {
         "name": "dense",
         "kind": "tdoa",
         "tdoa": {"T": 1, "agents": agents, "target": [0.5, 0.5, 0.5], "comm_range": 100},
     }
-    monkeypatch.setenv("TRACKCERT_MAX_MEMORY_BYTES", str(8_999_999))
-    with pytest.raises(CaseError, match=r"9e\+06 bytes \(9 B × steps·N²") as info:
+    needed = 24 * 999_000 + 8 * 1000
+    monkeypatch.setenv("TRACKCERT_MAX_MEMORY_BYTES", str(needed - 1))
+    with pytest.raises(CaseError, match=r"2\.4e\+07 bytes \(24 B × E \+ 8 B × N") as info:
         parse_case(data)
     assert info.value.field == "tdoa.agents"
-    monkeypatch.setenv("TRACKCERT_MAX_MEMORY_BYTES", str(9_000_000))
-    assert parse_case(data).spec.n_agents == 1000
+    monkeypatch.setenv("TRACKCERT_MAX_MEMORY_BYTES", str(needed))
+    spec = parse_case(data).spec
+    assert spec.n_agents == 1000 and spec.links[0].count == 999_000
+    monkeypatch.setenv("TRACKCERT_MAX_MEMORY_BYTES", str(8 * 1000**2 - 1))
+    with pytest.raises(CaseError, match=r"8 B × steps·N² for the dense weights"):
+        spec.weights  # noqa: B018  (the dense W, 8 MB, is checked when made)
 
 
 def test_dkf_dimension_is_checked_before_the_matrices() -> None:

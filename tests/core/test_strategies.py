@@ -9,6 +9,8 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from theory.strategies import (
+    digraph_laplacians,
+    dkf_problems,
     is_connected,
     networks,
     pursuit_cases,
@@ -103,6 +105,7 @@ def test_pursuit_cases_and_tracker_states_respect_bounds(data) -> None:
     "strategy",
     [
         lambda: tdoa_scenes(dim=4),
+        lambda: digraph_laplacians(max_extra_edges=-1),
         lambda: tdoa_scenes(family="sphere"),
         lambda: tdoa_scenes(dim=2, family="cone"),
         lambda: weight_matrices(kind="metropolis", directed=True),
@@ -125,3 +128,17 @@ def test_impossible_arguments_raise(strategy) -> None:
 
     with pytest.raises(InvalidArgument):
         draw_one()
+
+
+def test_dkf_weights_spread_over_the_decades_asked_for() -> None:
+    """With ``weight_decades`` the ratio of a row's positive weights exceeds the default's 10
+    (seed 000 (5.3): any positive w_ij on the links)."""
+    from hypothesis import find
+
+    def spread(problem) -> float:
+        return max(row[row > 0].max() / row[row > 0].min() for row in problem.W)
+
+    problem = find(dkf_problems(max_agents=4, weight_decades=4), lambda p: spread(p) > 100)
+    assert np.allclose(problem.W.sum(axis=1), 1) and np.all(np.diag(problem.W) > 0)
+    with pytest.raises(InvalidArgument, match="weight_decades"):
+        dkf_problems(weight_decades=0)

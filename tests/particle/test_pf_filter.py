@@ -24,11 +24,13 @@ from theory.particle.filter import (
     measure,
     multinomial_resample,
     normalise_log_weights,
+    particle_tdoa,
     propagate,
     run_filter,
     simulate_measurements,
     truncated_normal,
 )
+from theory.tdoa.model import range_differences
 
 TRIANGLE = np.array([[0.0, 30.0], [-26.0, -15.0], [26.0, -15.0]])
 seeds = st.integers(0, 2**32 - 1)
@@ -371,3 +373,23 @@ def test_choices_given_as_words_become_members():
     spec = load_case("pf-path3").spec
     assert isinstance(build_motion(spec, "gaussian"), GaussianMotion)
     assert isinstance(build_motion(spec, Model.DCRW), DcrwMotion)
+
+
+@pytest.mark.parametrize("name", ["pf-topology-b", "pf-path3"])
+def test_particle_tdoa_is_range_differences_bit_for_bit(name: str):
+    """The filter's eq. (3.9) by indexing equals theory.tdoa.model.range_differences exactly."""
+    network = load_case(name).spec.network
+    positions = np.random.default_rng(4).uniform(-60, 60, (len(network.filters), 50, 2))
+    filters = np.asarray(network.filters)[:, None]
+    expected = range_differences(positions, network.nodes, filters)
+    np.testing.assert_array_equal(particle_tdoa(positions, network), expected)
+
+
+def test_simulate_measurements_is_measure_step_by_step_bit_for_bit():
+    """One draw of the whole path's noise equals the draws of each step's (eqs. (3.6)–(3.8))."""
+    spec = load_case("pf-topology-b").spec
+    path = sample_dcrw_path(spec.target, 30, np.random.default_rng(6), start=np.zeros(2))
+    batched = simulate_measurements(path, spec.network, 1.0, np.random.default_rng(7))
+    rng = np.random.default_rng(7)
+    stepwise = np.asarray([measure(p, spec.network, 1.0, rng) for p in path])
+    np.testing.assert_array_equal(batched, stepwise)

@@ -62,9 +62,10 @@ def test_determinant_agrees_with_sympy(a) -> None:
 
 
 def test_checker_imports_only_the_standard_library_and_stays_small() -> None:
-    """``proofs_check`` never imports ``theory`` (nor numpy/sympy/flint) and stays < 1,700 lines
+    """``proofs_check`` never imports ``theory`` (nor numpy/sympy/flint) and stays < 2,000 lines
     (1,150 until issue 25: the TDOA design kinds of ``observability.py`` and the ``iss-box``
-    kind's box parsing and corner reduction)."""
+    kind's box parsing and corner reduction; 1,700 until the kind
+    ``self-weight-necessary-violated`` and its exact polynomials, Sturm and Schur–Cohn)."""
     allowed = {"__future__", "argparse", "dataclasses", "fractions", "json", "math", "re", "sys"}
     allowed |= {"collections", "contextlib", "itertools", "time", "typing", "proofs_check"}
     total = 0
@@ -79,7 +80,7 @@ def test_checker_imports_only_the_standard_library_and_stays_small() -> None:
                 names = [node.module or ""]
             for name in names:
                 assert name.split(".")[0] in allowed, f"{path.name} imports {name}"
-    assert total < 1700
+    assert total < 2000
 
 
 def _files() -> list[Path]:

@@ -23,7 +23,12 @@ from theory.kinds import load_case
 from theory.pursuit import kernels
 from theory.pursuit.closed_loop import heun_step, simulate_dec
 from theory.pursuit.compiled_replay import replay_compiled
-from theory.pursuit.compiled_run import ENGINE_SETTING, loop_arrays, resolve_engine
+from theory.pursuit.compiled_run import (
+    ENGINE_SETTING,
+    NUMBA_MIN_RECORDS,
+    loop_arrays,
+    resolve_engine,
+)
 from theory.pursuit.dekf import dekf_step, range_dekf, transition_matrix
 from theory.pursuit.strategies import simulated_pursuit_cases
 
@@ -212,6 +217,19 @@ def test_engine_choice(monkeypatch) -> None:
         resolve_engine()
     with pytest.raises(CaseError, match=r"engine.*'numba' or 'numpy'.*'cuda'"):
         resolve_engine("cuda")
+
+
+def test_a_short_job_runs_on_the_numpy_engine_unless_told(monkeypatch) -> None:
+    """Without a choice, fewer than NUMBA_MIN_RECORDS records of work run on NumPy (numba's
+    import and cache load would cost more than the run); the keyword and the setting still win."""
+    monkeypatch.delenv(ENGINE_SETTING, raising=False)
+    assert resolve_engine(records=NUMBA_MIN_RECORDS - 1) == "numpy"
+    assert resolve_engine(records=NUMBA_MIN_RECORDS) == "numba"
+    assert resolve_engine("numba", records=1) == "numba"
+    monkeypatch.setenv(ENGINE_SETTING, "numba")
+    assert resolve_engine(records=1) == "numba"
+    monkeypatch.setenv(ENGINE_SETTING, "numpy")
+    assert resolve_engine(records=10**6) == "numpy"
 
 
 def test_without_a_writable_cache_folder_the_kernels_compile_in_memory(monkeypatch) -> None:

@@ -16,6 +16,7 @@ from hypothesis import strategies as st
 from proofs_check import MalformedError, check_certificate
 from theory.core.exact import RationalizationError, rational_unit_vector
 from theory.core.observability import numeric_rank
+from theory.core.sparse_weights import SparseWeights
 from theory.kinds import load_case, parse_case
 from theory.registry import get_claim
 from theory.tdoa.model import neighbour_lists
@@ -109,8 +110,11 @@ def test_network_steps_group_equal_networks() -> None:
         spec,
         agents=np.concatenate([spec.agents, spec.agents + 1.0, spec.agents]),
         target=np.concatenate([spec.target] * 3),
-        hears=np.concatenate([spec.hears, ~spec.hears & ~np.eye(4, dtype=bool)[None], spec.hears]),
-        weights=np.concatenate([spec.weights, spec.weights, spec.weights]),
+        links=(
+            spec.links[0],
+            SparseWeights.named(4, *np.nonzero(~spec.hears[0] & ~np.eye(4, dtype=bool)), "uniform"),
+            spec.links[0],
+        ),
     )
     assert repeated.networks() == [(0, 2), (1,)]
 

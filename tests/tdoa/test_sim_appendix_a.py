@@ -6,9 +6,11 @@ import dataclasses
 
 import numpy as np
 import pytest
+import yaml
 from scipy.linalg import block_diag
 
-from theory.kinds import load_case
+from theory.core.case_file import bundled_cases
+from theory.kinds import load_case, parse_case
 from theory.registry import get_claim
 from theory.tdoa.estimation.scenario import hears_at, run_tdoa_scenario, weights_at
 from theory.tdoa.estimation.stability import lemma_a12_along
@@ -73,3 +75,18 @@ def test_refuses_fast_consensus() -> None:
     run = run_tdoa_scenario(dataclasses.replace(spec, steps=2), np.random.default_rng(0))
     with pytest.raises(ValueError, match="tau = T"):
         lemma_a12_along(dataclasses.replace(spec, steps=2), run)
+
+
+def test_row_stochastic_weights_refute_a24() -> None:
+    """Bundled case ``seed000-lemA12-uniform-weights`` (docs/errata.md): uniform weights, in the
+    class of §4.2.2 but not doubly stochastic, give c_0 > 1 in (A.24), so no α in (0, 1) works;
+    Metropolis weights on the same network give c_0 = 1 to rounding."""
+    case = load_case("seed000-lemA12-uniform-weights")
+    result = get_claim("seed000.lemA.1.2").run(case)[0]
+    assert result.status == "refuted" and result.evidence["first_failure_step"] == 0
+    assert result.evidence["max_factor"] > 1.06
+    raw = yaml.safe_load(bundled_cases()["seed000-lemA12-uniform-weights"].read_text())
+    raw["tdoa-sim"]["weights"] = "metropolis"
+    metropolis = parse_case(raw).spec
+    out = lemma_a12_along(metropolis, run_tdoa_scenario(metropolis, np.random.default_rng(0)))
+    assert abs(out["factors"][0] - 1) < 1e-12

@@ -64,10 +64,11 @@ def run_pf_case(
     *,
     workers: int | None = None,
     scheduler: str | None = None,
+    figures: bool = True,
 ) -> int:
     """Print :func:`theory.particle.report.pf_report` of ``case`` (``runs``, ``seed``: ``None``
-    for the case's own; ``out``: folder for ``pf.json`` and figures) and return the
-    expectations' exit code."""
+    for the case's own; ``out``: folder for ``pf.json`` and, when ``figures``, the figures) and
+    return the expectations' exit code."""
     from theory.core.parallel import engine
     from theory.particle.case import check_pf_runs
     from theory.particle.report import MARKER, pf_report
@@ -88,6 +89,7 @@ def run_pf_case(
             out=None if out is None else Path(out),
             runner=runner,
             progress=advance,
+            figures=figures,
         )
     record = report.to_json()
     if as_json:

@@ -77,12 +77,19 @@ def register(app: typer.Typer) -> None:
             from theory.cli.pf import run_pf_case
 
             code = run_pf_case(
-                loaded, runs, seed, output, as_json, workers=workers, scheduler=scheduler
+                loaded,
+                runs,
+                seed,
+                output,
+                as_json,
+                workers=workers,
+                scheduler=scheduler,
+                figures=figures,
             )
             raise typer.Exit(code)
         check_folder_output(output, "-o/--output", MARKER)
         runs, seed = runs or 1, seed or 0
-        chosen = simulator_for(loaded, steps)
+        chosen = simulator_for(loaded, steps, runs)
         workers = workers or default_workers()
         with progress_bar(runs, f"simulating {loaded.name}", quiet=as_json) as advance:
             simulation = simulate_case(

@@ -65,6 +65,7 @@ __all__ = [
     "SourceComponent",
     "blind_sets",
     "detectable_exact",
+    "exact_unobservable_basis",
     "exact_unobservable_part",
     "necessary_conditions",
     "schur_stable",
@@ -433,6 +434,13 @@ def _annihilates(Ci: np.ndarray, F: np.ndarray, rank_tol: float) -> bool:
 def exact_unobservable_part(A: np.ndarray, C: np.ndarray | list) -> fmpq_mat:
     """``A_u`` of the Kalman decomposition of ``(A, C)``, exact over the rationals (``0 × 0`` if
     observable; exact rows of ``C`` are used as they are)."""
+    return exact_unobservable_basis(A, C)[1]
+
+
+def exact_unobservable_basis(A: np.ndarray, C: np.ndarray | list) -> tuple[list, fmpq_mat]:
+    """``(V, A_u)``: a rational basis ``V`` (``n × k`` rows of Fractions) of the unobservable
+    subspace ``null O`` (eq. (4.18)) and ``A_u`` with ``A V = V A_u`` exactly (``([], 0 × 0)`` if
+    observable)."""
     n = len(A) if isinstance(A, list) else A.shape[0]
     Aq = to_fmpq(rational_matrix(A))
     rows: list[list[Fraction]] = []
@@ -447,10 +455,11 @@ def exact_unobservable_part(A: np.ndarray, C: np.ndarray | list) -> fmpq_mat:
         power = fractions_of(to_fmpq(power) * Aq)
     V = null_basis(rows, n)
     if not V:
-        return fmpq_mat(0, 0)
-    Vq = to_fmpq([[V[c][r] for c in range(len(V))] for r in range(n)])
+        return [], fmpq_mat(0, 0)
+    columns = [[V[c][r] for c in range(len(V))] for r in range(n)]
+    Vq = to_fmpq(columns)
     Vt = Vq.transpose()
-    return (Vt * Vq).solve(Vt * Aq * Vq)
+    return columns, (Vt * Vq).solve(Vt * Aq * Vq)
 
 
 def schur_stable(coefficients: list[Fraction]) -> bool:

@@ -7,23 +7,24 @@ the user's links ``W.i.j = A + B·w`` (:func:`theory.core.links.parse_link_expr`
 sweep`` reads them), ``w`` ranging where every linked weight lies in ``[0, 1]``, every row summing
 to 1 for every ``w``. Every ``W(w)`` is exact (rows of Fractions from the data as written).
 
-**Exact supremum.** Two necessary conditions are decided exactly along the family. (1) A
-linked self-weight ``w_aa(w) = A + B·w`` with ``B > 0`` must satisfy Thm 5.2.10 (2),
-``w_aa r_σ(A_aᵘ)² < 1``: with ``μ_a`` the largest ``|λ²|`` over the roots of
-:func:`~theory.consensus.conditions.squared_unobservable_polynomial`, it fails for every
-``w ≥ u_a = (1/μ_a − A)/B`` (monotone in ``w``). (2) The blind-set condition (Theorem 4 of
+**Exact supremum.** Two necessary conditions are decided exactly along the family. (1) A linked
+self-weight ``w_aa(w) = A + B·w`` with ``B > 0`` must satisfy Thm 5.2.10 (2), ``w_aa r_σ(A_aᵘ)² <
+1``: with ``μ_a = r_σ(A_aᵘ)²`` (a real or a complex largest eigenvalue), it fails for every ``w ≥
+u_a = (1/μ_a − A)/B`` (monotone in ``w``); ``u_a`` is exact and certified for every ``w ≥ u_a`` by
+:mod:`theory.consensus.self_weight_bound`. (2) The blind-set condition (Theorem 4 of
 ``docs/theory/s-detectability.md``) for a rational eigenvalue λ and a blind set S the family
 changes: ``λ² r_σ(W_SS(w)) < 1`` iff every leading principal minor of ``I − λ² W_SS(w)`` is
 positive; ``u_S`` is the first root of a minor in ``(lo, hi]``, kept only when the condition fails
-at rational points between every later root, so on all of ``[u_S, hi]``. ``u`` is the least
-bound: a rational, or an algebraic number given by its minimal polynomial and an isolating
-interval (sympy, exact), re-checked by the condition's exact test at the interval's upper end.
-It is reported as the supremum when an ``s-detectability`` certificate holds at a rational ``w``
-within ``width`` below it (and an ``s-detectability-infeasible`` certificate at ``u`` or a
-rational just above, when a rational blind set gives one). What is then proven: ``sup ∈
-[below.w, u]`` for the width asked, which any width makes as narrow as one likes; that every
-``w < u`` is S-detectable is the paper's tightness (``docs/theory/s-detectability.md`` §8
-proves it for Examples 1 and 2, Theorem 6 for scalar systems).
+at rational points between every later root, so on all of ``[u_S, hi]``. ``u`` is the least bound: a
+rational, or an algebraic number given by its minimal polynomial and an isolating interval (sympy,
+exact), re-checked by the condition's exact test at the interval's upper end. It is reported as the
+supremum when an ``s-detectability`` certificate holds at a rational ``w`` within ``width`` below
+it; the refuted side carries the bound's ``self-weight-necessary-violated`` certificate (1), or an
+``s-detectability-infeasible`` certificate at ``u`` or a rational just above when a rational blind
+set gives one (2). What is then proven: ``sup ∈ [below.w, u]`` for the width asked, which any width
+makes as narrow as one likes; that every ``w < u`` is S-detectable is the paper's tightness
+(``docs/theory/s-detectability.md`` §8 proves it for Examples 1 and 2, Theorem 6 for scalar
+systems).
 
 **Otherwise a bracket.** Exact decisions
 (:func:`~theory.consensus.s_detectability.decide_s_detectability`) at rational points, bisected
@@ -43,10 +44,14 @@ from typing import Any
 import numpy as np
 import sympy
 
-from theory.consensus.conditions import self_weight_ok_exact, squared_unobservable_polynomial
 from theory.consensus.infeasibility import blind_flats, infeasibility_certificate
 from theory.consensus.operators import nonnegative_radius_below
 from theory.consensus.s_detectability import LmiCache, decide_s_detectability
+from theory.consensus.self_weight_bound import (
+    SelfWeightThreshold,
+    isolated_root,
+    self_weight_threshold,
+)
 from theory.core.case_file import Case
 from theory.core.errors import COMMAND_LINE, CaseError
 from theory.core.exact import (
@@ -99,6 +104,13 @@ class Family:
         for (i, j), (offset, factor) in self.entries.items():
             out[i][j] = offset + factor * w
         return out
+
+    def affine(self) -> tuple[Matrix, Matrix]:
+        """``(W0, W1)`` with ``W(w) = W0 + w·W1``."""
+        W0, W1 = self.at(Fraction(0)), self.at(Fraction(1))
+        return W0, [
+            [y - x for x, y in zip(r0, r1, strict=True)] for r0, r1 in zip(W0, W1, strict=True)
+        ]
 
     def rising_diagonal(self) -> list[tuple[int, Fraction, Fraction]]:
         """``(a, offset, factor)`` of each self-weight that grows with ``w``."""
@@ -259,11 +271,13 @@ class SelfWeightDesign:
 @dataclass(frozen=True)
 class _Bound:
     """``u`` (``value``): the necessary ``condition`` fails for every ``w ≥ u`` of the family;
-    ``fails(w)`` decides it exactly at a rational ``w``."""
+    ``fails(w)`` decides it exactly at a rational ``w``; ``threshold`` when it is Thm 5.2.10 (2)
+    (its certificate covers every ``w ≥ u``)."""
 
     value: Supremum
     condition: str
     fails: Callable[[Fraction], bool]
+    threshold: SelfWeightThreshold | None = None
 
 
 def _fraction(x: sympy.Rational) -> Fraction:
@@ -272,54 +286,37 @@ def _fraction(x: sympy.Rational) -> Fraction:
 
 
 def _algebraic(poly: sympy.Poly, left: Fraction, right: Fraction) -> Supremum | None:
-    """The one root of ``poly`` in ``[left, right]``: rational, or its minimal polynomial (the
-    irreducible factor with a root there) and an isolating interval of width ``≤ 10⁻²⁰``."""
-    lo, hi = (
-        sympy.Rational(left.numerator, left.denominator),
-        sympy.Rational(right.numerator, right.denominator),
-    )
-    for factor, _ in poly.factor_list()[1]:
-        if factor.count_roots(lo, hi) != 1:
-            continue
-        if factor.degree() == 1:
-            b, a = factor.all_coeffs()[1], factor.all_coeffs()[0]
-            q = _fraction(-b / a)
-            return Supremum(True, float(q), (q, q), rational=q)
-        for (a, b), _ in factor.intervals(eps=sympy.Rational(1, 10**20), inf=lo, sup=hi):
-            interval = (_fraction(a), _fraction(b))
-            primitive = factor.primitive()[1]
-            coefficients = tuple(int(c) for c in reversed(primitive.all_coeffs()))
-            value = float((a + b) / 2)
-            return Supremum(True, value, interval, polynomial=coefficients)
-    return None
+    """The one root of ``poly`` in ``[left, right]``: rational, or its minimal polynomial and an
+    isolating interval of width ``≤ 10⁻²⁰`` (:func:`~theory.consensus.self_weight_bound.
+    isolated_root`)."""
+    root = isolated_root(poly, left, right)
+    if root is None:
+        return None
+    rational, polynomial, interval = root
+    if rational is not None:
+        return Supremum(True, float(rational), interval, rational=rational)
+    return Supremum(True, float(sum(interval) / 2), interval, polynomial=polynomial)
 
 
 def _self_weight_bound(A: np.ndarray, C: np.ndarray, a: int, offset: Fraction,
                        factor: Fraction) -> _Bound | None:  # fmt: skip
     """Thm 5.2.10 (2) for the rising self-weight ``w_aa = offset + factor·w``: ``u = (1/μ −
-    offset)/factor``, ``μ = max |λ²|`` over ``A_aᵘ`` when a real root attains it."""
-    s = squared_unobservable_polynomial(A, C)
-    if len(s) < 2:
+    offset)/factor``, ``μ = max |λ(A_aᵘ)|²`` (a real or a complex ``λ``), with the
+    ``self-weight-necessary-violated`` certificate (:mod:`theory.consensus.self_weight_bound`)."""
+    threshold = self_weight_threshold(A, C, a, offset, factor)
+    if threshold is None:
         return None
-    z = sympy.Symbol("z")
-    poly = sympy.Poly([sympy.Rational(c.numerator, c.denominator) for c in reversed(s)], z)
-    top = max(abs(complex(r)) for r in np.roots([float(c) for c in reversed(s)]))
-    real = [r for r in sympy.real_roots(poly) if top and abs(float(r)) >= top * (1 - 1e-12)]
-    if not real:
-        return None
-    w = sympy.Symbol("w")
-    u = (1 / sympy.Abs(real[0]) - sympy.Rational(offset)) / sympy.Rational(factor)
-    minimal = sympy.Poly(sympy.minimal_polynomial(u, w), w)
-    value = Fraction(repr(float(sympy.N(u, 30))))
-    spread = Fraction(1, 10**12) * max(1, abs(value))
-    sup = _algebraic(minimal, value - spread, value + spread)
-    if sup is None:
-        return None
+    if threshold.rational is not None:
+        q = threshold.rational
+        sup = Supremum(True, float(q), (q, q), rational=q)
+    else:
+        interval = threshold.interval
+        sup = Supremum(True, float(sum(interval) / 2), interval, polynomial=threshold.polynomial)
     condition = (
         f"Thm 5.2.10 (2) for agent {a + 1}: w_aa r_σ(A_aᵘ)² < 1 fails exactly for every "
         f"w ≥ {sup.value:.10g} (Schur–Cohn; monotone in w)"
     )
-    return _Bound(sup, condition, lambda x: not self_weight_ok_exact(A, C, offset + factor * x))
+    return _Bound(sup, condition, threshold.fails, threshold)
 
 
 def _blind_set_bounds(A: np.ndarray, C: list[np.ndarray], family: Family) -> list[_Bound]:
@@ -459,6 +456,19 @@ class _Decider:
         self.probes.append(probe)
         return probe
 
+    def violated(self, bound: _Bound, w: Fraction) -> Probe | None:
+        """A ``self-weight-necessary-violated`` certificate (every ``w' ≥ u``, Thm 5.2.10 (2)),
+        recorded at the rational ``w ≥ u``."""
+        if bound.threshold is None:
+            return None
+        W0, slope = self.family.affine()
+        cert = bound.threshold.certificate(self.A, self.C, W0, slope, self.case)
+        if cert is None:
+            return None
+        probe = Probe(w, False, cert, bound.condition)
+        self.probes.append(probe)
+        return probe
+
 
 def self_weight_design(
     case: Case,
@@ -522,14 +532,14 @@ def _search(
             near = decider.decide(below)
             condition = bound.condition
             if near.verdict is True:
-                refuted = decider.refute(above)
+                refuted = decider.violated(bound, above) or decider.refute(above)
                 note = (
                     "exact: S-detectable (certificate) at a w within the width below the "
                     "supremum; no w at or above it is (the exact necessary condition)"
-                    + ("" if refuted else "; no rational blind set gives a certificate above")
+                    + ("" if refuted else "; no certificate above (no rational blind set)")
                 )
                 return answer("exact", bound.value, near, refuted, condition, note)
-            high = Probe(above, False, None, condition)
+            high = decider.violated(bound, above) or Probe(above, False, None, condition)
             return _bisect(decider, first, high, width, answer, condition)
     last = decider.decide(family.hi)
     if last.verdict is True:

@@ -59,8 +59,10 @@ import networkx as nx
 import numpy as np
 from hypothesis import strategies as st
 
+from proofs_check import check_certificate
 from theory.consensus.case import Order, ch5_examples
-from theory.consensus.conditions import necessary_conditions
+from theory.consensus.conditions import exact_unobservable_part, necessary_conditions
+from theory.consensus.design import exact_system, self_weight_design, self_weight_family_exact
 from theory.consensus.operators import J_matrix, closed_loop, float_lyapunov, gains_stabilize
 from theory.consensus.riccati import (
     bound_iteration,
@@ -70,6 +72,7 @@ from theory.consensus.riccati import (
     coupled_riccati_step,
 )
 from theory.consensus.s_detectability import decide_s_detectability
+from theory.consensus.self_weight_bound import self_weight_threshold
 from theory.consensus.strategies import (
     SELF_WEIGHT_THRESHOLDS,
     DkfProblem,
@@ -95,6 +98,7 @@ from theory.core.tolerances import (
     RICCATI_HORIZON,
     UNIT_CIRCLE_TOL,
 )
+from theory.kinds import parse_case
 from theory.strategy_helpers import boundary_values, example_record
 
 __all__ = [
@@ -103,6 +107,7 @@ __all__ = [
     "RICCATI_EXAMPLES",
     "RiccatiAgreement",
     "ScaledProblem",
+    "SelfWeightFamily",
     "SelfWeightPoint",
     "SmallDkf",
     "SuboptimalGainStep",
@@ -114,6 +119,8 @@ __all__ = [
     "riccati_agreement",
     "scaled_problems",
     "scaling_consistent",
+    "self_weight_certified",
+    "self_weight_families",
     "self_weight_truth",
     "small_dkf_problems",
     "strongly_connected",
@@ -409,6 +416,9 @@ def riccati_agreement(
     return RiccatiAgreement(False, worst <= PSD_TOL and not stabilizing, worst, stabilizing)
 
 
+WEIGHT_DECADES = 4
+"""Decades over which the float-valued properties (Lemmas 5.2.3, A.2.1) draw the raw consensus
+weights: (5.3) allows any positive w_ij on the links, not only ratios ≤ 10."""
 RICCATI_EXAMPLES = dkf_problems(max_states=2, max_agents=3, a_bound=2.0, integer_data=True)
 """Small integer problems, so that exact verdicts (both ways) are common."""
 
@@ -479,6 +489,60 @@ def averaged_bound_holds(problem: DkfProblem) -> bool:
     U = np.stack([np.eye(n) + Li @ Li.T for Li in problem.L])
     check = check_averaged_bound(problem.W, M, X, F @ F.transpose(0, 2, 1), U, steps=60)
     return check.r >= 1 - RADIUS_TOL or (check.decay_ok and check.bound_ok)
+
+
+@dataclass(frozen=True, eq=False)
+class SelfWeightFamily:
+    """Agent 1's self-weight family (row rescaled) of ``problem``, agent 1 blind to an
+    A-invariant subspace; ``t ∈ [0, 1]`` picks the sampled points."""
+
+    problem: SmallDkf
+    t: Fraction
+
+
+@st.composite
+def self_weight_families(draw: st.DrawFn) -> SelfWeightFamily:
+    """``n ≤ 3`` states, ``A`` entries in {−3, …, 3}, agent 1 with one row in {−1, 0, 1} leaving a
+    non-nilpotent unobservable part, agent 2 a random row or the identity, ``W`` 2 × 2 from
+    integer weights 1–4."""
+    n = draw(st.integers(2, 3))
+    A = np.array([[draw(st.integers(-3, 3)) for _ in range(n)] for _ in range(n)], dtype=float)
+    C_1 = np.array([[draw(st.integers(-1, 1)) for _ in range(n)]], dtype=float)
+    seen = draw(st.booleans())
+    C_2 = np.eye(n) if seen else np.array([[draw(st.integers(-1, 1)) for _ in range(n)]], float)
+    raw = np.array([[draw(st.integers(1, 4)) for _ in range(2)] for _ in range(2)], dtype=float)
+    problem = SmallDkf(A, (C_1, C_2), raw / raw.sum(axis=1, keepdims=True))
+    return SelfWeightFamily(problem, draw(st.fractions(0, 1)))
+
+
+def _blind_and_growing(example: SelfWeightFamily) -> bool:
+    A_u = exact_unobservable_part(example.problem.A, example.problem.C[0])
+    return A_u.nrows() > 0 and any(A_u.charpoly().coeffs()[:-1])
+
+
+def self_weight_certified(example: SelfWeightFamily) -> bool:
+    """The certified Thm 5.2.10 (2) threshold ``u`` of agent 1's self-weight: its
+    ``self-weight-necessary-violated`` certificate is VALID, a rational ``w ≥ u`` of the family is
+    never decided S-detectable, and when ``trackcert design self-weight`` reports it as the exact
+    supremum, ``t · below.w`` is never decided not S-detectable."""
+    case = parse_case(dkf_case(example.problem))
+    A, C, W = exact_system(case)
+    family = self_weight_family_exact(W, [0])
+    (offset, factor) = family.entries[(0, 0)]
+    threshold = self_weight_threshold(A, C[0], 0, offset, factor)
+    if threshold is None:
+        return True
+    cert = threshold.certificate(A, C, *family.affine(), case.name)
+    if cert is None or not check_certificate(cert).valid:
+        return False
+    u = threshold.interval[1]
+    if u <= 1 and decide_s_detectability(A, C, family.at(u + example.t * (1 - u))).verdict:
+        return False
+    result = self_weight_design(case, agents=[0], width=Fraction(1, 100))
+    if result.status != "exact" or "Thm 5.2.10" not in result.condition:
+        return True
+    inside = decide_s_detectability(A, C, family.at(example.t * result.below.w))
+    return inside.verdict is not False
 
 
 def _property(
@@ -580,6 +644,16 @@ PROPERTIES = (
         dkf_case,
     ),
     _property(
+        "seed000.thm5.2.10.self-weight/paper",
+        "For agent 1's self-weight w (row rescaled) and u = (1/r_σ(A_1ᵘ)²) of Thm 5.2.10 (2), "
+        "exact: the self-weight-necessary-violated certificate is valid, no rational w ≥ u is "
+        "S-detectable, and points below the design's certified w are not refuted.",
+        self_weight_families().filter(_blind_and_growing),
+        self_weight_certified,
+        lambda example: dkf_case(example.problem),
+        claim="seed000.thm5.2.10",
+    ),
+    _property(
         "seed000.appC.2/paper",
         "P*_i(k+1) − P_i(k+1) = (A − L*_iC_i)E_i(P*(k) − P(k))(A − L*_iC_i)' − (L_i − L*_i)"
         "(R_i + C_iE_i(P(k))C_i')(L_i − L*_i)' for every step with P(k) ⪰ P*(k) (display before "
@@ -601,7 +675,7 @@ PROPERTIES = (
         "seed000.lem5.2.3/paper",
         "With any fixed gains, any row-stochastic W and any P(0) = Σ(0) ⪰ 0, the error "
         "covariances of (5.5) satisfy Σ_i(k) ⪯ P_i(k) of (5.15).",
-        dkf_problems(max_states=3, max_agents=4, gain_bound=1.5),
+        dkf_problems(max_states=3, max_agents=4, gain_bound=1.5, weight_decades=WEIGHT_DECADES),
         covariance_bound_holds,
         dkf_case,
     ),
@@ -609,7 +683,9 @@ PROPERTIES = (
         "seed000.lemA.2.1/paper",
         "If X^i ≻ f_1^i(M, X) for some X ≻ 0, then f_k(M, P_0) ⪯ α r^k X → 0 and "
         "P_{k+1} = f_1(M, P_k) + U stays ⪯ (α + μ/(1 − r)) X.",
-        dkf_problems(max_states=3, max_agents=4, a_bound=1.2, gain_bound=1.0),
+        dkf_problems(
+            max_states=3, max_agents=4, a_bound=1.2, gain_bound=1.0, weight_decades=WEIGHT_DECADES
+        ),
         averaged_bound_holds,
         dkf_case,
     ),

@@ -40,11 +40,18 @@ class DkfProblem:
     L: tuple[np.ndarray, ...]
 
 
-def _directed_weights(rng: np.random.Generator, n: int, min_weight: float) -> np.ndarray:
+def _directed_weights(rng: np.random.Generator, n: int, decades: float | None) -> np.ndarray:
+    """Row-stochastic W on a random directed support with positive diagonal (seed 000 (5.3)):
+    raw weights uniform in [0.1, 1] (``decades=None``) or log-uniform over ``decades``."""
     support = rng.random((n, n)) < rng.uniform(0.2, 1.0)
     np.fill_diagonal(support, True)
-    raw = np.where(support, rng.uniform(min_weight, 1.0, (n, n)), 0.0)
+    spread = rng.uniform(0.1, 1.0, (n, n)) if decades is None else _log_uniform(rng, n, decades)
+    raw = np.where(support, spread, 0.0)
     return raw / raw.sum(axis=1, keepdims=True)
+
+
+def _log_uniform(rng: np.random.Generator, n: int, decades: float) -> np.ndarray:
+    return 10.0 ** rng.uniform(-decades, 0.0, (n, n))
 
 
 def dkf_problems(
@@ -57,17 +64,22 @@ def dkf_problems(
     a_bound: float = 1.5,
     gain_bound: float = 1.0,
     integer_data: bool = False,
+    weight_decades: float | None = None,
 ) -> st.SearchStrategy[DkfProblem]:
     """Consensus-filter problems built from one drawn seed (a failing example is its seed).
 
     ``n`` states and ``N`` agents in the given ranges, each ``C_i`` with 0 to ``max_rows`` rows,
     entries of ``A`` within ``a_bound`` (multiples of ``a_bound/2`` with ``integer_data``, which
     also puts ``C_i`` in {−1, 0, 1} so exact arithmetic stays small), gains within
-    ``gain_bound``; ``W`` row-stochastic on a random directed support, weights ≥ 0.1 before
-    normalisation. Impossible bounds raise :class:`InvalidArgument` at call time.
+    ``gain_bound``; ``W`` row-stochastic on a random directed support, raw weights uniform in
+    [0.1, 1] before normalisation, or with ``weight_decades`` log-uniform over that many decades
+    (seed 000 (5.3) allows any positive weights on the links). Impossible bounds raise
+    :class:`InvalidArgument` at call time.
     """
     check_range("min_states", min_states, "max_states", max_states, 1)
     check_range("min_agents", min_agents, "max_agents", max_agents, 1)
+    if weight_decades is not None and not weight_decades > 0:
+        raise InvalidArgument(f"weight_decades={weight_decades} must be > 0")
     if max_rows < 0 or not a_bound > 0 or not gain_bound >= 0:
         raise InvalidArgument(
             "need max_rows ≥ 0, a_bound > 0, gain_bound ≥ 0; "
@@ -85,7 +97,7 @@ def dkf_problems(
         else:
             A = rng.uniform(-a_bound, a_bound, (n, n))
             C = tuple(rng.uniform(-1, 1, (p, n)) for p in rows)
-        W = _directed_weights(rng, N, 0.1)
+        W = _directed_weights(rng, N, weight_decades)
         L = tuple(rng.uniform(-gain_bound, gain_bound, (n, p)) for p in rows)
         return DkfProblem(seed, A, C, W, L)
 

@@ -28,8 +28,12 @@ __all__ = [
     "exact_uniform_weights",
     "exact_weights",
     "is_symmetric",
+    "link_component_labels",
+    "metropolis_entries",
     "metropolis_weights",
     "near_pairs",
+    "pairs_within_range",
+    "uniform_entries",
     "uniform_weights",
     "weights_support",
 ]
@@ -47,7 +51,18 @@ def adjacency_from_edges(n: int, edges: np.ndarray, *, directed: bool = False) -
 
 
 def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray:
-    """Undirected adjacency of agents at ``positions`` closer than ``comm_range``.
+    """Undirected adjacency of agents at ``positions`` closer than ``comm_range`` (the pairs of
+    :func:`pairs_within_range` as an ``N × N`` boolean matrix)."""
+    n = np.asarray(positions).shape[0]
+    adjacency = np.zeros((n, n), dtype=bool)
+    i, j = pairs_within_range(positions, comm_range)
+    adjacency[i, j] = adjacency[j, i] = True
+    return adjacency
+
+
+def pairs_within_range(positions: np.ndarray, comm_range: float) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs ``i < j`` of agents at ``positions`` closer than ``comm_range``, as two index
+    arrays (``O(N + E)`` memory: no ``N × N`` array).
 
     The rule is strict (``<``), as in seed 000 §4.4, and decided exactly on the numbers as
     written (:func:`theory.core.exact.exact_decimal`): pairs whose float squared distance
@@ -56,16 +71,16 @@ def adjacency_from_range(positions: np.ndarray, comm_range: float) -> np.ndarray
     neighbouring cells of a grid are compared (:func:`near_pairs`).
     """
     positions = np.asarray(positions, dtype=float)
-    n = positions.shape[0]
-    adjacency = np.zeros((n, n), dtype=bool)
     band = _range_band(positions, comm_range)
+    found_i, found_j = [np.zeros(0, dtype=np.int64)], [np.zeros(0, dtype=np.int64)]
     for i, j in near_pairs(positions, float(np.sqrt(comm_range**2 + band))):
         squared = ((positions[i] - positions[j]) ** 2).sum(axis=-1)
         linked = squared < comm_range**2
         for k in np.flatnonzero(np.abs(squared - comm_range**2) <= band):
             linked[k] = _exactly_closer(positions[i[k]], positions[j[k]], comm_range)
-        adjacency[i[linked], j[linked]] = adjacency[j[linked], i[linked]] = True
-    return adjacency
+        found_i.append(i[linked])
+        found_j.append(j[linked])
+    return np.concatenate(found_i), np.concatenate(found_j)
 
 
 def near_pairs(
@@ -146,27 +161,46 @@ def _exactly_closer(p: np.ndarray, q: np.ndarray, comm_range: float) -> bool:
 
 def metropolis_weights(adjacency: np.ndarray) -> np.ndarray:
     """Metropolis weights of the undirected graph ``adjacency`` (rows and columns sum to 1)."""
-    degree = adjacency.sum(axis=1)
     r, s = np.nonzero(adjacency)
     n = adjacency.shape[0]
-    values = 1.0 / (1.0 + np.maximum(degree[r], degree[s]))
-    weights = _on_links(n, r, s, values)
-    np.fill_diagonal(weights, 1.0 - np.bincount(r, weights=values, minlength=n))
-    return weights
+    return _on_links(n, r, s, *metropolis_entries(n, r, s))
 
 
 def uniform_weights(adjacency: np.ndarray) -> np.ndarray:
     """Uniform weights on ``adjacency``: each agent averages itself and its in-neighbours."""
+    r, s = np.nonzero(adjacency)
     n = adjacency.shape[0]
-    r, s = np.nonzero(adjacency | np.eye(n, dtype=bool))
-    return _on_links(n, r, s, 1.0 / np.bincount(r, minlength=n)[r])
+    return _on_links(n, r, s, *uniform_entries(n, r, s))
 
 
-def _on_links(n: int, r: np.ndarray, s: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """The ``n × n`` matrix with ``values`` at ``(r, s)`` and zeros elsewhere (written link by
-    link: ``O(N + E)`` writes, not an ``N²`` sweep)."""
+def metropolis_entries(
+    n: int, receiver: np.ndarray, sender: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Metropolis weights by their entries: ``w_rs = 1/(1 + max(d_r, d_s))`` on each link
+    ``(receiver[k], sender[k])`` of an undirected graph (both directions listed) and the self-
+    weights ``w_ii = 1 − Σ_j w_ij``; ``O(N + E)``."""
+    degree = np.bincount(receiver, minlength=n)
+    values = 1.0 / (1.0 + np.maximum(degree[receiver], degree[sender]))
+    return values, 1.0 - np.bincount(receiver, weights=values, minlength=n)
+
+
+def uniform_entries(
+    n: int, receiver: np.ndarray, sender: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Uniform weights by their entries: ``w_rs = 1/(d_r + 1)`` on each link and on the
+    diagonal (``d_r`` the in-degree of ``r``); ``O(N + E)``."""
+    share = 1.0 / (np.bincount(receiver, minlength=n) + 1.0)
+    return share[receiver], share
+
+
+def _on_links(
+    n: int, r: np.ndarray, s: np.ndarray, values: np.ndarray, diagonal: np.ndarray
+) -> np.ndarray:
+    """The ``n × n`` matrix with ``values`` at ``(r, s)``, ``diagonal`` on the diagonal and zeros
+    elsewhere (written link by link: ``O(N + E)`` writes, not an ``N²`` sweep)."""
     weights = np.zeros((n, n))
     weights[r, s] = values
+    weights[np.arange(n), np.arange(n)] = diagonal
     return weights
 
 
@@ -236,11 +270,15 @@ def components(adjacency: np.ndarray) -> list[list[int]]:
 
 
 def component_labels(adjacency: np.ndarray) -> np.ndarray:
-    """Each agent's weakly connected component, labelled by its smallest agent (``O((N + E)
-    log N)``: hooking of roots onto the smaller root, then pointer jumping, until no link joins
-    two trees)."""
-    r, s = np.nonzero(adjacency)
-    root = np.arange(adjacency.shape[0])
+    """Each agent's weakly connected component, labelled by its smallest agent."""
+    return link_component_labels(adjacency.shape[0], *np.nonzero(adjacency))
+
+
+def link_component_labels(n: int, r: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Each of ``n`` agents' weakly connected component under the links ``(r[k], s[k])``,
+    labelled by its smallest agent (``O((N + E) log N)``: hooking of roots onto the smaller
+    root, then pointer jumping, until no link joins two trees)."""
+    root = np.arange(n)
     while True:
         low = np.minimum(root[r], root[s])
         hooked = root.copy()

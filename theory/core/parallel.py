@@ -37,6 +37,7 @@ import functools
 import logging
 import os
 import queue
+import sys
 import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
@@ -133,7 +134,10 @@ def worker_timeout() -> float:
 
 
 def in_worker() -> bool:
-    """Whether this code runs inside a task on a Dask worker."""
+    """Whether this code runs inside a task on a Dask worker (a process that has not imported
+    ``distributed`` is none: the question then costs no import of it)."""
+    if "distributed" not in sys.modules:
+        return False
     try:
         from distributed import get_worker
     except ImportError:  # pragma: no cover - distributed is a dependency

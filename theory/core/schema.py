@@ -285,6 +285,8 @@ def _reading(value: Mapping[str, Any]) -> str:
     if "const" in value:
         return f"`{value['const']}`"
     kind = value.get("type")
+    if kind == "array" and "prefixItems" in value:
+        return "[" + ", ".join(_reading(v) for v in value["prefixItems"]) + "]"
     if kind == "array":
         return "list of " + _reading(value.get("items", {}))
     if kind == "object":

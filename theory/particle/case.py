@@ -39,6 +39,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import StrEnum
+from functools import cached_property
 from typing import Any, TypeVar
 
 import numpy as np
@@ -165,12 +166,17 @@ class PfNetwork:
     hears: np.ndarray
     filters: tuple[int, ...]
 
-    @property
+    @cached_property
+    def filter_array(self) -> np.ndarray:
+        """``(F,)`` the filtering nodes as an index array."""
+        return np.asarray(self.filters, dtype=int)
+
+    @cached_property
     def measurement_mask(self) -> np.ndarray:
         """``(F, N)`` mask of the TDOA components each filtering node measures."""
         return self.hears[list(self.filters)]
 
-    @property
+    @cached_property
     def filter_neighbours(self) -> np.ndarray:
         """``(F, D)`` filter-indices of each filter's filtering neighbours, padded with −1 last."""
         index = {node: f for f, node in enumerate(self.filters)}

@@ -36,7 +36,8 @@ import numpy as np
 from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, Method, Status, status_of
 from theory.core.consistency import evidence, filter_metrics, nees, nis
-from theory.core.parallel import TaskRunner, engine
+from theory.core.parallel import TaskRunner
+from theory.core.parallel import engine as serial_engine
 from theory.core.tolerances import PF_TOLERANCES
 from theory.particle.case import PARAM_NAMES, PF, Model, PfConfig, PfSpec
 from theory.particle.dcrw import sample_dcrw_path, weibull_logpdf, wrapped_cauchy_logpdf
@@ -121,20 +122,22 @@ def monte_carlo(
     snapshot_steps: tuple[int, ...] = (),
     runner: TaskRunner | None = None,
     progress: Callable[[int], None] | None = None,
+    engine: str | None = None,
 ) -> MonteCarlo:
     """Run the scenario ``runs`` times (``None``: the case's runs, seed, model and ``m``).
 
     The runs are independent tasks on ``runner`` (default: this process, serially); run ``r``
     draws only from ``default_rng([seed, r, ·])``, so the result is the same whatever the runner.
-    ``progress`` is called with the number of runs finished.
+    ``progress`` is called with the number of runs finished; ``engine`` chooses the learner's
+    refits (:func:`theory.particle.filter.build_motion`).
     """
     runs = spec.runs if runs is None else runs
     seed = spec.seed if seed is None else seed
     model = Model(spec.model if model is None else model)
     config = spec.config if share is None else replace(spec.config, share=share)
-    task = partial(_run_record, spec, config, model, seed, snapshot_steps)
+    task = partial(_run_record, spec, config, model, seed, snapshot_steps, engine)
     if runner is None:
-        with engine(1) as serial:
+        with serial_engine(1) as serial:
             records = serial.map(task, range(runs), progress=progress)
     else:
         records = runner.map(task, range(runs), progress=progress)
@@ -161,11 +164,13 @@ def _run_record(
     model: Model,
     seed: int,
     snapshot_steps: tuple[int, ...],
+    engine: str | None,
     r: int,
 ) -> tuple:
     """Run ``r`` as plain arrays (errors, estimates, path, learned fits, run 0's snapshots, the
     cloud's NEES and the NIS of :func:`theory.particle.filter.predicted_measurements`)."""
-    path, _, run = one_run(spec, config, model, [seed, r], snapshot_steps if r == 0 else ())
+    snapshots = snapshot_steps if r == 0 else ()
+    path, _, run = one_run(spec, config, model, [seed, r], snapshots, engine=engine)
     learned = run.motion.params if model is Model.LEARNED else None
     errors = nees(run.cloud_means - path[:, None], run.cloud_covariances)
     innovations = nis(run.innovations, run.innovation_covariances)
@@ -178,9 +183,11 @@ def one_run(
     model: Model,
     key: list[int],
     snapshot_steps: tuple[int, ...] = (),
+    *,
+    engine: str | None = None,
 ) -> tuple[np.ndarray, np.ndarray, PfRun]:
     """Run ``key = [seed, r]``: its DCRW path (stream 0), measurements (stream 2) and filter run
-    (stream 1)."""
+    (stream 1); ``engine`` as in :func:`monte_carlo`."""
     low, high = spec.workspace[:, 0], spec.workspace[:, 1]
     path_rng = np.random.default_rng([*key, 0])
     start = low + (high - low) * path_rng.random(2)
@@ -192,7 +199,7 @@ def one_run(
         path,
         spec.network,
         config,
-        build_motion(spec, model),
+        build_motion(spec, model, engine),
         np.random.default_rng([*key, 1]),
         bounds=spec.workspace,
         measurements=measurements,

@@ -56,7 +56,8 @@ from theory.particle.case import (
     ReceivedHeading,
 )
 from theory.particle.dcrw import fit_dcrw, movement_samples, sample_weibull, sample_wrapped_cauchy
-from theory.tdoa.model import range_differences
+from theory.pursuit.compiled_run import resolve_engine
+from theory.tdoa.model import range_differences, ranges
 
 __all__ = [
     "DcrwMotion",
@@ -75,6 +76,7 @@ __all__ = [
     "measure",
     "multinomial_resample",
     "normalise_log_weights",
+    "particle_tdoa",
     "pf_step",
     "pf_update",
     "predicted_measurements",
@@ -147,17 +149,36 @@ def measure(
 def simulate_measurements(
     path: np.ndarray, network: PfNetwork, noise_sigma: float, rng: np.random.Generator
 ) -> np.ndarray:
-    """:func:`measure` at every point of ``path``: an ``(K + 1, F, N)`` array."""
-    return np.asarray([measure(p, network, noise_sigma, rng) for p in path])
+    """:func:`measure` at every point of ``path``: an ``(K + 1, F, N)`` array (the same numbers:
+    one draw of all the noise is the successive draws of each step's)."""
+    points = np.asarray(path, dtype=float)[:, None, :]
+    clean = range_differences(points, network.nodes, network.filter_array[None, :])
+    mask = network.measurement_mask
+    noise = noise_sigma * rng.standard_normal((len(points), *mask.shape))
+    return np.where(mask, clean + noise, 0.0)
+
+
+def particle_tdoa(positions: np.ndarray, network: PfNetwork) -> np.ndarray:
+    """``d_i^n`` ``(F, Q, N)`` of ``Q`` positions per filtering node ``(F, Q, 2)`` (eq. (3.9)):
+    :func:`theory.tdoa.model.range_differences` with the node's own range picked by indexing
+    (the same numbers, without its broadcasting of the agents per call)."""
+    distances = ranges(positions, network.nodes)
+    own = distances[np.arange(len(network.filters)), :, network.filter_array][..., None]
+    return own - distances
 
 
 def log_likelihood(
-    positions: np.ndarray, y: np.ndarray, network: PfNetwork, sigma: float
+    positions: np.ndarray,
+    y: np.ndarray,
+    network: PfNetwork,
+    sigma: float,
+    *,
+    predicted: np.ndarray | None = None,
 ) -> np.ndarray:
     """``−‖y_i − d_i^n‖² / (2σ²)`` ``(F, Q)`` of ``Q`` positions per node ``(F, Q, 2)``, up to a
-    constant (eqs. (3.9)–(3.11))."""
-    filters = np.asarray(network.filters, dtype=int)[:, None]
-    predicted = range_differences(positions, network.nodes, filters)
+    constant (eqs. (3.9)–(3.11)); ``predicted``: their :func:`particle_tdoa`, if already known."""
+    if predicted is None:
+        predicted = particle_tdoa(positions, network)
     mask = network.measurement_mask[:, None, :]
     residual = np.where(mask, y[:, None, :] - predicted, 0.0)
     return -0.5 * np.sum(residual**2, axis=-1) / sigma**2
@@ -240,8 +261,8 @@ def estimate(state: PfState, fraction: float = 0.2) -> np.ndarray:
     """
     count = max(1, int(np.ceil(fraction * state.weights.shape[1])))
     top = np.argpartition(-state.weights, count - 1, axis=1)[:, :count]
-    w = np.take_along_axis(state.weights, top, axis=1)
-    c = np.take_along_axis(state.positions, top[..., None], axis=1)
+    rows = np.arange(top.shape[0])[:, None]
+    w, c = state.weights[rows, top], state.positions[rows, top]
     return np.einsum("fq,fqd->fd", w, c) / w.sum(axis=1, keepdims=True)
 
 
@@ -254,13 +275,19 @@ def cloud_moments(state: PfState) -> tuple[np.ndarray, np.ndarray]:
 
 
 def predicted_measurements(
-    state: PfState, y: np.ndarray, network: PfNetwork, sigma: float
+    state: PfState,
+    y: np.ndarray,
+    network: PfNetwork,
+    sigma: float,
+    *,
+    predicted: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Innovations ``y − ŷ`` ``(F, N)`` and their covariances ``(F, N, N)`` from the prior
     particles: ``ŷ = Σ w h(x)``, ``S = Σ w (h − ŷ)(h − ŷ)ᵀ + σ²I`` on the measured rows (the
-    others 0 and identity, :func:`theory.core.consistency.padded`); eqs. (3.6)–(3.9)."""
+    others 0 and identity, :func:`theory.core.consistency.padded`); eqs. (3.6)–(3.9);
+    ``predicted``: the particles' :func:`particle_tdoa`, if already known."""
     mask = network.measurement_mask
-    h = range_differences(state.positions, network.nodes, np.asarray(network.filters)[:, None])
+    h = particle_tdoa(state.positions, network) if predicted is None else predicted
     mean = np.einsum("fp,fpn->fn", state.weights, h)
     spread = (h - mean[:, None]) * mask[:, None]
     S = np.einsum("fp,fpn,fpm->fnm", state.weights, spread, spread)
@@ -281,9 +308,10 @@ def multinomial_resample(state: PfState, rng: np.random.Generator) -> PfState:
     draws = rng.random((n_filters, P)) + offsets
     flat = np.searchsorted((cumulative + offsets).ravel(), draws.ravel(), side="right")
     index = np.minimum(flat.reshape(n_filters, P) - offsets * P, P - 1)
+    rows = np.arange(n_filters)[:, None]
     return PfState(
-        np.take_along_axis(state.positions, index[..., None], axis=1),
-        np.take_along_axis(state.headings, index, axis=1),
+        state.positions[rows, index],
+        state.headings[rows, index],
         np.full((n_filters, P), 1.0 / P),
     )
 
@@ -311,10 +339,18 @@ def pf_step(
 
 
 def pf_update(
-    state: PfState, y: np.ndarray, network: PfNetwork, config: PfConfig, rng: np.random.Generator
+    state: PfState,
+    y: np.ndarray,
+    network: PfNetwork,
+    config: PfConfig,
+    rng: np.random.Generator,
+    *,
+    predicted: np.ndarray | None = None,
 ) -> tuple[PfState, np.ndarray]:
-    """Steps 1–4 of seed 002 §3.2.1: weights, consensus exchange, estimate ``χ_i(k)``."""
-    weights = normalise_log_weights(log_likelihood(state.positions, y, network, config.sigma))
+    """Steps 1–4 of seed 002 §3.2.1: weights, consensus exchange, estimate ``χ_i(k)``
+    (``predicted``: the particles' :func:`particle_tdoa`, if already known)."""
+    log_weights = log_likelihood(state.positions, y, network, config.sigma, predicted=predicted)
+    weights = normalise_log_weights(log_weights)
     weighted = consensus_exchange(replace(state, weights=weights), network, config, rng, y=y)
     return weighted, estimate(weighted, config.estimate_fraction)
 
@@ -336,8 +372,9 @@ def run_filter(
     state = initial_state(len(network.filters), config.particles, bounds, rng)
     estimates, snapshots, moments, innovations = [], {}, [], []
     for k, y in enumerate(measurements):
-        innovations.append(predicted_measurements(state, y, network, config.sigma))
-        weighted, chi = pf_update(state, y, network, config, rng)
+        h = particle_tdoa(state.positions, network)
+        innovations.append(predicted_measurements(state, y, network, config.sigma, predicted=h))
+        weighted, chi = pf_update(state, y, network, config, rng, predicted=h)
         moments.append(cloud_moments(weighted))
         motion = motion.observe(chi)
         state = propagate(multinomial_resample(weighted, rng), motion, rng)
@@ -435,6 +472,8 @@ class OnlineLearner:
 
     ``history`` holds the estimates seen, each ``(F, 2)``; ``params`` ``(F, 4)`` the fitted
     ``(μ, γ, κ, λ)``, ``nan`` rows for nodes not yet fitted (module docstring for the guards).
+    ``engine``: the refits by the compiled kernel (``"numba"``, :mod:`theory.particle.kernels`)
+    or by the NumPy reference (``"numpy"``), equal to rounding.
     """
 
     prior: UniformMotion
@@ -442,6 +481,7 @@ class OnlineLearner:
     gamma_max: float = 0.95
     kappa_bounds: tuple[float, float] = (0.5, 10.0)
     burn_in: int = 5
+    engine: str = "numba"
     history: tuple[np.ndarray, ...] = ()
     params: np.ndarray | None = None
 
@@ -455,13 +495,35 @@ class OnlineLearner:
         history = (*self.history, np.asarray(estimates, dtype=float))
         tracks = np.asarray(history[self.burn_in :])
         params = np.full((len(estimates), 4), np.nan)
+        refit = self._fit_compiled if self.engine == "numba" else self._fit_reference
         for f in range(len(estimates)) if tracks.shape[0] >= 3 else ():
-            turns, steps = movement_samples(tracks[:, f])
-            if turns.size >= self.min_samples and steps.size:
-                fit = fit_dcrw(turns, steps, gamma_max=self.gamma_max)
-                kappa = float(np.clip(fit.kappa, *self.kappa_bounds))
-                params[f] = (fit.mu, fit.gamma, kappa, _scale_for(steps, kappa))
+            fit = refit(np.ascontiguousarray(tracks[:, f]))
+            if fit is not None:
+                params[f] = fit
         return replace(self, history=history, params=params)
+
+    def _fit_reference(self, track: np.ndarray) -> tuple[float, ...] | None:
+        """``(μ, γ, κ, λ)`` of one node's track by eqs. (3.17)–(3.19) and the ML fits of
+        :mod:`~theory.particle.dcrw`, ``κ`` clamped; ``None`` with too few samples."""
+        turns, steps = movement_samples(track)
+        if turns.size < self.min_samples or not steps.size:
+            return None
+        fit = fit_dcrw(turns, steps, gamma_max=self.gamma_max)
+        kappa = float(np.clip(fit.kappa, *self.kappa_bounds))
+        return fit.mu, fit.gamma, kappa, _scale_for(steps, kappa)
+
+    def _fit_compiled(self, track: np.ndarray) -> tuple[float, ...] | None:
+        """:meth:`_fit_reference` by the compiled kernel (:func:`kernels.fit_track`), the
+        reference where the kernel hands the node back."""
+        from theory.particle import kernels
+
+        out = np.empty(4)
+        status = kernels.fit_track(
+            track, self.min_samples, self.gamma_max, *map(float, self.kappa_bounds), out
+        )
+        if status == kernels.FALLBACK:
+            return self._fit_reference(track)
+        return None if status == kernels.TOO_FEW else tuple(out.tolist())
 
     def sample(self, rng: np.random.Generator, shape: tuple[int, int]) -> tuple:
         """Turns and steps of ``shape`` ``(F, P)``, drawn from ``rng``: the learned DCRW where
@@ -481,13 +543,16 @@ def _scale_for(steps: np.ndarray, kappa: float) -> float:
     return float(np.mean(steps**kappa) ** (1.0 / kappa))
 
 
-def build_motion(spec: PfSpec, model: Model) -> Motion:
+def build_motion(spec: PfSpec, model: Model, engine: str | None = None) -> Motion:
     """The propagation model ``model`` of ``spec``: its true DCRW, the Gaussian baseline, or an
-    online learner over the uniform prior with the case's learning settings."""
+    online learner over the uniform prior with the case's learning settings, refitting on
+    ``engine`` (:func:`theory.pursuit.compiled_run.resolve_engine`: ``"numba"``, ``"numpy"``,
+    ``None`` for ``$TRACKCERT_ENGINE`` or ``"numba"``)."""
     match Model(model):
         case Model.DCRW:
             return DcrwMotion(spec.target)
         case Model.GAUSSIAN:
             return GaussianMotion()
         case Model.LEARNED:
-            return OnlineLearner(UniformMotion(spec.uniform_max_step), **spec.learning)
+            prior = UniformMotion(spec.uniform_max_step)
+            return OnlineLearner(prior, **spec.learning, engine=resolve_engine(engine))

@@ -93,13 +93,14 @@ def pf_report(
     out: Path | None = None,
     runner: TaskRunner | None = None,
     progress: Callable[[int], None] | None = None,
+    figures: bool = True,
 ) -> PfReport:
     """Run ``case`` (``kind: pf``, else a :class:`CaseError`), its claims and its expectations.
 
     ``runs`` and ``seed`` default to the case's; the Monte Carlo runs go to ``runner`` (default:
     this process) and are shared by the claims; ``progress`` is called with the number of runs
-    finished; ``out`` is the folder for ``pf.json`` and the figures, replaced whole (``None``:
-    write nothing; :class:`CaseError` if it holds files but no ``pf.json``,
+    finished; ``out`` is the folder for ``pf.json`` and (when ``figures``) the figures, replaced
+    whole (``None``: write nothing; :class:`CaseError` if it holds files but no ``pf.json``,
     :class:`OutputError` if writing fails, leaving it as it was).
     """
     require_pf(case)
@@ -122,8 +123,8 @@ def pf_report(
     if out is None:
         return report
     with replaced_folder(out, MARKER) as staging:
-        figures = tuple(str(Path(out) / Path(f).name) for f in _figures(case, mc, staging))
-        report = replace(report, figures=figures)
+        drawn = _figures(case, mc, staging) if figures else ()
+        report = replace(report, figures=tuple(str(Path(out) / Path(f).name) for f in drawn))
         (staging / MARKER).write_text(json.dumps(plain(report.to_json()), indent=2) + "\n")
     return report
 

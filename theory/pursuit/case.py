@@ -17,6 +17,7 @@ Block fields::
         - {r_x: 30, r_y: 30, gamma0: 0}              # 3D also r_z > 0 and c ∉ {0, 1}
         - {r_x: 30, r_y: 30, gamma0: 2.0943951, initial: {position: [..], euler: [..], gamma: 0}}
       edges: [[2, 1], [3, 2], [1, 3]]   # directed, 1-based [s, r]: tracker s sends to tracker r
+      # edges: [[2, 1, 0.5], [3, 2, 2], [1, 3]]  # optional weight a_rs > 0 per edge (default 1)
       target:                       # optional, see TargetMotion
         offset: [0, 0]
         velocity: [0, 0.3]
@@ -36,10 +37,13 @@ Block fields::
         P0: [[...]]                 # optional initial covariance, 2·dim × 2·dim (or N of them)
 
 The graph convention is the paper's: a_ij = 1 when tracker i receives from tracker j, and the
-Laplacian is L = D_in − A (seed 003 §II-B). Conditions that decide the analysis (Δ of full row
-rank, strong connectivity) are *not* refused here: ``trackcert iss`` reports them as failing
-conditions (exit 1). Only malformed data is refused (:class:`~theory.core.errors.CaseError`, exit
-2).
+Laplacian is L = D_in − A (seed 003 §II-B). An edge ``[s, r, a]`` gives a_rs = a instead (any
+a > 0: the weighted digraphs of Lemma 1's reference [28]; the paper's own class has a = 1); the
+weight enters L, hence the coordination law (45), the ISS constants and the iss certificate, and
+is read as the decimal written. ``dekf.edges`` are pairs (its fusion weights are ``weights``).
+Conditions that decide the analysis (Δ of full row rank, strong connectivity) are *not* refused
+here: ``trackcert iss`` reports them as failing conditions (exit 1). Only malformed data is
+refused (:class:`~theory.core.errors.CaseError`, exit 2).
 """
 
 from __future__ import annotations
@@ -189,7 +193,8 @@ class PursuitSpec:
     """A validated cooperative-pursuit case (seed 003).
 
     ``K_p`` is the symmetric positive-definite position gain (dim × dim), ``k_gamma`` is set for
-    controller II, ``k_c`` for N > 1; ``adjacency[i, j]``: tracker i receives from tracker j;
+    controller II, ``k_c`` for N > 1; ``adjacency[i, j]``: tracker i receives from tracker j,
+    ``edge_weights[i, j]`` its weight a_ij (``None``: every a_ij = 1);
     ``published`` the clamps of the authors' scripts when the case simulates their variant
     (:mod:`theory.pursuit.published`), ``duration`` the simulated seconds (``None``: default).
     """
@@ -207,6 +212,7 @@ class PursuitSpec:
     dekf: DekfSettings | None
     published: PublishedControl | None = None
     duration: float | None = None
+    edge_weights: np.ndarray | None = None
 
     @property
     def n_trackers(self) -> int:
@@ -214,9 +220,15 @@ class PursuitSpec:
         return len(self.trackers)
 
     @property
+    def weighted_adjacency(self) -> np.ndarray:
+        """A = [a_ij] (seed 003 §II-B): ``edge_weights``, or 1 on every edge (integers)."""
+        return self.adjacency.astype(int) if self.edge_weights is None else self.edge_weights
+
+    @property
     def laplacian(self) -> np.ndarray:
-        """L = D_in − A (seed 003 §II-B), integer entries."""
-        a = self.adjacency.astype(int)
+        """L = D_in − A (seed 003 §II-B): integer entries unless edges carry weights (exact
+        rationals: :func:`theory.pursuit.model.exact_laplacian`)."""
+        a = self.weighted_adjacency
         return np.diag(a.sum(axis=1)) - a
 
 
@@ -234,7 +246,7 @@ def parse_pursuit(block: Mapping[str, Any]) -> PursuitSpec:
     n = len(trackers)
     k_gamma = _optional_gain(block, "k_gamma", required=controller == "II", why="controller II")
     k_c = _optional_gain(block, "k_c", required=n > 1, why="more than one tracker")
-    adjacency = _adjacency(block.get("edges", []), n)
+    adjacency, edge_weights = _weighted_adjacency(block.get("edges", []), n)
     target = _target(block["target"], dim) if "target" in block else None
     dekf = _dekf(block["dekf"], dim, adjacency) if "dekf" in block else None
     duration = (
@@ -242,7 +254,7 @@ def parse_pursuit(block: Mapping[str, Any]) -> PursuitSpec:
     )
     return PursuitSpec(
         dim, controller, omega_bar, epsilon, K_p, k_gamma, k_c, trackers, adjacency, target, dekf,
-        published, duration,
+        published, duration, edge_weights,
     )  # fmt: skip
 
 
@@ -335,6 +347,25 @@ def _initial(raw: object, dim: int, prefix: str) -> dict[str, Any]:
         if key in raw:
             initial[key] = finite_number(raw[key], f"{prefix}.{key}")
     return initial
+
+
+def _weighted_adjacency(raw: object, n: int) -> tuple[np.ndarray, np.ndarray | None]:
+    """``pursuit.edges``: pairs ``[s, r]`` or triples ``[s, r, a]`` with a weight ``a > 0``;
+    the adjacency and (when some edge has a weight) ``a_rs`` on every edge (1 where none)."""
+    field = "pursuit.edges"
+    if not isinstance(raw, list) or not all(isinstance(e, list) and len(e) in (2, 3) for e in raw):
+        raise CaseError(
+            field, "a list of directed pairs [s, r] or [s, r, weight] of 1-based tracker ids", raw
+        )
+    adjacency = _adjacency([e[:2] for e in raw], n)
+    if all(len(e) == 2 for e in raw):
+        return adjacency, None
+    weights = adjacency.astype(float)
+    for index, edge in enumerate(raw):
+        if len(edge) == 3:
+            s, r, a = edge
+            weights[r - 1, s - 1] = positive_number(a, f"{field}[{index + 1}][3]")
+    return adjacency, weights
 
 
 def _adjacency(raw: object, n: int, field: str = "pursuit.edges") -> np.ndarray:

@@ -46,6 +46,7 @@ from theory.pursuit.iss import (
     pursuit_iss,
     r_perp_gram,
 )
+from theory.pursuit.model import exact_laplacian
 
 __all__ = [
     "BOX_STATEMENT",
@@ -342,7 +343,7 @@ def _coordination_certificate(
     r = list(coordination.r)
     n = len(r)
     k_c = exact_decimal(spec.k_c)
-    data.update({"laplacian": spec.laplacian.astype(int).tolist(), "k_c": k_c})
+    data.update({"laplacian": exact_laplacian(spec.laplacian), "k_c": k_c})
     witness.update({"r": r, **_coordination_constants(data["laplacian"], r, coordination)})
     witness["alpha"] = k_c * witness["a"]
     two_stage = spec.controller == Controller.II
@@ -362,7 +363,7 @@ def _coordination_certificate(
 
 
 def _coordination_constants(
-    laplacian: list[list[int]], r: list[Fraction], coordination: CoordinationIss
+    laplacian: list[list[Fraction]], r: list[Fraction], coordination: CoordinationIss
 ) -> dict[str, Fraction]:
     """a, b, ρ, κ rounded in the safe direction and moved until C3, C4, C5 pass exactly."""
     L = [[Fraction(x) for x in row] for row in laplacian]
@@ -486,7 +487,7 @@ def loop_bounds(spec: PursuitSpec) -> LoopBounds:
         return bounds
     coordination = coordination_iss(spec)
     r = list(coordination.r)
-    L = [[Fraction(int(x)) for x in row] for row in spec.laplacian]
+    L = exact_laplacian(spec.laplacian)
     data["laplacian"] = _text(L)
     return replace(
         bounds,

@@ -518,10 +518,15 @@ def _matrix(values: tuple[float, ...] | np.ndarray) -> np.ndarray:
     return np.diag(values) if values.ndim == 1 else values
 
 
-def _laplacian(in_neighbours: list[list[int]], n: int) -> np.ndarray:
-    adjacency = np.zeros((n, n))
-    for i, neighbours in enumerate(in_neighbours):
-        adjacency[i, neighbours] = 1.0
+def _laplacian(in_neighbours: list[list[int]] | np.ndarray, n: int) -> np.ndarray:
+    """L = D_in − A (seed 003 §II-B) of the in-neighbour lists (a_ij = 1) or of the weighted
+    adjacency ``[a_ij]`` (an N × N array)."""
+    if isinstance(in_neighbours, np.ndarray):
+        adjacency = in_neighbours.astype(float)
+    else:
+        adjacency = np.zeros((n, n))
+        for i, neighbours in enumerate(in_neighbours):
+            adjacency[i, neighbours] = 1.0
     return np.diag(adjacency.sum(axis=1)) - adjacency
 
 
@@ -534,7 +539,10 @@ def _path_harmonics(paths: np.ndarray) -> model.PathHarmonics:
 
 
 def build_loop(
-    settings: DecSettings, paths: np.ndarray, in_neighbours: list[list[int]], dim: int
+    settings: DecSettings,
+    paths: np.ndarray,
+    in_neighbours: list[list[int]] | np.ndarray,
+    dim: int,
 ) -> DecLoop:
     """The :class:`DecLoop` of ``settings`` for trackers on ``paths`` (rows: :func:`simulate_dec`).
 
@@ -715,7 +723,7 @@ def _filter_setup(
     ``settings.fusion_weight`` on each in-edge, the rest on the tracker), Ω_{1|0} and x̂_{1|0}."""
     n, d = loop.n, loop.dim
     if fusion is None:
-        adjacency = -loop.laplacian + np.diag(np.diag(loop.laplacian))
+        adjacency = (np.diag(np.diag(loop.laplacian)) - loop.laplacian != 0).astype(float)
         weight = settings.fusion_weight
         fusion = np.diag(1 - weight * adjacency.sum(axis=1)) + weight * adjacency
     return {
@@ -732,7 +740,7 @@ def simulate_dec(
     initial_positions: np.ndarray,
     initial_headings: np.ndarray,
     initial_gammas: np.ndarray,
-    in_neighbours: list[list[int]],
+    in_neighbours: list[list[int]] | np.ndarray,
     x0: np.ndarray,
     P0: np.ndarray,
     steps: int,
@@ -749,7 +757,8 @@ def simulate_dec(
 
     ``target`` holds the true states ``[q; v]`` at ``t = k·dt`` for ``steps + 1`` records;
     ``initial_headings`` are yaws (2-D) or roll–pitch–yaw (3-D); ``in_neighbours`` the 0-based
-    N_in^[i]; ``x0``, ``P0`` the priors x̂_{1|0}, P_{1|0} (one for all trackers or one each);
+    N_in^[i] (a_ij = 1), or the N × N weighted adjacency [a_ij] of a weighted digraph; ``x0``,
+    ``P0`` the priors x̂_{1|0}, P_{1|0} (one for all trackers or one each);
     ``rng`` draws the range noise. ``paths`` rows are ``(r_x, r_y, γ0)`` (16) or
     ``(r_x, r_y, r_z, c, γ0)`` (15) (default: ``settings.radii``, γ0^[i] = 2π(i−1)/N); ``fusion``
     the weights π^[i,j] (default ``settings.fusion_weight`` on each in-edge);

@@ -8,8 +8,9 @@ implementation :func:`theory.pursuit.dekf.range_dekf` and the run's own priors, 
 ``SeedSequence([REPLAY_KEY, i])``. The statistics are then those of the filter on the
 closed-loop geometry (:mod:`theory.core.consistency`); the range variance the filter assumes is
 ``1/V``, so a case whose ``V`` exceeds ``1/σ²`` trusts its ranges more than their noise allows.
-The replay runs on the simulation's engine (:func:`theory.pursuit.compiled_run.resolve_engine`):
-compiled (:mod:`theory.pursuit.compiled_replay`) or the NumPy reference.
+The replay runs on the engine :func:`theory.pursuit.compiled_run.resolve_engine` chooses for
+the runs' records (a short job on the NumPy reference, as its runs): compiled
+(:mod:`theory.pursuit.compiled_replay`) or the NumPy reference.
 """
 
 from __future__ import annotations
@@ -67,7 +68,8 @@ def dekf_metrics(
 ) -> dict[str, Any]:
     """NEES of ``x̂_{k|k}`` against ``Ω_{k|k}⁻¹``, NIS of every range correction and OSPA/GOSPA
     of ``q̂_{k|k}`` per tracker over the replays (NaN after a run stopped), replayed on
-    ``engine``."""
+    ``engine`` (default: the one :func:`resolve_engine` chooses for the runs' records)."""
+    engine = resolve_engine(engine, records=sum(len(run.times) - 1 for run in runs))
     replays = [replay_dekf(run, arguments, i, engine) for i, run in enumerate(runs)]
     settings = arguments["settings"]
     every = round(settings.Ts / settings.dt)

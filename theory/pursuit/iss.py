@@ -56,7 +56,7 @@ from theory.core.expectations import Expectation, Observed, judge
 from theory.core.tolerances import INEQUALITY_RTOL, MARGIN_TOL
 from theory.core.verdicts import Verdict, all_hold
 from theory.pursuit.case import Controller, PursuitSpec, TrackerPath
-from theory.pursuit.model import left_eigenvector
+from theory.pursuit.model import exact_laplacian, left_eigenvector
 
 __all__ = [
     "SCOPE",
@@ -278,7 +278,7 @@ def r_perp_gram(laplacian: Any, r: Sequence[Fraction], a: Fraction = Fraction(0)
     With a = 0 it decides a(L) > 0 (BᵀMB ≻ 0); with a > 0, a ≤ a(L) (Bᵀ(M − 2aR)B ⪰ 0).
     """
     n = len(r)
-    L = to_fmpq([[Fraction(int(x)) for x in row] for row in laplacian])
+    L = to_fmpq(exact_laplacian(laplacian))
     R = to_fmpq([[r[i] if i == j else Fraction(0) for j in range(n)] for i in range(n)])
     B = to_fmpq([[Fraction(int(i == j)) if i < n - 1 else -r[j] / r[n - 1] for j in range(n - 1)]
                  for i in range(n)])  # fmt: skip
@@ -370,8 +370,8 @@ def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
 
 def _rl_is_laplacian(L: np.ndarray, r: tuple[Fraction, ...]) -> bool:
     """Exact test that M = RL + LᵀR is symmetric, off-diagonal ≤ 0, with zero row sums (⇒ M ⪰ 0)."""
-    n = L.shape[0]
-    M = [[r[i] * int(L[i, j]) + int(L[j, i]) * r[j] for j in range(n)] for i in range(n)]
+    n, L = L.shape[0], exact_laplacian(L)
+    M = [[r[i] * L[i][j] + L[j][i] * r[j] for j in range(n)] for i in range(n)]
     off_ok = all(M[i][j] <= 0 for i in range(n) for j in range(n) if i != j)
     return off_ok and all(sum(row) == 0 for row in M)
 

@@ -19,6 +19,7 @@ multiple autonomous vehicles for range-based underwater target localization and 
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -38,6 +39,7 @@ __all__ = [
     "desired_speed",
     "euler_rotation",
     "euler_rotation_rows",
+    "exact_laplacian",
     "exp_skew",
     "gamma_acceleration",
     "input_gains",
@@ -328,15 +330,19 @@ def desired_speed(
     return omega_bar + correction_speed(laplacian, gamma, k_c)
 
 
-def left_eigenvector(laplacian: np.ndarray) -> tuple[Fraction, ...] | None:
+def left_eigenvector(laplacian: Any) -> tuple[Fraction, ...] | None:
     """The exact r with rᵀL = 0, rᵀ1 = 1 (seed 003 Lemma 1), or ``None`` if 0 is not simple.
 
-    r weighs the coordination error ξ = (I − 1rᵀ)γ of eq. (56).
+    ``laplacian``'s entries are read as the decimals they print as (weighted digraphs included,
+    :func:`exact_laplacian`); r weighs the coordination error ξ = (I − 1rᵀ)γ of eq. (56).
     """
     import flint  # exact; imported on use (the simulator never needs it)
 
-    n = laplacian.shape[0]
-    basis, nullity = flint.fmpz_mat(laplacian.T.astype(int).tolist()).nullspace()
+    L = exact_laplacian(laplacian)
+    n = len(L)
+    scale = math.lcm(*(x.denominator for row in L for x in row))
+    integer = [[int(L[j][i] * scale) for j in range(n)] for i in range(n)]  # (scale·L)ᵀ
+    basis, nullity = flint.fmpz_mat(integer).nullspace()
     if nullity != 1:
         return None
     vector = [int(basis[i, 0]) for i in range(n)]
@@ -344,6 +350,25 @@ def left_eigenvector(laplacian: np.ndarray) -> tuple[Fraction, ...] | None:
     if total == 0:
         return None
     return tuple(Fraction(x, total) for x in vector)
+
+
+def exact_laplacian(laplacian: Any) -> list[list[Fraction]]:
+    """``L = D_in − A`` in rationals (seed 003 §II-B): each ``−a_ij`` the decimal it prints as
+    (integers, ``Fraction``s, or floats of decimal weights), each ``L_ii = Σ_j a_ij`` summed
+    exactly (a float diagonal such as 0.07 + 0.5 = 0.5700000000000001 is not read)."""
+    from theory.core.exact import exact_decimal
+
+    n = len(laplacian)
+    off = [
+        [exact_decimal(_scalar(laplacian[i][j])) if i != j else Fraction(0) for j in range(n)]
+        for i in range(n)
+    ]
+    return [[off[i][j] if i != j else -sum(off[i]) for j in range(n)] for i in range(n)]
+
+
+def _scalar(x: Any) -> Any:
+    """A numpy scalar as the Python number it holds (an ``int`` stays exact)."""
+    return x.item() if isinstance(x, np.generic) else x
 
 
 # ---------------------------------------------------------------------------------------------

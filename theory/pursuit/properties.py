@@ -108,8 +108,6 @@ __all__ = [
     "region_sound",
     "stacked_dissipation",
     "tracker_pairs",
-    "weighted_coordination_examples",
-    "weighted_coordination_record",
 ]
 
 TABLE_I = {"omega_bar": 0.05, "epsilon": [-0.5, 0], "K_p": [0.4, 0.2], "k_gamma": 500}
@@ -371,18 +369,25 @@ class CoordinationExample:
 
 
 @st.composite
-def coordination_examples(draw: st.DrawFn, *, inside_region: bool = False) -> CoordinationExample:
-    """Strongly connected digraphs (2–8 trackers, a ring plus at most two edges), small integer
-    γ and e_γ (often e_γ = 0), k_c ∈ {1/5, …, 2} and θ ∈ {0.1, …, 0.9}.
+def coordination_examples(
+    draw: st.DrawFn, *, inside_region: bool = False, weighted: bool | None = None
+) -> CoordinationExample:
+    """Every strongly connected digraph of 2–8 trackers (:func:`digraph_laplacians`, by ears:
+    non-Hamiltonian ones included), with a_ij = 1 (seed 003 §II-B, the class of (74)/(75)) or,
+    with ``weighted`` (``None``: either), decimal weights a_ij over three decades (the weighted
+    digraphs of Lemma 1's reference [28]); small integer γ and e_γ (e_γ = 0 in half the draws),
+    k_c ∈ {1/5, …, 2} and θ ∈ {0.1, …, 0.9}.
 
     With ``inside_region`` e_γ is rescaled to a drawn fraction (0.1 to 1) of the edge of the
     corrected region of (75), ‖e_γ‖ ≤ θk_c a(L)‖ξ‖_R / b.
     """
-    laplacian = draw(digraph_laplacians(min_agents=2, max_agents=8, max_extra_edges=2))
+    weighted = draw(st.booleans()) if weighted is None else weighted
+    laplacian = draw(digraph_laplacians(min_agents=2, max_agents=8, weighted=weighted))
     n = laplacian.shape[0]
     integers = st.lists(st.integers(-5, 5), min_size=n, max_size=n).map(np.array)
     k_c = draw(st.integers(1, 10)) / 5
-    gamma, e_gamma = draw(integers).astype(float), draw(integers).astype(float)
+    gamma = draw(integers).astype(float)
+    e_gamma = draw(st.one_of(st.just(np.zeros(n)), integers)).astype(float)
     theta = draw(st.integers(1, 9)) / 10
     example = CoordinationExample(laplacian, k_c, gamma, e_gamma, theta)
     e_norm = float(np.linalg.norm(e_gamma))
@@ -426,10 +431,15 @@ def coordination_terms(example: CoordinationExample) -> dict[str, float]:
 
 
 def coordination_case(example: CoordinationExample) -> dict[str, Any]:
-    """A ``kind: pursuit`` case with the example's graph, k_c and γ (as ``gamma0``)."""
-    n = example.laplacian.shape[0]
-    receives = (example.laplacian < 0).nonzero()
-    edges = [[int(j) + 1, int(i) + 1] for i, j in zip(*receives, strict=True)]
+    """A ``kind: pursuit`` case with the example's graph (edges ``[s, r, a_rs]`` when weighted),
+    k_c and γ (as ``gamma0``)."""
+    L = example.laplacian
+    n = L.shape[0]
+    weighted = not np.issubdtype(L.dtype, np.integer)
+    edges = [
+        [int(j) + 1, int(i) + 1, *([float(-L[i, j])] if weighted else [])]
+        for i, j in zip(*(L < 0).nonzero(), strict=True)
+    ]
     return {
         "name": f"falsify-coordination-{n}-trackers",
         "source": "trackcert falsify (shrunk counterexample to seed 003 eqs. (74)/(75))",
@@ -981,34 +991,6 @@ def coordination_iss_holds(example: CoordinationExample) -> bool:
     return terms["v_dot"] <= terms["corrected"] + INEQUALITY_RTOL * terms["scale"]
 
 
-@st.composite
-def weighted_coordination_examples(draw: st.DrawFn) -> CoordinationExample:
-    """:func:`coordination_examples` on weighted digraphs: every edge weight an integer 1–5
-    (seed 003 §II-B allows any a_ij > 0 on the edges)."""
-    example = draw(coordination_examples())
-    L = example.laplacian
-    weights = np.array(
-        [
-            [draw(st.integers(1, 5)) if L[i, j] < 0 else 0 for j in range(len(L))]
-            for i in range(len(L))
-        ]
-    )
-    return replace(example, laplacian=np.diag(weights.sum(axis=1)) - weights)
-
-
-def weighted_coordination_record(example: CoordinationExample) -> dict[str, Any]:
-    """The example as plain data: a ``kind: pursuit`` case has unweighted edges, so it cannot
-    hold a weighted Laplacian."""
-    data = {
-        "laplacian": example.laplacian.tolist(),
-        "k_c": example.k_c,
-        "gamma": example.gamma.tolist(),
-        "e_gamma": example.e_gamma.tolist(),
-        "omega_bar": example.omega_bar,
-    }
-    return example_record("seed003.lem3", data)
-
-
 @dataclass(frozen=True)
 class TrackerPair:
     """Two trackers and a constant-velocity target sampled at ``times`` (seed 003 Result 2):
@@ -1145,10 +1127,10 @@ MODEL_PROPERTIES = (
     ),
     Property(
         "seed003.lem3/paper", "seed003.lem3", "paper",
-        "On every strongly connected weighted digraph ξ is ISS w.r.t. e_γ: a(L) > 0 and "
-        "V̇_c ≤ −k_c a(L)‖ξ‖²_R + ‖ξ‖_R b‖e_γ‖ (Lemma 3 with the constants of "
+        "On every strongly connected digraph (a_ij = 1, and weighted) ξ is ISS w.r.t. e_γ: "
+        "a(L) > 0 and V̇_c ≤ −k_c a(L)‖ξ‖²_R + ‖ξ‖_R b‖e_γ‖ (Lemma 3 with the constants of "
         "docs/theory/pursuit-iss.md).",
-        weighted_coordination_examples(), coordination_iss_holds, weighted_coordination_record,
+        coordination_examples(), coordination_iss_holds, coordination_case,
     ),
     Property(
         "seed003.lem4/paper", "seed003.lem4", "paper",

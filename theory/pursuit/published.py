@@ -134,7 +134,7 @@ def simulate_published(
     initial_headings: np.ndarray,
     initial_gammas: np.ndarray,
     initial_gamma_rates: np.ndarray,
-    in_neighbours: list[list[int]],
+    in_neighbours: list[list[int]] | np.ndarray,
     x0: np.ndarray,
     P0: np.ndarray,
     steps: int,
@@ -153,8 +153,8 @@ def simulate_published(
         True target states [q; v] at t = k·STEP.
     initial_positions, initial_headings, initial_gammas, initial_gamma_rates : ndarray
         p(0) (N, d); yaw (N,) in 2-D or (roll, pitch, yaw) (N, 3) in 3-D; γ(0) and γ̇(0) (N,).
-    in_neighbours : list of list of int
-        N_in^[i] (0-based) of the coordination law (45).
+    in_neighbours : list of list of int, or ndarray of shape (N, N)
+        N_in^[i] (0-based) of the coordination law (45), or the weighted adjacency [a_ij].
     x0, P0 : ndarray
         Priors x̂_{1|0} (2d,) or (N, 2d) and P_{1|0} (2d, 2d) or (N, 2d, 2d).
     steps : int

@@ -166,7 +166,7 @@ def dec_arguments(
     return {
         "target": target,
         **_initial_trackers(spec, target[0, :d]),
-        "in_neighbours": [list(np.flatnonzero(row)) for row in spec.adjacency],
+        "in_neighbours": spec.weighted_adjacency.astype(float),
         "x0": x0,
         "P0": dekf.P0 if dekf.P0 is not None else 10.0 * np.eye(2 * d),
         "steps": steps,
@@ -182,13 +182,15 @@ def run_pursuit_case(
     steps: int | None = None,
     *,
     runaway_factor: float = RUNAWAY_FACTOR,
+    engine: str | None = None,
 ) -> DecRun:
     """One run of the DEC loop for a pursuit case (``rng`` draws the range noise; seed 003 §V):
-    the analysed laws integrated as an ODE, or the ``published`` variant as the authors' scripts
-    run it (:func:`theory.pursuit.published.simulate_published`)."""
+    the analysed laws integrated as an ODE on ``engine`` (:func:`simulate_dec`), or the
+    ``published`` variant as the authors' scripts run it
+    (:func:`theory.pursuit.published.simulate_published`)."""
     arguments = dec_arguments(spec, steps, runaway_factor=runaway_factor)
     if spec.published is None:
-        return simulate_dec(rng=rng, **arguments)
+        return simulate_dec(rng=rng, engine=engine, **arguments)
     errors = arguments.pop("initial_gamma_errors")
     omega_d = desired_speed(
         spec.omega_bar, spec.laplacian.astype(float), arguments["initial_gammas"], spec.k_c or 0.0
@@ -266,19 +268,21 @@ def simulation_observed(summary: dict[str, Any]) -> Observed:
     return Observed(values, undecided)
 
 
-def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
+def pursuit_simulator(case: Case, steps: int | None = None, runs: int | None = None) -> Simulator:
     """The simulator of a ``kind: pursuit`` case (:func:`theory.sim.simulate.simulate_case`).
 
-    ``steps`` recorded 0.1 s steps (default :func:`default_steps`); CaseError naming the file if
+    ``steps`` recorded 0.1 s steps (default :func:`default_steps`); ``runs`` the Monte Carlo runs
+    planned, which with ``steps`` choose the default engine (a short job runs on the NumPy
+    engine: :func:`theory.pursuit.compiled_run.resolve_engine`); CaseError naming the file if
     the case cannot be simulated, or naming ``TRACKCERT_ENGINE`` if it names no engine (checked
     here, before any run).
     """
-    resolve_engine()
+    steps = steps or default_steps(case.spec)
+    engine = resolve_engine(records=None if runs is None else runs * steps)
     try:
         check_pursuit_case(case.spec)
     except CaseError as error:
         raise error.in_file(case.file) from None
-    steps = steps or default_steps(case.spec)
     fields = {
         "controller": case.spec.controller,
         "variant": "analysed" if case.spec.published is None else "published",
@@ -286,7 +290,9 @@ def pursuit_simulator(case: Case, steps: int | None = None) -> Simulator:
         "steps": steps,
         "dt": RECORD_INTERVAL,
     }
-    run = functools.partial(run_pursuit_case, steps=steps, runaway_factor=runaway_factor_of(case))
+    run = functools.partial(
+        run_pursuit_case, steps=steps, runaway_factor=runaway_factor_of(case), engine=engine
+    )
     return Simulator(case.spec, run, fields, _finish)
 
 

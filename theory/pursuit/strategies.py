@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
 from hypothesis import strategies as st
@@ -78,11 +79,17 @@ def digraph_laplacians(
     min_agents: int = 2,
     max_agents: int = 7,
     max_extra_edges: int | None = None,
+    weighted: bool = False,
 ) -> np.ndarray:
-    """Integer Laplacians ``L = D_in − A`` of strongly connected digraphs (seed 003 §II-B).
+    """Laplacians ``L = D_in − A`` of strongly connected digraphs (seed 003 §II-B); every
+    strongly connected digraph of ``min_agents`` to ``max_agents`` vertices can be drawn.
 
-    The digraph is a random Hamiltonian cycle (so it is strongly connected) plus at most
-    ``max_extra_edges`` random edges (default 2n); ``a_ij = 1`` means i receives from j.
+    A digraph is strongly connected iff it has an ear decomposition, so it is grown by ears: a
+    cycle, then directed paths from a placed vertex through new ones back to a placed one until
+    every vertex is placed, then at most ``max_extra_edges`` random edges (default 2n).
+    ``a_ij > 0`` means i receives from j: ``a_ij = 1`` (seed 003 §II-B; an integer ``L``), or
+    with ``weighted`` a decimal ``k·10^e`` (``k`` = 1…99 per edge, ``e`` = −2…0 per digraph) as
+    a case file writes it (the weighted digraphs of Lemma 1's reference [28]; a float ``L``).
     """
     check_range("min_agents", min_agents, "max_agents", max_agents, 2)
     if max_extra_edges is not None and max_extra_edges < 0:
@@ -90,14 +97,30 @@ def digraph_laplacians(
     n = draw(st.integers(min_agents, max_agents))
     order = draw(st.permutations(range(n)))
     adjacency = np.zeros((n, n), dtype=int)
-    for k in range(n):
-        adjacency[order[k], order[(k + 1) % n]] = 1
+    cycle = draw(st.integers(2, n))
+    _add_path(adjacency, [*order[:cycle], order[0]])
+    placed = cycle
+    while placed < n:
+        length = draw(st.integers(1, n - placed))
+        ends = st.sampled_from(order[:placed])
+        _add_path(adjacency, [draw(ends), *order[placed : placed + length], draw(ends)])
+        placed += length
     pairs = st.tuples(st.integers(0, n - 1), st.integers(0, n - 1))
     extra = draw(st.lists(pairs, max_size=2 * n if max_extra_edges is None else max_extra_edges))
     for i, j in extra:
         if i != j:
             adjacency[i, j] = 1
+    if weighted:
+        exponent = draw(st.integers(-2, 0))  # one scale per digraph: a(L) scales with it
+        decimals = st.integers(1, 99).map(lambda k: float(f"{k}e{exponent}"))
+        adjacency = np.array([[draw(decimals) if a else 0.0 for a in row] for row in adjacency])
     return np.diag(adjacency.sum(axis=1)) - adjacency
+
+
+def _add_path(adjacency: np.ndarray, vertices: list[int]) -> None:
+    """Edges ``v_k → v_{k+1}`` along ``vertices`` (``a_{v_{k+1} v_k} = 1``)."""
+    for sender, receiver in pairwise(vertices):
+        adjacency[receiver, sender] = 1
 
 
 @dataclass(frozen=True, eq=False)

@@ -50,21 +50,16 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import StrEnum
+from functools import cached_property
 from typing import Any, TypeVar
 
 import numpy as np
 
 from theory.core.case_file import Case, KindSpec
 from theory.core.errors import CaseError
-from theory.core.network import (
-    adjacency_from_edges,
-    adjacency_from_range,
-    is_symmetric,
-    metropolis_weights,
-    uniform_weights,
-    weights_support,
-)
+from theory.core.network import adjacency_from_edges, pairs_within_range, weights_support
 from theory.core.observability import RANK_TOL
+from theory.core.sparse_weights import SparseWeights
 from theory.core.tolerances import COINCIDENCE_TOL, INCONCLUSIVE_FACTOR, PERIOD_TOL
 from theory.core.validation import (
     bounded_coordinates,
@@ -153,19 +148,43 @@ TOLERANCE_KEYS = ("rank_tol", "inconclusive_factor", "weight_sum_tol")
 class TdoaSpec:
     """A validated TDOA scene; arrays have a leading axis of ``steps`` (1 when static).
 
-    ``hears[k, r, s]``: agent ``r`` receives from agent ``s`` at step ``k``; ``weights[k]`` is the
-    row-stochastic consensus matrix there; ``comm_range`` the distance rule, if any.
+    ``links[k]`` is the row-stochastic consensus matrix of step ``k`` held by its entries
+    (``O(N + E)``; agent ``r`` receives from agent ``s`` iff ``w_rs > 0``, ``r ≠ s``);
+    :attr:`hears` and :attr:`weights` are the same as dense ``steps × N × N`` arrays, made on
+    first use; ``comm_range`` is the distance rule, if any.
     """
 
     T: float
     dim: int
     agents: np.ndarray
     target: np.ndarray
-    hears: np.ndarray
-    weights: np.ndarray
+    links: tuple[SparseWeights, ...]
     weights_rule: WeightRule
     directed: bool
     comm_range: float | None
+
+    @cached_property
+    def hears(self) -> np.ndarray:
+        """``hears[k, r, s]``: agent ``r`` receives from agent ``s`` at step ``k`` (dense; its
+        memory, ``steps·N²`` bytes, is checked against the limit first)."""
+        self._check_dense(1, "hears")
+        return np.stack([links.hears() for links in self.links])
+
+    @cached_property
+    def weights(self) -> np.ndarray:
+        """``weights[k]``: the consensus matrix ``W`` of step ``k`` (dense; ``8 B × steps·N²``,
+        checked against the limit first)."""
+        self._check_dense(8, "weights")
+        return np.stack([links.dense() for links in self.links])
+
+    def _check_dense(self, size: int, what: str) -> None:
+        n, steps = self.n_agents, self.steps
+        check_estimate(
+            "memory_bytes",
+            float(size) * steps * n * n,
+            "tdoa.agents",
+            f"{size} B × steps·N² for the dense {what} (N = {n} agents, {steps} steps)",
+        )
 
     @property
     def n_agents(self) -> int:
@@ -181,8 +200,7 @@ class TdoaSpec:
         """The 0-based steps grouped by network (equal ``hears`` and ``W``), in order."""
         groups: dict[bytes, list[int]] = {}
         for k in range(self.steps):
-            key = np.asarray(self.hears[k], bool).tobytes() + np.asarray(self.weights[k]).tobytes()
-            groups.setdefault(key, []).append(k)
+            groups.setdefault(self.links[k].key(), []).append(k)
         return [tuple(steps) for steps in groups.values()]
 
     def at_step(self, k: int) -> TdoaSpec:
@@ -191,8 +209,7 @@ class TdoaSpec:
             self,
             agents=self.agents[k : k + 1],
             target=self.target[k : k + 1],
-            hears=self.hears[k : k + 1],
-            weights=self.weights[k : k + 1],
+            links=self.links[k : k + 1],
         )
 
 
@@ -214,10 +231,10 @@ def parse_tdoa(block: Mapping[str, Any]) -> TdoaSpec:
     directed = block.get("directed", False)
     if not isinstance(directed, bool):
         raise CaseError("tdoa.directed", "true or false", directed)
-    _check_memory(agents.shape[0], agents.shape[1])
-    hears, comm_range = _topology(block, agents, directed)
-    weights, rule = _weights(block.get("weights", "metropolis"), hears, directed)
-    return TdoaSpec(T, dim, agents, target, hears, weights, rule, directed, comm_range)
+    pairs, comm_range = _topology(block, agents, directed)
+    _check_memory(pairs, agents.shape[1])
+    links, rule = _weights(block.get("weights", "metropolis"), pairs, agents.shape[1], directed)
+    return TdoaSpec(T, dim, agents, target, links, rule, directed, comm_range)
 
 
 def _check_sizes(raw_agents: object, raw_target: object) -> None:
@@ -232,15 +249,19 @@ def _check_sizes(raw_agents: object, raw_target: object) -> None:
         check_length(raw_target, "steps", "tdoa.target")
 
 
-def _check_memory(steps: int, n: int) -> None:
-    """Refuse a scene whose arrays would exceed the memory budget: the parser keeps ``hears``
-    (1 B) and ``W`` (8 B) per step, ``steps × N²`` each. What a command computes beyond (the
-    network rank of ``trackcert topology``) is estimated by that command."""
+def _check_memory(pairs: list[tuple[np.ndarray, np.ndarray]], n: int) -> None:
+    """Refuse a scene whose links would exceed the memory budget: the parser keeps, per
+    distinct network (a fixed network is one for every step), each link's two indices and
+    weight (24 B) and each agent's self-weight (8 B). What a command computes beyond (the network
+    rank of ``trackcert topology``) is estimated by that command."""
+    distinct = {id(r): int(r.size) for r, _ in pairs}
+    links = sum(distinct.values())
     check_estimate(
         "memory_bytes",
-        9.0 * steps * n * n,
+        24.0 * links + 8.0 * n * len(distinct),
         "tdoa.agents",
-        f"9 B × steps·N² for the links and weights (N = {n} agents, {steps} steps)",
+        f"24 B × E + 8 B × N per network for the links and weights (E = {links} links in all, "
+        f"N = {n} agents, {len(distinct)} networks)",
     )
 
 
@@ -300,7 +321,9 @@ def _check_distinct(agents: np.ndarray, target: np.ndarray) -> None:
 
 def _topology(
     block: Mapping[str, Any], agents: np.ndarray, directed: bool
-) -> tuple[np.ndarray, float | None]:
+) -> tuple[list[tuple[np.ndarray, np.ndarray]], float | None]:
+    """Each step's links ``(receiver, sender)`` (0-based, both directions of an undirected
+    link), and the distance rule if there is one."""
     steps, n, _ = agents.shape
     has_edges, has_range = "edges" in block, "comm_range" in block
     if has_edges and has_range:
@@ -311,16 +334,19 @@ def _topology(
                 "tdoa.directed", "false with comm_range (the distance rule is symmetric)", True
             )
         comm_range = positive_number(block["comm_range"], "tdoa.comm_range")
-        return _stacked([adjacency_from_range(agents[k], comm_range) for k in range(steps)]), (
-            comm_range
-        )
+        pairs = []
+        for k in range(steps):
+            i, j = pairs_within_range(agents[k], comm_range)
+            pairs.append((np.concatenate([i, j]), np.concatenate([j, i])))
+            _check_memory(pairs, n)
+        return pairs, comm_range
     if has_edges:
         edges = _edges(block["edges"], n)
-        hears = adjacency_from_edges(n, edges, directed=directed)
-        return np.broadcast_to(hears, (steps, n, n)).copy(), None
+        receiver, sender = np.nonzero(adjacency_from_edges(n, edges, directed=directed))
+        return [(receiver, sender)] * steps, None
     if isinstance(block.get("weights"), list):
         matrix = finite_matrix(block["weights"], "tdoa.weights", rows=n, cols=n)
-        return np.broadcast_to(weights_support(matrix), (steps, n, n)).copy(), None
+        return [np.nonzero(weights_support(matrix))] * steps, None
     raise CaseError(
         "tdoa.edges",
         "edges (1-based pairs), comm_range, or an explicit weights matrix",
@@ -344,35 +370,44 @@ def _edges(raw: object, n: int) -> np.ndarray:
     return np.asarray(raw, dtype=int) - 1
 
 
-def _weights(raw: object, hears: np.ndarray, directed: bool) -> tuple[np.ndarray, WeightRule]:
-    if raw == WeightRule.METROPOLIS:
-        if directed or not all(is_symmetric(h) for h in hears):
+def _weights(
+    raw: object, pairs: list[tuple[np.ndarray, np.ndarray]], n: int, directed: bool
+) -> tuple[tuple[SparseWeights, ...], WeightRule]:
+    """Each step's consensus weights on its links (``pairs``), by rule or explicit."""
+    if raw in (WeightRule.METROPOLIS, WeightRule.UNIFORM):
+        made: dict[int, SparseWeights] = {}  # a fixed network: one object for every step
+        for r, s in pairs:
+            if id(r) not in made:
+                made[id(r)] = SparseWeights.named(n, r, s, str(raw))
+        steps = tuple(made[id(r)] for r, _ in pairs)
+        if raw == WeightRule.METROPOLIS and (directed or not all(w.symmetric() for w in steps)):
             raise CaseError(
                 "tdoa.weights",
                 "uniform or an explicit matrix for a directed network",
                 "metropolis",
                 hint="Metropolis weights are defined for undirected graphs.",
             )
-        return _stacked([metropolis_weights(h) for h in hears]), WeightRule.METROPOLIS
-    if raw == WeightRule.UNIFORM:
-        return _stacked([uniform_weights(h) for h in hears]), WeightRule.UNIFORM
+        return steps, WeightRule(raw)
     if isinstance(raw, list):
-        steps, n, _ = hears.shape
-        if steps > 1 and not np.all(hears == hears[0]):
+        if len(pairs) > 1 and not all(_same(p, pairs[0]) for p in pairs):
             raise CaseError(
                 "tdoa.weights",
                 "metropolis or uniform for a time-varying network",
                 "an explicit matrix",
             )
         matrix = finite_matrix(raw, "tdoa.weights", rows=n, cols=n)
-        row_stochastic(matrix, "tdoa.weights", support=hears[0])
-        return np.broadcast_to(matrix, (steps, n, n)).copy(), WeightRule.EXPLICIT
+        support = np.zeros((n, n), dtype=bool)
+        support[pairs[0]] = True
+        row_stochastic(matrix, "tdoa.weights", support=support)
+        return (SparseWeights.from_dense(matrix),) * len(pairs), WeightRule.EXPLICIT
     raise CaseError("tdoa.weights", "metropolis, uniform, or an N × N row-stochastic matrix", raw)
 
 
-def _stacked(arrays: list[np.ndarray]) -> np.ndarray:
-    """The per-step arrays along a leading axis (one step: a view, no ``N²`` copy)."""
-    return arrays[0][None] if len(arrays) == 1 else np.stack(arrays)
+def _same(a: tuple[np.ndarray, np.ndarray], b: tuple[np.ndarray, np.ndarray]) -> bool:
+    """Whether two steps have the same set of links."""
+    return set(zip(*(x.tolist() for x in a), strict=True)) == set(
+        zip(*(x.tolist() for x in b), strict=True)
+    )
 
 
 PER_AGENT_BOOLS = ("observable", "heuristic_4_noncoplanar", "mirror_ambiguous")
@@ -667,7 +702,8 @@ def scene_simulation(spec: TdoaSpec) -> dict[str, Any]:
     if spec.comm_range is not None and not explicit:
         block["comm_range"] = spec.comm_range
     else:
-        pairs = np.argwhere(np.triu(spec.hears[0], 1))
-        block["edges"] = (pairs + 1).tolist()
+        links = spec.links[0]
+        upper = links.receiver < links.sender
+        block["edges"] = (np.column_stack([links.receiver, links.sender])[upper] + 1).tolist()
     block["weights"] = spec.weights[0].tolist() if explicit else spec.weights_rule.value
     return block

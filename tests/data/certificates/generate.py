@@ -21,6 +21,7 @@ from theory.consensus.certificates import (
     mjls_stability_certificate,
     s_detectability_certificate,
 )
+from theory.consensus.design import self_weight_design
 from theory.consensus.infeasibility import infeasibility_certificate
 from theory.consensus.s_detectability import decide_s_detectability, s_detectability_witness
 from theory.core.certificate_format import bundle
@@ -149,6 +150,7 @@ def good() -> dict[str, dict]:
             for name in ("pursuit-table1-n3", "pursuit-table2-n1")
         },
         "iss-box-pursuit-table1-n3": _iss_box(),
+        **_self_weight(),
     }
 
 
@@ -330,6 +332,7 @@ def bad(valid: dict[str, dict]) -> tuple[dict[str, dict], dict[str, object]]:
     malformed["iss-box-empty-interval"] = c
     malformed["nested-bundle"] = bundle([bundle([valid["mjls-stability-scalar"]])])
     _tdoa_design_defects(valid, invalid, malformed)
+    _self_weight_defects(valid, invalid, malformed)
     return invalid, malformed
 
 
@@ -358,6 +361,33 @@ def _tdoa_design_defects(valid: dict, invalid: dict, malformed: dict) -> None:
     c = copy.deepcopy(valid["tdoa-observability-margin-fig43-case-a"])
     c["claim"]["radius"] = "0"
     malformed["tdoa-observability-margin-zero-radius"] = c
+
+
+def _self_weight() -> dict[str, dict]:
+    """Thm 5.2.10 (2) for every w ≥ u: agent 1 of the hand-written complex-root case (u = 1/2,
+    the pair 1 ± i) and of the irrational real case (u = 3 − 2√2), ``design self-weight``."""
+    folder = HERE.parent / "dkf"
+    return {
+        f"self-weight-necessary-violated-{name}": self_weight_design(
+            load_case(folder / f"self-weight-{name}.yaml"), agents=[0]
+        ).at_or_above.certificate
+        for name in ("complex-root", "irrational-real")
+    }
+
+
+def _self_weight_defects(valid: dict, invalid: dict, malformed: dict) -> None:
+    """u = 1/2 − 10⁻⁹ claimed exact (below the threshold: false), an interval around the other
+    root 3 + 2√2 of u² − 6u + 1 (isolating, but not the threshold: false), u = "2/4" (refused)."""
+    c = copy.deepcopy(valid["self-weight-necessary-violated-complex-root"])
+    c["claim"]["threshold"] = "499999999/1000000000"
+    c["witness"]["below"] = "249999999/500000000"
+    invalid["self-weight-necessary-violated-threshold-below"] = c
+    c = copy.deepcopy(valid["self-weight-necessary-violated-irrational-real"])
+    c["claim"]["threshold_interval"] = ["5", "6"]
+    invalid["self-weight-necessary-violated-other-root"] = c
+    c = copy.deepcopy(valid["self-weight-necessary-violated-complex-root"])
+    c["claim"]["threshold"] = "2/4"
+    malformed["self-weight-necessary-violated-non-canonical-threshold"] = c
 
 
 def _claims_beyond_the_kind(valid: dict[str, dict]) -> dict[str, dict]:

@@ -44,8 +44,13 @@ false observability (``docs/simulation.md``).
 
 **Falsifiable wordings** (``trackcert falsify``): examples are 3D scenes (strategy families
 ``general`` and ``coplanar``, 2–6 receivers) with an undirected network (connected or not),
-Metropolis weights and the noises of seed 000 §4.4, run for :data:`HORIZON` pings. ``corrected``:
-items 1–3 above, the certificate built from the gains of ping :data:`BURN_IN`; ``paper``: the
+any row-stochastic ``W`` with ``w_ij > 0`` exactly on the links and the diagonal (the class of
+seed 000 §4.2.2, the paragraph before eq. (4.26): "a stochastic matrix with entries w_ij > 0 if
+i = j or if agents i and j can exchange information", links bidirectional;
+:func:`~theory.tdoa.strategies.stochastic_weights`: Metropolis, uniform, or random weights over
+four decades) and the noises of seed 000 §4.4, run for :data:`HORIZON` pings. ``corrected``:
+items 1–3 above, the certificate built from the gains of the first ping of :data:`BURN_INS` that
+certifies; ``paper``: the
 error is bounded (certified) iff the component has ≥ 4 connected non-coplanar agents (false:
 coplanar receivers with the target off their plane localize, agents on a cone do not). An
 example is not counted when a component's float rank disagrees with its exact rank or its
@@ -70,10 +75,11 @@ from theory.tdoa.case import TdoaSpec
 from theory.tdoa.estimation.filters import average_round, ekf_predict, ekf_update, kalman_gain
 from theory.tdoa.geometry.exact import exact_direction_rank
 from theory.tdoa.model import cv_discrete, tdoa_jacobian
-from theory.tdoa.strategies import TdoaScene, networks, tdoa_scenes
+from theory.tdoa.strategies import TdoaScene, networks, stochastic_weights, tdoa_scenes
 
 __all__ = [
     "BURN_IN",
+    "BURN_INS",
     "HORIZON",
     "NOISES",
     "PROPERTIES",
@@ -395,28 +401,39 @@ def _relative(values: np.ndarray, reference: np.ndarray) -> float:
 
 
 BURN_IN = 40
-"""Ping whose gains are frozen for the boundedness certificate."""
+"""First ping whose gains are frozen for the boundedness certificate."""
 HORIZON = 2 * BURN_IN
 """Pings run; the certified bound is checked on ``BURN_IN … HORIZON``."""
+BURN_INS = tuple(BURN_IN * 2**m for m in range(6))
+"""Pings ``40, 80, …, 1280`` whose gains are tried in turn for the certificate (each checked on
+``K … 2K``): with weights spread over decades the covariances settle over hundreds of pings and
+the gains of ping 40 need not contract (docs/errata.md, "The averaged filter with slowly mixing
+weights")."""
+SETTLE_RTOL = 1e-3
+"""Relative growth of the largest position-covariance trace from ping 1280 to 2560 above which
+an uncertified observable component is still in its transient: the example is not counted
+(inconclusive), since weights can be arbitrarily small and the transient arbitrarily long."""
 NOISES = {"T": 1.0, "p0": 100.0, "q": 0.01, "r": 1.0}
 """Seed 000 §4.4: ping period, ``P_0 = p_0 I``, ``Q = q I``, ``R_i = r I``."""
 
 
 @dataclass(frozen=True, eq=False)
 class FilterExample:
-    """A scene (the target is where the Jacobians are evaluated) and its undirected network."""
+    """A scene (the target is where the Jacobians are evaluated), its undirected network and
+    row-stochastic weights ``W`` on it (``None``: Metropolis weights)."""
 
     scene: TdoaScene
     hears: np.ndarray
+    W: np.ndarray | None = None
+
+    def weights(self) -> np.ndarray:
+        """``W``, or the Metropolis weights of :attr:`hears` when none were given."""
+        return metropolis_weights(self.hears) if self.W is None else self.W
 
     def geometry(self) -> FrozenGeometry:
-        """The frozen geometry with Metropolis weights and :data:`NOISES`."""
+        """The frozen geometry with :meth:`weights` and :data:`NOISES`."""
         return FrozenGeometry(
-            self.scene.agents,
-            self.scene.target,
-            self.hears,
-            metropolis_weights(self.hears),
-            **NOISES,
+            self.scene.agents, self.scene.target, self.hears, self.weights(), **NOISES
         )
 
 
@@ -424,7 +441,9 @@ class FilterExample:
 class ComponentVerdict:
     """What one component (1-based ``agents``) shows: the exact rank of ``G_C``, whether it is
     observable (rank 3) and meets the paper's condition (≥ 4 agents, not coplanar); observable:
-    whether the fixed-gain certificate holds along the run, its ``decay`` bound on ``ρ(𝓛)``,
+    whether the fixed-gain certificate holds along the run and the ping ``burn_in`` of
+    :data:`BURN_INS` whose gains it froze (uncertified: whether the covariances had
+    ``settled``), its ``decay`` bound on ``ρ(𝓛)``,
     ``max_i tr Z_i`` and ``max_i tr P_∞,i`` over the position block (m²); always the CRB floor
     ``max_i tr P_C(HORIZON)``; unobservable: the largest relative gap along ``ker G_C`` between
     ``Π`` and the three second moments."""
@@ -434,6 +453,8 @@ class ComponentVerdict:
     observable: bool
     paper_condition: bool
     certified: bool | None
+    burn_in: int | None
+    settled: bool | None
     decay: float | None
     mse_bound: float | None
     mse_limit: float | None
@@ -444,8 +465,9 @@ class ComponentVerdict:
 @dataclass(frozen=True)
 class ExampleVerdict:
     """The corrected wording on one example: ``counted`` is False when a component is numerically
-    unsafe; ``crb_violation`` and ``consistency_violation`` are the worst
-    ``psd_violation(P_C, Σ_ii)`` and ``psd_violation(Σ_ii, P̄_i)`` over agents and pings."""
+    unsafe or an uncertified observable one has not settled by ping 2560; ``crb_violation`` and
+    ``consistency_violation`` are the worst ``psd_violation(P_C, Σ_ii)`` and
+    ``psd_violation(Σ_ii, P̄_i)`` over agents and pings."""
 
     counted: bool
     crb_violation: float = 0.0
@@ -467,11 +489,13 @@ class ExampleVerdict:
 @st.composite
 def filter_examples(draw: st.DrawFn, *, max_agents: int = 6) -> FilterExample:
     """3D scenes (families ``general``, ``coplanar``) of 2 to ``max_agents`` receivers with an
-    undirected network, connected or not."""
+    undirected network, connected or not, and any row-stochastic ``W`` positive exactly on its
+    links and diagonal (seed 000 §4.2.2, before eq. (4.26))."""
     family = draw(st.sampled_from(("general", "coplanar")))
     scene = draw(tdoa_scenes(dim=3, min_agents=2, max_agents=max_agents, family=family))
     n = len(scene.agents)
-    return FilterExample(scene, draw(networks(min_agents=n, max_agents=n, connected=None)))
+    hears = draw(networks(min_agents=n, max_agents=n, connected=None))
+    return FilterExample(scene, hears, draw(stochastic_weights(hears)))
 
 
 def check_example(example: FilterExample) -> ExampleVerdict:
@@ -483,11 +507,12 @@ def check_example(example: FilterExample) -> ExampleVerdict:
         return ExampleVerdict(counted=False)
     run = linearized_run(geometry, HORIZON)
     prior = prior_propagation(geometry, HORIZON)
+    components = [_component_verdict(example, geometry, part, run, prior) for part in parts]
     return ExampleVerdict(
-        counted=True,
+        counted=not any(c.settled is False for c in components),
         crb_violation=psd_violation(run.crb, run.mse),
         consistency_violation=psd_violation(run.mse, run.covariances),
-        components=[_component_verdict(example, geometry, part, run, prior) for part in parts],
+        components=components,
     )
 
 
@@ -512,23 +537,49 @@ def _component_verdict(
         "paper_condition": _paper_condition(example.scene.agents[members]),
         "crb_floor": floor,
         "certified": None,
+        "burn_in": None,
+        "settled": None,
         "decay": None,
         "mse_bound": None,
         "mse_limit": None,
         "kernel_deviation": None,
     }
     if verdict["observable"]:
-        cert = certify_boundedness(
-            geometry, part.agents, run.gains[BURN_IN], run.covariances[BURN_IN]
-        )
-        later = psd_violation(run.covariances[BURN_IN:, members], cert.Z[None])
-        verdict["certified"] = bool(cert.valid and later <= PSD_RTOL)
+        cert, verdict["burn_in"], verdict["settled"] = _first_certificate(geometry, part, run)
+        verdict["certified"] = verdict["burn_in"] is not None
         verdict["decay"] = cert.decay
         verdict["mse_bound"] = float(np.trace(cert.Z[:, :d, :d], axis1=-2, axis2=-1).max())
         verdict["mse_limit"] = float(np.trace(cert.limit[:, :d, :d], axis1=-2, axis2=-1).max())
     else:
         verdict["kernel_deviation"] = _kernel_deviation(part, run, prior)
     return ComponentVerdict(**verdict)
+
+
+def _first_certificate(
+    geometry: FrozenGeometry, part: ComponentGeometry, run: LinearizedRun
+) -> tuple[FixedGainCertificate, int | None, bool | None]:
+    """The certificate from the first ping ``K`` of :data:`BURN_INS` whose bound ``Z`` holds on
+    the filter's ``P̄_i(K … 2K)``, and ``K``; if none does, the last attempt, ``None`` and
+    whether the covariances had settled (:func:`_settled`; else the run is inconclusive)."""
+    covariances, gains = run.covariances, run.gains
+    members = list(part.agents)
+    for burn_in in BURN_INS:
+        if len(covariances) <= 2 * burn_in:
+            covariances, gains, _ = _filter_loop(
+                geometry, geometry.jacobians, geometry.W, 2 * burn_in
+            )
+        cert = certify_boundedness(geometry, part.agents, gains[burn_in], covariances[burn_in])
+        later = psd_violation(covariances[burn_in : 2 * burn_in + 1, members], cert.Z[None])
+        if cert.valid and later <= PSD_RTOL:
+            return cert, burn_in, None
+    return cert, None, _settled(covariances[:, members, :3, :3], BURN_INS[-1])
+
+
+def _settled(positions: np.ndarray, ping: int) -> bool:
+    """Whether the largest position-covariance trace grew by at most :data:`SETTLE_RTOL` from
+    ping ``K`` to ``2K`` (a longer transient leaves boundedness undecided at this horizon)."""
+    trace = np.trace(positions, axis1=-2, axis2=-1).max(axis=1)
+    return bool(trace[2 * ping] <= (1 + SETTLE_RTOL) * trace[ping])
 
 
 def _kernel_deviation(part: ComponentGeometry, run: LinearizedRun, prior: np.ndarray) -> float:
@@ -564,8 +615,9 @@ def _paper(example: FilterExample) -> bool:
 
 
 def filter_example_case(example: FilterExample) -> dict[str, Any]:
-    """A ``kind: tdoa`` case reproducing ``example`` (Metropolis weights), expecting the
-    observability of each agent's component; the filter's verdicts are in its description."""
+    """A ``kind: tdoa`` case reproducing ``example`` (its weights as an explicit matrix, or
+    ``metropolis``), expecting the observability of each agent's component; the filter's
+    verdicts are in its description."""
     scene = example.scene
     n = len(scene.agents)
     edges = [[i + 1, j + 1] for i in range(n) for j in range(i + 1, n) if example.hears[i, j]]
@@ -576,7 +628,7 @@ def filter_example_case(example: FilterExample) -> dict[str, Any]:
             observable[agent - 1] = c.observable
     summary = "; ".join(
         f"agents {list(c.agents)}: rank {c.exact_rank}, paper condition {c.paper_condition}, "
-        f"certified bounded {c.certified}"
+        f"certified bounded {c.certified}" + (f" (gains of ping {c.burn_in})" if c.burn_in else "")
         for c in verdict.components
     )
     return {
@@ -591,7 +643,7 @@ def filter_example_case(example: FilterExample) -> dict[str, Any]:
             "target": [float(v) for v in scene.target],
             "agents": [[float(v) for v in row] for row in scene.agents],
             "edges": edges,
-            "weights": "metropolis",
+            "weights": "metropolis" if example.W is None else example.W.tolist(),
         },
         "expect": {"observable": observable} if verdict.counted else {},
     }
@@ -599,7 +651,8 @@ def filter_example_case(example: FilterExample) -> dict[str, Any]:
 
 def example_from_spec(spec: TdoaSpec) -> FilterExample:
     """The example a :func:`filter_example_case` case file describes (its first step)."""
-    return FilterExample(TdoaScene(spec.target[0], spec.agents[0], "reloaded"), spec.hears[0])
+    scene = TdoaScene(spec.target[0], spec.agents[0], "reloaded")
+    return FilterExample(scene, spec.hears[0], spec.weights[0])
 
 
 def _property(wording: str, statement: str, holds: Any, expected_to_hold: bool) -> Property:
@@ -627,9 +680,11 @@ PROPERTIES = (
         "corrected",
         "On a frozen geometry, for every agent i of component C and every ping k: "
         "P_C(k) ⪯ E[e_i e_iᵀ](k) ⪯ P̄_i(k) (posterior CRB of C ⪯ mean-square error ⪯ filter "
-        "covariance); if rank G_C = 3 the gains at a burn-in ping certify E[e_i e_iᵀ](k) ⪯ Z_i "
-        "for all later k; if rank G_C < 3 nothing is learnt along ker G_C, where the position "
-        "variance is p₀(1 + (kT)²) + q Σ_{l<k} ((l + ½)T²)² for every estimator.",
+        "covariance); if rank G_C = 3 the gains at one of the pings K = 40, 80, …, 1280 "
+        "certify E[e_i e_iᵀ](k) ⪯ Z_i for all k ≥ K (or the covariances are still growing at "
+        "ping 2560: inconclusive); if rank G_C < 3 nothing is learnt along "
+        "ker G_C, where the position variance is p₀(1 + (kT)²) + q Σ_{l<k} ((l + ½)T²)² for "
+        "every estimator.",
         _corrected,
         expected_to_hold=True,
     ),

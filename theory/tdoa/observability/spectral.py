@@ -28,6 +28,7 @@ import numpy as np
 
 from theory.core.exact import exact_decimal
 from theory.core.observability import RANK_TOL
+from theory.core.sparse_weights import SparseWeights
 from theory.core.tolerances import CLUSTER_TOL
 
 __all__ = [
@@ -58,24 +59,28 @@ class SpectralRank:
     margin: float
 
 
-def symmetrizing_scale(W: np.ndarray) -> np.ndarray | None:
+def symmetrizing_scale(W: SparseWeights) -> np.ndarray | None:
     """A vector ``s > 0`` with ``diag(s) W diag(s)^{-1}`` symmetric, or ``None``; decided exactly.
 
     Tries ``s = 1`` (``W = Wᵀ``, e.g. Metropolis) and ``s_i = w_ii^{-1/2}`` (uniform weights
     ``W = D^{-1}(A + I)`` on an undirected graph), which symmetrizes iff ``w_ij w_jj = w_ji w_ii``:
     checked in floats, then on the support in exact rationals (the decimals as written), so a
-    ``W`` only nearly symmetrizable is never ranked as its symmetrized neighbour."""
-    if np.array_equal(W, W.T):
-        return np.ones(W.shape[0])
-    diag = np.diag(W)
-    lhs, rhs = W * diag[None, :], W.T * diag[:, None]
+    ``W`` only nearly symmetrizable is never ranked as its symmetrized neighbour. ``O(E)`` on
+    the entries (a link without its reverse: ``None``)."""
+    reverse = W.reverse_weights()
+    if reverse is None:
+        return None
+    if np.array_equal(W.weight, reverse):
+        return np.ones(W.n)
+    i, j, diagonal = W.receiver, W.sender, W.diagonal
+    lhs, rhs = W.weight * diagonal[j], reverse * diagonal[i]
     if not np.allclose(lhs, rhs, rtol=8 * np.finfo(float).eps, atol=0.0):
         return None
-    q = {i: exact_decimal(float(diag[i])) for i in range(W.shape[0])}
-    for i, j in zip(*np.nonzero(np.triu(W, 1) + np.tril(W, -1).T), strict=True):
-        if exact_decimal(float(W[i, j])) * q[j] != exact_decimal(float(W[j, i])) * q[i]:
+    for k in np.flatnonzero(i < j):
+        exact = exact_decimal(float(W.weight[k])) * exact_decimal(float(diagonal[j[k]]))
+        if exact != exact_decimal(float(reverse[k])) * exact_decimal(float(diagonal[i[k]])):
             return None
-    return 1.0 / np.sqrt(diag)
+    return 1.0 / np.sqrt(diagonal)
 
 
 def spectral_network_rank(

@@ -12,8 +12,10 @@ directed one) and ``G_{R(i)}`` stacks the position blocks of their TDOA Jacobian
 ``w_ii > 0``. The networked pair is detectable iff its eigenvalue 1 (the only one on the unit
 circle) passes the PBH test, which for an undirected graph means every component's ``G`` has
 rank ``d``; the full rank of ``O`` comes from the spectrum of ``W`` per component
-(:mod:`~theory.tdoa.observability.spectral`) or, for weights that are not symmetrizable, from
-the dense matrix of :mod:`~theory.tdoa.observability.network`.
+(:mod:`~theory.tdoa.observability.spectral`), for components of more than
+:data:`SPECTRAL_MAX_AGENTS` agents from the blind agents' invariant subspace and the inertia of
+``W`` (:mod:`~theory.tdoa.observability.sparse_rank`), or, for weights that are not
+symmetrizable, from the dense matrix of :mod:`~theory.tdoa.observability.network`.
 
 Beside the exact verdict the paper's heuristic (a component of ≥ 4 non-coplanar agents; ≥ 3
 non-collinear in 2-D) is reported with a one-line reason wherever the two disagree; receivers in a
@@ -29,8 +31,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from theory.core.network import component_labels, is_symmetric
 from theory.core.observability import RANK_TOL, RankResult, numeric_rank
+from theory.core.sparse_weights import SparseWeights
 from theory.core.tolerances import CLUSTER_TOL, INCONCLUSIVE_FACTOR, UNIQUENESS_TOL
 from theory.core.validation import check_estimate
 from theory.tdoa.case import TdoaSpec
@@ -44,6 +46,7 @@ from theory.tdoa.geometry.exact import (
 from theory.tdoa.geometry.uniqueness import Uniqueness, tdoa_solutions
 from theory.tdoa.model import cv_discrete, unit_directions
 from theory.tdoa.observability.network import analyze_network
+from theory.tdoa.observability.sparse_rank import sparse_network_rank
 from theory.tdoa.observability.spectral import (
     eigenspace_defects,
     spectral_network_rank,
@@ -55,6 +58,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "DENSE_MAX_STATES",
+    "SPECTRAL_MAX_AGENTS",
     "AgentVerdict",
     "NetworkVerdict",
     "TopologyResult",
@@ -66,6 +70,10 @@ __all__ = [
 
 DENSE_MAX_STATES = 240
 """Largest component (in states 2·d·n) whose non-symmetrizable W is ranked densely."""
+
+SPECTRAL_MAX_AGENTS = 500
+"""Largest component whose symmetrizable W is ranked by its eigen-decomposition; larger ones
+by the blind agents' invariant subspace and the inertia of W (:mod:`.sparse_rank`)."""
 
 
 @dataclass(frozen=True)
@@ -215,18 +223,21 @@ def check_topology_cost(spec: TdoaSpec, *, network_rank: bool = True) -> None:
 
     The per-agent verdicts and detectability keep the TDOA rows: ``M`` rows of ``d`` floats and
     two indices, ``8(d + 2)·M`` bytes (twice, for the rows grouped by component). The network
-    rank adds, per component of ``n`` agents, an eigen-decomposition of its ``W`` (seed 000
-    eq. (4.36) ranked by the spectrum, :mod:`~theory.tdoa.observability.spectral`): about
-    ``3·8·n²`` bytes and ``10·n³`` operations for the largest component of any step. The
+    rank adds, per component of ``n ≤`` :data:`SPECTRAL_MAX_AGENTS` agents, an
+    eigen-decomposition of its ``W`` (:mod:`~theory.tdoa.observability.spectral`): about
+    ``3·8·n²`` bytes and ``10·n³`` operations for the largest such component of any step;
+    larger components are ranked by :mod:`~theory.tdoa.observability.sparse_rank`, whose
+    blind-agent matrices are checked against the limit when their size is known. Each
     refusal names ``--no-network-rank``, which skips that part.
     """
-    rows = int(spec.hears.sum(axis=(1, 2)).max(initial=0))
+    rows = max(links.count for links in spec.links)
     memory = 16.0 * (spec.dim + 2) * rows
     what = f"16 B × (d + 2)·M, M = {rows} TDOA rows"
     check_estimate("memory_bytes", memory, "tdoa.agents", what)
     if not network_rank:
         return
-    largest = max(int(np.bincount(component_labels(h)).max(initial=0)) for h in spec.hears)
+    sizes = np.concatenate([np.bincount(w.component_labels()) for w in spec.links])
+    largest = int(sizes[sizes <= SPECTRAL_MAX_AGENTS].max(initial=0))
     skip = (
         "Pass --no-network-rank for every agent's verdict and the detectability without the "
         "rank of the whole networked O (those are linear in N + E)."
@@ -235,14 +246,14 @@ def check_topology_cost(spec: TdoaSpec, *, network_rank: bool = True) -> None:
         "memory_bytes",
         memory + 24.0 * largest**2,
         "tdoa.agents",
-        f"{what} + 24 B × n², n = {largest} in the largest component",
+        f"{what} + 24 B × n², n = {largest} in the largest component ranked by eigenvalues",
         alternative=skip,
     )
     check_estimate(
         "work",
         10.0 * largest**3,
         "tdoa.agents",
-        f"10 n³ to diagonalize W, n = {largest} in the largest component",
+        f"10 n³ to diagonalize W, n = {largest} in the largest component ranked by eigenvalues",
         alternative=skip,
     )
 
@@ -297,8 +308,7 @@ class _Scene:
     spec: TdoaSpec
     positions: np.ndarray
     target: np.ndarray
-    hears: np.ndarray
-    W: np.ndarray
+    W: SparseWeights
     rows: _Rows
     parts: list[list[int]]
     component_of: np.ndarray
@@ -366,20 +376,19 @@ class _Group:
 
 def _scene(spec: TdoaSpec, step: int) -> _Scene:
     """The shared data of step ``step``: TDOA rows, components, exact coordinates."""
-    positions, target, hears = spec.agents[step], spec.target[step], spec.hears[step]
-    rows = _tdoa_rows(positions, target, hears)
-    parts, component_of = _components(hears)
+    positions, target, W = spec.agents[step], spec.target[step], spec.links[step]
+    rows = _tdoa_rows(positions, target, W)
+    parts, component_of = _components(W)
     return _Scene(
         spec,
         positions,
         target,
-        hears,
-        spec.weights[step],
+        W,
         rows,
         parts,
         component_of,
         _rows_by_part(rows, component_of, len(parts)),
-        is_symmetric(hears),
+        W.symmetric(),
         rational_points(positions),
         rational_points([target])[0],
     )
@@ -390,7 +399,7 @@ def _agent_groups(
 ) -> list[tuple[list[int], _Group]]:
     """Agents sharing a reach set ``R(i)`` (a component, or a strongly connected class) and the
     verdict on their stacked Jacobian."""
-    reach_groups = [(p, p) for p in scene.parts] if scene.symmetric else _reach_groups(scene.hears)
+    reach_groups = [(p, p) for p in scene.parts] if scene.symmetric else _reach_groups(scene.W)
     out = []
     for members, reach in reach_groups:
         k = int(scene.component_of[members[0]])
@@ -444,39 +453,39 @@ def _detectability(
     return detectable
 
 
-def _tdoa_rows(positions: np.ndarray, target: np.ndarray, hears: np.ndarray) -> _Rows:
+def _tdoa_rows(positions: np.ndarray, target: np.ndarray, W: SparseWeights) -> _Rows:
     units = unit_directions(target, positions)
-    agent, other = np.nonzero(hears)
+    agent, other = W.receiver, W.sender
     return _Rows(agent, other, units[agent] - units[other])
 
 
-def _components(hears: np.ndarray) -> tuple[list[list[int]], np.ndarray]:
+def _components(W: SparseWeights) -> tuple[list[list[int]], np.ndarray]:
     """Weakly connected components ordered by first agent, and each agent's component index.
 
     The partition of :func:`theory.core.network.components`, in ``O((N + E) log N)``.
     """
-    labels = component_labels(hears)
+    labels = W.component_labels()
     roots, component_of = np.unique(labels, return_inverse=True)  # roots: first agents, sorted
     order = np.argsort(component_of, kind="stable")
     pieces = np.split(order, np.cumsum(np.bincount(component_of, minlength=len(roots)))[:-1])
     return [piece.tolist() for piece in pieces], component_of
 
 
-def _condensation(hears: np.ndarray) -> nx.DiGraph:
+def _condensation(W: SparseWeights) -> nx.DiGraph:
     """The strongly connected classes of the information flow (``s → r`` when ``r`` hears ``s``)."""
     import networkx as nx  # directed networks only
 
     flow = nx.DiGraph()
-    flow.add_nodes_from(range(hears.shape[0]))
-    flow.add_edges_from((int(s), int(r)) for r, s in zip(*np.nonzero(hears), strict=True))
+    flow.add_nodes_from(range(W.n))
+    flow.add_edges_from(zip(W.sender.tolist(), W.receiver.tolist(), strict=True))
     return nx.condensation(flow)
 
 
-def _reach_groups(hears: np.ndarray) -> list[tuple[list[int], list[int]]]:
+def _reach_groups(W: SparseWeights) -> list[tuple[list[int], list[int]]]:
     """Agents of a directed network sharing one reach set ``R(i)``: strongly connected classes."""
     import networkx as nx
 
-    condensed = _condensation(hears)
+    condensed = _condensation(W)
     groups = []
     for node in condensed.nodes:
         members = sorted(condensed.nodes[node]["members"])
@@ -608,13 +617,12 @@ def _network_verdict(
     rank, eigenvalues, methods, notes = 0, [], set(), []
     margin = detectable[1]
     for part, selected in zip(scene.parts, scene.part_rows, strict=True):
-        piece = _component_rank(
-            spec, scene.W, scene.rows, part, selected, tol["rank_tol"], cluster_tol
-        )
+        piece = _component_rank(spec, scene.W, scene.rows, part, selected, tol, cluster_tol)
         if piece is None:
             notes.append(
                 f"component {_ids(part)}: W is not symmetrizable and has "
-                f"{2 * dim * len(part)} > {DENSE_MAX_STATES} states; rank not computed"
+                f"{2 * dim * len(part)} > {DENSE_MAX_STATES} states, or the factorization "
+                "counting dim ker W failed its backward-error check; rank not computed"
             )
             rank = None
             continue
@@ -648,7 +656,7 @@ def _upstream_leaders(
     """
     import networkx as nx
 
-    condensed = _condensation(scene.hears)
+    condensed = _condensation(scene.W)
     ranks = {}
     for node in condensed:
         if condensed.in_degree(node) == 0:
@@ -661,7 +669,7 @@ def _upstream_leaders(
                 doubts.append(ranks[node].doubt)
     mapping = condensed.graph["mapping"]
     upstream: dict[int, list[_RankDecision]] = {}
-    for agent in range(scene.hears.shape[0]):
+    for agent in range(scene.W.n):
         node = mapping[agent]
         above = nx.ancestors(condensed, node) | {node}
         upstream[agent] = [ranks[c] for c in sorted(above) if c in ranks]
@@ -676,7 +684,7 @@ def _rows_by_part(rows: _Rows, component_of: np.ndarray, count: int) -> list[np.
     return [order[bounds[k] : bounds[k + 1]] for k in range(count)]
 
 
-def _directed_detectable(W: np.ndarray, rows: _Rows, rank_tol: float) -> tuple[bool, float]:
+def _directed_detectable(W: SparseWeights, rows: _Rows, rank_tol: float) -> tuple[bool, float]:
     """PBH at the eigenvalue 1 of ``W ⊗ A`` (the only one with ``|λ| ≥ 1``).
 
     Its eigenvectors are the absorption probabilities of the closed classes (agents that hear
@@ -688,57 +696,71 @@ def _directed_detectable(W: np.ndarray, rows: _Rows, rank_tol: float) -> tuple[b
     return defects[0] == 0, margin
 
 
-def _unit_eigenvectors(W: np.ndarray) -> np.ndarray:
+def _unit_eigenvectors(W: SparseWeights) -> np.ndarray:
     """Right eigenvectors of a row-stochastic ``W`` (``w_ii > 0``) for eigenvalue 1."""
     import networkx as nx
 
-    graph = nx.DiGraph((int(r), int(s)) for r, s in zip(*np.nonzero(W), strict=True))
-    graph.add_nodes_from(range(W.shape[0]))
+    graph = nx.DiGraph(zip(W.receiver.tolist(), W.sender.tolist(), strict=True))
+    graph.add_nodes_from(range(W.n))
     condensed = nx.condensation(graph)
     closed = [
         sorted(condensed.nodes[c]["members"]) for c in condensed if condensed.out_degree(c) == 0
     ]
-    in_closed = np.zeros(W.shape[0], dtype=bool)
+    in_closed = np.zeros(W.n, dtype=bool)
     for members in closed:
         in_closed[members] = True
     transient = np.flatnonzero(~in_closed)
-    basis = np.zeros((W.shape[0], len(closed)))
+    basis = np.zeros((W.n, len(closed)))
     for k, members in enumerate(closed):
         basis[members, k] = 1.0
         if transient.size:
-            rhs = W[np.ix_(transient, members)].sum(axis=1)
-            lhs = np.eye(transient.size) - W[np.ix_(transient, transient)]
+            rhs = W.block(transient, members).sum(axis=1)
+            lhs = np.eye(transient.size) - W.block(transient)
             basis[transient, k] = np.linalg.solve(lhs, rhs)
     return basis
 
 
 def _component_rank(
     spec: TdoaSpec,
-    W: np.ndarray,
+    W: SparseWeights,
     rows: _Rows,
     part: list[int],
     selected: np.ndarray,
-    rank_tol: float,
+    tol: dict[str, float],
     cluster_tol: float,
 ) -> tuple[int, list[complex], str, float] | None:
-    local = np.full(W.shape[0], -1)
+    local = np.full(W.n, -1)
     local[part] = np.arange(len(part))
-    W_part = W[np.ix_(part, part)]
+    W_part = W.restrict(part)
     scale = symmetrizing_scale(W_part)
-    if scale is not None:
-        result = spectral_network_rank(
+    if scale is not None and len(part) > SPECTRAL_MAX_AGENTS:
+        result = sparse_network_rank(
             W_part,
             local[rows.agent[selected]],
             rows.vectors[selected],
             scale=scale,
-            rank_tol=rank_tol,
+            rank_tol=tol["rank_tol"],
+            cluster_tol=cluster_tol,
+            inconclusive_factor=tol["inconclusive_factor"],
+        )
+        if result is None:
+            return None
+        eigs = [complex(v) for v in result.unobservable_eigenvalues]
+        return result.rank, eigs, "sparse", result.margin
+    if scale is not None:
+        result = spectral_network_rank(
+            W_part.dense(),
+            local[rows.agent[selected]],
+            rows.vectors[selected],
+            scale=scale,
+            rank_tol=tol["rank_tol"],
             cluster_tol=cluster_tol,
         )
         eigs = [complex(v) for v in result.unobservable_eigenvalues]
         return result.rank, eigs, "spectral", result.margin
     if 2 * spec.dim * len(part) > DENSE_MAX_STATES:
         return None
-    return _dense_rank(spec, W_part, rows, part, rank_tol)
+    return _dense_rank(spec, W_part.dense(), rows, part, tol["rank_tol"])
 
 
 def _dense_rank(
