@@ -59,10 +59,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_pursuit import CASES, _best, _simulate  # noqa: E402
 
+from theory.core.engines import ENGINE_SETTING, ENGINES  # noqa: E402
 from theory.kinds import load_case  # noqa: E402
 from theory.pursuit import kernels  # noqa: E402
 from theory.pursuit.closed_loop import build_loop, simulate_dec  # noqa: E402
-from theory.pursuit.compiled_run import ENGINE_SETTING, ENGINES, loop_arrays  # noqa: E402
+from theory.pursuit.compiled_run import loop_arrays  # noqa: E402
 from theory.pursuit.simulation import dec_arguments  # noqa: E402
 
 OCTAVE_CPU = {

@@ -115,7 +115,7 @@ def simulator_for(case: Case, steps: int | None = None, runs: int | None = None)
     """The simulator of ``case``'s kind, ``steps`` overriding the case's number of steps (a kind
     ``trackcert simulate`` does not run is a :class:`CaseError`); ``runs``, the Monte Carlo runs
     planned, chooses the pursuit loop's default engine (a short job runs without numba:
-    :func:`theory.pursuit.compiled_run.resolve_engine`)."""
+    :func:`theory.core.engines.resolve_engine`)."""
     if case.kind not in SIMULATED:
         raise CaseError("kind", "a kind trackcert simulate runs", case.kind, file=case.file)
     if case.kind == "pursuit":

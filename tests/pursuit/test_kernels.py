@@ -18,17 +18,13 @@ from dec_loops import dec_loop, random_state
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from theory.core.engines import ENGINE_SETTING, NUMBA_MIN_RECORDS, compiled, resolve_engine
 from theory.core.errors import CaseError
 from theory.kinds import load_case
 from theory.pursuit import kernels
 from theory.pursuit.closed_loop import heun_step, simulate_dec
 from theory.pursuit.compiled_replay import replay_compiled
-from theory.pursuit.compiled_run import (
-    ENGINE_SETTING,
-    NUMBA_MIN_RECORDS,
-    loop_arrays,
-    resolve_engine,
-)
+from theory.pursuit.compiled_run import loop_arrays
 from theory.pursuit.dekf import dekf_step, range_dekf, transition_matrix
 from theory.pursuit.strategies import simulated_pursuit_cases
 
@@ -238,9 +234,9 @@ def test_without_a_writable_cache_folder_the_kernels_compile_in_memory(monkeypat
     from numba.core.caching import CacheImpl
 
     monkeypatch.setattr(CacheImpl, "_locator_classes", [])
-    compiled = kernels._kernel(kernels._etd_weights.py_func)
-    assert not compiled._cache.__class__.__name__ == "FunctionCache"
-    assert compiled(500.0, 0.01) == kernels._etd_weights(500.0, 0.01)
+    kernel = compiled(kernels._etd_weights.py_func)
+    assert not kernel._cache.__class__.__name__ == "FunctionCache"
+    assert kernel(500.0, 0.01) == kernels._etd_weights(500.0, 0.01)
 
 
 @pytest.mark.parametrize(

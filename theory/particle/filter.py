@@ -46,6 +46,7 @@ import numpy as np
 from scipy import special
 from scipy.stats._continuous_distns import _log_gauss_mass
 
+from theory.core.engines import resolve_engine
 from theory.particle.case import (
     DcrwParams,
     ExchangeWeights,
@@ -56,7 +57,6 @@ from theory.particle.case import (
     ReceivedHeading,
 )
 from theory.particle.dcrw import fit_dcrw, movement_samples, sample_weibull, sample_wrapped_cauchy
-from theory.pursuit.compiled_run import resolve_engine
 from theory.tdoa.model import range_differences, ranges
 
 __all__ = [
@@ -546,7 +546,7 @@ def _scale_for(steps: np.ndarray, kappa: float) -> float:
 def build_motion(spec: PfSpec, model: Model, engine: str | None = None) -> Motion:
     """The propagation model ``model`` of ``spec``: its true DCRW, the Gaussian baseline, or an
     online learner over the uniform prior with the case's learning settings, refitting on
-    ``engine`` (:func:`theory.pursuit.compiled_run.resolve_engine`: ``"numba"``, ``"numpy"``,
+    ``engine`` (:func:`theory.core.engines.resolve_engine`: ``"numba"``, ``"numpy"``,
     ``None`` for ``$TRACKCERT_ENGINE`` or ``"numba"``)."""
     match Model(model):
         case Model.DCRW:

@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from theory.pursuit.kernels import _kernel  # njit(cache=True), uncached if no folder is writable
+from theory.core.engines import compiled
 
 __all__ = ["FALLBACK", "FITTED", "TOO_FEW", "fit_track"]
 
@@ -33,14 +33,14 @@ FITTED, TOO_FEW, FALLBACK = 0, 1, 2
 TINY = np.finfo(float).tiny
 
 
-@_kernel
+@compiled
 def _wrap(angle):
     """``wrap_angle`` of one angle: ``mod(a + π, 2π) − π`` (NumPy's floor mod), ``−π ↦ π``."""
     wrapped = np.mod(angle + math.pi, 2 * math.pi) - math.pi
     return math.pi if wrapped == -math.pi else wrapped
 
 
-@_kernel
+@compiled
 def _movement(track):
     """Turning angles (``K − 2``) and positive steps of a track ``(K, 2)``, eqs. (3.17)–(3.19)."""
     count = track.shape[0] - 1
@@ -60,7 +60,7 @@ def _movement(track):
     return turns, steps[:kept]
 
 
-@_kernel
+@compiled
 def _largest_tie(angles, tol):
     """The most repeated angle (gaps ≤ ``tol``, across ±π) and its count (``dcrw._largest_tie``)."""
     order = np.sort(angles)
@@ -83,7 +83,7 @@ def _largest_tie(angles, tol):
     return order[firsts[best]], sizes[best]
 
 
-@_kernel
+@compiled
 def _derivatives(zx, zy, x, y):
     """Negative log-likelihood of eq. (3.1) in ``ψ = x + iy``, gradient, Hessian (``dcrw``'s)."""
     n = zx.size
@@ -110,7 +110,7 @@ def _derivatives(zx, zy, x, y):
     return value, gx, gy, hxx, hxy, hyy
 
 
-@_kernel
+@compiled
 def _direction(gx, gy, a, b, c):
     """``−H⁻¹ g`` with ``H`` shifted to be positive definite (``dcrw._newton_direction``)."""
     half_trace, det = 0.5 * (a + c), a * c - b * b
@@ -122,7 +122,7 @@ def _direction(gx, gy, a, b, c):
     return -(c * gx - b * gy) / det, -(a * gy - b * gx) / det
 
 
-@_kernel
+@compiled
 def _newton(zx, zy, x, y, max_iter=100, step_tol=1e-10):
     """The ML ``ψ`` by damped Newton steps (``dcrw._wrapped_cauchy_newton``); ``ok`` False when
     it does not converge (the reference then runs BFGS)."""
@@ -152,7 +152,7 @@ def _newton(zx, zy, x, y, max_iter=100, step_tol=1e-10):
     return x, y, False
 
 
-@_kernel
+@compiled
 def _profile(kappa, shifted, centred):
     """The Weibull profile equation at ``κ`` and its derivative (``dcrw._weibull_profile``)."""
     n = shifted.size
@@ -171,7 +171,7 @@ def _profile(kappa, shifted, centred):
     return mean - 1.0 / kappa, variance + 1.0 / kappa**2
 
 
-@_kernel
+@compiled
 def _weibull_shape(steps, low, high, tol=1e-12):
     """ML ``κ`` of eq. (3.2) in ``[low, high]`` (``dcrw.fit_weibull``); NaN if no convergence."""
     n = steps.size
@@ -199,7 +199,7 @@ def _weibull_shape(steps, low, high, tol=1e-12):
     return math.nan
 
 
-@_kernel
+@compiled
 def _wrapped_cauchy(turns, gamma_max, tie_tol=1e-9):
     """ML ``(μ, γ)`` of eq. (3.1) (``dcrw.fit_wrapped_cauchy``); ``ok`` False: run the reference."""
     n = turns.size
@@ -216,7 +216,7 @@ def _wrapped_cauchy(turns, gamma_max, tie_tol=1e-9):
     return math.atan2(y, x), min(math.hypot(x, y), gamma_max), ok
 
 
-@_kernel
+@compiled
 def fit_track(track, min_samples, gamma_max, kappa_low, kappa_high, out):
     """The learner's refit of one node from its estimates ``track (K, 2)`` into ``out``
     ``(μ, γ, κ, λ)``: :data:`FITTED`, :data:`TOO_FEW` or :data:`FALLBACK` (module docstring).

@@ -37,6 +37,7 @@ from enum import StrEnum
 
 import numpy as np
 
+from theory.core.engines import resolve_engine
 from theory.core.tolerances import RUNAWAY_FACTOR
 from theory.pursuit import compiled_run, model
 from theory.pursuit.dekf import dekf_step, transition_matrix
@@ -766,7 +767,7 @@ def simulate_dec(
     :meth:`DecLoop.rates` (a reference implementation, for tests and benchmarks; it runs on the
     NumPy engine). ``engine`` ``"numba"`` (compiled kernels, :mod:`theory.pursuit.kernels`) or
     ``"numpy"`` (this module, the reference), default ``$TRACKCERT_ENGINE`` else ``"numba"``
-    (:func:`theory.pursuit.compiled_run.resolve_engine`; CaseError if unknown). ValueError if
+    (:func:`theory.core.engines.resolve_engine`; CaseError if unknown). ValueError if
     Δ of (22) is singular (ε₁ = 0), T_s/dt is not an integer or the controller is unknown.
     """
     n, d = initial_positions.shape
@@ -781,7 +782,7 @@ def simulate_dec(
     state = _initial_state(
         initial_positions, initial_headings, initial_gammas, initial_gamma_errors
     )
-    if field is None and compiled_run.resolve_engine(engine) == "numba":
+    if field is None and resolve_engine(engine) == "numba":
         *records, counts, stop = compiled_run.record(
             loop, target, state, dekf, steps, rng, settings, runaway_reason
         )

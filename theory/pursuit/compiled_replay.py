@@ -16,13 +16,14 @@ import math
 
 import numpy as np
 
+from theory.core.engines import compiled
 from theory.pursuit.dekf import RangeDekfRun, transition_matrix
-from theory.pursuit.kernels import _kernel, dekf_step
+from theory.pursuit.kernels import dekf_step
 
 __all__ = ["replay_compiled"]
 
 
-@_kernel
+@compiled
 def _replay(trackers, target, noise, x0, Omega0, fusion, F, W, V, out):
     """Fill ``out`` = (x̂_{k|k}, Ω_{k|k}, ν, S) at every instant (module docstring)."""
     estimates, information, innovations, variances = out

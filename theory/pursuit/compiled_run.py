@@ -1,6 +1,6 @@
 """Seed 003: the DEC loop's run on the compiled kernels (:mod:`theory.pursuit.kernels`), the
 ``"numba"`` engine of :func:`theory.pursuit.closed_loop.simulate_dec`; the engine is chosen by
-:func:`resolve_engine` (a short job runs on the NumPy engine: :data:`NUMBA_MIN_RECORDS`).
+:func:`theory.core.engines.resolve_engine` (a short job runs on the NumPy engine).
 
 The run is :func:`closed_loop._run`'s: at each sampling instant the ranges (9)–(10) (the same
 draws from ``rng``), one DEKF step (Algorithm 2) and the runaway check; between two sampling
@@ -10,76 +10,16 @@ instants one kernel call integrates and records every ``dt``. This module knows 
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-from theory.core.errors import ENVIRONMENT, CaseError
-
-__all__ = [
-    "ENGINES",
-    "ENGINE_SETTING",
-    "NUMBA_MIN_RECORDS",
-    "Recorded",
-    "loop_arrays",
-    "record",
-    "resolve_engine",
-]
-
-ENGINES = ("numba", "numpy")
-"""The engines: compiled kernels (default) and the NumPy reference (the tests' oracle)."""
-
-ENGINE_SETTING = "TRACKCERT_ENGINE"
-"""The environment variable that chooses the engine when the caller does not."""
-
-NUMBA_MIN_RECORDS = 1000
-"""A job of fewer records (runs × 0.1 s records) than this runs on the NumPy engine by default.
-
-Importing numba and loading the cached kernels costs a process about 0.5 s of CPU once; the NumPy
-engine costs about 0.1–0.2 ms more a record (docs/simulation.md, *Speed of the kernels*): below
-1,000 records the NumPy engine finishes first (0.14–0.19 s for 1,000 records of the Table cases,
-measured in one process), above a few thousand the kernels do. Both engines agree within the
-integrator's tolerance (``tests/pursuit/test_kernels.py``)."""
+__all__ = ["Recorded", "loop_arrays", "record"]
 
 Recorded = tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, int], tuple | None]
 """(z, R, estimates, (steps, rejected), stop): the records of :func:`closed_loop._run` and, for a
 run stopped early, (time, reason, whether a runaway)."""
-
-
-def resolve_engine(engine: str | None = None, records: int | None = None) -> str:
-    """The simulation engine: ``engine``, else ``$TRACKCERT_ENGINE``, else ``"numba"`` — or
-    ``"numpy"`` for a job of fewer than :data:`NUMBA_MIN_RECORDS` ``records``.
-
-    Parameters
-    ----------
-    engine : {"numba", "numpy"}, optional
-        ``"numba"``: the compiled kernels; ``"numpy"``: the NumPy reference.
-    records : int, optional
-        The records the whole job integrates (runs × steps); unknown: the kernels' rule applies
-        (``"numba"``).
-
-    Returns
-    -------
-    str
-        One of :data:`ENGINES`.
-
-    Raises
-    ------
-    CaseError
-        If the engine (or the environment variable) names no engine.
-    """
-    if engine is not None:
-        if engine not in ENGINES:
-            raise CaseError("engine", " or ".join(map(repr, ENGINES)), engine)
-        return engine
-    chosen = os.environ.get(ENGINE_SETTING, "").strip()
-    if not chosen:
-        return "numpy" if records is not None and records < NUMBA_MIN_RECORDS else "numba"
-    if chosen not in ENGINES:
-        raise CaseError(ENGINE_SETTING, " or ".join(ENGINES), chosen, file=ENVIRONMENT)
-    return chosen
 
 
 def loop_arrays(loop: Any) -> tuple:

@@ -8,7 +8,7 @@ implementation :func:`theory.pursuit.dekf.range_dekf` and the run's own priors, 
 ``SeedSequence([REPLAY_KEY, i])``. The statistics are then those of the filter on the
 closed-loop geometry (:mod:`theory.core.consistency`); the range variance the filter assumes is
 ``1/V``, so a case whose ``V`` exceeds ``1/σ²`` trusts its ranges more than their noise allows.
-The replay runs on the engine :func:`theory.pursuit.compiled_run.resolve_engine` chooses for
+The replay runs on the engine :func:`theory.core.engines.resolve_engine` chooses for
 the runs' records (a short job on the NumPy reference, as its runs): compiled
 (:mod:`theory.pursuit.compiled_replay`) or the NumPy reference.
 """
@@ -21,8 +21,8 @@ from typing import Any
 import numpy as np
 
 from theory.core.consistency import filter_metrics, nees, nis
+from theory.core.engines import resolve_engine
 from theory.pursuit.closed_loop import DecRun, _filter_setup, build_loop
-from theory.pursuit.compiled_run import resolve_engine
 from theory.pursuit.dekf import RangeDekfRun, range_dekf
 
 __all__ = ["REPLAY_KEY", "dekf_metrics", "replay_dekf"]
@@ -36,7 +36,7 @@ def replay_dekf(
 ) -> RangeDekfRun:
     """Algorithm 2 on run ``index``'s recorded trajectories every ``T_s`` (module docstring;
     ``arguments`` are :func:`theory.pursuit.simulation.dec_arguments`', ``engine`` as
-    :func:`~theory.pursuit.compiled_run.resolve_engine`'s); seed 003 (41)–(44)."""
+    :func:`~theory.core.engines.resolve_engine`'s); seed 003 (41)–(44)."""
     settings = arguments["settings"]
     every = round(settings.Ts / settings.dt)
     positions, target = run.positions[::every], run.target[::every]

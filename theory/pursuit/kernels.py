@@ -11,8 +11,8 @@ and Algorithm 2's correction, fusion and prediction (:func:`dekf.dekf_step`, eqs
 Compiled once per machine: ``cache=True`` writes the machine code in ``$NUMBA_CACHE_DIR`` if set,
 else beside this file (``__pycache__``), else, when that folder is read-only (an installed
 package), in numba's per-user cache folder (``~/.cache/numba``); when none can be written the
-kernels are compiled in each process instead (:func:`_kernel`), which costs the compile time
-(docs/simulation.md, *Engines*).
+kernels are compiled in each process instead (:func:`theory.core.engines.compiled`), which costs
+the compile time (docs/simulation.md, *Engines*).
 
 ``loop`` below is the tuple of :func:`theory.pursuit.compiled_run.loop_arrays`: (state map, state
 offset, estimate map, G, g, ε, k_γ, scale) of :class:`closed_loop.DecLoop`.
@@ -22,8 +22,9 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from theory.core.engines import compiled
 
 __all__ = ["dekf_step", "heun_step", "rates", "run"]
 
@@ -31,15 +32,7 @@ FAILED = -1.0
 """The failure time :func:`_advance` returns when it did not fail (times are ≥ 0)."""
 
 
-def _kernel(function):
-    """``numba.njit(cache=True)``, or without the on-disk cache when no cache folder is writable."""
-    try:
-        return numba.njit(cache=True)(function)
-    except RuntimeError:  # numba: "cannot cache function …: no locator available"
-        return numba.njit(function)
-
-
-@_kernel
+@compiled
 def _skew_times(R, omega, h, out):
     """out = R + R·S(hω) (2-D: ω = (r,); 3-D: ω = (p, q, r)), seed 003 eq. (3), Euler's step."""
     d = R.shape[0]
@@ -57,7 +50,7 @@ def _skew_times(R, omega, h, out):
             out[i, j] = total
 
 
-@_kernel
+@compiled
 def _exp_skew(omega):
     """exp(S(ω)) (:func:`model.exp_skew`: the angle in 2-D, Euler–Rodrigues in 3-D)."""
     if omega.size == 1:
@@ -80,7 +73,7 @@ def _exp_skew(omega):
     return E
 
 
-@_kernel
+@compiled
 def _affine(vector, matrix, offset):
     """vector·matrix + offset (the maps of :class:`closed_loop._FrameMaps`)."""
     out = offset.copy()
@@ -91,7 +84,7 @@ def _affine(vector, matrix, offset):
     return out
 
 
-@_kernel
+@compiled
 def rates(t, z, R, x_hat, t_hat, loop):
     """(ż, ω) of every tracker: :meth:`closed_loop.DecLoop.rates`, seed 003 (2)–(5), (45)–(51)."""
     state_map, state_offset, estimate_map, gain, offset, epsilon, k_gamma, _ = loop
@@ -128,7 +121,7 @@ def rates(t, z, R, x_hat, t_hat, loop):
     return z_dot, omega
 
 
-@_kernel
+@compiled
 def _etd_weights(k, h):
     """(E, w₁, w₂, g₁, g₂) of :func:`closed_loop._etd_weights` (ETD1/ETD2RK, Cox–Matthews 2002)."""
     z = k * h
@@ -145,7 +138,7 @@ def _etd_weights(k, h):
     return decay, w1, (decay - 1.0 + z) / (k * z), (h - w1) / k, h / (2 * k) - (h - w1) / (k * z)
 
 
-@_kernel
+@compiled
 def heun_step(t, h, z, R, z_dot, omega, x_hat, t_hat, loop):
     """(z, R) after one step of ``h`` and the local error: :func:`closed_loop.heun_step`
     (Heun in p, ETD1/ETD2RK in (γ, e_γ), Euler then R exp(½hS(ω₀ + ω₁)) in R)."""
@@ -176,7 +169,7 @@ def heun_step(t, h, z, R, z_dot, omega, x_hat, t_hat, loop):
     return z2, R2, _local_error(z, z1, R1, z2, R2, a, b, loop[7])
 
 
-@_kernel
+@compiled
 def _local_error(z, z1, R1, z2, R2, a, b, scale):
     """:func:`closed_loop._local_error`: p relative to max(scale, max|p|), γ and R absolute; NaN
     when any difference is NaN."""
@@ -197,7 +190,7 @@ def _local_error(z, z1, R1, z2, R2, a, b, scale):
     return error
 
 
-@_kernel
+@compiled
 def _next_step(h, cap, step, error, accepted, reached_end):
     """:meth:`closed_loop.StepControl.update`: the next proposed step."""
     if not math.isfinite(error):
@@ -209,7 +202,7 @@ def _next_step(h, cap, step, error, accepted, reached_end):
     return min(proposal, cap)
 
 
-@_kernel
+@compiled
 def _advance(first, last, dt, z, R, x_hat, t_hat, h, settings, loop, z_records, R_records):
     """Integrate from record ``first`` to record ``last`` (:func:`closed_loop.integrate_until`
     per record), writing records ``first + 1 …`` into ``z_records``, ``R_records``.
@@ -242,7 +235,7 @@ def _advance(first, last, dt, z, R, x_hat, t_hat, h, settings, loop, z_records, 
     return z, R, h, accepted, rejected, last, FAILED
 
 
-@_kernel
+@compiled
 def _lost(positions, x_hat, truth, limit):
     """Whether the worst localization error exceeds ``limit`` (:func:`closed_loop.runaway_reason`:
     the first NaN counts as the worst, and a NaN exceeds nothing)."""
@@ -253,7 +246,7 @@ def _lost(positions, x_hat, truth, limit):
     return errors[np.argmax(errors)] > limit
 
 
-@_kernel
+@compiled
 def run(target, noise, z, R, filter_arrays, settings, loop, records):
     """The DEC loop of :func:`closed_loop._run`: at each sampling instant the ranges (9)–(10)
     with the given ``noise`` (σ times a standard normal a tracker), one DEKF step
@@ -301,7 +294,7 @@ def run(target, noise, z, R, filter_arrays, settings, loop, records):
         m = last
 
 
-@_kernel
+@compiled
 def dekf_step(x_pred, Omega, positions, ranges, fusion, F, W, V, predictions):
     """One sampling instant of Algorithm 2 (:func:`theory.pursuit.dekf.dekf_step`): correction
     (41), one fusion round (43), ``predictions`` predictions (44) with F and W. Returns x̂_{k|k},

@@ -33,12 +33,12 @@ from theory.core.case_file import Case
 from theory.core.claims import ClaimResult, ClaimSet, Context, Method, NotApplicable, Status
 from theory.core.consistency import agent_columns
 from theory.core.consistency import evidence as metrics_evidence
+from theory.core.engines import resolve_engine
 from theory.core.errors import CaseError, PropertyFails
 from theory.core.expectations import Observed
 from theory.core.tolerances import ISS_BOUND_RTOL, RUNAWAY_FACTOR
 from theory.pursuit.case import PursuitSpec
 from theory.pursuit.closed_loop import DecRun, DecSettings, StopCause, simulate_dec
-from theory.pursuit.compiled_run import resolve_engine
 from theory.pursuit.filter_metrics import dekf_metrics
 from theory.pursuit.model import desired_speed
 from theory.pursuit.published import simulate_published
@@ -273,7 +273,7 @@ def pursuit_simulator(case: Case, steps: int | None = None, runs: int | None = N
 
     ``steps`` recorded 0.1 s steps (default :func:`default_steps`); ``runs`` the Monte Carlo runs
     planned, which with ``steps`` choose the default engine (a short job runs on the NumPy
-    engine: :func:`theory.pursuit.compiled_run.resolve_engine`); CaseError naming the file if
+    engine: :func:`theory.core.engines.resolve_engine`); CaseError naming the file if
     the case cannot be simulated, or naming ``TRACKCERT_ENGINE`` if it names no engine (checked
     here, before any run).
     """

@@ -29,12 +29,12 @@ from typing import Any
 import yaml
 
 from theory.core.case_file import resolve_case_path
+from theory.core.engines import resolve_engine
 from theory.core.errors import COMMAND_LINE, CaseError
 from theory.core.jsonable import plain
 from theory.core.parallel import engine
 from theory.core.verdicts import Verdict, exit_code
 from theory.kinds import SIMULATED, load_case
-from theory.pursuit.compiled_run import resolve_engine
 from theory.sweep.grid import (
     MAX_POINTS,
     Param,
