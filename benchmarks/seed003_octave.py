@@ -6,7 +6,7 @@ checkout of github.com/hungrepo/cooperative-distributed-range-based-SLAP. Each `
 copied as ``SLAP_*_run.m`` with the seed set (``randn('state', seed)``), the animation and
 ``save_to_base`` removed and one ``RESULT`` line per tracker printed: the final position error
 ‖q − q̂‖, the mean and final pursuit error ‖[e_p; e_γ]‖ (the scripts' ``E_Pursuit``) and the
-largest localization error::
+largest localization error; each run's header line gives the CPU seconds of its Octave process::
 
     python benchmarks/seed003_octave.py CHECKOUT OUTPUT --seeds 1 2 3 [--scripts SLAP_2D_1Tracker]
 """
@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import re
+import resource
 import shutil
 import subprocess
 from collections.abc import Sequence
@@ -60,12 +61,15 @@ def main(argv: Sequence[str] | None = None) -> None:
         source = (args.checkout / f"{name}.m").read_text(encoding="utf-8")
         (args.output / f"{name}_run.m").write_text(patched(source, name), encoding="utf-8")
         for seed in args.seeds:
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
             done = subprocess.run(
                 ["octave-cli", "--no-window-system", "--eval", f"{name}_run({seed})"],
                 cwd=args.output, capture_output=True, text=True, check=False,
             )  # fmt: skip
             results = [line for line in done.stdout.splitlines() if line.startswith("RESULT")]
-            print(f"{name} seed={seed}", *results, sep="\n", flush=True)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+            print(f"{name} seed={seed} cpu={cpu:.1f}", *results, sep="\n", flush=True)
 
 
 if __name__ == "__main__":
