@@ -46,29 +46,41 @@ def patched(source: str, name: str) -> str:
     return re.sub(r"^\s*animation_\w+\s*$", "", text, flags=re.M)
 
 
+def prepare(checkout: Path, output: Path, names: Sequence[str]) -> None:
+    """Copy the checkout's ``*.m`` files into ``output`` and write each script's ``_run`` copy."""
+    output.mkdir(parents=True, exist_ok=True)
+    for path in checkout.glob("*.m"):
+        shutil.copy(path, output / path.name)
+    for name in names:
+        source = (checkout / f"{name}.m").read_text(encoding="utf-8")
+        (output / f"{name}_run.m").write_text(patched(source, name), encoding="utf-8")
+
+
+def run(output: Path, name: str, seed: int) -> tuple[float, list[str]]:
+    """CPU seconds (user + system) of ``octave-cli`` running ``name`` at ``seed`` in ``output``
+    (prepared by :func:`prepare`), and its RESULT lines (one per tracker; none if it failed)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    done = subprocess.run(
+        ["octave-cli", "--no-window-system", "--eval", f"{name}_run({seed})"],
+        cwd=output, capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+    return cpu, [line for line in done.stdout.splitlines() if line.startswith("RESULT")]
+
+
 def main(argv: Sequence[str] | None = None) -> None:
-    """Write the patched scripts into OUTPUT and print each run's RESULT lines."""
+    """Write the patched scripts into OUTPUT and print each run's CPU and RESULT lines."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("checkout", type=Path)
     parser.add_argument("output", type=Path)
     parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     parser.add_argument("--scripts", nargs="+", default=list(SCRIPTS), choices=SCRIPTS)
     args = parser.parse_args(argv)
-    args.output.mkdir(parents=True, exist_ok=True)
-    for path in args.checkout.glob("*.m"):
-        shutil.copy(path, args.output / path.name)
+    prepare(args.checkout, args.output, args.scripts)
     for name in args.scripts:
-        source = (args.checkout / f"{name}.m").read_text(encoding="utf-8")
-        (args.output / f"{name}_run.m").write_text(patched(source, name), encoding="utf-8")
         for seed in args.seeds:
-            before = resource.getrusage(resource.RUSAGE_CHILDREN)
-            done = subprocess.run(
-                ["octave-cli", "--no-window-system", "--eval", f"{name}_run({seed})"],
-                cwd=args.output, capture_output=True, text=True, check=False,
-            )  # fmt: skip
-            results = [line for line in done.stdout.splitlines() if line.startswith("RESULT")]
-            after = resource.getrusage(resource.RUSAGE_CHILDREN)
-            cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+            cpu, results = run(args.output, name, seed)
             print(f"{name} seed={seed} cpu={cpu:.1f}", *results, sep="\n", flush=True)
 
 
