@@ -73,8 +73,10 @@ OCTAVE_CPU = {
     "pursuit-table2-n1": 46.1,
     "pursuit-table2-n3-kgamma5": 148.5,
 }
-"""CPU seconds of the authors' scripts under GNU Octave for 450 s (issue 28's table: 2-D/3-D,
-three trackers and one; the k_γ = 5 case is the three-tracker 3-D script with another gain)."""
+"""CPU seconds of the authors' scripts under GNU Octave (issue 28's table: 2-D/3-D, three
+trackers and one; the k_γ = 5 case is the three-tracker 3-D script with another gain). Octave
+measured on this machine in the same sitting is about three times faster:
+``benchmarks/bench_octave.py``."""
 
 FLOOR_REPEAT = 20_000
 """Steps of the compiled-floor loop."""

@@ -6,10 +6,12 @@ case (``pursuit-table*``), one difference at a time: each row copies the fields 
 from the other case (a field the other case lacks is removed) and counts the runs stopped as
 runaways among ``--runs`` seeds, run i drawing from child i of ``SeedSequence(--seed)`` as
 ``trackcert simulate --runs`` does, over the published script's horizon. ``--direction
-to-table`` changes the published case, ``to-published`` the Table case::
+to-table`` changes the published case, ``to-published`` the Table case. With ``--cumulative``
+each row keeps the differences of the rows above it (in ``--only``'s order), a chain from one case
+to the other; its last line names what still differs (the horizon is the published one)::
 
     PYTHONPATH=. python benchmarks/seed003_ablation.py pursuit-published-2d-n1 \\
-        pursuit-table1-n1 --runs 20 [--direction to-published] [--only V,prediction]
+        pursuit-table1-n1 --runs 20 [--direction to-published] [--only V,prediction] [--cumulative]
 """
 
 from __future__ import annotations
@@ -76,6 +78,18 @@ def _copied(target: dict[str, Any], source: dict[str, Any], paths: Sequence[str]
     return changed
 
 
+def _differing(first: dict[str, Any], second: dict[str, Any], prefix: str = "") -> list[str]:
+    """The dotted paths at which two pursuit blocks differ (nested mappings compared key by key)."""
+    paths = []
+    for key in sorted(set(first) | set(second)):
+        a, b = first.get(key), second.get(key)
+        if isinstance(a, dict) and isinstance(b, dict):
+            paths += _differing(a, b, f"{prefix}{key}.")
+        elif a != b:
+            paths.append(f"{prefix}{key}")
+    return paths
+
+
 def runaways(data: dict[str, Any], runs: int, seed: int, steps: int) -> tuple[int, int, float]:
     """Runs stopped as runaways, runs whose state overflowed (non-finite records, e.g. γ̇ under
     an unstable explicit update), and the median over the other runs of the largest final
@@ -103,6 +117,10 @@ def main(argv: Sequence[str] | None = None) -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--direction", choices=("to-table", "to-published"), default="to-table")
     parser.add_argument("--only", default="", help="comma-separated differences (default: all)")
+    parser.add_argument(
+        "--cumulative", action="store_true",
+        help="each row adds its difference to the row above (a chain from one case to the other)",
+    )  # fmt: skip
     args = parser.parse_args(argv)
     published, table = _load(args.published), _load(args.table)
     steps = default_steps(PURSUIT.parse_case(published).spec)
@@ -110,10 +128,15 @@ def main(argv: Sequence[str] | None = None) -> None:
     chosen = [n for n in args.only.split(",") if n] or list(DIFFERENCES)
     print(f"{base['name']} ({steps} steps of 0.1 s), {args.runs} runs from seed {args.seed}")
     rows = [("none", copy.deepcopy(base))]
+    chain = copy.deepcopy(base)
     for name in chosen:
-        variant = copy.deepcopy(base)
+        variant = copy.deepcopy(chain if args.cumulative else base)
         if _copied(variant["pursuit"], other["pursuit"], DIFFERENCES[name]):
-            rows.append((f"{name} as in {other['name']}", variant))
+            rows.append((f"{'+ ' if args.cumulative else ''}{name} as in {other['name']}", variant))
+            chain = variant if args.cumulative else chain
+    if args.cumulative:
+        left = _differing(chain["pursuit"], other["pursuit"])
+        print(f"the chain's last row differs from {other['name']} in: {', '.join(left) or '-'}")
     for label, data in rows:
         data["expect"] = {}
         stopped, overflowed, final = runaways(data, args.runs, args.seed, steps)

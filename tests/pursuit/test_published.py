@@ -8,12 +8,16 @@ fields that select it (issue 27).
   which four RK4 steps of 0.025 s reproduce to O(h⁵).
 * The published 2-D one-tracker case localizes and pursues the target as the authors' script
   does (final position error well below a metre, no runaway).
+* Each published case's bands are the range of the authors' scripts under Octave over seeds
+  1–10 (the log ``benchmarks/seed003_octave_runs.txt``), and its 10 runs lie in them.
 """
 
 from __future__ import annotations
 
 import copy
+import importlib.util
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -135,16 +139,49 @@ def test_simulate_observes_runaways_and_the_banded_statistics() -> None:
     assert not verdicts["final_localization_error"].met  # x̂(0) is 15–25 m off at 5 s
 
 
-def test_the_published_statistics_claim_judges_runaways_and_bands() -> None:
-    """``seed003.sec6.published-statistics`` on the one-tracker published case: no runaway in
-    10 runs and both bands met (the report's observer of the published cases' expect keys); it
-    says nothing about a Table case (the analysed laws)."""
+@pytest.mark.parametrize(
+    "name",
+    [
+        "pursuit-published-2d-n1",
+        "pursuit-published-2d-n3",
+        "pursuit-published-3d-n1",
+        "pursuit-published-3d-n3",
+    ],
+)
+def test_the_published_statistics_claim_judges_runaways_and_bands(name: str) -> None:
+    """``seed003.sec6.published-statistics`` on each published case: no runaway in 10 runs and
+    both bands met, the bands being the range of the authors' scripts under Octave over seeds
+    1–10 (benchmarks/seed003_octave_runs.txt, docs/simulation.md); it says nothing about a Table
+    case (the analysed laws)."""
     from theory.core.claims import NotApplicable
     from theory.pursuit.simulation import check_published_statistics
 
-    case = PURSUIT.parse_case(_data())
+    case = PURSUIT.parse_case(_data(name))
     (result,) = check_published_statistics(case, None)
     assert result.status == "verified", result.message
     assert result.evidence["expectations"]["runaways"] == 0 and result.margin > 0
     with pytest.raises(NotApplicable, match="analysed laws"):
         check_published_statistics(PURSUIT.parse_case(_data("pursuit-table1-n1")), None)
+
+
+def _bands_module():
+    """``benchmarks/seed003_bands.py``, the derivation of the bands from the Octave log."""
+    path = Path(__file__).resolve().parents[2] / "benchmarks" / "seed003_bands.py"
+    spec = importlib.util.spec_from_file_location("seed003_bands", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_published_bands_are_the_range_of_ten_octave_seeds() -> None:
+    """Every published case's ``expect`` bands are [min, max] over seeds 1–10 and every tracker
+    of the authors' script under Octave (rounded outward to 0.05 m), from the committed log."""
+    bands = _bands_module()
+    runs = bands.read_log(bands.Path(bands.__file__).with_name("seed003_octave_runs.txt"))
+    assert set(runs) == set(bands.CASES)
+    for script, seeds in runs.items():
+        assert sorted(seeds) == list(range(1, 11)), script
+        theirs = np.array([seeds[s] for s in sorted(seeds)])
+        expect = read_case_data(resolve_case_path(bands.CASES[script]))["expect"]
+        for k, key in enumerate(("final_localization_error", "mean_pursuit_error")):
+            assert expect[key] == list(bands.band(theirs[..., k])), (script, key)
