@@ -7,13 +7,16 @@ import dataclasses
 import numpy as np
 import pytest
 import yaml
+from hypothesis import given
+from hypothesis import strategies as st
 from scipy.linalg import block_diag
 
 from theory.core.case_file import bundled_cases
+from theory.core.network import stationary_vector, uniform_weights
 from theory.kinds import load_case, parse_case
 from theory.registry import get_claim
 from theory.tdoa.estimation.scenario import hears_at, run_tdoa_scenario, weights_at
-from theory.tdoa.estimation.stability import lemma_a12_along
+from theory.tdoa.estimation.stability import a24_factor, lemma_a12_along
 from theory.tdoa.model import cv_discrete, tdoa_jacobian
 
 
@@ -90,3 +93,72 @@ def test_row_stochastic_weights_refute_a24() -> None:
     metropolis = parse_case(raw).spec
     out = lemma_a12_along(metropolis, run_tdoa_scenario(metropolis, np.random.default_rng(0)))
     assert abs(out["factors"][0] - 1) < 1e-12
+
+
+def test_stationary_weighting_restores_a24() -> None:
+    """Corrected Lemma A.1.2 (docs/errata.md): on the bundled uniform-weights case the
+    π-weighted factor is ≤ 1 at every ping and equals 1 at ping 0, so 1 − α = 1 is sharp;
+    π is the stationary vector of W (πᵀW = πᵀ, π > 0)."""
+    case = load_case("seed000-lemA12-uniform-weights")
+    out = lemma_a12_along(case.spec, run_tdoa_scenario(case.spec, np.random.default_rng(0)))
+    assert out["factors"][0] > 1.06
+    assert np.all(out["weighted_factors"] <= 1 + 1e-12)
+    assert abs(out["weighted_factors"][0] - 1) < 1e-12
+
+
+def test_stationary_vector_is_left_invariant_per_component() -> None:
+    """Two components (a path and an edge), uniform weights: πᵀW = πᵀ, π > 0, unit mass each;
+    on the path 1–2–3 the uniform rule gives π ∝ (d_i + 1) = (2, 3, 2)."""
+    hears = np.zeros((5, 5), bool)
+    for i, j in ((0, 1), (1, 2), (3, 4)):
+        hears[i, j] = hears[j, i] = True
+    W = uniform_weights(hears)
+    pi = stationary_vector(W)
+    assert np.allclose(pi @ W, pi, atol=1e-14) and np.all(pi > 0)
+    assert np.allclose(pi, [2 / 7, 3 / 7, 2 / 7, 1 / 2, 1 / 2], atol=1e-14)
+
+
+@st.composite
+def _averaging_steps(draw: st.DrawFn) -> dict:
+    """One step of (A.2) with random data: N agents, any row-stochastic W on a connected
+    undirected support with weights over four decades, invertible A, P_k^i ≻ 0, H^i with 0–3
+    rows, R^i ≻ 0, and process noise U = BQBᵀ + qI with q ≥ 0."""
+    seed = draw(st.integers(0, 2**32 - 1))
+    rng = np.random.default_rng(seed)
+    N, n = draw(st.integers(2, 5)), draw(st.sampled_from((2, 4)))
+    hears = np.zeros((N, N), bool)
+    for i in range(1, N):  # a random spanning tree, then extra links
+        j = int(rng.integers(0, i))
+        hears[i, j] = hears[j, i] = True
+    extra = np.triu(rng.random((N, N)) < 0.3, 1)
+    hears |= extra | extra.T
+    raw = np.where(hears | np.eye(N, dtype=bool), 10.0 ** rng.uniform(-4, 0, (N, N)), 0.0)
+    W = raw / raw.sum(axis=1, keepdims=True)
+    A = rng.normal(size=(n, n)) + 2 * np.eye(n)
+    P = [(lambda G: G @ G.T + 0.1 * np.eye(n))(rng.normal(size=(n, n))) for _ in range(N)]
+    H = [rng.normal(size=(int(rng.integers(0, 4)), n)) for _ in range(N)]
+    R = [np.diag(10.0 ** rng.uniform(-2, 1, h.shape[0])) for h in H]
+    q = draw(st.sampled_from((0.0, 0.1, 1.0)))
+    B = rng.normal(size=(n, n // 2))
+    return {"W": W, "A": A, "P": P, "H": H, "R": R, "U": B @ B.T + q * np.eye(n), "q": q}
+
+
+@given(_averaging_steps())
+def test_corrected_lemma_a12_on_random_steps(step: dict) -> None:
+    """The corrected Lemma A.1.2 (docs/errata.md) on random data, with P_{k+1} rebuilt from (A.2)
+    directly: the π-weighted factor is ≤ 1/(1 + q/(ā² p̄)) (≤ 1 when q = 0), and the unweighted
+    one is ≤ the largest column sum of W (≤ 1 when W is doubly stochastic)."""
+    W, A, P, H, R, U = (step[k] for k in ("W", "A", "P", "H", "R", "U"))
+    N, n = len(W), len(A)
+    KH = [
+        np.linalg.solve(h @ p @ h.T + r, h @ p).T @ h if h.size else np.zeros((n, n))
+        for p, h, r in zip(P, H, R, strict=True)
+    ]
+    posterior = [(np.eye(n) - kh) @ p for kh, p in zip(KH, P, strict=True)]  # (I − KH)P = P⁺
+    P_next = [sum(W[i, j] * A @ posterior[j] @ A.T for j in range(N)) + U for i in range(N)]
+    I_KH, Pk, Pn = np.eye(n * N) - block_diag(*KH), block_diag(*P), block_diag(*P_next)
+    p_bar = max(np.linalg.eigvalsh(p)[-1] for p in P)
+    rate = 1 / (1 + step["q"] / (np.linalg.norm(A, 2) ** 2 * p_bar))
+    weighted = a24_factor(W, A, I_KH, Pk, Pn, weights=stationary_vector(W))
+    assert weighted <= rate * (1 + 1e-9)
+    assert a24_factor(W, A, I_KH, Pk, Pn) <= W.sum(axis=0).max() * (1 + 1e-9)

@@ -33,6 +33,7 @@ __all__ = [
     "metropolis_weights",
     "near_pairs",
     "pairs_within_range",
+    "stationary_vector",
     "uniform_entries",
     "uniform_weights",
     "weights_support",
@@ -257,6 +258,24 @@ def weights_support(weights: np.ndarray) -> np.ndarray:
     support = weights > 0
     np.fill_diagonal(support, False)
     return support
+
+
+def stationary_vector(weights: np.ndarray) -> np.ndarray:
+    """A positive ``π`` with ``πᵀW = πᵀ``, summing to 1 on each weakly connected component of
+    ``W``'s support, for a row-stochastic ``W`` whose components are irreducible (every ``W`` on
+    an undirected network, seed 000 §4.2.2): per component the left Perron vector of ``W_CC``,
+    the null space of ``W_CCᵀ − I``. ``ValueError`` if a component has no positive one."""
+    W = np.asarray(weights, float)
+    pi = np.zeros(len(W))
+    for part in components(weights_support(W)):
+        block = W[np.ix_(part, part)]
+        values, vectors = np.linalg.eig(block.T)
+        top = np.real(vectors[:, np.argmin(np.abs(values - 1))])
+        top = top / top.sum()
+        if not np.all(top > 0):
+            raise ValueError(f"the weights on agents {part} have no positive stationary vector")
+        pi[part] = top
+    return pi
 
 
 def components(adjacency: np.ndarray) -> list[list[int]]:

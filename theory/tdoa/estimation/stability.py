@@ -56,6 +56,7 @@ from theory.core.exact import (
     stochastic_matrix,
     symmetric_projection,
 )
+from theory.core.network import stationary_vector
 from theory.core.tolerances import CERTIFICATE_MARGIN, RANK_TOL
 from theory.tdoa.case import Filter, TdoaSimSpec
 from theory.tdoa.estimation.filters import kalman_gain
@@ -63,6 +64,7 @@ from theory.tdoa.estimation.scenario import TdoaRun, hears_at, run_tdoa_scenario
 from theory.tdoa.model import cv_discrete, neighbour_lists, tdoa_jacobians
 
 __all__ = [
+    "a24_factor",
     "claims",
     "corrected_bound",
     "covariance_bound_certificate",
@@ -365,7 +367,7 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
         raise ValueError("App. A analyses the averaged EKF with one averaging per ping (tau = T)")
     A, B = cv_discrete(spec.T, 3)
     predicted_x, predicted_P = _predictions(spec, run, A, B @ spec.Q @ B.T)
-    factors, h_norms = _step_factors(spec, run, A, predicted_x, predicted_P)
+    factors, weighted, h_norms = _step_factors(spec, run, A, predicted_x, predicted_P)
     eig = np.linalg.eigvalsh(predicted_P[: len(factors) + 1])
     constants = {
         "a_bar": float(np.linalg.norm(A, 2)),
@@ -386,6 +388,7 @@ def lemma_a12_along(spec: TdoaSimSpec, run: TdoaRun) -> dict[str, Any]:
         "constants": constants,
         "one_minus_alpha": one_minus_alpha,
         "factors": np.array(factors),
+        "weighted_factors": np.array(weighted),
         "holds": np.array(factors) <= one_minus_alpha,
         "bqb_rank": int(np.sum(bqb_eig > RANK_TOL * bqb_eig[-1])),
         "bqb_lower_bound": float(max(bqb_eig[0], 0.0)),
@@ -406,16 +409,58 @@ def _predictions(
     return predicted_x, predicted_P
 
 
+def a24_factor(
+    W: np.ndarray,
+    A: np.ndarray,
+    I_KH: np.ndarray,
+    P: np.ndarray,
+    P_next: np.ndarray,
+    *,
+    weights: np.ndarray | None = None,
+) -> float:
+    """Smallest ``c`` with ``(I − KH)ᵀ(W⊗A)ᵀ Π P_{k+1}⁻¹ (W⊗A)(I − KH) ≤ c Π P_k⁻¹``, a generalized
+    eigenvalue; ``Π = diag(weights) ⊗ I`` (``I`` by default: (A.24) as printed).
+
+    Parameters
+    ----------
+    W : ndarray, shape (N, N)
+        The averaging weights.
+    A : ndarray, shape (n, n)
+        The state transition matrix.
+    I_KH : ndarray, shape (nN, nN)
+        ``I − K_kH_k`` of the network, block diagonal.
+    P, P_next : ndarray, shape (nN, nN)
+        ``P_k`` and ``P_{k+1}``, block diagonal, positive definite.
+    weights : ndarray, shape (N,), optional
+        Positive agent weights ``π`` (the stationary vector of ``W`` in the corrected lemma).
+
+    Returns
+    -------
+    float
+        The factor ``c``; (A.24) holds at this step with ``1 − α`` iff ``c ≤ 1 − α``.
+
+    References
+    ----------
+    seed 000, App. A, eq. (A.24); docs/errata.md, "Lemma A.1.2 with row-stochastic weights".
+    """
+    Pi = np.kron(np.diag(np.ones(len(W)) if weights is None else weights), np.eye(A.shape[0]))
+    WA = np.kron(W, A) @ I_KH
+    lhs = WA.T @ Pi @ np.linalg.inv(P_next) @ WA
+    rhs = Pi @ np.linalg.inv(P)
+    return float(eigh(0.5 * (lhs + lhs.T), 0.5 * (rhs + rhs.T), eigvals_only=True)[-1])
+
+
 def _step_factors(
     spec: TdoaSimSpec,
     run: TdoaRun,
     A: np.ndarray,
     predicted_x: np.ndarray,
     predicted_P: np.ndarray,
-) -> tuple[list[float], list[float]]:
-    """Per ping ``k``: the smallest ``c_k`` of (A.24) (a generalized eigenvalue) and ``‖H_k‖``."""
+) -> tuple[list[float], list[float], list[float]]:
+    """Per ping ``k``: the smallest ``c_k`` of (A.24), the same in the ``π``-weighted norm of the
+    corrected lemma (``π`` the stationary vector of ``W_k``), and ``‖H_k‖``."""
     n = spec.n_agents
-    factors, h_norms = [], []
+    factors, weighted, h_norms = [], [], []
     for k in range(run.truth.shape[0] - 1):
         positions = run.paths[k * spec.rounds]
         W = weights_at(spec, positions)
@@ -426,14 +471,11 @@ def _step_factors(
             for i in range(n)
         ]
         I_KH = np.eye(6 * n) - block_diag(*gains_H)
-        WA = np.kron(W, A)
-        P_next_inv = np.linalg.inv(block_diag(*predicted_P[k + 1]))
-        lhs = I_KH.T @ WA.T @ P_next_inv @ WA @ I_KH
-        lhs = 0.5 * (lhs + lhs.T)
-        P_inv = np.linalg.inv(block_diag(*predicted_P[k]))
-        factors.append(float(eigh(lhs, 0.5 * (P_inv + P_inv.T), eigvals_only=True)[-1]))
+        P, P_next = block_diag(*predicted_P[k]), block_diag(*predicted_P[k + 1])
+        factors.append(a24_factor(W, A, I_KH, P, P_next))
+        weighted.append(a24_factor(W, A, I_KH, P, P_next, weights=stationary_vector(W)))
         h_norms.append(float(np.linalg.norm(block_diag(*H), 2)) if any(h.size for h in H) else 0.0)
-    return factors, h_norms
+    return factors, weighted, h_norms
 
 
 APPENDIX_A_MAX_STEPS = 40
