@@ -30,6 +30,7 @@ from theory.strategy_helpers import check_range, generators, orthonormal_matrix
 
 __all__ = [
     "FORMATION_FAMILIES",
+    "RANDOM_WEIGHT_DECADES",
     "SCENE_FAMILIES",
     "WEIGHT_KINDS",
     "TdoaScene",
@@ -47,6 +48,9 @@ SCENE_FAMILIES = ("general", "coplanar", "cone", "target-in-plane")
 """The ``family`` values of :func:`tdoa_scenes`."""
 WEIGHT_KINDS = ("metropolis", "uniform", "random", "singular")
 """The ``kind`` values of :func:`weight_matrices`."""
+RANDOM_WEIGHT_DECADES = 4
+"""Decades spanned by the raw weights of ``weight_matrices(kind="random")``, as in
+:func:`stochastic_weights`."""
 FORMATION_FAMILIES = ("general", "uniform", "union", "degenerate")
 """The ``family`` values of :func:`formations`."""
 
@@ -115,8 +119,10 @@ def weight_matrices(
     """Row-stochastic ``W`` with positive diagonal on a network drawn by :func:`networks`.
 
     ``kind`` (:data:`WEIGHT_KINDS`): ``metropolis`` (symmetric, doubly stochastic; undirected only),
-    ``uniform``, ``random`` (positive random weights on the support), or ``singular`` (uniform
-    weights on a complete graph, ``W = J/N`` of rank 1; ``directed`` and ``connected`` ignored).
+    ``uniform``, ``random`` (any positive weights on the support: log-uniform over
+    :data:`RANDOM_WEIGHT_DECADES` decades before normalisation, seed 000 §4.2.2), or
+    ``singular`` (uniform weights on a complete graph, ``W = J/N`` of rank 1; ``directed`` and
+    ``connected`` ignored).
     ``InvalidArgument`` for an unknown ``kind``, ``metropolis`` with ``directed``, or impossible
     bounds."""
     if kind not in WEIGHT_KINDS:
@@ -136,9 +142,7 @@ def weight_matrices(
         return metropolis_weights(hears)
     if kind == "uniform":
         return uniform_weights(hears)
-    rng = draw(generators())
-    raw = np.where(hears | np.eye(len(hears), dtype=bool), rng.uniform(0.2, 1.0, hears.shape), 0.0)
-    return raw / raw.sum(axis=1, keepdims=True)
+    return _log_uniform_weights(draw(generators()), hears, RANDOM_WEIGHT_DECADES)
 
 
 @st.composite
@@ -289,13 +293,18 @@ def stochastic_weights(draw: st.DrawFn, hears: np.ndarray, *, decades: int = 4) 
     ``decades < 0``."""
     if decades < 0:
         raise InvalidArgument(f"decades={decades} must be ≥ 0")
-    support = np.asarray(hears, bool) | np.eye(len(hears), dtype=bool)
     rule = draw(st.sampled_from(("any", "uniform", "metropolis")))
     if rule == "metropolis" and np.array_equal(hears, np.asarray(hears).T):
         return metropolis_weights(np.asarray(hears, bool))
     if rule == "uniform":
         return uniform_weights(np.asarray(hears, bool))
-    rng = draw(generators())
+    return _log_uniform_weights(draw(generators()), hears, decades)
+
+
+def _log_uniform_weights(rng: np.random.Generator, hears: np.ndarray, decades: int) -> np.ndarray:
+    """Raw weights log-uniform over ``decades`` decades on the links and the diagonal, rows
+    normalised to 1 (seed 000 §4.2.2: any ``w_ij > 0`` there)."""
+    support = np.asarray(hears, bool) | np.eye(len(hears), dtype=bool)
     raw = np.where(support, 10.0 ** rng.uniform(-decades, 0, support.shape), 0.0)
     return raw / raw.sum(axis=1, keepdims=True)
 
