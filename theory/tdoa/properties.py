@@ -11,7 +11,8 @@ Each strategy draws from the class the paper's statement quantifies over:
   diagonal on any directed support (:func:`~theory.tdoa.strategies.stochastic_weights`).
 * **Lemma A.1.2** (App. A, the averaged EKF (A.1)–(A.3) of §4.2.2): any undirected network,
   connected or not, with any row-stochastic ``W`` positive exactly on its links and diagonal
-  (§4.2.2, the paragraph before eq. (4.26); not only Metropolis weights).
+  (§4.2.2, the paragraph before eq. (4.26); not only Metropolis weights). The paper wording is
+  false; the corrected one weights the norm by the stationary vector of ``W`` (docs/errata.md).
 * **Metropolis weights** (§4.2.2): any undirected network, connected or not.
 * **Optimal formations** (§4.3.1 after eq. (4.43); seed 003 Result 3, "N ≥ 3 trackers"): every
   formation of ``N ≥ 3`` directions (:func:`~theory.tdoa.strategies.formations`), in general
@@ -434,22 +435,24 @@ LEMMA_A12_STEPS = 8
 @st.composite
 def averaged_filter_cases(draw: st.DrawFn) -> dict[str, Any]:
     """``kind: tdoa-sim`` cases running the averaged EKF with one averaging per ping (τ = T, the
-    setting of App. A): 4–6 agents at integer positions, any undirected network (connected or
+    setting of App. A) with ping period T in {0.5, 1, 2}: 2–6 agents at integer positions (the
+    lemma asks nothing of the number of TDOA rows), any undirected network (connected or
     not) with any row-stochastic W positive exactly on its links and diagonal (the filter
     (A.1)–(A.3) is §4.2.2's, whose W is that class: the paragraph before eq. (4.26)), target
     anywhere in [−25, 25]³, noise levels Q, R and prior P0 over three decades each (seed 000
     Lemma A.1.2, (A.18)–(A.23))."""
-    n = draw(st.integers(4, 6))
+    n = draw(st.integers(2, 6))
     point = st.lists(st.integers(-10, 10), min_size=3, max_size=3).filter(any)  # x0 = 0: off it
     agents = draw(st.lists(point, min_size=n, max_size=n, unique_by=tuple))
     hears = draw(networks(min_agents=n, max_agents=n, connected=None))
     weights = draw(stochastic_weights(hears))
     edges = [[i + 1, j + 1] for i in range(n) for j in range(i + 1, n) if hears[i, j]]
     decades = st.sampled_from((0.01, 0.1, 1.0, 10.0))
+    period = draw(st.sampled_from((0.5, 1.0, 2.0)))
     block = {
         "agents": agents,
         "target": draw(st.lists(st.integers(-25, 25), min_size=3, max_size=3)),
-        "Q": draw(decades), "R": draw(decades), "T": 1.0, "tau": 1.0,
+        "Q": draw(decades), "R": draw(decades), "T": period, "tau": period,
         "P0": draw(st.sampled_from((1.0, 10.0, 100.0))), "x0": [0] * 6, "b": 5,
         "edges": edges, "weights": weights.tolist(), "filter": "averaged",
         "steps": LEMMA_A12_STEPS, "formation": "crown",
