@@ -417,10 +417,15 @@ def riccati_agreement(
 
 
 WEIGHT_DECADES = 4
-"""Decades over which the float-valued properties (Lemmas 5.2.3, A.2.1) draw the raw consensus
-weights: (5.3) allows any positive w_ij on the links, not only ratios ≤ 10."""
-RICCATI_EXAMPLES = dkf_problems(max_states=2, max_agents=3, a_bound=2.0, integer_data=True)
-"""Small integer problems, so that exact verdicts (both ways) are common."""
+"""Decades over which the properties of Lemmas 5.2.3, A.2.1, footnote 5 and the blind-set
+condition draw the raw consensus weights: (5.3) allows any positive w_ij on the links, not only
+ratios ≤ 10."""
+RICCATI_EXAMPLES = dkf_problems(
+    max_states=2, max_agents=3, a_bound=2.0, integer_data=True, weight_decades=WEIGHT_DECADES
+)
+"""Small integer problems, so that exact verdicts (both ways) are common; weights over
+:data:`WEIGHT_DECADES` decades (300 draws: 178 S-detectable, 88 not, 34 inconclusive, against
+169, 92, 39 with weights in [0.1, 1])."""
 
 
 @dataclass(frozen=True)
@@ -637,9 +642,7 @@ PROPERTIES = (
         "Every S-detectable consensus filter has |λ|² r_σ(W_SS) < 1 for every eigenvalue λ of A "
         "and every set S of agents blind to a common eigenvector (any row-stochastic W on a "
         "directed support; docs/theory/s-detectability.md Theorem 4).",
-        dkf_problems(max_states=2, max_agents=3, a_bound=2.0, integer_data=True).map(
-            lambda p: SmallDkf(p.A, p.C, p.W)
-        ),
+        RICCATI_EXAMPLES.map(lambda p: SmallDkf(p.A, p.C, p.W)),
         _necessary("blind_set_condition"),
         dkf_case,
     ),
