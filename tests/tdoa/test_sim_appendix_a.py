@@ -88,6 +88,7 @@ def test_row_stochastic_weights_refute_a24() -> None:
     result = get_claim("seed000.lemA.1.2").run(case)[0]
     assert result.status == "refuted" and result.evidence["first_failure_step"] == 0
     assert result.evidence["max_factor"] > 1.06
+    assert result.evidence["max_weighted_factor"] <= 1 + 1e-12  # the corrected Lemma A.1.2′
     raw = yaml.safe_load(bundled_cases()["seed000-lemA12-uniform-weights"].read_text())
     raw["tdoa-sim"]["weights"] = "metropolis"
     metropolis = parse_case(raw).spec

@@ -502,6 +502,7 @@ def lemma_a12_claim(case: Case, ctx: Context) -> list[ClaimResult]:
         "constants": out["constants"],
         "one_minus_alpha": out["one_minus_alpha"],
         "max_factor": float(out["factors"].max()),
+        "max_weighted_factor": float(out["weighted_factors"].max()),
         "first_failure_step": None if holds else int(np.argmin(out["holds"])),
         "bqb_rank": out["bqb_rank"],
         "bqb_lower_bound": out["bqb_lower_bound"],
@@ -514,7 +515,9 @@ def lemma_a12_claim(case: Case, ctx: Context) -> list[ClaimResult]:
         f"{1 - out['one_minus_alpha']:.2e}, so the bound (A.11) decays only after "
         "~1/alpha steps"
         if holds
-        else "(A.24) fails along the run"
+        else "(A.24) fails along the run; in the norm weighted by W's stationary vector (the "
+        f"corrected Lemma A.1.2′, docs/errata.md) the largest factor is "
+        f"{evidence['max_weighted_factor']:.6g} (proved ≤ 1)"
     )
     status = Status.CORRECTED if holds else Status.REFUTED
     return [ClaimResult(status, Method.SIMULATION, evidence, margin=margin, message=message)]
