@@ -46,8 +46,6 @@ from typing import Any
 
 import numpy as np
 import scipy.linalg
-from flint import fmpq
-from scipy.sparse.csgraph import connected_components
 
 from proofs_check.linalg import positive_definite
 from theory.core.case_file import Case
@@ -87,6 +85,7 @@ __all__ = [
     "r_perp_connectivity_positive",
     "r_perp_gram",
     "region_argument_sound",
+    "strongly_connected",
 ]
 
 claims = ClaimSet()
@@ -300,6 +299,8 @@ def r_perp_gram(laplacian: Any, r: Sequence[Fraction], a: Fraction = Fraction(0)
 
     With a = 0 it decides a(L) > 0 (BᵀMB ≻ 0); with a > 0, a ≤ a(L) (Bᵀ(M − 2aR)B ⪰ 0).
     """
+    from flint import fmpq  # exact; imported on use
+
     n = len(r)
     L = to_fmpq(exact_laplacian(laplacian))
     R = to_fmpq([[r[i] if i == j else Fraction(0) for j in range(n)] for i in range(n)])
@@ -348,12 +349,30 @@ class CoordinationIss:
     printed_input_gain: float | None = None
 
 
+def strongly_connected(adjacency: np.ndarray) -> bool:
+    """Whether the digraph of ``adjacency`` (nonzero: an edge) is strongly connected: vertex 0
+    reaches every vertex along the edges and against them (seed 003 Lemma 3's hypothesis)."""
+    edges = np.asarray(adjacency) != 0
+    return _reaches_all(edges) and _reaches_all(edges.T)
+
+
+def _reaches_all(edges: np.ndarray) -> bool:
+    """Breadth-first search from vertex 0 over ``edges[i, j]`` (i → j): every vertex reached."""
+    seen = np.zeros(len(edges), dtype=bool)
+    seen[0] = True
+    frontier = seen.copy()
+    while frontier.any():
+        frontier = edges[frontier].any(axis=0) & ~seen
+        seen |= frontier
+    return bool(seen.all())
+
+
 @_once_per_spec
 def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
     """The corrected constants of seed 003 Lemma 3 for ``spec``'s digraph and k_c."""
     L = spec.laplacian
     n = L.shape[0]
-    strongly = n == 1 or connected_components(spec.adjacency, connection="strong")[0] == 1
+    strongly = n == 1 or strongly_connected(spec.adjacency)
     r_exact = left_eigenvector(L)
     if r_exact is None:
         return CoordinationIss(n, L, spec.k_c, strongly, zero_eigenvalue_simple=False)
@@ -449,7 +468,6 @@ def iss_bound(spec: PursuitSpec) -> IssBound:
     if failing:
         raise ValueError(f"no ISS estimate: conditions {failing} fail (see iss_conditions)")
     pursuit = pursuit_iss(spec)
-    coordination = coordination_iss(spec)
     lam, g_e = pursuit.decay_rate, pursuit.gain
     if spec.n_trackers == 1:
         return IssBound(
@@ -458,6 +476,7 @@ def iss_bound(spec: PursuitSpec) -> IssBound:
             g_e,
             {"lambda": lam, "g_e": g_e},
         )
+    coordination = coordination_iss(spec)
     alpha, kappa, b = coordination.decay_rate, coordination.kappa, coordination.b
     coupling = b / math.sqrt(coordination.r_min)
     constants = {"lambda": lam, "alpha": alpha, "kappa": kappa, "b": b}
