@@ -26,7 +26,11 @@ Prints
   metrics of its summary (replay, NEES, NIS, OSPA) with the NumPy replay (the baseline, the
   code path before the compiled replay) and the compiled one, the ISS agreement along the run,
   the summary whole, and a sweep point whole (``evaluate_point``: the case re-validated, the
-  ISS verdict, the run, the summary without files) beside its verdict alone;
+  ISS verdict, the run, the summary without files) beside its verdict alone; and the three
+  pieces the second round cut from a point against their code path before: the summary
+  without the metrics replay against with it, and the ISS agreement on an analysed spec against
+  on a spec analysed afresh (a new spec object each call: the memo cannot help); the verdict
+  alone is measured on a fresh spec each call;
 * **sweep**: ``trackcert sweep pursuit-table1-n3`` over a ``k_c`` × ``k_gamma`` grid of
   ``--sweep-points`` points on 2 workers, its progress shown as it runs, wall and CPU seconds.
 
@@ -41,6 +45,7 @@ Usage: ``python benchmarks/bench_kernels.py [--repeat 3] [--seed 9] [--runs 1000
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import functools
 import math
 import os
@@ -295,12 +300,39 @@ def _breakdown(repeat: int) -> None:
     data = read_case_data(resolve_case_path("pursuit-table1-n3"))
     setup = SweepSetup(data, case.file, (), None, True)
     parts["sweep point whole"] = _ms(lambda: evaluate_point(setup, 0, ()), repeat)
-    parts["its ISS verdict alone"] = _ms(lambda: pursuit_judgement(case), repeat)
+    fresh = functools.partial(dataclasses.replace, case)  # a new spec: the ISS memo cannot help
+    parts["its ISS verdict alone"] = _ms(
+        lambda: pursuit_judgement(fresh(spec=dataclasses.replace(spec))), repeat
+    )
     print("\nbreakdown: one run / one sweep point of pursuit-table1-n3 (450 s), CPU ms")
     for name, ms in parts.items():
         print(f"  {name:34} {ms:8.1f}")
     ratio = replay["numpy"] / replay["numba"]
     print(f"  DEKF metrics (replay, NEES, NIS, OSPA) numpy / compiled: {ratio:.1f}")
+    _point_pieces(spec, runs, repeat)
+
+
+def _point_pieces(spec, runs, repeat: int) -> None:
+    """A sweep point's pieces of the second round against their code path before (module
+    docstring): each pair measured here, its ratio printed."""
+    from dataclasses import replace
+
+    from theory.pursuit.simulation import simulation_agreement, summarize_pursuit
+
+    pairs = {
+        "point summary, metrics replayed / not": (
+            lambda: summarize_pursuit(spec, runs),
+            lambda: summarize_pursuit(spec, runs, metrics=False),
+        ),
+        "ISS agreement, analysed afresh / once": (
+            lambda: simulation_agreement(replace(spec), runs[0]),
+            lambda: simulation_agreement(spec, runs[0]),
+        ),
+    }
+    print("  sweep point pieces (before / after, CPU ms, ratio):")
+    for name, (before, after) in pairs.items():
+        old, new = _ms(before, repeat), _ms(after, repeat)
+        print(f"  {name:40} {old:7.2f} / {new:6.2f}  {old / new:5.1f}x")
 
 
 def _sweep(points: int) -> None:

@@ -20,15 +20,17 @@ the LMI solvers, the compiled kernels (a short job runs on NumPy), the Dask clus
 the figures."""
 
 
-def imported(argv: list[str], folder: Path) -> tuple[int, list[str]]:
-    """Exit code of ``trackcert argv…`` in a fresh interpreter and which of :data:`NEVER` it
+def imported(
+    argv: list[str], folder: Path, watched: tuple[str, ...] = NEVER
+) -> tuple[int, list[str]]:
+    """Exit code of ``trackcert argv…`` in a fresh interpreter and which of ``watched`` it
     imported (``TRACKCERT_ENGINE`` unset: the default engine rule)."""
     script = (
         "import json, sys\n"
         "from theory.cli import main\n"
         f"sys.argv = ['trackcert', *{argv!r}]\n"
         "try:\n    main()\nexcept SystemExit as stop:\n    code = stop.code or 0\n"
-        f"heavy = [m for m in {NEVER!r} if m in sys.modules]\n"
+        f"heavy = [m for m in {watched!r} if m in sys.modules]\n"
         "print(json.dumps([code, heavy]), file=sys.stderr)\n"
     )
     env = {k: v for k, v in os.environ.items() if k != "TRACKCERT_ENGINE"}
@@ -81,3 +83,16 @@ def test_dkf_does_without_python_control(tmp_path) -> None:
     code, heavy = imported(["dkf", "ch5-example-1-wg", "--json"], tmp_path)
     assert code == 0
     assert "control" not in heavy and "cvxpy" in heavy
+
+
+@pytest.mark.parametrize(
+    ("case", "expected"),
+    [("pursuit-table1-n1", []), ("pursuit-table1-n3", ["flint"])],
+)
+def test_a_short_pursuit_run_imports_exact_algebra_only_where_used(case, expected, tmp_path):
+    """The run's ISS agreement needs no sparse graph library (strong connectivity is a small
+    search) and, for one tracker (no coordination constants), no python-flint."""
+    argv = ["simulate", case, "--steps", "1", *BARE]
+    code, heavy = imported(argv, tmp_path, ("flint", "scipy.sparse"))
+    assert code in (0, 1, 3)
+    assert heavy == expected

@@ -18,13 +18,15 @@ ENGINES = ("numba", "numpy")
 ENGINE_SETTING = "TRACKCERT_ENGINE"
 """The environment variable that chooses the engine when the caller does not."""
 
-NUMBA_MIN_RECORDS = 1000
+NUMBA_MIN_RECORDS = 3000
 """A job of fewer records (runs × 0.1 s records) than this runs on the NumPy engine by default.
 
-Importing numba and loading the cached kernels costs a process about 0.5 s of CPU once; the NumPy
-engine costs about 0.1–0.2 ms more a record (docs/simulation.md, *Speed of the kernels*): below
-1,000 records the NumPy engine finishes first (0.14–0.19 s for 1,000 records of the Table cases,
-measured in one process), above a few thousand the kernels do. Both engines agree within the
+Importing numba and loading the cached kernels (the run's and the DEKF replay's) costs a process
+about 0.35 s of CPU once; the NumPy engine costs about 85 µs more a record in 2-D, 140–160 µs in
+3-D, the replay included. Measured on the four Table cases, the whole ``trackcert simulate
+--no-figures`` command at 1,000, 2,500 and 4,500 records in one sitting (docs/simulation.md, *A
+short job runs on NumPy*): the break-even is about 4,500 records in 2-D and 2,500–3,000 in 3-D,
+so below 3,000 the NumPy engine finishes first in every case. Both engines agree within the
 integrator's tolerance (``tests/pursuit/test_kernels.py``)."""
 
 

@@ -33,13 +33,15 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
 from fractions import Fraction
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
-from flint import fmpq, fmpq_mat
 
 from proofs_check.linalg import Matrix, identity
 from theory.core.errors import InconclusiveError
+
+if TYPE_CHECKING:
+    from flint import fmpq_mat
 
 __all__ = [
     "PRECISIONS",
@@ -213,7 +215,10 @@ def first_success(
 
 
 def to_fmpq(rows: Matrix) -> fmpq_mat:
-    """``rows`` (Fractions) as a ``flint.fmpq_mat`` (an empty list gives ``0 × 0``)."""
+    """``rows`` (Fractions) as a ``flint.fmpq_mat`` (an empty list gives ``0 × 0``); python-flint
+    is imported on use (a command that never needs exact linear algebra does not pay for it)."""
+    from flint import fmpq, fmpq_mat
+
     m, n = len(rows), len(rows[0]) if rows else 0
     return fmpq_mat(m, n, [fmpq(x.numerator, x.denominator) for row in rows for x in row])
 

@@ -35,7 +35,9 @@ for a case; :func:`iss_report` is what ``trackcert iss`` reports and :func:`obse
 
 from __future__ import annotations
 
+import functools
 import math
+import weakref
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
@@ -44,8 +46,6 @@ from typing import Any
 
 import numpy as np
 import scipy.linalg
-from flint import fmpq
-from scipy.sparse.csgraph import connected_components
 
 from proofs_check.linalg import positive_definite
 from theory.core.case_file import Case
@@ -85,9 +85,30 @@ __all__ = [
     "r_perp_connectivity_positive",
     "r_perp_gram",
     "region_argument_sound",
+    "strongly_connected",
 ]
 
 claims = ClaimSet()
+
+_ANALYSED: weakref.WeakKeyDictionary[PursuitSpec, dict[tuple, Any]] = weakref.WeakKeyDictionary()
+"""Per case spec (keyed by the object: a validated spec is frozen and never written), the results
+of the analysis functions decorated by :func:`_once_per_spec`."""
+
+
+def _once_per_spec(function: Callable[..., Any]) -> Any:
+    """``function(spec, **options)`` computed once per spec object and options: a sweep point's
+    verdict, its run's ISS agreement and the claims ask for the same constants several times."""
+
+    @functools.wraps(function)
+    def memoised(spec: PursuitSpec, **options: Any) -> Any:
+        results = _ANALYSED.setdefault(spec, {})
+        key = (function.__name__, *sorted(options.items()))
+        if key not in results:
+            results[key] = function(spec, **options)
+        return results[key]
+
+    return memoised
+
 
 # ---------------------------------------------------------------------------------------------
 # pursuit subsystem (Theorem 1, Lemma 4)
@@ -157,6 +178,7 @@ class PursuitIss:
         }
 
 
+@_once_per_spec
 def pursuit_iss(spec: PursuitSpec) -> PursuitIss:
     """The corrected constants of seed 003 (72)/(78) for ``spec`` (eqs. (65)–(72), (76)–(78))."""
     K = gain_matrix(spec)
@@ -277,6 +299,8 @@ def r_perp_gram(laplacian: Any, r: Sequence[Fraction], a: Fraction = Fraction(0)
 
     With a = 0 it decides a(L) > 0 (BᵀMB ≻ 0); with a > 0, a ≤ a(L) (Bᵀ(M − 2aR)B ⪰ 0).
     """
+    from flint import fmpq  # exact; imported on use
+
     n = len(r)
     L = to_fmpq(exact_laplacian(laplacian))
     R = to_fmpq([[r[i] if i == j else Fraction(0) for j in range(n)] for i in range(n)])
@@ -325,11 +349,30 @@ class CoordinationIss:
     printed_input_gain: float | None = None
 
 
+def strongly_connected(adjacency: np.ndarray) -> bool:
+    """Whether the digraph of ``adjacency`` (nonzero: an edge) is strongly connected: vertex 0
+    reaches every vertex along the edges and against them (seed 003 Lemma 3's hypothesis)."""
+    edges = np.asarray(adjacency) != 0
+    return _reaches_all(edges) and _reaches_all(edges.T)
+
+
+def _reaches_all(edges: np.ndarray) -> bool:
+    """Breadth-first search from vertex 0 over ``edges[i, j]`` (i → j): every vertex reached."""
+    seen = np.zeros(len(edges), dtype=bool)
+    seen[0] = True
+    frontier = seen.copy()
+    while frontier.any():
+        frontier = edges[frontier].any(axis=0) & ~seen
+        seen |= frontier
+    return bool(seen.all())
+
+
+@_once_per_spec
 def coordination_iss(spec: PursuitSpec) -> CoordinationIss:
     """The corrected constants of seed 003 Lemma 3 for ``spec``'s digraph and k_c."""
     L = spec.laplacian
     n = L.shape[0]
-    strongly = n == 1 or connected_components(spec.adjacency, connection="strong")[0] == 1
+    strongly = n == 1 or strongly_connected(spec.adjacency)
     r_exact = left_eigenvector(L)
     if r_exact is None:
         return CoordinationIss(n, L, spec.k_c, strongly, zero_eigenvalue_simple=False)
@@ -387,31 +430,34 @@ class IssBound:
     ``beta`` is class-KL: r·[κe^{−αt} + (b/√r_min)ψ(t) + e^{−λt}], ψ(t) = sup_{s≥t} φ(s),
     φ(s) = (e^{−λs} − e^{−αs})/(α − λ) (s·e^{−αs} when α = λ); the ψ-term is absent for Type I
     (e_γ ≡ 0) and the ξ-terms for N = 1 (ξ ≡ 0). ``gamma`` is s·gain with gain = g_e(1 + g_ξ)
-    for Type II (N > 1), g_e otherwise; ``constants`` lists λ, α, κ, b, r_min, g_e, g_ξ.
+    for Type II (N > 1), g_e otherwise; ``constants`` lists λ, α, κ, b, r_min, g_e, g_ξ. Both
+    take numbers or arrays of them (NumPy broadcasting: a whole run's records in one call).
     """
 
-    beta: Callable[[float, float], float]
-    gamma: Callable[[float], float]
+    beta: Callable[[Any, Any], Any]
+    gamma: Callable[[Any], Any]
     gain: float
     constants: dict[str, float] = field(default_factory=dict)
 
 
-def _peak_response(lam: float, alpha: float) -> Callable[[float], float]:
-    """ψ(t) = sup_{s≥t} φ(s) for φ(s) = ∫₀ˢ e^{−α(s−u)} e^{−λu} du (non-increasing, → 0)."""
+def _peak_response(lam: float, alpha: float) -> Callable[[Any], Any]:
+    """ψ(t) = sup_{s≥t} φ(s) for φ(s) = ∫₀ˢ e^{−α(s−u)} e^{−λu} du (non-increasing, → 0), at a
+    time or an array of times."""
 
-    def phi(s: float) -> float:
+    def phi(s: Any) -> Any:
         if math.isclose(alpha, lam, rel_tol=1e-12):
-            return s * math.exp(-alpha * s)
-        return (math.exp(-lam * s) - math.exp(-alpha * s)) / (alpha - lam)
+            return s * np.exp(-alpha * s)
+        return (np.exp(-lam * s) - np.exp(-alpha * s)) / (alpha - lam)
 
     if math.isclose(alpha, lam, rel_tol=1e-12):
         peak_time = 1.0 / alpha
     else:
         peak_time = math.log(alpha / lam) / (alpha - lam)
     peak = phi(peak_time)
-    return lambda t: peak if t <= peak_time else phi(t)
+    return lambda t: np.where(np.asarray(t) <= peak_time, peak, phi(t))[()]
 
 
+@_once_per_spec
 def iss_bound(spec: PursuitSpec) -> IssBound:
     """The explicit ISS estimate of the cascade (seed 003 Theorem 2, Lemmas 3–4 corrected).
 
@@ -422,15 +468,15 @@ def iss_bound(spec: PursuitSpec) -> IssBound:
     if failing:
         raise ValueError(f"no ISS estimate: conditions {failing} fail (see iss_conditions)")
     pursuit = pursuit_iss(spec)
-    coordination = coordination_iss(spec)
     lam, g_e = pursuit.decay_rate, pursuit.gain
     if spec.n_trackers == 1:
         return IssBound(
-            lambda r, t: r * math.exp(-lam * t),
+            lambda r, t: r * np.exp(-lam * t),
             lambda s: g_e * s,
             g_e,
             {"lambda": lam, "g_e": g_e},
         )
+    coordination = coordination_iss(spec)
     alpha, kappa, b = coordination.decay_rate, coordination.kappa, coordination.b
     coupling = b / math.sqrt(coordination.r_min)
     constants = {"lambda": lam, "alpha": alpha, "kappa": kappa, "b": b}
@@ -438,7 +484,7 @@ def iss_bound(spec: PursuitSpec) -> IssBound:
     if spec.controller == Controller.I:
         constants["g_xi"] = 0.0
         return IssBound(
-            lambda r, t: r * (kappa * math.exp(-alpha * t) + math.exp(-lam * t)),
+            lambda r, t: r * (kappa * np.exp(-alpha * t) + np.exp(-lam * t)),
             lambda s: g_e * s,
             g_e,
             constants,
@@ -448,7 +494,7 @@ def iss_bound(spec: PursuitSpec) -> IssBound:
     gain = g_e * (1.0 + g_xi)
     constants["g_xi"] = g_xi
     return IssBound(
-        lambda r, t: r * (kappa * math.exp(-alpha * t) + coupling * psi(t) + math.exp(-lam * t)),
+        lambda r, t: r * (kappa * np.exp(-alpha * t) + coupling * psi(t) + np.exp(-lam * t)),
         lambda s: gain * s,
         gain,
         constants,
@@ -519,16 +565,22 @@ def iss_conditions(spec: PursuitSpec, *, margin_tol: float = MARGIN_TOL) -> list
 
     A numeric condition whose relative margin is below ``margin_tol`` is inconclusive.
     """
+    return list(_conditions(spec, margin_tol=margin_tol))
+
+
+@_once_per_spec
+def _conditions(spec: PursuitSpec, *, margin_tol: float) -> tuple[Condition, ...]:
+    """The conditions of :func:`iss_conditions`, once per spec and tolerance."""
     conditions = [_delta_condition(spec, margin_tol), _gain_condition(pursuit_iss(spec))]
     not_applicable = ConditionStatus.NOT_APPLICABLE
     if spec.n_trackers == 1:
         source, detail = "seed 003 Lemma 3", "one tracker: ξ ≡ 0"
         one = Condition("graph_strongly_connected", source, not_applicable, detail=detail)
-        return [*conditions, one]
+        return (*conditions, one)
     coordination = coordination_iss(spec)
     strongly, rl_psd = coordination.strongly_connected, coordination.rl_psd
     rl_status = _holds_or_fails(rl_psd) if rl_psd or coordination.r else not_applicable
-    return [
+    return (
         *conditions,
         Condition(
             "graph_strongly_connected", "seed 003 Lemma 3 (hypothesis)", _holds_or_fails(strongly),
@@ -540,7 +592,7 @@ def iss_conditions(spec: PursuitSpec, *, margin_tol: float = MARGIN_TOL) -> list
             detail="exact: RL + LᵀR symmetric, off-diagonal ≤ 0, zero row sums",
         ),
         _connectivity_condition(coordination),
-    ]  # fmt: skip
+    )  # fmt: skip
 
 
 def _holds_or_fails(holds: bool) -> ConditionStatus:

@@ -202,18 +202,23 @@ def run_pursuit_case(
 
 
 def summarize_pursuit(
-    spec: PursuitSpec, runs: Sequence[DecRun], *, runaway_factor: float = RUNAWAY_FACTOR
+    spec: PursuitSpec,
+    runs: Sequence[DecRun],
+    *,
+    runaway_factor: float = RUNAWAY_FACTOR,
+    metrics: bool = True,
 ) -> dict[str, Any]:
     """Per-tracker means over runs (errors in m, γ in rad) and the coordination outcome.
 
     ``stopped_at``, ``stop_causes`` and ``stop_reasons`` per run are ``None`` when it completed;
     ``iss_agreement`` is run 0 against the certified estimate (:func:`simulation_agreement`), or
     ``None`` when ``trackcert iss`` certifies nothing; ``metrics`` the DEKF's NEES/NIS and OSPA
-    (:func:`theory.pursuit.filter_metrics.dekf_metrics`).
+    (:func:`theory.pursuit.filter_metrics.dekf_metrics`) and their per-tracker columns, or
+    ``None`` and no columns when ``metrics`` is false (a sweep point's summary: its row shows none).
     """
     loc = np.mean([r.localization_errors for r in runs], axis=0)
     pur = np.mean([r.pursuit_errors for r in runs], axis=0)
-    metrics = dekf_metrics(runs, dec_arguments(spec, len(runs[0].times) - 1))
+    replayed = dekf_metrics(runs, dec_arguments(spec, len(runs[0].times) - 1)) if metrics else None
     agents = [
         {
             "id": i + 1,
@@ -221,13 +226,13 @@ def summarize_pursuit(
             "mean_localization_error": float(loc[:, i].mean()),
             "final_pursuit_error": float(pur[-1, i]),
             "mean_pursuit_error": float(pur[:, i].mean()),
-            **agent_columns(metrics, i),
+            **(agent_columns(replayed, i) if replayed is not None else {}),
         }
         for i in range(loc.shape[1])
     ]
     return {
         "agents": agents,
-        "metrics": metrics,
+        "metrics": replayed,
         "final_gamma_spread": float(np.mean([np.ptp(r.gammas[-1]) for r in runs])),
         "final_gamma_rate_error": float(
             np.mean([np.abs(r.gamma_rates[-1] - spec.omega_bar).max() for r in runs])
@@ -302,7 +307,10 @@ def runaway_factor_of(case: Case) -> float:
 
 
 def _finish(case: Case, spec: Any, results: list, folder: Path | None, figures: bool) -> Finished:
-    summary = summarize_pursuit(spec, results, runaway_factor=runaway_factor_of(case))
+    """The summary, files and observations; without a ``folder`` (a sweep point) the summary
+    skips the DEKF metrics, which only the written summary and the command's table show."""
+    factor = runaway_factor_of(case)
+    summary = summarize_pursuit(spec, results, runaway_factor=factor, metrics=folder is not None)
     files = [] if folder is None else write_pursuit_data(results, summary, folder)
     if figures and folder is not None:
         files += write_pursuit_figures(results, folder)
@@ -463,9 +471,7 @@ def iss_margin_along(spec: PursuitSpec, run: DecRun) -> IssMargin:
     mu = np.sqrt(xi_sq + e_sq)
     x_tilde = np.sqrt((run.estimation_errors[done] ** 2).sum(axis=1))
     sup_error = np.maximum.accumulate(x_tilde)
-    bound = np.array([estimate.beta(mu[0], t) for t in times]) + np.array(
-        [estimate.gamma(s) for s in sup_error]
-    )
+    bound = estimate.beta(mu[0], times) + estimate.gamma(sup_error)
     slack = bound - mu
     worst = int(np.argmin(slack / bound))
     return IssMargin(
