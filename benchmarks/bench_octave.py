@@ -4,14 +4,17 @@ For each Table case and the published script with the same dimension and number 
 (:data:`PAIRS`), in one sitting:
 
 * ``trackcert simulate CASE --seed S --steps N -o DIR`` in a fresh process (start-up, run,
-  summary, files, figures; the engine of ``$TRACKCERT_ENGINE``, numba by default), CPU seconds of
-  the child, best of ``--repeat``; ``N`` covers the script's horizon (450 s in 2-D, 200 s in 3-D)
+  summary, files, figures), and the same with ``--no-figures`` (the like-for-like column: the
+  scripts run with their figures off); the engine of ``$TRACKCERT_ENGINE`` (by default the
+  rule of :func:`theory.core.engines.resolve_engine`), CPU seconds of the child, best of
+  ``--repeat``; ``N`` covers the script's horizon (450 s in 2-D, 200 s in 3-D)
   and ``S`` is the first seed from ``--seed`` whose run 0 completes that horizon (the Table cases
   can run away, and a run stopped early costs less: docs/errata.md, "What makes the Table cases
   run away");
 * the script under ``octave-cli`` (:mod:`seed003_octave`: seeded, figures off), CPU seconds of the
   Octave process, one run at ``--octave-seed`` (the scripts never run away);
-* the ratio Octave / trackcert (issue 28's target: ≥ 10 on runs that complete the horizon).
+* the ratios Octave / trackcert with and without figures (issue 28's target: ≥ 10 on runs that
+  complete the horizon).
 
 Octave is never a dependency: without ``octave-cli`` on the path or without ``--checkout`` (a
 checkout of github.com/hungrepo/cooperative-distributed-range-based-SLAP) the Octave column is
@@ -68,9 +71,11 @@ def completing_seed(name: str, steps: int, first: int) -> int | None:
     return None
 
 
-def trackcert_cpu(name: str, seed: int, steps: int, repeat: int) -> float:
-    """Best CPU seconds of ``trackcert simulate NAME --seed SEED --steps STEPS`` (fresh process)."""
+def trackcert_cpu(name: str, seed: int, steps: int, repeat: int, figures: bool = True) -> float:
+    """Best CPU seconds of ``trackcert simulate NAME --seed SEED --steps STEPS`` (fresh process),
+    with ``--no-figures`` unless ``figures``."""
     arguments = ["simulate", name, "--seed", str(seed), "--steps", str(steps)]
+    arguments += [] if figures else ["--no-figures"]
 
     def call() -> None:
         with tempfile.TemporaryDirectory() as folder:
@@ -93,7 +98,8 @@ def octave_folder(checkout: Path | None, folder: Path) -> Path | None:
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    """Print one row per Table case: seed, steps, trackcert CPU, Octave CPU, their ratio."""
+    """Print one row per Table case: seed, steps, trackcert CPU (with and without figures),
+    Octave CPU, the ratios."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--checkout", type=Path)
     parser.add_argument("--repeat", type=int, default=2)
@@ -105,7 +111,7 @@ def main(argv: Sequence[str] | None = None) -> None:
         folder = octave_folder(args.checkout, Path(scratch))
         octave: dict[str, float] = {}
         print(f"{'case':26} {'script':18} {'seed':>4} {'steps':>5} {'trackcert':>9} "
-              f"{'Octave':>7} {'ratio':>6}")  # fmt: skip
+              f"{'no figs':>7} {'Octave':>7} {'ratio':>6} {'no figs':>7}")  # fmt: skip
         for name in args.cases:
             script, horizon = PAIRS[name]
             steps = round(horizon / RECORD_INTERVAL)
@@ -114,13 +120,14 @@ def main(argv: Sequence[str] | None = None) -> None:
                 print(f"{name:26} no run 0 completes {horizon:g} s in {SEED_TRIES} seeds")
                 continue
             ours = trackcert_cpu(name, seed, steps, args.repeat)
+            bare = trackcert_cpu(name, seed, steps, args.repeat, figures=False)
             if folder is not None and script not in octave:
                 cpu, results = seed003_octave.run(folder, script, args.octave_seed)
                 octave[script] = cpu if results else float("nan")
             theirs = octave.get(script, float("nan"))
             print(
-                f"{name:26} {script:18} {seed:4d} {steps:5d} {ours:9.2f} {theirs:7.1f} "
-                f"{theirs / ours:6.1f}",
+                f"{name:26} {script:18} {seed:4d} {steps:5d} {ours:9.2f} {bare:7.2f} "
+                f"{theirs:7.1f} {theirs / ours:6.1f} {theirs / bare:7.1f}",
                 flush=True,
             )
     print("CPU seconds (user + system of the child process); ratio = Octave / trackcert")
