@@ -24,7 +24,7 @@ __all__ = ["replay_compiled"]
 
 
 @compiled
-def _replay(trackers, target, noise, x0, Omega0, fusion, F, W, V, out):
+def _replay(trackers, target, noise, x0, Omega0, fusion, F, W, V, predictions, out):
     """Fill ``out`` = (x̂_{k|k}, Ω_{k|k}, ν, S) at every instant (module docstring)."""
     estimates, information, innovations, variances = out
     steps, n, d = trackers.shape
@@ -42,7 +42,9 @@ def _replay(trackers, target, noise, x0, Omega0, fusion, F, W, V, out):
             C[:d] = diff / predicted
             innovations[k, i, 0] = ranges[i] - predicted
             variances[k, i, 0, 0] = np.sum(C * np.linalg.solve(Omega[i], C)) + 1 / V
-        x_hat, Omega_post, Omega, x = dekf_step(x, Omega, trackers[k], ranges, fusion, F, W, V, 1)
+        x_hat, Omega_post, Omega, x = dekf_step(
+            x, Omega, trackers[k], ranges, fusion, F, W, V, predictions
+        )
         estimates[k] = x_hat
         information[k] = Omega_post
 
@@ -59,6 +61,7 @@ def replay_compiled(
     x0: np.ndarray,
     P0: np.ndarray,
     rng: np.random.Generator,
+    predictions: int = 1,
 ) -> RangeDekfRun:
     """:func:`theory.pursuit.dekf.range_dekf` (same arguments, same noise from ``rng``) compiled.
 
@@ -72,6 +75,8 @@ def replay_compiled(
         Process covariance (W = Q⁻¹), fusion weights π^[i,j], every tracker's x̂_{1|0}, P_{1|0}.
     rng : numpy.random.Generator
         Draws the range noise, K × N standard normals.
+    predictions : int
+        Predictions (44) per ``Ts``, with F(Ts/predictions) and ``Q`` per Ts/predictions.
 
     Returns
     -------
@@ -88,6 +93,6 @@ def replay_compiled(
     _replay(
         np.ascontiguousarray(trackers, dtype=float), np.ascontiguousarray(target, dtype=float),
         noise, np.asarray(x0, dtype=float), np.linalg.inv(P0), np.asarray(fusion, dtype=float),
-        transition_matrix(d, Ts), np.linalg.inv(Q), float(V), out,
+        transition_matrix(d, Ts / predictions), np.linalg.inv(Q), float(V), int(predictions), out,
     )  # fmt: skip
     return RangeDekfRun(*out)

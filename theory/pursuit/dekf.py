@@ -106,14 +106,17 @@ def range_dekf(
     x0: np.ndarray,
     P0: np.ndarray,
     rng: np.random.Generator,
+    predictions: int = 1,
 ) -> RangeDekfRun:
     """Algorithm 2 of seed 003 on given tracker and target trajectories (eqs. (7)–(10), (41)–(44)).
 
     Ranges every ``Ts`` with noise of variance ``noise_var``; the filter's ``V``, process
-    covariance ``Q`` (W = Q⁻¹), fusion weights π^[i,j], and every tracker's x̂_{1|0}, P_{1|0}.
+    covariance ``Q`` (W = Q⁻¹), fusion weights π^[i,j], and every tracker's x̂_{1|0}, P_{1|0};
+    ``predictions`` predictions (44) per ``Ts`` with F(Ts/predictions), ``Q`` per
+    Ts/predictions, as :func:`dekf_step` (the closed loop's ``predict_every``).
     """
     steps, n, d = trackers.shape
-    F = transition_matrix(d, Ts)
+    F = transition_matrix(d, Ts / predictions)
     W = np.linalg.inv(Q)
     Omega = np.tile(np.linalg.inv(P0), (n, 1, 1))
     x = np.tile(x0, (n, 1))
@@ -126,7 +129,7 @@ def range_dekf(
         y = ranges + np.sqrt(noise_var) * rng.standard_normal(n)
         innovations[k], variances[k] = _range_innovations(x, Omega, trackers[k], y, V)
         estimates[k], information[k], Omega, x = dekf_step(
-            x, Omega, trackers[k], y, fusion=fusion, F=F, W=W, V=V
+            x, Omega, trackers[k], y, fusion=fusion, F=F, W=W, V=V, predictions=predictions
         )
     return RangeDekfRun(estimates, information, innovations, variances)
 

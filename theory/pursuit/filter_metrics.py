@@ -60,6 +60,7 @@ def replay_dekf(
         x0=dekf["x_pred"][0],
         P0=np.linalg.inv(dekf["Omega"][0]),
         rng=np.random.default_rng(np.random.SeedSequence([REPLAY_KEY, index])),
+        predictions=settings.predictions,
     )
 
 
