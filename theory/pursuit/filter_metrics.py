@@ -3,11 +3,13 @@
 The closed loop (:mod:`theory.pursuit.closed_loop`) records the trackers' and the target's
 trajectories but not the filter's information matrices. The DEKF is replayed here, with the one
 implementation :func:`theory.pursuit.dekf.range_dekf` and the run's own priors, fusion weights,
-``V`` and ``Q``, on the recorded tracker and target positions at every sampling instant
-``kT_s`` up to where the run stopped; run ``i``'s range noise (σ of the case) comes from
-``SeedSequence([REPLAY_KEY, i])``. The statistics are then those of the filter on the
-closed-loop geometry (:mod:`theory.core.consistency`); the range variance the filter assumes is
-``1/V``, so a case whose ``V`` exceeds ``1/σ²`` trusts its ranges more than their noise allows.
+``V``, ``Q`` and prediction rate (``predict_every``: ``Q`` per ``T_s/predictions``, predicted
+that many times per ``T_s``, as the loop's filter), on the recorded tracker and target positions
+at every sampling instant ``kT_s`` up to where the run stopped; run ``i``'s range noise (σ of
+the case) comes from ``SeedSequence([REPLAY_KEY, i])``. The statistics are then those of the
+filter on the closed-loop geometry (:mod:`theory.core.consistency`); the range variance the
+filter assumes is ``1/V``, so a case whose ``V`` exceeds ``1/σ²`` trusts its ranges more than
+their noise allows.
 The replay runs on the engine :func:`theory.core.engines.resolve_engine` chooses for
 the runs' records (a short job on the NumPy reference, as its runs): compiled
 (:mod:`theory.pursuit.compiled_replay`) or the NumPy reference.
