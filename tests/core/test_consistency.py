@@ -212,3 +212,38 @@ def test_position_distances_are_ospa_and_gospa_of_singletons(
         expect_g = np.mean([gospa(s, truth[0, k][None], cutoff=c) for k, s in enumerate(sets)])
         assert record["ospa"][agent] == pytest.approx(expect_o, rel=1e-12, abs=1e-12)
         assert record["gospa"][agent] == pytest.approx(expect_g, rel=1e-12, abs=1e-12)
+
+
+def _correlated_nees(runs: int, steps: int, seed: int, rho: float, scale: float = 1.0):
+    """NEES of errors e(t) = ρ e(t−1) + √(1−ρ²) w(t) in 2 states with reported covariance
+    ``scale``·I: each step's NEES is χ²₂/scale, the steps strongly correlated in time."""
+    rng = np.random.default_rng(seed)
+    e = np.empty((runs, steps, 2))
+    e[:, 0] = rng.standard_normal((runs, 2))
+    for t in range(1, steps):
+        e[:, t] = rho * e[:, t - 1] + np.sqrt(1 - rho**2) * rng.standard_normal((runs, 2))
+    return (e**2).sum(axis=2) / scale
+
+
+def test_time_correlated_consistent_errors_are_not_called_inconsistent() -> None:
+    """A consistent filter whose errors are correlated in time (ρ = 0.95: a correlation time of
+    20 steps; 3 runs of 400 steps) falls outside the χ² band of 2 400 degrees of freedom most of
+    the time (63 of 100 seeds), since the band counts the steps as independent; with the
+    batch-means check (12 batches of about 100 steps) it is called optimistic or pessimistic
+    near the nominal 5 % (8 of 100; the bound is the binomial 99.9 % point of 5 %)."""
+    outside = wrong = 0
+    for seed in range(100):
+        test = consistency_test("NEES", _correlated_nees(3, 400, seed, 0.95), 2)
+        outside += not test.band.lower <= test.value <= test.band.upper
+        wrong += test.verdict in {Consistency.OPTIMISTIC, Consistency.PESSIMISTIC}
+        assert test.spread is not None and test.spread.method == "batch means"
+    assert outside >= 50 and wrong <= binom.isf(1e-3, 100, 0.05), (outside, wrong)
+
+
+def test_correlated_but_overconfident_errors_stay_optimistic() -> None:
+    """The same errors reported with a tenth of their covariance are optimistic: every unit's
+    average lies near 10, far from 1, whatever the correlation."""
+    for seed in range(5):
+        test = consistency_test("NEES", _correlated_nees(3, 400, seed, 0.99, scale=0.1), 2)
+        assert test.verdict is Consistency.OPTIMISTIC
+        assert test.spread is not None and test.spread.lower > 1

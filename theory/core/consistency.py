@@ -8,8 +8,11 @@ the sum of ``M`` independent runs' statistics at one step is ``χ²_{nM}``, so t
 ANEES) lies in ``[χ²_{nM}((1−p)/2), χ²_{nM}((1+p)/2)] / M`` with probability ``p`` (Bar-Shalom,
 Li, Kirubarajan 2001, §5.4, eqs. (5.4.1-5)–(5.4.2-7)). Above the band the filter is *optimistic*
 (its covariance is too small for its errors: the unsafe side), below it *pessimistic* (safe but
-wasteful). Every simulator records the errors, covariances, innovations and their covariances;
-this module alone turns them into statistics and verdicts.
+wasteful). The band counts every step as independent, which estimation errors correlated in time
+are not, so a verdict outside it is kept only when the spread of independent units agrees
+(:func:`spread_interval`: runs, or batch means of contiguous steps); otherwise it is
+inconclusive. Every simulator records the errors, covariances, innovations and their
+covariances; this module alone turns them into statistics and verdicts.
 
 OSPA (Schuhmacher, Vo, Vo 2008) and GOSPA (García-Fernández, Svensson 2017) compare a set of
 estimated positions with the set of true ones at cutoff ``c`` and order ``p``.
@@ -17,6 +20,7 @@ estimated positions with the set of true ones at cutoff ``c`` and order ``p``.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from enum import StrEnum
 from typing import Any
@@ -32,9 +36,11 @@ from theory.core.tolerances import (
 )
 
 __all__ = [
+    "SPREAD_UNITS",
     "Band",
     "Consistency",
     "ConsistencyTest",
+    "Spread",
     "agent_columns",
     "chi2_band",
     "consistency_test",
@@ -47,7 +53,12 @@ __all__ = [
     "ospa",
     "padded",
     "position_distances",
+    "spread_interval",
 ]
+
+SPREAD_UNITS = 10
+"""Independent units :func:`spread_interval` wants: the runs when there are as many, else each
+run cut into this many (over the runs) contiguous batches of steps (batch means)."""
 
 
 class Consistency(StrEnum):
@@ -170,6 +181,48 @@ def chi2_band(dof: int, samples: int, probability: float = CONSISTENCY_PROBABILI
 
 
 @dataclass(frozen=True)
+class Spread:
+    """The mean over ``units`` independent units of ``Σ values / Σ dims`` (1 for a consistent
+    filter) with its two-sided Student-t interval at the band's probability; ``method`` is
+    ``"runs"`` or ``"batch means"`` (contiguous steps of a run, nearly independent when the
+    batches are long against the errors' correlation time)."""
+
+    units: int
+    method: str
+    mean: float
+    lower: float
+    upper: float
+
+    def to_json(self) -> dict[str, Any]:
+        """``units``, ``method``, ``mean``, ``lower``, ``upper``."""
+        return vars(self).copy()
+
+
+def spread_interval(
+    values: np.ndarray, dims: np.ndarray, valid: np.ndarray, probability: float
+) -> Spread | None:
+    """The mean normalized statistic over independent units with its Student-t interval
+    (Bar-Shalom et al. §5.4 sums independent runs; steps of one run are correlated); ``None``
+    with fewer than two units or an infinite one (a singular covariance: optimistic as it is)."""
+    runs = values.shape[0]
+    batches = 1 if runs >= SPREAD_UNITS else -(-SPREAD_UNITS // runs)
+    ratios = [
+        values[run, part].sum() / dims[run, part].sum()
+        for run in range(runs)
+        for part in np.array_split(np.flatnonzero(valid[run]), batches)
+        if part.size
+    ]
+    ratios = np.asarray(ratios)
+    if len(ratios) < 2 or not np.isfinite(ratios).all():  # ∞: a singular covariance
+        return None
+    mean = float(ratios.mean())
+    half = float(_t_quantile((1 + probability) / 2, len(ratios) - 1) * ratios.std(ddof=1))
+    half /= math.sqrt(len(ratios))
+    method = "runs" if batches == 1 else "batch means"
+    return Spread(len(ratios), method, mean, mean - half, mean + half)
+
+
+@dataclass(frozen=True)
 class ConsistencyTest:
     """One statistic (``NEES`` or ``NIS``) of a filter against its band.
 
@@ -178,7 +231,8 @@ class ConsistencyTest:
     ``expected`` the mean dimension; ``margin`` the distance to the nearer edge in band widths
     (negative outside);
     ``steps_in_band`` the fraction of steps whose average over runs lies in its own band
-    (dimension × runs degrees of freedom; about ``probability`` when consistent).
+    (dimension × runs degrees of freedom; about ``probability`` when consistent); ``spread`` the
+    check of a verdict outside the band on independent units (:func:`spread_interval`).
     """
 
     statistic: str
@@ -189,6 +243,7 @@ class ConsistencyTest:
     verdict: Consistency
     steps_in_band: float
     rtol: float
+    spread: Spread | None = None
 
     def to_json(self) -> dict[str, Any]:
         """The record: statistic, value, expected, band, margin, verdict, steps in band, the
@@ -201,6 +256,7 @@ class ConsistencyTest:
             "margin": self.margin,
             "verdict": self.verdict.value,
             "steps_in_band": self.steps_in_band,
+            "spread": None if self.spread is None else self.spread.to_json(),
             "safe_side": "below the upper edge (above it the covariance understates the error)",
             "tolerance": {
                 "consistency_probability": self.band.probability,
@@ -256,24 +312,31 @@ def consistency_test(
     value = float(values[valid].sum() / count)
     expected = float(dims[valid].sum() / count)
     margin = min(value - band.lower, band.upper - value) / (band.upper - band.lower)
+    spread = spread_interval(values, dims, valid, probability)
     return ConsistencyTest(
         statistic,
         value,
         expected,
         band,
         margin,
-        _verdict(value, band, margin, rtol),
+        _verdict(value, band, margin, rtol, spread),
         _steps_in_band(values, dims, valid, probability),
         rtol,
+        spread,
     )
 
 
-def _verdict(value: float, band: Band, margin: float, rtol: float) -> Consistency:
-    """Inside, above or below the band; inconclusive within ``rtol`` of an edge (§5.4.2)."""
+def _verdict(
+    value: float, band: Band, margin: float, rtol: float, spread: Spread | None
+) -> Consistency:
+    """Inside, above or below the band; inconclusive within ``rtol`` of an edge (§5.4.2), or
+    outside it while the independent units' interval still contains 1 (consistency)."""
     if abs(margin) <= rtol:
         return Consistency.INCONCLUSIVE
     if margin > 0:
         return Consistency.CONSISTENT
+    if spread is not None and spread.lower <= 1.0 <= spread.upper:
+        return Consistency.INCONCLUSIVE
     return Consistency.OPTIMISTIC if value > band.upper else Consistency.PESSIMISTIC
 
 
@@ -290,6 +353,13 @@ def _steps_in_band(
         _chi2_quantile((1 + probability) / 2, dof),
     )
     return float(np.mean((low <= sums) & (sums <= high)))
+
+
+def _t_quantile(q: float, dof: int) -> float:
+    """The Student-t quantile at ``q`` with ``dof`` degrees of freedom (scipy.special)."""
+    from scipy.special import stdtrit
+
+    return float(stdtrit(dof, q))
 
 
 def _chi2_quantile(q: Any, dof: Any) -> Any:
