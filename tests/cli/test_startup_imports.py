@@ -12,6 +12,8 @@ from pathlib import Path
 
 import pytest
 
+from theory.core.parallel import THREAD_SETTINGS
+
 ROOT = Path(__file__).resolve().parents[2]
 
 NEVER = ("sympy", "control", "cvxpy", "numba", "distributed", "matplotlib")
@@ -96,3 +98,36 @@ def test_a_short_pursuit_run_imports_exact_algebra_only_where_used(case, expecte
     code, heavy = imported(argv, tmp_path, ("flint", "scipy.sparse"))
     assert code in (0, 1, 3)
     assert heavy == expected
+
+
+POOLS = (
+    "import json, os, sys\n"
+    "from theory.cli import main\n"
+    "sys.argv = ['trackcert', 'simulate', 'pursuit-table1-n3', '--steps', '1', '--no-figures',"
+    " '-o', 'out']\n"
+    "try:\n    main()\nexcept SystemExit:\n    pass\n"
+    "from threadpoolctl import threadpool_info\n"
+    "pools = [p['num_threads'] for p in threadpool_info() if p['internal_api'] == 'openblas']\n"
+    "print(json.dumps([os.environ.get('OPENBLAS_NUM_THREADS'), pools]), file=sys.stderr)\n"
+)
+"""A one-step ``trackcert simulate`` in a fresh interpreter, then its OpenBLAS pools' sizes."""
+
+
+@pytest.mark.parametrize(("setting", "expected"), [(None, "1"), ("2", "2")])
+def test_the_command_starts_its_blas_pools_with_one_thread(setting, expected, tmp_path) -> None:
+    """``trackcert`` sets the thread-count variables the user left unset to 1 before NumPy loads
+    (theory.core.parallel.one_thread_pools): NumPy's and SciPy's OpenBLAS start with one
+    thread, as every task runs anyway; a count the user set is kept."""
+    env = {k: v for k, v in os.environ.items() if k not in THREAD_SETTINGS}
+    env["PYTHONPATH"] = os.pathsep.join([str(ROOT), env.get("PYTHONPATH", "")])
+    if setting is not None:
+        env["OPENBLAS_NUM_THREADS"] = setting
+    done = subprocess.run(
+        [sys.executable, "-c", POOLS], capture_output=True, text=True, check=True,
+        cwd=tmp_path, env=env,
+    )  # fmt: skip
+    value, pools = json.loads(done.stderr.strip().splitlines()[-1])
+    assert value == expected
+    assert len(pools) == 2  # NumPy's and SciPy's
+    if setting is None:
+        assert pools == [1, 1]

@@ -12,9 +12,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from theory.core.consistency import Consistency, consistency_test, nis
+from theory.core.engines import ENGINE_SETTING
 from theory.kinds import load_case
+from theory.pursuit import compiled_replay
 from theory.pursuit.dekf import encircling_paths, range_dekf, table_target, transition_matrix
-from theory.pursuit.filter_metrics import REPLAY_KEY, dekf_metrics, replay_dekf
+from theory.pursuit.filter_metrics import REPLAY_KEY, REPLAY_MIN_STEPS, dekf_metrics, replay_dekf
 from theory.pursuit.simulation import dec_arguments, run_pursuit_case, summarize_pursuit
 
 TS = 2.0
@@ -168,3 +170,27 @@ def test_a_stopped_run_counts_until_it_stopped(table1_runs: tuple) -> None:
     kept = len(positions[::every][np.isfinite(positions[::every]).all(axis=(1, 2))])
     metrics = dekf_metrics(stopped, arguments)
     assert metrics["nees"][0]["band"]["samples"] == full + kept < 2 * full
+
+
+def test_the_replay_is_compiled_from_replay_min_steps_filter_steps(
+    table1_runs, monkeypatch
+) -> None:
+    """Without a choice, the replay's engine follows its filter steps (runs × sampling instants):
+    NumPy below REPLAY_MIN_STEPS, the compiled kernel from there; the keyword still wins."""
+    spec, runs = table1_runs
+    arguments = dec_arguments(spec, len(runs[0].times) - 1)
+    instants = (len(runs[0].times) - 1) // round(spec.dekf.Ts / 0.1)
+    calls = []
+    compiled = compiled_replay.replay_compiled
+    monkeypatch.setattr(
+        compiled_replay, "replay_compiled", lambda *a, **k: calls.append(1) or compiled(*a, **k)
+    )
+    monkeypatch.delenv(ENGINE_SETTING, raising=False)
+    few = runs[:1] * (REPLAY_MIN_STEPS // instants)
+    dekf_metrics(few, arguments)
+    assert len(few) * instants < REPLAY_MIN_STEPS and not calls
+    many = runs[:1] * (len(few) + 1)
+    dekf_metrics(many, arguments)
+    assert len(many) * instants >= REPLAY_MIN_STEPS and len(calls) == len(many)
+    dekf_metrics(runs[:1], arguments, "numba")
+    assert len(calls) == len(many) + 1

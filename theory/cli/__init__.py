@@ -18,6 +18,8 @@ from typer import _click
 from typer.core import TyperCommand, TyperGroup
 from typer.main import get_command_from_info, get_group_from_info
 
+from theory.core.parallel import one_thread_pools
+
 __all__ = ["COMMANDS", "CommandEntry", "LazyCommands", "app", "main"]
 
 
@@ -177,5 +179,7 @@ def _root(
 
 
 def main() -> None:
-    """Console-script entry point."""
+    """Console-script entry point: one-thread BLAS pools (:func:`one_thread_pools`), then the
+    command."""
+    one_thread_pools()
     app()

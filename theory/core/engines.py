@@ -30,9 +30,11 @@ so below 3,000 the NumPy engine finishes first in every case. Both engines agree
 integrator's tolerance (``tests/pursuit/test_kernels.py``)."""
 
 
-def resolve_engine(engine: str | None = None, records: int | None = None) -> str:
+def resolve_engine(
+    engine: str | None = None, records: int | None = None, minimum: int = NUMBA_MIN_RECORDS
+) -> str:
     """The simulation engine: ``engine``, else ``$TRACKCERT_ENGINE``, else ``"numba"`` — or
-    ``"numpy"`` for a job of fewer than :data:`NUMBA_MIN_RECORDS` ``records``.
+    ``"numpy"`` for a job of fewer than ``minimum`` ``records``.
 
     Parameters
     ----------
@@ -41,6 +43,10 @@ def resolve_engine(engine: str | None = None, records: int | None = None) -> str
     records : int, optional
         The records the whole job integrates (runs × steps); unknown: the kernels' rule applies
         (``"numba"``).
+    minimum : int, optional
+        The job size from which the kernels pay for loading them: :data:`NUMBA_MIN_RECORDS`
+        for a simulation, :data:`theory.pursuit.filter_metrics.REPLAY_MIN_STEPS` filter steps
+        for the DEKF replay.
 
     Returns
     -------
@@ -58,7 +64,7 @@ def resolve_engine(engine: str | None = None, records: int | None = None) -> str
         return engine
     chosen = os.environ.get(ENGINE_SETTING, "").strip()
     if not chosen:
-        return "numpy" if records is not None and records < NUMBA_MIN_RECORDS else "numba"
+        return "numpy" if records is not None and records < minimum else "numba"
     if chosen not in ENGINES:
         raise CaseError(ENGINE_SETTING, " or ".join(ENGINES), chosen, file=ENVIRONMENT)
     return chosen

@@ -11,7 +11,7 @@ filter on the closed-loop geometry (:mod:`theory.core.consistency`); the range v
 filter assumes is ``1/V``, so a case whose ``V`` exceeds ``1/σ²`` trusts its ranges more than
 their noise allows.
 The replay runs on the engine :func:`theory.core.engines.resolve_engine` chooses for
-the runs' records (a short job on the NumPy reference, as its runs): compiled
+its filter steps (fewer than :data:`REPLAY_MIN_STEPS` on the NumPy reference): compiled
 (:mod:`theory.pursuit.compiled_replay`) or the NumPy reference.
 """
 
@@ -27,10 +27,18 @@ from theory.core.engines import resolve_engine
 from theory.pursuit.closed_loop import DecRun, _filter_setup, build_loop
 from theory.pursuit.dekf import RangeDekfRun, range_dekf
 
-__all__ = ["REPLAY_KEY", "dekf_metrics", "replay_dekf"]
+__all__ = ["REPLAY_KEY", "REPLAY_MIN_STEPS", "dekf_metrics", "replay_dekf"]
 
 REPLAY_KEY = 3
 """First word of the replays' seed sequences (seed 003)."""
+
+REPLAY_MIN_STEPS = 700
+"""Replays of fewer filter steps (runs × sampling instants) than this run on NumPy by default.
+
+Loading the compiled replay's cached kernel costs a process 0.03–0.04 s of CPU, with numba
+already imported by the runs; the NumPy replay costs 47–52 µs a filter step more. The
+break-even is 560–750 steps on the four Table cases (``benchmarks/bench_replay_engine.py``):
+one run of 450 s replays 225 steps, 0.014–0.020 s on NumPy against 0.032–0.046 s compiled."""
 
 
 def replay_dekf(
@@ -71,11 +79,13 @@ def dekf_metrics(
 ) -> dict[str, Any]:
     """NEES of ``x̂_{k|k}`` against ``Ω_{k|k}⁻¹``, NIS of every range correction and OSPA/GOSPA
     of ``q̂_{k|k}`` per tracker over the replays (NaN after a run stopped), replayed on
-    ``engine`` (default: the one :func:`resolve_engine` chooses for the runs' records)."""
-    engine = resolve_engine(engine, records=sum(len(run.times) - 1 for run in runs))
-    replays = [replay_dekf(run, arguments, i, engine) for i, run in enumerate(runs)]
+    ``engine`` (default: the one :func:`resolve_engine` chooses for the replays' filter
+    steps, :data:`REPLAY_MIN_STEPS`)."""
     settings = arguments["settings"]
     every = round(settings.Ts / settings.dt)
+    instants = sum((len(run.times) - 1) // every for run in runs)
+    engine = resolve_engine(engine, records=instants, minimum=REPLAY_MIN_STEPS)
+    replays = [replay_dekf(run, arguments, i, engine) for i, run in enumerate(runs)]
     truth = np.stack([run.target[::every] for run in runs])
     steps, d = truth.shape[1], truth.shape[2] // 2
     estimates = np.stack([_padded(r.estimates, steps) for r in replays])
