@@ -3,6 +3,8 @@ refused (exit 2 from the commands)."""
 
 from __future__ import annotations
 
+import json
+import os
 import subprocess
 import sys
 import textwrap
@@ -16,7 +18,7 @@ from hypothesis import strategies as st
 
 from theory.core.claims import Context, RunCache
 from theory.core.errors import CaseError
-from theory.core.parallel import SCHEDULER_SETTING, engine, scheduler_address
+from theory.core.parallel import SCHEDULER_SETTING, THREAD_SETTINGS, engine, scheduler_address
 from theory.sim.simulate import monte_carlo
 
 # Workers unpickle this module's functions by value: the test folder is not importable there.
@@ -32,6 +34,41 @@ def _square_or_fail(x: int) -> int:
     if x in (3, 5):
         raise ValueError(f"item {x} fails")
     return x * x
+
+
+FIRST_LOAD = textwrap.dedent(
+    """
+    import json, os, sys
+    from theory.core.parallel import engine
+
+    def task(_):
+        loaded = "scipy.linalg" in sys.modules
+        import scipy.linalg  # noqa: F401
+        from threadpoolctl import threadpool_info
+
+        return loaded, sorted({pool["num_threads"] for pool in threadpool_info()})
+
+    with engine(1) as serial:
+        print(json.dumps(serial.map(task, [0])[0]))
+    """
+)
+"""A serial task that loads SciPy's BLAS itself: whether it was loaded before, the pool sizes."""
+
+
+@pytest.mark.parametrize("pinned", [True, False])
+def test_a_blas_loaded_inside_a_task_runs_one_thread(pinned: bool) -> None:
+    """With every THREAD_SETTINGS variable at 1 (as ``trackcert`` sets them) the engine leaves
+    SciPy's BLAS unloaded and a task loading it gets one thread; otherwise the engine loads it
+    first, so that threadpoolctl pins it. Either way the task sees only one-thread pools."""
+    env = {k: v for k, v in os.environ.items() if k not in THREAD_SETTINGS}
+    env |= dict.fromkeys(THREAD_SETTINGS, "1") if pinned else {"OPENBLAS_NUM_THREADS": "2"}
+    done = subprocess.run(
+        [sys.executable, "-c", FIRST_LOAD], capture_output=True, text=True, check=True,
+        cwd=Path(__file__).resolve().parents[2], env=env,
+    )  # fmt: skip
+    loaded, pools = json.loads(done.stdout.splitlines()[-1])
+    assert loaded is not pinned
+    assert pools == [1]
 
 
 @pytest.fixture(scope="module")

@@ -411,13 +411,16 @@ def _one_thread(fn: Callable[[T], R], item: T) -> R:
     The same on every path: a multi-threaded BLAS sums a product in another order than a
     single-threaded one, and the last digit of a result would then depend on where its task ran.
     SciPy's BLAS is loaded first (numpy's is loaded with numpy), so that a task importing
-    ``scipy.linalg`` for the first time does not get an unpinned pool. A task inside a task (a
+    ``scipy.linalg`` for the first time does not get an unpinned pool — unless every
+    :data:`THREAD_SETTINGS` variable is 1 (as ``trackcert`` sets them, :func:`one_thread_pools`):
+    a BLAS loaded later then starts with one thread. A task inside a task (a
     sweep point's own one-run Monte Carlo) finds the pools pinned already and pins nothing:
     threadpoolctl's search of the loaded libraries costs a few ms a call.
     """
     if getattr(_PINNED, "active", False):
         return fn(item)
-    import scipy.linalg  # noqa: F401 (loads SciPy's BLAS, so that it is pinned too)
+    if not _loads_with_one_thread():
+        import scipy.linalg  # noqa: F401 (loads SciPy's BLAS, so that it is pinned too)
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(limits=1):
@@ -426,6 +429,10 @@ def _one_thread(fn: Callable[[T], R], item: T) -> R:
             return fn(item)
         finally:
             _PINNED.active = False
+
+
+def _loads_with_one_thread() -> bool:
+    return all(os.environ.get(name) == "1" for name in THREAD_SETTINGS)
 
 
 _PINNED = threading.local()

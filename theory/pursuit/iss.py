@@ -45,7 +45,6 @@ from fractions import Fraction
 from typing import Any
 
 import numpy as np
-import scipy.linalg
 
 from proofs_check.linalg import positive_definite
 from theory.core.case_file import Case
@@ -118,7 +117,10 @@ def gain_matrix(spec: PursuitSpec) -> np.ndarray:
     """K = diag(K_p, k_γ) (Type II; ``k_z`` of seed 003 eq. (66) read as k_γ), K = K_p (Type I)."""
     if spec.controller == Controller.I:
         return spec.K_p.copy()
-    return scipy.linalg.block_diag(spec.K_p, [[spec.k_gamma]])
+    n = len(spec.K_p)
+    K = np.zeros((n + 1, n + 1))
+    K[:n, :n], K[n, n] = spec.K_p, spec.k_gamma
+    return K
 
 
 def path_mu(path: TrackerPath) -> tuple[Fraction, bool]:
@@ -287,6 +289,8 @@ def generalized_algebraic_connectivity(laplacian: np.ndarray, r: np.ndarray) -> 
     a(L) = min over x ⊥ r, x ≠ 0 of xᵀ(RL + LᵀR)x / (2xᵀRx) = λ_min(BᵀMB, 2BᵀRB) for any basis
     B of r⊥ (here :func:`orthogonal_basis`), M = RL + LᵀR, r > 0 the left eigenvector.
     """
+    import scipy.linalg  # not on a simulation's path (its ISS agreement needs none of it)
+
     R = np.diag(r)
     M = R @ laplacian + laplacian.T @ R
     B = orthogonal_basis(r)
