@@ -27,18 +27,24 @@ __all__ = ["heard_lists", "loss_tolerance", "observability_margin", "receivers"]
 MAX_SUBSETS = 20_000
 """Most removal sets a ``tdoa-loss-tolerance`` certificate may ask the checker to enumerate."""
 MAX_WORK = 20_000_000
-"""Largest accepted graph work of the enumeration (sets × agents × (agents + 2 links))."""
+"""Largest accepted graph work of the enumeration: sets × (agents + 2 links) searches, times the
+agents on directed links (one search per agent; on undirected links one per component)."""
+MAX_AGENTS = 1000
+"""Most agents of a scene (their positions, directions and errors are lists, not matrices)."""
+MAX_LINKS = 20_000
+"""Most links of a scene."""
 
 
 def _scene(data: dict[str, Any]) -> tuple[int, list[Fraction], Matrix, list[tuple[int, int]], bool]:
     """``dim``, target, agents, 0-based links ``(s, r)`` ("r hears s") and whether undirected."""
     dim = p.index(data["dim"], "data.dim", 2, 3)
     target = p.matrix([data["target"]], "data.target", 1, dim)[0]
-    agents = p.matrix(data["agents"], "data.agents", None, dim)
+    agents = _points(data["agents"], "data.agents", None, dim)
     undirected = p.text(data["graph"], "data.graph", ("undirected", "directed")) == "undirected"
     raw = data["links"]
-    if not isinstance(raw, list) or len(raw) > p.MAX_DIM * p.MAX_DIM:
-        raise p.MalformedError("data.links: expected a list of [s, r] pairs (r hears s)")
+    if not isinstance(raw, list) or len(raw) > MAX_LINKS:
+        why = f"data.links: expected a list of at most {MAX_LINKS} [s, r] pairs (r hears s)"
+        raise p.MalformedError(why)
     links = []
     for k, pair in enumerate(raw):
         where = f"data.links[{k + 1}]"
@@ -156,8 +162,12 @@ def _turns(target: list[Fraction], points: Matrix, h: list[Fraction], kappa: Fra
     return total
 
 
+def _points(raw: Any, where: str, count: int | None, dim: int) -> Matrix:
+    return p.matrix(raw, where, count, dim, max_rows=MAX_AGENTS)
+
+
 def _rationals(raw: Any, where: str, count: int) -> list[Fraction]:
-    return p.matrix([raw], where, 1, count)[0]
+    return p.matrix([raw], where, 1, count, max_cols=MAX_AGENTS)[0]
 
 
 def _ids(raw: Any, where: str, agents: int) -> list[int]:
@@ -194,7 +204,7 @@ def observability_margin(cert: dict[str, Any]) -> list[Check]:
         item = p.fields(raw, where, keys)
         members = _ids(item["agents"], f"{where}.agents", len(agents))
         covers = _ids(item["covers"], f"{where}.covers", len(agents))
-        u = p.matrix(item["directions"], f"{where}.directions", len(members), dim)
+        u = _points(item["directions"], f"{where}.directions", len(members), dim)
         e = _rationals(item["errors"], f"{where}.errors", len(members))
         h = _rationals(item["motion_bounds"], f"{where}.motion_bounds", len(members))
         name = f"set {k + 1}: "
@@ -273,10 +283,11 @@ def loss_tolerance(cert: dict[str, Any]) -> list[Check]:
     items = p.text(claim["items"], "claim.items", ("links", "agents"))
     pool = links if items == "links" else list(range(len(agents)))
     k = p.index(claim["fewer_than"], "claim.fewer_than", 1, len(pool) + 1)
-    u = p.matrix(witness["directions"], "witness.directions", len(agents), dim)
+    u = _points(witness["directions"], "witness.directions", len(agents), dim)
     e = _rationals(witness["errors"], "witness.errors", len(agents))
     subsets = sum(comb(len(pool), size) for size in range(k))
-    work = subsets * len(agents) * (len(agents) + 2 * len(links))
+    searches = 1 if undirected else len(agents)
+    work = subsets * searches * (len(agents) + 2 * len(links))
     if subsets > MAX_SUBSETS or work > MAX_WORK:
         why = f"{subsets} removal sets, work {work:.3g} (limits {MAX_SUBSETS}, {MAX_WORK:.3g})"
         raise p.MalformedError(f"refused: {why}")
@@ -299,15 +310,18 @@ def _removals(
     e: list[Fraction],
     verdicts: dict[frozenset[int], Check],
 ) -> Check:
-    """Every removal of ``size`` items keeps every remaining agent's receivers of full rank."""
+    """Every removal of ``size`` items keeps every remaining agent's receivers of full rank. On
+    undirected links the receivers of ``i`` are its component, the same for each of its agents,
+    so the agents of a component found already are skipped."""
     count = 0
     for removed in combinations(pool, size):
         count += 1
         gone = set(removed) if items == "agents" else set()
         kept = [x for x in links if (x not in removed if items == "links" else not set(x) & gone)]
-        heard = heard_lists(len(u), kept, undirected)
-        for i in (j for j in range(len(u)) if j not in gone):
+        heard, seen = heard_lists(len(u), kept, undirected), set(gone)
+        for i in (j for j in range(len(u)) if j not in seen):
             members = frozenset(receivers(i, heard)[0])
+            seen |= members if undirected else set()
             if members not in verdicts:
                 verdicts[members] = _set_rank(members, dim, u, e)
             if not verdicts[members].valid:

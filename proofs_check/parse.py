@@ -177,15 +177,19 @@ def bounded(value: Any, where: str, span: str, why: str) -> Fraction:
     return number
 
 
-def matrix(value: Any, where: str, rows: int | None = None, cols: int | None = None) -> Matrix:
-    """A rectangular matrix of rationals (a list of rows), optionally of a required shape."""
-    if not isinstance(value, list) or not value or len(value) > MAX_DIM:
-        raise MalformedError(f"{where}: expected a non-empty list of at most {MAX_DIM} rows")
+def matrix(
+    value: Any, where: str, rows: int | None = None, cols: int | None = None, *,
+    max_rows: int = MAX_DIM, max_cols: int = MAX_DIM,
+) -> Matrix:  # fmt: skip
+    """A rectangular matrix of rationals (a list of rows), optionally of a required shape, at
+    most ``max_rows`` × ``max_cols`` (lists of points may be longer than a matrix to multiply)."""
+    if not isinstance(value, list) or not value or len(value) > max_rows:
+        raise MalformedError(f"{where}: expected a non-empty list of at most {max_rows} rows")
     width = len(value[0]) if isinstance(value[0], list) else -1
-    if not 1 <= width <= MAX_DIM or any(
+    if not 1 <= width <= max_cols or any(
         not isinstance(row, list) or len(row) != width for row in value
     ):
-        raise MalformedError(f"{where}: expected rows of equal length between 1 and {MAX_DIM}")
+        raise MalformedError(f"{where}: expected rows of equal length between 1 and {max_cols}")
     if (rows is not None and len(value) != rows) or (cols is not None and width != cols):
         expected = f"{rows if rows is not None else '*'} × {cols if cols is not None else '*'}"
         raise MalformedError(f"{where}: expected shape {expected}, got {len(value)} × {width}")

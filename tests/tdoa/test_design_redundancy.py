@@ -19,10 +19,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from proofs_check import MalformedError, check_certificate
+from proofs_check.observability import MAX_AGENTS
 from proofs_check.parse import loads
 from theory.kinds import load_case, parse_case
-from theory.tdoa.design import tdoa_redundancy
+from theory.tdoa.design import _receiver_sets, tdoa_redundancy
 from theory.tdoa.geometry.exact import exact_direction_rank, rational_points
+from theory.tdoa.geometry.margin import scenes
 
 
 def verdict(cert: dict) -> str:
@@ -129,3 +131,60 @@ def test_past_the_budget_the_answer_is_a_bracket() -> None:
     answer = tdoa_redundancy(load_case("seed000-sec44-ring"), links=True, max_subsets=1)
     assert (answer.certified_below, answer.k, answer.exact) == (1, 2, False)
     assert "bracket" in answer.note
+
+
+@st.composite
+def random_graph_scenes(draw: st.DrawFn) -> tuple:
+    """A scene of 2–12 agents in 3-D on a random directed or undirected link set."""
+    n = draw(st.integers(2, 12))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    directed = draw(st.booleans())
+    pairs = (rng.random((n, n)) < draw(st.floats(0.05, 0.6))) & ~np.eye(n, dtype=bool)
+    if not directed:
+        pairs = np.triu(pairs | pairs.T)
+    block = {"T": 1.0, "agents": rng.uniform(-9, 9, (n, 3)).round(1).tolist()}
+    block |= {"target": [20.0, 0.0, 0.0], "directed": directed, "weights": "uniform"}
+    block["edges"] = [[int(a) + 1, int(b) + 1] for a, b in zip(*np.nonzero(pairs), strict=True)]
+    return scenes(parse_case({"name": "g", "kind": "tdoa", "tdoa": block}).spec)[0], rng
+
+
+@settings(max_examples=40)
+@given(random_graph_scenes())
+def test_receiver_sets_of_a_removal_are_each_agents_receivers(drawn: tuple) -> None:
+    """The enumeration's receivers (heard lists built once, one search per component on
+    undirected links) are Scene.receivers' for every agent, after removing random links."""
+    scene, rng = drawn
+    kept = tuple(x for x in scene.links if rng.random() < 0.7)
+    assert _receiver_sets(scene, kept) == [
+        scene.receivers(i, kept) for i in range(len(scene.agents))
+    ]
+
+
+def ring_case(n: int) -> dict:
+    """``n`` agents on a circle of radius 30 around the target (3-D, z alternating), each
+    linked to the next: removing two links cuts off a path; every smaller loss keeps the ring."""
+    angles = 2 * np.pi * np.arange(n) / n
+    agents = np.stack([30 * np.cos(angles), 30 * np.sin(angles), 5.0 * (-1) ** np.arange(n)])
+    edges = [[i + 1, (i + 1) % n + 1] for i in range(n)]
+    block = {"T": 1.0, "agents": agents.T.round(3).tolist(), "target": [0.0, 0.0, 0.0]}
+    return {"name": f"ring-{n}", "kind": "tdoa", "tdoa": block | {"edges": edges}}
+
+
+def test_a_network_past_64_agents_is_certified() -> None:
+    """70 agents: the certificate (70 points, 70 links) is checked, not refused for its size,
+    and claiming one more link is refused."""
+    answer = tdoa_redundancy(parse_case(ring_case(70)), links=True)
+    assert (answer.k, answer.certified_below, answer.exact) == (2, 2, True)
+    (cert,) = answer.certificates
+    assert len(cert["data"]["agents"]) == 70 and verdict(cert) == "valid"
+    tampered = copy.deepcopy(cert)
+    tampered["claim"]["fewer_than"] = 3
+    assert verdict(tampered) == "invalid"
+
+
+def test_a_scene_past_the_checkers_agent_limit_is_malformed() -> None:
+    """More than MAX_AGENTS points are refused before any arithmetic (exit 2)."""
+    (cert,) = tdoa_redundancy(parse_case(ring_case(8)), links=True).certificates
+    cert = copy.deepcopy(cert)
+    cert["data"]["agents"] = [cert["data"]["agents"][0]] * (MAX_AGENTS + 1)
+    assert verdict(cert) == "malformed"

@@ -10,9 +10,10 @@ Li, Kirubarajan 2001, §5.4, eqs. (5.4.1-5)–(5.4.2-7)). Above the band the fil
 (its covariance is too small for its errors: the unsafe side), below it *pessimistic* (safe but
 wasteful). The band counts every step as independent, which estimation errors correlated in time
 are not, so a verdict outside it is kept only when the spread of independent units agrees
-(:func:`spread_interval`: runs, or batch means of contiguous steps); otherwise it is
-inconclusive. Every simulator records the errors, covariances, innovations and their
-covariances; this module alone turns them into statistics and verdicts.
+(:func:`spread_interval`: runs, or batch means of contiguous steps, each batch several
+correlation times long); otherwise it is inconclusive. Every simulator records the errors,
+covariances, innovations and their covariances; this module alone turns them into statistics and
+verdicts.
 
 OSPA (Schuhmacher, Vo, Vo 2008) and GOSPA (García-Fernández, Svensson 2017) compare a set of
 estimated positions with the set of true ones at cutoff ``c`` and order ``p``.
@@ -36,6 +37,8 @@ from theory.core.tolerances import (
 )
 
 __all__ = [
+    "AUTOCORRELATION_WINDOW",
+    "BATCH_LENGTH",
     "SPREAD_UNITS",
     "Band",
     "Consistency",
@@ -44,6 +47,7 @@ __all__ = [
     "agent_columns",
     "chi2_band",
     "consistency_test",
+    "correlation_steps",
     "describe",
     "evidence",
     "filter_metrics",
@@ -57,8 +61,18 @@ __all__ = [
 ]
 
 SPREAD_UNITS = 10
-"""Independent units :func:`spread_interval` wants: the runs when there are as many, else each
-run cut into this many (over the runs) contiguous batches of steps (batch means)."""
+"""Independent units :func:`spread_interval` takes the runs for when there are as many; with
+fewer runs, each run is cut into contiguous batches of :data:`BATCH_LENGTH` correlation times
+(batch means)."""
+
+BATCH_LENGTH = 10
+"""Length of a batch of steps in integrated autocorrelation times, taken one standard error
+above their estimate (:func:`correlation_steps`): adjacent batch means of L steps correlate by
+about τ/(2L), and τ estimated from a short run comes out low. Measured in
+``benchmarks/bench_spread_check.py`` (docs/simulation.md, *The spread check*)."""
+
+AUTOCORRELATION_WINDOW = 5
+"""Sokal's automatic window: τ is summed over the first M lags, M the least with M ≥ 5 τ(M)."""
 
 
 class Consistency(StrEnum):
@@ -183,18 +197,22 @@ def chi2_band(dof: int, samples: int, probability: float = CONSISTENCY_PROBABILI
 @dataclass(frozen=True)
 class Spread:
     """The mean over ``units`` independent units of ``Σ values / Σ dims`` (1 for a consistent
-    filter) with its two-sided Student-t interval at the band's probability; ``method`` is
-    ``"runs"`` or ``"batch means"`` (contiguous steps of a run, nearly independent when the
-    batches are long against the errors' correlation time)."""
+    filter) with its two-sided Student-t interval at the band's probability (unbounded with one
+    unit); ``method`` is ``"runs"`` or ``"batch means"``: contiguous batches of
+    ``batch_steps`` steps, :data:`BATCH_LENGTH` times the statistic's integrated autocorrelation
+    time ``correlation_steps`` plus its standard error (both ``None`` for runs)."""
 
     units: int
     method: str
     mean: float
     lower: float
     upper: float
+    batch_steps: int | None = None
+    correlation_steps: float | None = None
 
     def to_json(self) -> dict[str, Any]:
-        """``units``, ``method``, ``mean``, ``lower``, ``upper``."""
+        """``units``, ``method``, ``mean``, ``lower``, ``upper``, ``batch_steps``,
+        ``correlation_steps``."""
         return vars(self).copy()
 
 
@@ -202,24 +220,53 @@ def spread_interval(
     values: np.ndarray, dims: np.ndarray, valid: np.ndarray, probability: float
 ) -> Spread | None:
     """The mean normalized statistic over independent units with its Student-t interval
-    (Bar-Shalom et al. §5.4 sums independent runs; steps of one run are correlated); ``None``
-    with fewer than two units or an infinite one (a singular covariance: optimistic as it is)."""
+    (Bar-Shalom et al. §5.4 sums independent runs; steps of one run are correlated): the runs,
+    or batches of each run :data:`BATCH_LENGTH` correlation times long; ``None`` when a unit is
+    infinite (a singular covariance: optimistic as it is)."""
     runs = values.shape[0]
-    batches = 1 if runs >= SPREAD_UNITS else -(-SPREAD_UNITS // runs)
-    ratios = [
-        values[run, part].sum() / dims[run, part].sum()
-        for run in range(runs)
-        for part in np.array_split(np.flatnonzero(valid[run]), batches)
-        if part.size
-    ]
-    ratios = np.asarray(ratios)
-    if len(ratios) < 2 or not np.isfinite(ratios).all():  # ∞: a singular covariance
+    steps = [np.flatnonzero(valid[run]) for run in range(runs)]
+    if runs >= SPREAD_UNITS:
+        parts, batch, tau = [[s] for s in steps], None, None
+    else:
+        tau, error = correlation_steps([values[r, s] / dims[r, s] for r, s in enumerate(steps)])
+        batch = math.ceil(BATCH_LENGTH * (tau + error))
+        parts = [np.array_split(s, max(1, s.size // batch)) for s in steps]
+    ratios = np.asarray(
+        [values[r, p].sum() / dims[r, p].sum() for r in range(runs) for p in parts[r] if p.size]
+    )
+    if not np.isfinite(ratios).all():  # ∞: a singular covariance
         return None
-    mean = float(ratios.mean())
+    mean, method = float(ratios.mean()), "runs" if batch is None else "batch means"
+    if len(ratios) < 2:
+        return Spread(len(ratios), method, mean, -math.inf, math.inf, batch, tau)
     half = float(_t_quantile((1 + probability) / 2, len(ratios) - 1) * ratios.std(ddof=1))
     half /= math.sqrt(len(ratios))
-    method = "runs" if batches == 1 else "batch means"
-    return Spread(len(ratios), method, mean, mean - half, mean + half)
+    return Spread(len(ratios), method, mean, mean - half, mean + half, batch, tau)
+
+
+def correlation_steps(series: list[np.ndarray]) -> tuple[float, float]:
+    """The integrated autocorrelation time τ = 1 + 2 Σ_{k≥1} ρ_k (in steps, ≥ 1) of runs of one
+    statistic and its standard error τ·√(2(2M + 1)/N) (N steps in all).
+
+    Each run is centred on its own mean and the autocovariances are pooled over the runs; τ is
+    summed over Sokal's automatic window of M lags (:data:`AUTOCORRELATION_WINDOW`), or over
+    every lag of the longest run, with an error of τ, when no window fits (Sokal 1997, "Monte
+    Carlo methods in statistical mechanics", §3, eqs. (3.19), (3.21)).
+    """
+    longest, total = max((x.size for x in series), default=0), sum(x.size for x in series)
+    covariances = np.zeros(max(longest, 1))
+    for x in series:
+        if x.size > 1 and np.isfinite(x).all():
+            transform = np.fft.rfft(x - x.mean(), 2 * x.size)
+            covariances[: x.size] += np.fft.irfft(transform * transform.conj())[: x.size]
+    if covariances[0] <= 0:
+        return 1.0, 0.0
+    taus = 1 + 2 * np.cumsum(covariances[1:] / covariances[0])
+    fits = np.flatnonzero(np.arange(1, longest) >= AUTOCORRELATION_WINDOW * taus)
+    if not fits.size:
+        return float(longest), float(longest)
+    tau = max(float(taus[fits[0]]), 1.0)
+    return tau, tau * math.sqrt(2 * (2 * fits[0] + 3) / total)
 
 
 @dataclass(frozen=True)

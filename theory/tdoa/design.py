@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from itertools import combinations
 from typing import Any
 
-from proofs_check.observability import MAX_SUBSETS
+from proofs_check.observability import MAX_SUBSETS, heard_lists, receivers
 from theory.core.case_file import Case
 from theory.core.certificate_format import checked, envelope
 from theory.core.exact import fraction_strings
@@ -101,11 +101,23 @@ def _kept(scene: Scene, removed: tuple, links: bool) -> tuple[tuple[int, ...], s
 def _broken(scene: Scene, removed: tuple, links: bool) -> tuple[int, ...]:
     """0-based agents left with ``rank O_i < 2d`` after the removal (exact)."""
     kept, gone = _kept(scene, removed, links)
+    members = _receiver_sets(scene, kept)
     return tuple(
-        i
-        for i in range(len(scene.agents))
-        if i not in gone and scene.deficient(scene.receivers(i, kept))
+        i for i in range(len(scene.agents)) if i not in gone and scene.deficient(members[i])
     )
+
+
+def _receiver_sets(scene: Scene, kept: tuple) -> list[tuple[int, ...]]:
+    """Every agent's receivers over the links ``kept`` (seed 000 Lemma 4.2.2), the heard lists
+    built once; on undirected links an agent's receivers are its component, searched once."""
+    heard = heard_lists(len(scene.agents), list(kept), scene.undirected)
+    out: list[tuple[int, ...] | None] = [None] * len(scene.agents)
+    for i in range(len(scene.agents)):
+        if out[i] is None:
+            members = tuple(sorted(receivers(i, heard)[0]))
+            for j in members if scene.undirected else (i,):
+                out[j] = members
+    return out  # type: ignore[return-value]
 
 
 def _isolating(scene: Scene, links: bool) -> tuple[tuple, tuple[int, ...]]:
