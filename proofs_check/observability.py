@@ -193,7 +193,7 @@ def observability_margin(cert: dict[str, Any]) -> list[Check]:
     checks = []
     if "comm_range" in data:
         checks += _persistent(data["comm_range"], agents, links, undirected, radius)
-    heard, covered = heard_lists(len(agents), links, undirected), set()
+    heard, covered, work = heard_lists(len(agents), links, undirected), set(), 0
     checks.append(_off_target(target, agents, radius))
     sets = witness["sets"]
     if not isinstance(sets, list) or not sets or len(sets) > p.MAX_ITEMS:
@@ -208,6 +208,9 @@ def observability_margin(cert: dict[str, Any]) -> list[Check]:
         e = _rationals(item["errors"], f"{where}.errors", len(members))
         h = _rationals(item["motion_bounds"], f"{where}.motion_bounds", len(members))
         name = f"set {k + 1}: "
+        work += len(covers) * (len(agents) + 2 * len(links))  # one search per covered agent
+        if work > MAX_WORK:
+            raise p.MalformedError(f"refused: covering work {work:.3g} (limit {MAX_WORK:.3g})")
         checks += [_covers(name, i, set(members), heard) for i in covers]
         checks += _directions(name, target, agents, members, u, e)
         checks += _motions(name, target, agents, members, h, radius)

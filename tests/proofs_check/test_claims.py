@@ -463,6 +463,10 @@ def test_a_negative_zero_json_integer_is_refused() -> None:
         loads('{"format": -0}')
 
 
+WORDS = ("statement", "produced_by", "operator", "model", "controller", "graph", "items")
+"""Keys whose strings are words, not rationals."""
+
+
 def rational_leaves(cert: dict) -> list[tuple]:
     """Paths of every rational string of claim, data and witness (bundle members included)."""
     out = []
@@ -470,7 +474,7 @@ def rational_leaves(cert: dict) -> list[tuple]:
     def walk(value, path):
         if isinstance(value, dict):
             for key, item in value.items():
-                if key not in ("statement", "produced_by", "operator", "model", "controller"):
+                if key not in WORDS:
                     walk(item, (*path, key))
         elif isinstance(value, list):
             for index, item in enumerate(value):

@@ -201,3 +201,17 @@ def test_moving_the_data_onto_the_cone_is_refused() -> None:
     ]
     tampered["data"]["target"] = [str(Fraction(str(x))) for x in cone.target[0].tolist()]
     assert verdict(tampered) == "invalid"
+
+
+def test_the_covering_work_is_bounded_before_the_searches(monkeypatch) -> None:
+    """Each covered agent costs the checker a search of the graph (agents + 2 links): a
+    certificate asking for more than MAX_WORK of them is refused (exit 2), not searched."""
+    import proofs_check.observability as observability
+
+    (cert, *_) = tdoa_margin(load_case("seed000-sec44-ring")).certificates
+    covers = sum(len(s["covers"]) for s in cert["witness"]["sets"])
+    per_search = len(cert["data"]["agents"]) + 2 * len(cert["data"]["links"])
+    monkeypatch.setattr(observability, "MAX_WORK", covers * per_search)
+    assert verdict(cert) == "valid"
+    monkeypatch.setattr(observability, "MAX_WORK", covers * per_search - 1)
+    assert verdict(cert) == "malformed"
