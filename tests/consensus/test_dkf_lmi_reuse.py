@@ -4,6 +4,7 @@ decides exactly as a fresh build, and one problem serves every ``W`` of one supp
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -60,3 +61,33 @@ def test_a_reused_problem_gives_the_same_bits_as_a_new_one(w: float) -> None:
     again = decide_s_detectability(A, C, W, problems=warm)
     assert again.evidence() == new.evidence()
     assert again.certificate == new.certificate
+
+
+def test_one_problem_serves_every_self_weight_search_of_a_case(monkeypatch) -> None:
+    """analyze_dkf's searches (each agent's family, their w = 0 ends, the joint family) share
+    one problem built on the case's support with the diagonal, and answer as searches that
+    build their own."""
+    from theory.consensus import analysis, s_detectability
+    from theory.consensus.design import self_weight_design
+    from theory.kinds import load_case
+
+    built = []
+    original = s_detectability._build_lmi
+    monkeypatch.setattr(
+        s_detectability, "_build_lmi", lambda *a: built.append(a[2].copy()) or original(*a)
+    )
+    case = load_case("ch5-example-1-wg")
+    result = analysis.analyze_dkf(case)
+    support = (case.spec.W != 0) | np.eye(3, dtype=bool)
+    assert len(result.searches) == 3 and len(built) <= 2
+    assert any(np.array_equal(b, support) for b in built)
+    for search, _ in result.searches:
+        alone = self_weight_design(case, agents=[a - 1 for a in search.agents])
+        assert (search.status, search.supremum) == (alone.status, alone.supremum)
+
+
+def test_a_weight_outside_the_caches_support_is_refused() -> None:
+    A, C, W = self_weight_examples("example 1", 0.2)
+    cache = LmiCache(support=W != 0)
+    with pytest.raises(ValueError, match="outside"):
+        cache.problem(A, C, np.ones_like(W), 1.0)

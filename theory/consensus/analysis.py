@@ -47,6 +47,7 @@ from theory.consensus.riccati import (
 from theory.consensus.s_detectability import (
     CERT_TOL,
     LMI_MARGIN,
+    LmiCache,
     SDetectability,
     decide_s_detectability,
 )
@@ -222,9 +223,12 @@ def analyze_dkf(
 
         bounded = [b for b in conditions.self_weights if np.isfinite(b.bound) and b.weight < 1]
         groups = [[b] for b in bounded] + ([bounded] if len(bounded) > 1 else [])
+        problems = LmiCache(support=(spec.W != 0) | np.eye(spec.n_agents, dtype=bool))
         searches = [
             (
-                self_weight_design(case, agents=[b.agent - 1 for b in group], solver=solver),
+                self_weight_design(
+                    case, agents=[b.agent - 1 for b in group], solver=solver, problems=problems
+                ),
                 min(b.bound for b in group),
             )
             for group in groups

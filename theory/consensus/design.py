@@ -112,6 +112,12 @@ class Family:
             [y - x for x, y in zip(r0, r1, strict=True)] for r0, r1 in zip(W0, W1, strict=True)
         ]
 
+    def support(self) -> np.ndarray:
+        """Where some ``W(w)`` of the family is nonzero: ``W0``'s and ``W1``'s supports."""
+        W0, W1 = self.affine()
+        return np.array([[x != 0 or y != 0 for x, y in zip(*rows, strict=True)]
+                         for rows in zip(W0, W1, strict=True)])  # fmt: skip
+
     def rising_diagonal(self) -> list[tuple[int, Fraction, Fraction]]:
         """``(a, offset, factor)`` of each self-weight that grows with ``w``."""
         return [(i, o, f) for (i, j), (o, f) in self.entries.items() if i == j and f > 0]
@@ -431,9 +437,12 @@ def _decimal_at_or_above(x: Fraction, d: int) -> Fraction:
 class _Decider:
     """Exact decisions along one family, the LMI built once per support (issue 28 item 4)."""
 
-    def __init__(self, A: np.ndarray, C: list[np.ndarray], family: Family, case: str, solver: str):
+    def __init__(
+        self, A: np.ndarray, C: list[np.ndarray], family: Family, case: str, solver: str,
+        problems: LmiCache | None = None,
+    ) -> None:  # fmt: skip
         self.A, self.C, self.family, self.case, self.solver = A, C, family, case, solver
-        self.problems = LmiCache()
+        self.problems = problems if problems is not None else LmiCache(support=family.support())
         self.probes: list[Probe] = []
 
     def decide(self, w: Fraction) -> Probe:
@@ -477,12 +486,14 @@ def self_weight_design(
     links: Sequence[str] = (),
     width: float | Fraction = WEIGHT_TOL,
     solver: str = "CLARABEL",
+    problems: LmiCache | None = None,
 ) -> SelfWeightDesign:
     """The supremum of the S-detectable ``w`` of a weight family, exact when a necessary
     condition decided exactly is tight, else a bracket of ``width`` (module docstring).
 
     ``agents`` (0-based; default :func:`default_agents`) vary their self-weights with their rows
-    rescaled, unless ``links`` (``"W.i.j=EXPR"`` in ``w``) give the family.
+    rescaled, unless ``links`` (``"W.i.j=EXPR"`` in ``w``) give the family; ``problems`` the
+    built LMIs to re-solve (its support must hold the family's; default: one for the family).
     """
     width = Fraction(width) if not isinstance(width, float) else Fraction(repr(width))
     if width <= 0:
@@ -499,7 +510,7 @@ def self_weight_design(
                 "--agent", f"agents 1…{len(W)}", [a + 1 for a in chosen], file=COMMAND_LINE
             )
         family, ids = self_weight_family_exact(W, chosen), tuple(a + 1 for a in chosen)
-    decider = _Decider(A, C, family, case.name, solver)
+    decider = _Decider(A, C, family, case.name, solver, problems)
     return _search(decider, _exact_bound(A, C, family), width, ids)
 
 

@@ -442,9 +442,14 @@ class LmiCache:
     decision per point, reuse too).
     """
 
-    def __init__(self, limit: int | None = None) -> None:
+    def __init__(self, limit: int | None = None, support: np.ndarray | None = None) -> None:
+        """At most ``limit`` problems; with ``support``, every problem is built for it (each
+        ``W`` asked for must lie within it; a zero weight inside it only drops its term), so
+        weights of different supports — a self-weight search's ``w = 0`` end, the searches of
+        every agent of one case — share one problem."""
         self._problems: dict[tuple, tuple[cp.Problem, dict[str, Any]]] = {}
         self._limit = limit
+        self._support = None if support is None else np.asarray(support, dtype=bool)
 
     def __len__(self) -> int:
         """How many problems are built."""
@@ -454,7 +459,9 @@ class LmiCache:
         self, A: np.ndarray, C: list[np.ndarray], W: np.ndarray, rho: float
     ) -> tuple[cp.Problem, dict[str, Any]]:
         """The LMI of ``(A, C, W, ρ)``, built on first use for this support, ``W`` set."""
-        support = W != 0
+        support = W != 0 if self._support is None else self._support
+        if np.any((W != 0) & ~support):
+            raise ValueError("a weight outside the cache's support")
         key = (A.tobytes(), A.shape, tuple((c.tobytes(), c.shape) for c in C),
                support.tobytes(), support.shape, rho)  # fmt: skip
         built = self._problems.pop(key, None) or _build_lmi(A, C, support, rho)
