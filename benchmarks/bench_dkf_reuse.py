@@ -11,7 +11,10 @@ CPU seconds of 8 probes (``time.process_time``):
   through :func:`~theory.consensus.s_detectability.max_self_weight` with ``reuse`` off and on;
   both must return the same bracket;
 * sweep: 11 whole decisions of Example 1's self-weight sweep, one per point as ``trackcert
-  sweep`` makes them, each with a fresh build against the thread's default cache.
+  sweep`` makes them, each with a fresh build against the thread's default cache;
+* case: every self-weight search ``trackcert dkf`` runs on a ring of ``--case-agents`` 2-state
+  agents (one per agent with a finite bound, and their joint family), each search with its own
+  problems (as until 7 December 2026) against one cache for the case (``analyze_dkf``).
 
 Systems: seed 000 Example 2 (agent 3) and a directed ring of N agents (``--agents``, default 10)
 watching ``A = 1.2 I₃``, agent 1 without a sensor (its self-weight varies; Thm 5.2.10 (2) puts the
@@ -69,10 +72,42 @@ def _sweep(fresh: bool) -> float:
     return time.process_time() - start
 
 
+def ring_case(agents: int):
+    """A ring of 2-state agents, alternate ones seeing one coordinate, self-weight 1/2."""
+    from theory.kinds import parse_case
+
+    W = np.zeros((agents, agents))
+    for i in range(agents):
+        W[i, i], W[i, (i + 1) % agents], W[i, (i - 1) % agents] = 0.5, 0.25, 0.25
+    C = [[[1, 0]] if i % 2 == 0 else [[0, 1]] for i in range(agents)]
+    block = {"A": [[1.05, 0.1], [0, 1.02]], "C": C, "W": W.tolist(), "Q": np.eye(2).tolist()}
+    block["R"] = [[[1]]] * agents
+    return parse_case({"name": f"ring{agents}", "kind": "dkf", "dkf": block})
+
+
+def _case_searches(case, shared: bool) -> tuple[float, list]:
+    """CPU seconds and answers of the case's self-weight searches, as ``analyze_dkf`` runs them."""
+    from theory.consensus.conditions import necessary_conditions
+    from theory.consensus.design import self_weight_design
+
+    spec = case.spec
+    bounds = necessary_conditions(spec.A, spec.C, spec.W).self_weights
+    bounded = [b.agent - 1 for b in bounds if np.isfinite(b.bound) and b.weight < 1]
+    groups = [[a] for a in bounded] + ([bounded] if len(bounded) > 1 else [])
+    problems = LmiCache(support=(spec.W != 0) | np.eye(len(spec.W), dtype=bool))
+    start = time.process_time()
+    answers = [
+        self_weight_design(case, agents=group, problems=problems if shared else None)
+        for group in groups
+    ]
+    return time.process_time() - start, [(a.status, a.supremum) for a in answers]
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--agents", type=int, default=10)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--case-agents", type=int, default=16)
     args = parser.parse_args()
     A2, C2, W2 = self_weight_examples("example 2", 0.32)
     rng = np.random.default_rng(args.seed)
@@ -93,6 +128,13 @@ def main() -> None:
     print(
         f"sweep of 11 decisions (example 1): rebuilt {old:.3f}, reused {new:.3f}, "
         f"ratio {old / new:.1f}x"
+    )
+    case = ring_case(args.case_agents)
+    (old, a_old), (new, a_new) = (_case_searches(case, shared) for shared in (False, True))
+    assert a_old == a_new, (a_old, a_new)
+    print(
+        f"self-weight searches of trackcert dkf, ring of {args.case_agents}: a cache per search "
+        f"{old:.3f}, one per case {new:.3f}, ratio {old / new:.1f}x"
     )
 
 
