@@ -61,9 +61,9 @@ __all__ = [
 ]
 
 SPREAD_UNITS = 10
-"""Independent units :func:`spread_interval` takes the runs for when there are as many; with
-fewer runs, each run is cut into contiguous batches of :data:`BATCH_LENGTH` correlation times
-(batch means)."""
+"""From this many runs on, :func:`spread_interval` takes the runs as its independent units; with
+fewer, it cuts each run into contiguous batches of :data:`BATCH_LENGTH` correlation times (batch
+means)."""
 
 BATCH_LENGTH = 10
 """Length of a batch of steps in integrated autocorrelation times, taken one standard error
